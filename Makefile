@@ -1,0 +1,62 @@
+# ssstar: `make` builds lib/libssstar.so and the examples, `make run` solves the prism,
+# `make test` runs the test suite, `make bench` the timing table. configure.py runs first if needed.
+
+-include config/ssstar.mk
+ifneq ($(PETSC_DIR),)
+include $(PETSC_DIR)/lib/petsc/conf/variables
+endif
+
+LIBNAME  := ssstar
+LIB      := lib/lib$(LIBNAME).so
+LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/kernels.c \
+            src/contact/mesh.c src/contact/elasticity.c src/contact/reduction.c src/contact/output.c
+LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
+EXAMPLES := examples/prism
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
+CFLAGS_SSSTAR := $(PCC_FLAGS) -std=c99 -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
+                 -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
+LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
+# mpiexec as root (CI, containers) needs these; harmless otherwise
+export OMPI_ALLOW_RUN_AS_ROOT=1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OPENBLAS_NUM_THREADS=1
+MPIEXEC_SSSTAR := mpiexec --oversubscribe
+
+.PHONY: all run test bench clean distclean
+all: $(LIB) $(EXAMPLES) $(TESTS)
+
+config/ssstar.mk: configure.py
+	python3 configure.py
+
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h) config/ssstar.mk
+	@mkdir -p $(dir $@)
+	$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@mkdir -p lib
+	$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB)
+
+examples/%: examples/%.c $(LIB)
+	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
+tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
+	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
+# deliberately not linked with libssstar: it gets the type through -dll_append
+tests/test_plain_contact: tests/test_plain_contact.c
+	$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
+
+run: all
+	$(MPIEXEC_SSSTAR) -n 2 examples/prism -level 6 -snes_converged_reason -o prism_L6.h5
+
+test: all
+	$(PYTHON) tests/run.py
+
+bench: all
+	$(PYTHON) bench/table2.py
+
+clean:
+	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf
+
+distclean: clean
+	rm -f config/ssstar.mk

@@ -1,0 +1,148 @@
+/* P1 linear elasticity on tetrahedra: stiffness K and load F from constant tractions. */
+#include <ssstarcontact.h>
+
+/* Gradients of the four barycentric basis functions of the tetrahedron x[12]; returns its volume. */
+static PetscReal TetGradients(const PetscReal x[12], PetscReal grad[4][3])
+{
+  PetscReal J[3][3], inv[3][3], det;
+
+  for (PetscInt r = 0; r < 3; r++)
+    for (PetscInt k = 0; k < 3; k++) J[r][k] = x[3 * (k + 1) + r] - x[r]; /* columns: edges from vertex 0 */
+  det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  inv[0][0] = (J[1][1] * J[2][2] - J[1][2] * J[2][1]) / det;
+  inv[0][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
+  inv[0][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / det;
+  inv[1][0] = (J[1][2] * J[2][0] - J[1][0] * J[2][2]) / det;
+  inv[1][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / det;
+  inv[1][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / det;
+  inv[2][0] = (J[1][0] * J[2][1] - J[1][1] * J[2][0]) / det;
+  inv[2][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / det;
+  inv[2][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / det;
+  /* grad lambda_{a+1} = row a of J^{-1}; grad lambda_0 = -sum */
+  for (PetscInt k = 0; k < 3; k++) {
+    grad[0][k] = 0;
+    for (PetscInt a = 0; a < 3; a++) {
+      grad[a + 1][k] = inv[a][k];
+      grad[0][k] -= inv[a][k];
+    }
+  }
+  return PetscAbsReal(det) / 6.0;
+}
+
+/* K_{ai,bj} = vol (lambda g_a,i g_b,j + mu g_a,j g_b,i + mu delta_ij g_a.g_b) */
+static void TetStiffness(const PetscReal x[12], PetscReal lambda, PetscReal mu, PetscScalar K[144])
+{
+  PetscReal g[4][3];
+  PetscReal vol = TetGradients(x, g);
+
+  for (PetscInt a = 0; a < 4; a++)
+    for (PetscInt b = 0; b < 4; b++) {
+      const PetscReal gab = g[a][0] * g[b][0] + g[a][1] * g[b][1] + g[a][2] * g[b][2];
+      for (PetscInt i = 0; i < 3; i++)
+        for (PetscInt j = 0; j < 3; j++) K[(3 * a + i) * 12 + 3 * b + j] = vol * (lambda * g[a][i] * g[b][j] + mu * g[a][j] * g[b][i] + (i == j ? mu * gab : 0.0));
+    }
+}
+
+static PetscErrorCode AssembleStiffness(DM dm, PetscReal lambda, PetscReal mu, Mat K)
+{
+  DM           cdm;
+  Vec          coordinates;
+  PetscSection csec;
+  PetscInt     cStart, cEnd;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    PetscScalar *xc = NULL, Ke[144];
+    PetscReal    x[12];
+    PetscInt     nx;
+
+    PetscCall(DMPlexVecGetClosure(cdm, csec, coordinates, c, &nx, &xc));
+    PetscCheck(nx == 12, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron (%" PetscInt_FMT " coordinates)", c, nx);
+    for (PetscInt k = 0; k < 12; k++) x[k] = PetscRealPart(xc[k]);
+    PetscCall(DMPlexVecRestoreClosure(cdm, csec, coordinates, c, &nx, &xc));
+    TetStiffness(x, lambda, mu, Ke);
+    PetscCall(DMPlexMatSetClosure(dm, NULL, NULL, K, c, Ke, ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* Adds the consistent load of a constant traction t on the triangles of group: area/3 t per vertex. */
+static PetscErrorCode AddTraction(DM dm, const char group[], const PetscReal t[3], Vec Floc)
+{
+  DM              cdm;
+  Vec             coordinates;
+  PetscSection    csec;
+  DMLabel         label;
+  PetscInt        fStart, fEnd;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
+  PetscCall(DMGetLabel(dm, group, &label));
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  for (PetscInt f = fStart; f < fEnd; f++) {
+    PetscScalar *xc = NULL, load[9];
+    PetscReal    e1[3], e2[3], n[3], area;
+    PetscInt     value, nx, support;
+
+    PetscCall(DMLabelGetValue(label, f, &value));
+    if (value < 0) continue;
+    PetscCall(DMPlexGetSupportSize(dm, f, &support));
+    PetscCheck(support == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Face %" PetscInt_FMT " of physical group \"%s\" is not on the boundary", f, group);
+    PetscCall(DMPlexVecGetClosure(cdm, csec, coordinates, f, &nx, &xc));
+    PetscCheck(nx == 9, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of physical group \"%s\" is not a triangle", f, group);
+    for (PetscInt k = 0; k < 3; k++) {
+      e1[k] = PetscRealPart(xc[3 + k] - xc[k]);
+      e2[k] = PetscRealPart(xc[6 + k] - xc[k]);
+    }
+    PetscCall(DMPlexVecRestoreClosure(cdm, csec, coordinates, f, &nx, &xc));
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    area = 0.5 * PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (PetscInt v = 0; v < 3; v++)
+      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = area / 3.0 * t[k];
+    PetscCall(DMPlexVecSetClosure(dm, NULL, Floc, f, load, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarAssembleElasticity - the stiffness K and load F of P1 linear elasticity (E, nu) with the tractions of the scene
+   on "top" and "right" (u = 0 on "dirichlet" is built into the dofs)
+@*/
+PetscErrorCode SSStarAssembleElasticity(DM dm, const SSStarScene *scene, Mat *K, Vec *F)
+{
+  const PetscReal lambda = scene->E * scene->nu / ((1 + scene->nu) * (1 - 2 * scene->nu));
+  const PetscReal mu     = scene->E / (2 * (1 + scene->nu));
+  Vec             Floc;
+
+  PetscFunctionBegin;
+  PetscCheck(scene->E > 0, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be positive", (double)scene->E);
+  PetscCheck(scene->nu > -1 && scene->nu < 0.5, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
+  PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscCall(DMSetMatType(dm, MATAIJ));
+  PetscCall(DMCreateMatrix(dm, K));
+  PetscCall(MatSetOption(*K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(AssembleStiffness(dm, lambda, mu, *K));
+  PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
+
+  PetscCall(DMCreateGlobalVector(dm, F));
+  PetscCall(PetscObjectSetName((PetscObject)*F, "load"));
+  PetscCall(DMGetLocalVector(dm, &Floc));
+  PetscCall(VecZeroEntries(Floc));
+  PetscCall(AddTraction(dm, SSSTAR_GROUP_TOP, scene->traction_top, Floc));
+  PetscCall(AddTraction(dm, SSSTAR_GROUP_RIGHT, scene->traction_right, Floc));
+  PetscCall(VecZeroEntries(*F));
+  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, *F));
+  PetscCall(DMRestoreLocalVector(dm, &Floc));
+  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,46 @@
+/* Package registration: linked use (SSStarInitializePackage) and -dll_append (PetscDLLibraryRegister_ssstar). */
+#include "snes/impls/ssstar/ssstarimpl.h"
+#include <ssstarcontact.h>
+
+PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
+
+PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
+PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
+
+static PetscBool SSStarPackageInitialized = PETSC_FALSE;
+
+PetscErrorCode SSStarFinalizePackage(void)
+{
+  PetscFunctionBegin;
+  SSStarPackageInitialized = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarInitializePackage - registers the SNES type "ssstar" and the log events of ssstar
+@*/
+PetscErrorCode SSStarInitializePackage(void)
+{
+  PetscFunctionBegin;
+  if (SSStarPackageInitialized) PetscFunctionReturn(0);
+  SSStarPackageInitialized = PETSC_TRUE;
+  PetscCall(SNESInitializePackage());
+  PetscCall(SNESRegister(SNESSSSTAR, SNESCreate_SSStar));
+  PetscCall(PetscLogEventRegister("SSStarAS", SNES_CLASSID, &SSSTAR_ApproxStep));
+  PetscCall(PetscLogEventRegister("SSStarNS", SNES_CLASSID, &SSSTAR_NewtonStep));
+  PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
+  PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
+  PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));
+  PetscCall(PetscRegisterFinalize(SSStarFinalizePackage));
+  PetscFunctionReturn(0);
+}
+
+#if defined(PETSC_HAVE_DYNAMIC_LIBRARIES)
+/* Called by PETSc when the library is loaded with -dll_append <dir>/libssstar.so */
+PETSC_EXTERN PetscErrorCode PetscDLLibraryRegister_ssstar(void)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarInitializePackage());
+  PetscFunctionReturn(0);
+}
+#endif

@@ -36,13 +36,21 @@ PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm comm, const char geo[], PetscInt
   PetscFunctionReturn(0);
 }
 
+/* The mesh is read on rank 0: check the group there, then give every rank the label. */
 static PetscErrorCode CheckGroup(DM dm, const char file[], const char group[])
 {
-  DMLabel label;
+  DMLabel     label;
+  PetscMPIInt has;
 
   PetscFunctionBegin;
   PetscCall(DMGetLabel(dm, group, &label));
-  PetscCheck(label, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG, "Mesh %s has no physical group named \"%s\" (needs %s, %s, %s, %s)", file, group, SSSTAR_GROUP_DIRICHLET, SSSTAR_GROUP_TOP, SSSTAR_GROUP_RIGHT, SSSTAR_GROUP_CONTACT);
+  has = label ? 1 : 0;
+  PetscCallMPI(MPI_Bcast(&has, 1, MPI_INT, 0, PetscObjectComm((PetscObject)dm)));
+  PetscCheck(has, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG, "Mesh %s has no physical group named \"%s\" (needs %s, %s, %s, %s)", file, group, SSSTAR_GROUP_DIRICHLET, SSSTAR_GROUP_TOP, SSSTAR_GROUP_RIGHT, SSSTAR_GROUP_CONTACT);
+  if (!label) {
+    PetscCall(DMCreateLabel(dm, group));
+    PetscCall(DMGetLabel(dm, group, &label));
+  }
   PetscCall(DMPlexLabelComplete(dm, label));
   PetscFunctionReturn(0);
 }
@@ -64,6 +72,29 @@ static PetscErrorCode CreateVertexTags(DM dm, PetscSection *sec, Vec *tags)
   PetscCall(VecGetArrayWrite(*tags, &a));
   for (PetscInt v = vStart; v < vEnd; v++) a[v - vStart] = v - vStart;
   PetscCall(VecRestoreArrayWrite(*tags, &a));
+  PetscFunctionReturn(0);
+}
+
+/* The distributed tags are laid out by the migrated section; the caller wants them by vertex number. */
+static PetscErrorCode TagsInVertexOrder(DM dm, PetscSection sec, Vec migrated, Vec *tags)
+{
+  PetscInt           vStart, vEnd;
+  const PetscScalar *ma;
+  PetscScalar       *a;
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, vEnd - vStart, tags));
+  PetscCall(VecGetArrayRead(migrated, &ma));
+  PetscCall(VecGetArrayWrite(*tags, &a));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off;
+
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    a[v - vStart] = ma[off];
+  }
+  PetscCall(VecRestoreArrayWrite(*tags, &a));
+  PetscCall(VecRestoreArrayRead(migrated, &ma));
   PetscFunctionReturn(0);
 }
 
@@ -136,16 +167,17 @@ PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], DM *dm, Vec *tag
     PetscCall(PetscSectionCreate(comm, &newSec));
     PetscCall(VecCreate(PETSC_COMM_SELF, &newTags));
     PetscCall(DMPlexDistributeField(*dm, migration, tagSec, *tags, newSec, newTags));
-    PetscCall(PetscSectionDestroy(&newSec));
     PetscCall(VecDestroy(tags));
-    *tags = newTags;
     PetscCall(DMDestroy(dm));
     *dm = dist;
+    PetscCall(TagsInVertexOrder(*dm, newSec, newTags, tags));
+    PetscCall(PetscSectionDestroy(&newSec));
+    PetscCall(VecDestroy(&newTags));
   }
   PetscCall(PetscSFDestroy(&migration));
   PetscCall(PetscSectionDestroy(&tagSec));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
-  PetscCall(DMSetFromOptions(*dm));
+  PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscCall(CreateDisplacementSection(*dm));
   PetscFunctionReturn(0);
 }

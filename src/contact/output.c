@@ -48,7 +48,8 @@ static PetscErrorCode GatherBlocks(MPI_Comm comm, PetscInt nloc, PetscInt bs, co
 static PetscErrorCode WriteXDMF(DM dm, const char h5[])
 {
   MPI_Comm    comm = PetscObjectComm((PetscObject)dm);
-  PetscInt    cStart, cEnd, vStart, vEnd, ncells, nverts, loc[2];
+  PetscInt    cStart, cEnd, ncells, nverts, nloc;
+  Vec         coordinates;
   PetscMPIInt rank;
   char        xmf[PETSC_MAX_PATH_LEN];
   const char *base;
@@ -57,18 +58,11 @@ static PetscErrorCode WriteXDMF(DM dm, const char h5[])
 
   PetscFunctionBegin;
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  loc[0] = cEnd - cStart;
-  PetscCall(MPIU_Allreduce(&loc[0], &ncells, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCall(DMGetCoordinatesLocal(dm, NULL)); /* nothing; keeps the DM's coordinates set up */
-  {
-    Vec coordinates;
-    PetscCall(DMGetCoordinates(dm, &coordinates));
-    PetscCall(VecGetSize(coordinates, &nverts));
-    nverts /= 3;
-  }
-  (void)loc[1];
-  (void)vEnd;
+  nloc = cEnd - cStart;
+  PetscCall(MPIU_Allreduce(&nloc, &ncells, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(DMGetCoordinates(dm, &coordinates));
+  PetscCall(VecGetSize(coordinates, &nverts));
+  nverts /= 3;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscStrlen(h5, &len));
   PetscCall(PetscStrncpy(xmf, h5, sizeof(xmf)));
@@ -84,13 +78,13 @@ static PetscErrorCode WriteXDMF(DM dm, const char h5[])
                            " <Domain>\n"
                            "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n"
                            "   <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n"
-                           "    <DataItem Dimensions=\"%" PetscInt_FMT " 4\" NumberType=\"Float\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n"
+                           "    <DataItem Dimensions=\"%" PetscInt_FMT " 4\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n"
                            "   </Topology>\n"
                            "   <Geometry GeometryType=\"XYZ\">\n"
                            "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n"
                            "   </Geometry>\n"
                            "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n"
-                           "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Format=\"HDF\">%s:/vertex_fields/displacement</DataItem>\n"
+                           "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Format=\"HDF\">%s:/fields/displacement</DataItem>\n"
                            "   </Attribute>\n"
                            "  </Grid>\n"
                            " </Domain>\n"

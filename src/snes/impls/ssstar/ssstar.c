@@ -58,10 +58,10 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscCall(KSPGetPC(snes->ksp, &pc));
   PetscCall(PCFactorGetMatSolverType(pc, &solver));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)snes), &size));
-  if (!solver && size > 1) {
-    PetscCall(PetscObjectTypeCompareAny((PetscObject)snes->jacobian, &isdense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
-    PetscCall(PCFactorSetMatSolverType(pc, isdense ? MATSOLVERSCALAPACK : MATSOLVERMUMPS));
-  }
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)snes->jacobian, &isdense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
+  /* parallel dense LU is ScaLAPACK's, on a MATSCALAPACK copy of A; parallel sparse LU is MUMPS's */
+  ss->scalapack = (PetscBool)(size > 1 && isdense);
+  if (!solver && size > 1 && !isdense) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscFunctionReturn(0);
 }
 
@@ -168,8 +168,29 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, Mat P, Vec z, Vec d, Vec b
     PetscCall(MatScale(ss->A, ss->scaling));
     PetscCall(MatAXPY(ss->A, 1.0, ss->T, SUBSET_NONZERO_PATTERN));
   }
-  PetscCall(KSPSetOperators(snes->ksp, ss->A, ss->A));
-  PetscCall(KSPSolve(snes->ksp, y, du));
+  if (ss->scalapack) {
+    /* MATSCALAPACK chooses its own row layout: move y and du to it and back */
+    PetscCall(MatConvert(ss->A, MATSCALAPACK, ss->Ascalapack ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &ss->Ascalapack));
+    if (!ss->toScalapack) {
+      PetscCall(MatCreateVecs(ss->Ascalapack, &ss->duScalapack, &ss->yScalapack));
+      PetscInt lo, hi;
+      IS       own;
+
+      PetscCall(VecGetOwnershipRange(y, &lo, &hi));
+      PetscCall(ISCreateStride(PETSC_COMM_SELF, hi - lo, lo, 1, &own));
+      PetscCall(VecScatterCreate(y, own, ss->yScalapack, own, &ss->toScalapack));
+      PetscCall(ISDestroy(&own));
+    }
+    PetscCall(KSPSetOperators(snes->ksp, ss->Ascalapack, ss->Ascalapack));
+    PetscCall(VecScatterBegin(ss->toScalapack, y, ss->yScalapack, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(ss->toScalapack, y, ss->yScalapack, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(KSPSolve(snes->ksp, ss->yScalapack, ss->duScalapack));
+    PetscCall(VecScatterBegin(ss->toScalapack, ss->duScalapack, du, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(ss->toScalapack, ss->duScalapack, du, INSERT_VALUES, SCATTER_REVERSE));
+  } else {
+    PetscCall(KSPSetOperators(snes->ksp, ss->A, ss->A));
+    PetscCall(KSPSolve(snes->ksp, y, du));
+  }
   PetscCall(KSPGetConvergedReason(snes->ksp, &kspreason));
   *solved = (PetscBool)(kspreason >= 0);
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonStep, snes, 0, 0, 0));
@@ -242,6 +263,10 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(MatDestroy(&ss->T));
   PetscCall(MatDestroy(&ss->SP));
   PetscCall(MatDestroy(&ss->A));
+  PetscCall(MatDestroy(&ss->Ascalapack));
+  PetscCall(VecDestroy(&ss->yScalapack));
+  PetscCall(VecDestroy(&ss->duScalapack));
+  PetscCall(VecScatterDestroy(&ss->toScalapack));
   PetscCall(PetscFree(ss->states));
   ss->nnodes = 0;
   PetscFunctionReturn(0);

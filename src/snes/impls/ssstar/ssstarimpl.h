@@ -18,6 +18,10 @@ typedef struct {
   PetscInt     counts[SSSTAR_NUM_STATES]; /* global counts per state                 */
   Mat          S, T;          /* block-diagonal factors of the 3p Newton system      */
   Mat          SP, A;         /* S P and the Newton matrix A = gamma S P + T         */
+  PetscBool    scalapack;     /* A is distributed dense: factor a MATSCALAPACK copy   */
+  Mat          Ascalapack;
+  Vec          yScalapack, duScalapack;
+  VecScatter   toScalapack;
 } SNES_SSStar;
 
 #endif

@@ -89,7 +89,12 @@ int main(int argc, char **argv)
   /* mesh, FEM */
   PetscCall(PetscTime(&t0));
   if (!hasMesh) {
-    PetscCall(PetscSNPrintf(mesh, sizeof(mesh), SSSTAR_MESH_DIR "/prism_L%" PetscInt_FMT ".msh", level));
+    size_t len;
+
+    /* meshes/prism.geo at level 6 -> meshes/prism_L6.msh */
+    PetscCall(PetscStrlen(geo, &len));
+    PetscCheck(len > 4 && !strcmp(geo + len - 4, ".geo"), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-geo %s: expected a .geo file", geo);
+    PetscCall(PetscSNPrintf(mesh, sizeof(mesh), "%.*s_L%" PetscInt_FMT ".msh", (int)(len - 4), geo, level));
     PetscCall(SSStarMeshGeneratePrism(PETSC_COMM_WORLD, geo, level, mesh));
   }
   PetscCall(SSStarMeshLoad(PETSC_COMM_WORLD, mesh, &dm, &tags));

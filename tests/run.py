@@ -39,7 +39,7 @@ def expect(cond, message, output=""):
         raise Failure(message + ("\n" + output[-3000:] if output else ""))
 
 
-SUMMARY = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
+SUMMARY = re.compile(r"^\s*(-?\d+)\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
 
 
 def prism(level, ranks=1, extra=(), h5=None):
@@ -80,10 +80,9 @@ def newton_3p_equals_6p():
     run([os.path.join(ROOT, "tests", "test_newton")])
 
 
-def plain_contact(ranks, friction):
-    out = run(mpiexec(ranks, os.path.join(ROOT, "tests", "test_plain_contact"), "-dll_append", LIB, "-snes_type", "ssstar",
-                      "-snes_ssstar_friction", str(friction)))
-    expect("CONVERGED_FNORM_ABS" in out, "did not converge", out)
+def plain_contact(ranks, friction, *extra, expect_rc=0):
+    return run(mpiexec(ranks, os.path.join(ROOT, "tests", "test_plain_contact"), "-dll_append", LIB, "-snes_type", "ssstar",
+                       "-snes_ssstar_friction", str(friction), *extra), expect_rc=expect_rc)
 
 
 @test("-dll_append loads the type into a program that does not link libssstar; sparse P; Coulomb law to 1e-8 (1 rank)")
@@ -99,6 +98,21 @@ def dll_append_2ranks():
 @test("phi = 0 (frictionless) through the -dll_append path converges and satisfies the law")
 def dll_append_frictionless():
     plain_contact(1, 0.0)
+
+
+@test("a dense P (LAPACK LU on 1 rank, ScaLAPACK on 2) solves the same problem")
+def dll_append_dense():
+    for ranks in (1, 2):
+        plain_contact(ranks, 0.3, "-dense")
+
+
+@test("a singular Newton matrix ends the solve with DIVERGED_LINEAR_SOLVE (sub-reason SINGULAR_NEWTON_MATRIX), not a crash: sparse and dense, 1 and 2 ranks")
+def singular_newton_matrix():
+    for ranks in (1, 2):
+        for dense in ("0", "1"):
+            out = plain_contact(ranks, 0.3, "-singular", "-dense", dense, "-snes_view", expect_rc=1)
+            expect("DIVERGED_LINEAR_SOLVE" in out and "SINGULAR_NEWTON_MATRIX" in out and "PETSC ERROR" not in out,
+                   "%d ranks, dense %s: no honest divergence reason" % (ranks, dense), out)
 
 
 def prism_level(level):
@@ -155,6 +169,28 @@ def prism_view_and_log():
     for pattern in [r"type: ssstar", r"friction coefficient phi = 0.3", r"stopping rule \|\|z\|\| <= 1e-12",
                     r"SSStarAssembly", r"SSStarSchur", r"SSStarAS", r"SSStarNS", r"SSStar states L 14 M1 55 M2 0 M3\+ 15 M3- 0 M4 0"]:
         expect(re.search(pattern, out) is not None, "missing in output: " + pattern, out)
+
+
+@test("meshes/prism.geo gives the node counts of Table 2 for L = 3..16 and 4L(2L+1) contact nodes")
+def mesh_node_counts():
+    table2 = [637, 1377, 2541, 4225, 6525, 9537, 13357, 18081, 23805, 30625, 38637, 47937, 58621, 70785]
+    for level, nodes in zip(range(3, 17), table2):
+        msh = os.path.join(OUT, "count_L%d.msh" % level)
+        run(["gmsh", "-3", "-setnumber", "L", str(level), "-format", "msh22", os.path.join(ROOT, "meshes", "prism.geo"), "-o", msh])
+        with open(msh) as f:
+            lines = f.read().split("\n")
+        got = int(lines[lines.index("$Nodes") + 1])
+        expect(got == nodes, "level %d: %d nodes, Table 2 has %d" % (level, got, nodes))
+        os.remove(msh)
+
+
+@test("-mesh runs a gmsh file given by the user (here msh 4.1 written by the gmsh command) and finds the same solution as -level")
+def prism_user_mesh():
+    msh = os.path.join(OUT, "user_L3.msh")
+    run(["gmsh", "-3", "-setnumber", "L", "3", "-format", "msh41", os.path.join(ROOT, "meshes", "prism.geo"), "-o", msh])
+    out = run(mpiexec(2, PRISM, "-mesh", msh, "-snes_converged_reason"))
+    m = SUMMARY.search(out)
+    expect(m is not None and m.group(7) == REFERENCE_STATES[3] and m.group(8) == "CONVERGED_FNORM_ABS", "different result from -mesh", out)
 
 
 @test("bad input is refused with an error naming it: a missing mesh file, a mesh without a physical group, a negative friction")

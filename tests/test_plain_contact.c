@@ -1,7 +1,9 @@
 static const char help[] = "A plain PETSc program that assembles its own contact problem (P sparse AIJ, f) and knows nothing of ssstar.\n\
 Run with -dll_append <dir>/libssstar.so -snes_type ssstar: it checks the Coulomb law at the solution itself.\n\
   -p <40>                         contact nodes\n\
-  -snes_ssstar_friction <0.3>     friction coefficient (read here too, for the check)\n";
+  -snes_ssstar_friction <0.3>     friction coefficient (read here too, for the check)\n\
+  -dense                          hand P to the solver as a dense matrix\n\
+  -singular                       node 0 gets no stiffness and is pulled off the plane: the Newton matrix is singular\n";
 
 /* Requirement: the SNES type "ssstar" is usable, through -dll_append only, from a program that does not link
    libssstar, on 1 and 2 ranks and with a sparse (AIJ) P; its solution satisfies the Coulomb law at every node
@@ -30,7 +32,7 @@ static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jp, void *ctx)
 }
 
 /* A chain of p nodes: springs between neighbours in every direction, a stiffer one to the ground. */
-static PetscErrorCode CreateProblem(MPI_Comm comm, PetscInt p, Problem *pb)
+static PetscErrorCode CreateProblem(MPI_Comm comm, PetscInt p, PetscBool singular, Problem *pb)
 {
   PetscMPIInt size, rank;
   PetscInt    nloc, start, end;
@@ -44,10 +46,17 @@ static PetscErrorCode CreateProblem(MPI_Comm comm, PetscInt p, Problem *pb)
   for (PetscInt row = start; row < end; row++) {
     const PetscInt i = row / 3, k = row % 3;
 
+    if (singular && i < 2) continue; /* node 0 free of stiffness (node 1 loses its coupling to it) */
     PetscCall(MatSetValue(pb->P, row, row, 2.0 + (k == 2 ? 3.0 : 1.0), INSERT_VALUES));
     if (i > 0) PetscCall(MatSetValue(pb->P, row, row - 3, -1.0, INSERT_VALUES));
     if (i < p - 1) PetscCall(MatSetValue(pb->P, row, row + 3, -1.0, INSERT_VALUES));
     if (k < 2) PetscCall(MatSetValue(pb->P, row, 3 * i + 1 - k, 0.25, INSERT_VALUES)); /* couples the two tangential directions */
+  }
+  if (singular && start < 6) {
+    for (PetscInt row = 3; row < PetscMin(6, end); row++) {
+      PetscCall(MatSetValue(pb->P, row, row, 5.0, INSERT_VALUES));
+      PetscCall(MatSetValue(pb->P, row, row + 3, -1.0, INSERT_VALUES));
+    }
   }
   PetscCall(MatAssemblyBegin(pb->P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(pb->P, MAT_FINAL_ASSEMBLY));
@@ -108,13 +117,17 @@ int main(int argc, char **argv)
   SNES                snes;
   Vec                 u;
   PetscInt            p = 40, its, count[3];
+  PetscBool           singular = PETSC_FALSE, dense = PETSC_FALSE;
   PetscReal           phi = 0.3, violation;
   SNESConvergedReason reason;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-p", &p, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-snes_ssstar_friction", &phi, NULL));
-  PetscCall(CreateProblem(PETSC_COMM_WORLD, p, &pb));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-singular", &singular, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-dense", &dense, NULL));
+  PetscCall(CreateProblem(PETSC_COMM_WORLD, p, singular, &pb));
+  if (dense) PetscCall(MatConvert(pb.P, MATDENSE, MAT_INPLACE_MATRIX, &pb.P));
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetFunction(snes, NULL, FormFunction, &pb));
   PetscCall(SNESSetJacobian(snes, pb.P, pb.P, FormJacobian, &pb));

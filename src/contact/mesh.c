@@ -1,6 +1,8 @@
 /* gmsh meshes on DMPlex: generation of the prism levels, reading, distribution, dofs and Dirichlet constraints. */
 #include <ssstarcontact.h>
 #include <petscsf.h>
+#include <stdio.h>
+#include <unistd.h>
 #include <gmshc.h>
 
 /*@C
@@ -18,7 +20,7 @@ PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm comm, const char geo[], PetscInt
   PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Cannot read the geometry file %s (option -geo)", geo);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
-    char  lvl[32];
+    char  lvl[32], tmp[PETSC_MAX_PATH_LEN];
     char *argv[] = {(char *)"ssstar", (char *)"-setnumber", (char *)"L", lvl};
     int   ierr   = 0;
 
@@ -28,9 +30,12 @@ PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm comm, const char geo[], PetscInt
     if (!ierr) gmshOpen(geo, &ierr);
     if (!ierr) gmshModelMeshGenerate(3, &ierr);
     if (!ierr) gmshOptionSetNumber("Mesh.MshFileVersion", 2.2, &ierr);
-    if (!ierr) gmshWrite(msh, &ierr);
+    /* write, then rename: a concurrent run never reads half a file */
+    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.%d.msh", msh, (int)getpid()));
+    if (!ierr) gmshWrite(tmp, &ierr);
     gmshFinalize(&ierr);
     PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_LIB, "gmsh failed to mesh %s at level %" PetscInt_FMT " into %s", geo, level, msh);
+    PetscCheck(!rename(tmp, msh), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the mesh file %s", msh);
   }
   PetscCallMPI(MPI_Barrier(comm));
   PetscFunctionReturn(0);

@@ -119,6 +119,26 @@ static PetscErrorCode SNESSSStarClassify(SNES snes, Vec x, Vec d, Vec b, PetscRe
 }
 
 /*
+   Sets up the KSP (the LU factorization of the Newton matrix). Dense LU (LAPACK, ScaLAPACK) raises an error on a
+   zero pivot where sparse LU only flags it: catch that error so that a singular Newton matrix ends the solve with
+   SNES_DIVERGED_LINEAR_SOLVE instead of aborting the program.
+*/
+static PetscErrorCode FactorNewtonMatrix(SNES snes, PetscBool *factored)
+{
+  PetscErrorCode ierr;
+  PetscBool      ok;
+
+  PetscFunctionBegin;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = KSPSetUp(snes->ksp);
+  PetscCall(PetscPopErrorHandler());
+  if (ierr != PETSC_ERR_MAT_LU_ZRPVT && ierr != PETSC_ERR_LIB) PetscCall(ierr);
+  ok = (PetscBool)(ierr == 0);
+  PetscCall(MPIU_Allreduce(&ok, factored, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)snes)));
+  PetscFunctionReturn(0);
+}
+
+/*
    Section 5: A = gamma S P + T and y = (S + T) z, then A du = y.
    Returns PETSC_FALSE when the linear solve failed.
 */
@@ -182,6 +202,8 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, Mat P, Vec z, Vec d, Vec b
       PetscCall(ISDestroy(&own));
     }
     PetscCall(KSPSetOperators(snes->ksp, ss->Ascalapack, ss->Ascalapack));
+    PetscCall(FactorNewtonMatrix(snes, solved));
+    if (!*solved) goto done;
     PetscCall(VecScatterBegin(ss->toScalapack, y, ss->yScalapack, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(ss->toScalapack, y, ss->yScalapack, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(KSPSolve(snes->ksp, ss->yScalapack, ss->duScalapack));
@@ -189,10 +211,13 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, Mat P, Vec z, Vec d, Vec b
     PetscCall(VecScatterEnd(ss->toScalapack, ss->duScalapack, du, INSERT_VALUES, SCATTER_REVERSE));
   } else {
     PetscCall(KSPSetOperators(snes->ksp, ss->A, ss->A));
+    PetscCall(FactorNewtonMatrix(snes, solved));
+    if (!*solved) goto done;
     PetscCall(KSPSolve(snes->ksp, y, du));
   }
   PetscCall(KSPGetConvergedReason(snes->ksp, &kspreason));
   *solved = (PetscBool)(kspreason >= 0);
+done:
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonStep, snes, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -310,6 +335,20 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   PetscFunctionReturn(0);
 }
 
+/* "L 14 M1 55 M2 0 M3+ 15 M3- 0 M4 0" */
+static PetscErrorCode FormatStateCounts(const PetscInt counts[], char buf[], size_t len)
+{
+  size_t used = 0;
+
+  PetscFunctionBegin;
+  buf[0] = 0;
+  for (PetscInt s = 0; s < SSSTAR_NUM_STATES; s++) {
+    PetscCall(PetscSNPrintf(buf + used, len - used, "%s%s %" PetscInt_FMT, s ? " " : "", SSStarStateNames[s], counts[s]));
+    PetscCall(PetscStrlen(buf, &used));
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
@@ -323,9 +362,10 @@ static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag P)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= %g, state tolerance tau = %g\n", (double)ss->atol, (double)ss->state_tol));
   if (ss->reason != SSSTAR_REASON_ITERATING) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s; contact states", SSStarReasons[ss->reason]));
-    for (PetscInt s = 0; s < SSSTAR_NUM_STATES; s++) PetscCall(PetscViewerASCIIPrintf(viewer, " %s %" PetscInt_FMT, SSStarStateNames[s], ss->counts[s]));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+    char counts[256];
+
+    PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s; contact states %s\n", SSStarReasons[ss->reason], counts));
   }
   PetscFunctionReturn(0);
 }
@@ -338,15 +378,15 @@ static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
 @*/
 PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm, PetscViewerAndFormat *vf)
 {
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  SNES_SSStar *ss     = (SNES_SSStar *)snes->data;
   PetscViewer  viewer = vf->viewer;
+  char         counts[256];
 
   PetscFunctionBegin;
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states", its));
-  for (PetscInt s = 0; s < SSSTAR_NUM_STATES; s++) PetscCall(PetscViewerASCIIPrintf(viewer, " %s %" PetscInt_FMT, SSStarStateNames[s], ss->counts[s]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s\n", its, counts));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
   PetscFunctionReturn(0);

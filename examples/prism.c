@@ -154,10 +154,9 @@ int main(int argc, char **argv)
 
       PetscCall(DMCreateGlobalVector(dm, &u));
       PetscCall(SSStarReductionRecover(red, uC, u));
-      PetscCall(FormFunction(snes, uC, rC, &cp));
       PetscCall(PetscMalloc1(cn.n, &st));
       for (PetscInt i = 0; i < cn.n; i++) st[i] = isssstar ? (PetscInt)states[i] : -1;
-      PetscCall(SSStarWriteSolution(out, dm, u, &cn, uC, rC, st));
+      PetscCall(SSStarWriteSolution(out, dm, u, &cn, uC, rC, st)); /* rC: the SNES function r = P u - f at the solution */
       PetscCall(PetscFree(st));
       PetscCall(VecDestroy(&u));
     }

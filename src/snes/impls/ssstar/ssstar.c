@@ -240,6 +240,11 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
   /* c(u) = P u - f is affine: P once, and |f| from c(0) */
   PetscCall(SNESComputeJacobian(snes, x, snes->jacobian, snes->jacobian_pre));
+  if (ss->P != P) { /* S P is reused across solves only for the same P */
+    PetscCall(MatDestroy(&ss->SP));
+    PetscCall(MatDestroy(&ss->A));
+    ss->P = P;
+  }
   PetscCall(SNESSSStarComputeScaling(snes, P));
   PetscCall(VecZeroEntries(z));
   PetscCall(SNESComputeFunction(snes, z, c));
@@ -266,7 +271,10 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       ss->reason   = SSSTAR_REASON_MAX_IT;
       snes->reason = SNES_DIVERGED_MAX_IT;
     }
-    if (snes->reason) break;
+    if (snes->reason) {
+      if (snes->vec_func) PetscCall(VecCopy(c, snes->vec_func)); /* SNESGetFunction() gives r = P u - f at the solution */
+      break;
+    }
 
     PetscCall(SNESSSStarNewtonStep(snes, P, z, d, b, y, du, &solved));
     if (!solved) {
@@ -288,6 +296,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(MatDestroy(&ss->T));
   PetscCall(MatDestroy(&ss->SP));
   PetscCall(MatDestroy(&ss->A));
+  ss->P = NULL;
   PetscCall(MatDestroy(&ss->Ascalapack));
   PetscCall(VecDestroy(&ss->yScalapack));
   PetscCall(VecDestroy(&ss->duScalapack));

@@ -17,6 +17,7 @@ typedef struct {
   SSStarState *states;        /* state of each local node at the last iterate        */
   PetscInt     counts[SSSTAR_NUM_STATES]; /* global counts per state                 */
   Mat          S, T;          /* block-diagonal factors of the 3p Newton system      */
+  Mat          P;             /* the P that SP was computed with (not referenced)   */
   Mat          SP, A;         /* S P and the Newton matrix A = gamma S P + T         */
   PetscBool    scalapack;     /* A is distributed dense: factor a MATSCALAPACK copy   */
   Mat          Ascalapack;

@@ -134,11 +134,16 @@ for _L in sorted(REFERENCE_ITERATIONS):
     TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]
 
 
-@test("the prism solution (level 4) satisfies the Coulomb law at every contact node to 1e-8 relative, checked from the HDF5 file; the XDMF file matches it")
+@test("the prism solution (level 4) satisfies the Coulomb law at every contact node to 1e-8 relative, checked from the HDF5 file; the XDMF file matches it; plot_contact.py draws it")
 def prism_coulomb_law():
     prism(4, h5="coulomb_L4.h5")
     out = run(CHECK + ["coulomb", os.path.join(OUT, "coulomb_L4.h5"), "--phi", "0.3", "--tol", "1e-8"])
     expect("VIOLATED" not in out, "law violated", out)
+    png = os.path.join(OUT, "coulomb_L4.png")
+    if os.path.exists(png):
+        os.remove(png)
+    run([PYTHON, os.path.join(ROOT, "examples", "plot_contact.py"), os.path.join(OUT, "coulomb_L4.h5")])
+    expect(os.path.getsize(png) > 10000, "examples/plot_contact.py wrote no picture")
 
 
 @test("a non-default friction (-friction 0.5) reaches the solver and the law holds with it")

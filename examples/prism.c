@@ -18,28 +18,6 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-typedef struct {
-  Mat P;
-  Vec f;
-} ContactProblem;
-
-/* c(u) = P u - f */
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec c, void *ctx)
-{
-  ContactProblem *cp = (ContactProblem *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(cp->P, u, c));
-  PetscCall(VecAXPY(c, -1.0, cp->f));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode GetVector3(const char name[], PetscReal v[3])
 {
   PetscInt  n = 3;
@@ -64,7 +42,8 @@ int main(int argc, char **argv)
   Mat                 K;
   SSStarContactNodes  cn;
   SSStarReduction     red;
-  ContactProblem      cp;
+  Mat                 P;
+  Vec                 f;
   SNES                snes;
   SNESConvergedReason reason;
   PetscMPIInt         size;
@@ -106,7 +85,7 @@ int main(int argc, char **argv)
   /* reduction to the contact dofs */
   PetscCall(PetscTime(&t0));
   PetscCall(SSStarReductionCreate(K, F, cn.isC, cn.isI, rtype, &red));
-  PetscCall(SSStarReductionGetProblem(red, &cp.P, &cp.f));
+  PetscCall(SSStarReductionGetProblem(red, &P, &f));
   PetscCall(PetscTimeSubtract(&t0));
   t_schur = -t0;
 
@@ -114,12 +93,9 @@ int main(int argc, char **argv)
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
   PetscCall(SNESSSStarSetFriction(snes, friction));
-  PetscCall(VecDuplicate(cp.f, &uC));
-  PetscCall(VecDuplicate(cp.f, &rC));
-  PetscCall(PetscObjectSetName((PetscObject)uC, "contact displacement"));
-  PetscCall(SNESSetFunction(snes, rC, FormFunction, &cp));
-  PetscCall(SNESSetJacobian(snes, cp.P, cp.P, FormJacobian, &cp));
+  PetscCall(SNESSSStarSetContactProblem(snes, P, f));
   PetscCall(SNESSetFromOptions(snes));
+  PetscCall(VecDuplicate(f, &uC));
   PetscCall(VecZeroEntries(uC));
   PetscCall(PetscTime(&t0));
   PetscCall(SNESSolve(snes, NULL, uC));
@@ -127,6 +103,7 @@ int main(int argc, char **argv)
   t_solve = -t0;
   PetscCall(SNESGetIterationNumber(snes, &its));
   PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetFunction(snes, &rC, NULL, NULL)); /* r = P u - f at the solution */
 
   /* summary in the shape of Table 2 */
   {
@@ -156,7 +133,7 @@ int main(int argc, char **argv)
       PetscCall(SSStarReductionRecover(red, uC, u));
       PetscCall(PetscMalloc1(cn.n, &st));
       for (PetscInt i = 0; i < cn.n; i++) st[i] = isssstar ? (PetscInt)states[i] : -1;
-      PetscCall(SSStarWriteSolution(out, dm, u, &cn, uC, rC, st)); /* rC: the SNES function r = P u - f at the solution */
+      PetscCall(SSStarWriteSolution(out, dm, u, &cn, uC, rC, st));
       PetscCall(PetscFree(st));
       PetscCall(VecDestroy(&u));
     }
@@ -164,7 +141,6 @@ int main(int argc, char **argv)
 
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&uC));
-  PetscCall(VecDestroy(&rC));
   PetscCall(SSStarReductionDestroy(&red));
   PetscCall(SSStarContactNodesDestroy(&cn));
   PetscCall(MatDestroy(&K));

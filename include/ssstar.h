@@ -37,6 +37,7 @@ typedef enum {
 PETSC_EXTERN const char *const SSStarReasons[];
 
 PETSC_EXTERN PetscErrorCode SSStarInitializePackage(void);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
 
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFriction(SNES, PetscReal);

@@ -11,22 +11,6 @@ typedef struct {
   Vec f;
 } Problem;
 
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec c, void *ctx)
-{
-  Problem *pb = (Problem *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(pb->P, u, c));
-  PetscCall(VecAXPY(c, -1.0, pb->f));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jp, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
-
 /* du of the 6p system, by LAPACK */
 static PetscErrorCode SixPStep(PetscInt p, PetscReal gamma, PetscReal phi, const PetscScalar *P, const PetscReal *u, const PetscReal *c, PetscReal *du, PetscInt counts[])
 {
@@ -111,8 +95,7 @@ int main(int argc, char **argv)
     PetscCall(SNESSSStarSetScaling(snes, gamma));
     PetscCall(SNESSSStarSetStateTolerance(snes, 0.0));
     PetscCall(SNESSetTolerances(snes, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1, PETSC_DEFAULT));
-    PetscCall(SNESSetFunction(snes, NULL, FormFunction, &pb));
-    PetscCall(SNESSetJacobian(snes, pb.P, pb.P, FormJacobian, &pb));
+    PetscCall(SNESSSStarSetContactProblem(snes, pb.P, pb.f));
     PetscCall(SNESSetFromOptions(snes));
     PetscCall(SNESSolve(snes, NULL, u1));
 
@@ -124,7 +107,8 @@ int main(int argc, char **argv)
       Vec cv;
       const PetscScalar *ca;
       PetscCall(VecDuplicate(u0, &cv));
-      PetscCall(FormFunction(snes, u0, cv, &pb));
+      PetscCall(MatMult(pb.P, u0, cv));
+      PetscCall(VecAXPY(cv, -1.0, pb.f));
       PetscCall(VecGetArrayRead(cv, &ca));
       for (PetscInt i = 0; i < n; i++) c[i] = PetscRealPart(ca[i]);
       PetscCall(VecRestoreArrayRead(cv, &ca));

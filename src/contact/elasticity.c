@@ -43,27 +43,39 @@ static void TetStiffness(const PetscReal x[12], PetscReal lambda, PetscReal mu, 
     }
 }
 
-static PetscErrorCode AssembleStiffness(DM dm, PetscReal lambda, PetscReal mu, Mat K)
+/* The coordinates of the vertices of point (in closure order); n is the count expected, 3 per vertex. */
+static PetscErrorCode GetVertexCoordinates(DM dm, PetscInt point, PetscInt n, PetscReal x[], PetscBool *ok)
 {
   DM           cdm;
   Vec          coordinates;
   PetscSection csec;
-  PetscInt     cStart, cEnd;
+  PetscScalar *xc = NULL;
+  PetscInt     nx;
 
   PetscFunctionBegin;
   PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
   PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
+  PetscCall(DMPlexVecGetClosure(cdm, csec, coordinates, point, &nx, &xc));
+  *ok = (PetscBool)(nx == n);
+  for (PetscInt k = 0; k < PetscMin(n, nx); k++) x[k] = PetscRealPart(xc[k]);
+  PetscCall(DMPlexVecRestoreClosure(cdm, csec, coordinates, point, &nx, &xc));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AssembleStiffness(DM dm, PetscReal lambda, PetscReal mu, Mat K)
+{
+  PetscInt cStart, cEnd;
+
+  PetscFunctionBegin;
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscScalar *xc = NULL, Ke[144];
-    PetscReal    x[12];
-    PetscInt     nx;
+    PetscScalar Ke[144];
+    PetscReal   x[12];
+    PetscBool   tet;
 
-    PetscCall(DMPlexVecGetClosure(cdm, csec, coordinates, c, &nx, &xc));
-    PetscCheck(nx == 12, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron (%" PetscInt_FMT " coordinates)", c, nx);
-    for (PetscInt k = 0; k < 12; k++) x[k] = PetscRealPart(xc[k]);
-    PetscCall(DMPlexVecRestoreClosure(cdm, csec, coordinates, c, &nx, &xc));
+    PetscCall(GetVertexCoordinates(dm, c, 12, x, &tet));
+    PetscCheck(tet, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
     TetStiffness(x, lambda, mu, Ke);
     PetscCall(DMPlexMatSetClosure(dm, NULL, NULL, K, c, Ke, ADD_VALUES));
   }
@@ -75,34 +87,28 @@ static PetscErrorCode AssembleStiffness(DM dm, PetscReal lambda, PetscReal mu, M
 /* Adds the consistent load of a constant traction t on the triangles of group: area/3 t per vertex. */
 static PetscErrorCode AddTraction(DM dm, const char group[], const PetscReal t[3], Vec Floc)
 {
-  DM              cdm;
-  Vec             coordinates;
-  PetscSection    csec;
-  DMLabel         label;
-  PetscInt        fStart, fEnd;
+  DMLabel  label;
+  PetscInt fStart, fEnd;
 
   PetscFunctionBegin;
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &csec));
-  PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
   PetscCall(DMGetLabel(dm, group, &label));
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
   for (PetscInt f = fStart; f < fEnd; f++) {
-    PetscScalar *xc = NULL, load[9];
-    PetscReal    e1[3], e2[3], n[3], area;
-    PetscInt     value, nx, support;
+    PetscScalar load[9];
+    PetscReal   x[9], e1[3], e2[3], n[3], area;
+    PetscInt    value, support;
+    PetscBool   triangle;
 
     PetscCall(DMLabelGetValue(label, f, &value));
     if (value < 0) continue;
     PetscCall(DMPlexGetSupportSize(dm, f, &support));
     PetscCheck(support == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Face %" PetscInt_FMT " of physical group \"%s\" is not on the boundary", f, group);
-    PetscCall(DMPlexVecGetClosure(cdm, csec, coordinates, f, &nx, &xc));
-    PetscCheck(nx == 9, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of physical group \"%s\" is not a triangle", f, group);
+    PetscCall(GetVertexCoordinates(dm, f, 9, x, &triangle));
+    PetscCheck(triangle, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of physical group \"%s\" is not a triangle", f, group);
     for (PetscInt k = 0; k < 3; k++) {
-      e1[k] = PetscRealPart(xc[3 + k] - xc[k]);
-      e2[k] = PetscRealPart(xc[6 + k] - xc[k]);
+      e1[k] = x[3 + k] - x[k];
+      e2[k] = x[6 + k] - x[k];
     }
-    PetscCall(DMPlexVecRestoreClosure(cdm, csec, coordinates, f, &nx, &xc));
     n[0] = e1[1] * e2[2] - e1[2] * e2[1];
     n[1] = e1[2] * e2[0] - e1[0] * e2[2];
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];

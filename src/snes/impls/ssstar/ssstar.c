@@ -626,3 +626,70 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, "SNESSSStarGetReason_C", SNESSSStarGetReason_SSStar));
   PetscFunctionReturn(0);
 }
+
+typedef struct {
+  Mat P;
+  Vec f;
+} ContactProblem;
+
+static PetscErrorCode ContactProblemFunction(SNES snes, Vec u, Vec c, void *ctx)
+{
+  ContactProblem *cp = (ContactProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(cp->P, u, c));
+  PetscCall(VecAXPY(c, -1.0, cp->f));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ContactProblemJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscFunctionReturn(0); /* J = P, constant */
+}
+
+static PetscErrorCode ContactProblemDestroy(void *ctx)
+{
+  ContactProblem *cp = (ContactProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&cp->P));
+  PetscCall(VecDestroy(&cp->f));
+  PetscCall(PetscFree(cp));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetContactProblem - sets the SNES function c(u) = P u - f and the Jacobian P of a contact problem
+   0 in P u - f + Q(u), for a program that has P (dense or sparse, 3 dofs per contact node) and f
+
+   Notes:
+   Works with any SNES type; the SNES keeps references to P and f. After SNESSolve(), SNESGetFunction()
+   gives the reaction r = P u - f at the solution.
+@*/
+PetscErrorCode SNESSSStarSetContactProblem(SNES snes, Mat P, Vec f)
+{
+  ContactProblem *cp;
+  PetscContainer  container;
+  Vec             r;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(P, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(f, VEC_CLASSID, 3);
+  PetscCall(PetscNew(&cp));
+  PetscCall(PetscObjectReference((PetscObject)P));
+  PetscCall(PetscObjectReference((PetscObject)f));
+  cp->P = P;
+  cp->f = f;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)snes), &container));
+  PetscCall(PetscContainerSetPointer(container, cp));
+  PetscCall(PetscContainerSetUserDestroy(container, ContactProblemDestroy));
+  PetscCall(PetscObjectCompose((PetscObject)snes, "SNESSSStarContactProblem", (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscCall(VecDuplicate(f, &r));
+  PetscCall(SNESSetFunction(snes, r, ContactProblemFunction, cp));
+  PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(snes, P, P, ContactProblemJacobian, cp));
+  PetscFunctionReturn(0);
+}

@@ -63,24 +63,47 @@ static PetscErrorCode GetVertexCoordinates(DM dm, PetscInt point, PetscInt n, Pe
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode AssembleStiffness(DM dm, PetscReal lambda, PetscReal mu, Mat K)
+/* K by COO assembly: every cell adds its 12x12 block; constrained (Dirichlet) dofs have negative indices and drop out. */
+static PetscErrorCode AssembleStiffness(DM dm, PetscReal lambda, PetscReal mu, Mat *K)
 {
-  PetscInt cStart, cEnd;
+  PetscSection sec, gsec;
+  PetscInt     cStart, cEnd, n, N, *ci, *cj;
+  PetscScalar *values;
+  Vec          global;
 
   PetscFunctionBegin;
+  PetscCall(DMGetLocalSection(dm, &sec));
+  PetscCall(DMGetGlobalSection(dm, &gsec));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(PetscMalloc3(144 * (cEnd - cStart), &ci, 144 * (cEnd - cStart), &cj, 144 * (cEnd - cStart), &values));
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscScalar Ke[144];
-    PetscReal   x[12];
-    PetscBool   tet;
+    PetscInt *idx = NULL, nidx, k = 144 * (c - cStart);
+    PetscReal x[12];
+    PetscBool tet;
 
     PetscCall(GetVertexCoordinates(dm, c, 12, x, &tet));
     PetscCheck(tet, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
-    TetStiffness(x, lambda, mu, Ke);
-    PetscCall(DMPlexMatSetClosure(dm, NULL, NULL, K, c, Ke, ADD_VALUES));
+    TetStiffness(x, lambda, mu, &values[k]);
+    PetscCall(DMPlexGetClosureIndices(dm, sec, gsec, c, PETSC_TRUE, &nidx, &idx, NULL, NULL));
+    PetscCheck(nidx == 12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cell %" PetscInt_FMT " has %" PetscInt_FMT " dofs, not 12", c, nidx);
+    for (PetscInt a = 0; a < 12; a++)
+      for (PetscInt b = 0; b < 12; b++) {
+        ci[k + 12 * a + b] = idx[a];
+        cj[k + 12 * a + b] = idx[b];
+      }
+    PetscCall(DMPlexRestoreClosureIndices(dm, sec, gsec, c, PETSC_TRUE, &nidx, &idx, NULL, NULL));
   }
-  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(DMGetGlobalVector(dm, &global));
+  PetscCall(VecGetLocalSize(global, &n));
+  PetscCall(VecGetSize(global, &N));
+  PetscCall(DMRestoreGlobalVector(dm, &global));
+  PetscCall(MatCreate(PetscObjectComm((PetscObject)dm), K));
+  PetscCall(MatSetSizes(*K, n, n, N, N));
+  PetscCall(MatSetBlockSize(*K, 3));
+  PetscCall(MatSetType(*K, MATAIJ));
+  PetscCall(MatSetPreallocationCOO(*K, 144 * (cEnd - cStart), ci, cj));
+  PetscCall(MatSetValuesCOO(*K, values, ADD_VALUES));
+  PetscCall(PetscFree3(ci, cj, values));
   PetscFunctionReturn(0);
 }
 
@@ -134,10 +157,7 @@ PetscErrorCode SSStarAssembleElasticity(DM dm, const SSStarScene *scene, Mat *K,
   PetscCheck(scene->E > 0, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be positive", (double)scene->E);
   PetscCheck(scene->nu > -1 && scene->nu < 0.5, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
-  PetscCall(DMSetMatType(dm, MATAIJ));
-  PetscCall(DMCreateMatrix(dm, K));
-  PetscCall(MatSetOption(*K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(AssembleStiffness(dm, lambda, mu, *K));
+  PetscCall(AssembleStiffness(dm, lambda, mu, K));
   PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
 
   PetscCall(DMCreateGlobalVector(dm, F));

@@ -12,6 +12,10 @@
 */
 #include <petscsnes.h>
 
+#if defined(PETSC_USE_COMPLEX)
+  #error "ssstar needs a PETSc with real scalars"
+#endif
+
 #define SNESSSSTAR "ssstar"
 
 /* The contact states of Table 1 (DERIVATION.md section 2); values are written to output files. */

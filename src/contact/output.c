@@ -2,46 +2,46 @@
 #include <ssstarcontact.h>
 #include <petscviewerhdf5.h>
 
-/* A vector with all its entries on rank 0 (so that the HDF5 dataset is in file order) */
-static PetscErrorCode WriteRankZeroVec(PetscViewer viewer, const char name[], PetscInt n, PetscInt bs, const PetscReal a[])
+/*
+   A field of the contact nodes (bs values per node) as a vector held whole by rank 0 in file order, so that
+   the HDF5 dataset does not depend on the partition; pos[] is the file-order position of each local node.
+*/
+static PetscErrorCode ContactFieldCreate(MPI_Comm comm, PetscInt p, PetscInt nloc, const PetscInt pos[], PetscInt bs, const PetscReal values[], const char name[], Vec *v)
 {
-  Vec          v;
-  PetscScalar *va;
+  PetscMPIInt rank;
 
   PetscFunctionBegin;
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)viewer), n * bs, PETSC_DETERMINE, &v));
-  PetscCall(VecSetBlockSize(v, bs));
-  PetscCall(PetscObjectSetName((PetscObject)v, name));
-  PetscCall(VecGetArrayWrite(v, &va));
-  for (PetscInt i = 0; i < n * bs; i++) va[i] = a[i];
-  PetscCall(VecRestoreArrayWrite(v, &va));
-  PetscCall(VecView(v, viewer));
-  PetscCall(VecDestroy(&v));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(VecCreateMPI(comm, rank ? 0 : p * bs, p * bs, v));
+  PetscCall(VecSetBlockSize(*v, bs));
+  PetscCall(PetscObjectSetName((PetscObject)*v, name));
+  for (PetscInt i = 0; i < nloc; i++)
+    for (PetscInt k = 0; k < bs; k++) PetscCall(VecSetValue(*v, pos[i] * bs + k, values[i * bs + k], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(*v));
+  PetscCall(VecAssemblyEnd(*v));
   PetscFunctionReturn(0);
 }
 
-/* Gathers nloc blocks of bs reals from every rank on rank 0, in the order given by perm there. */
-static PetscErrorCode GatherBlocks(MPI_Comm comm, PetscInt nloc, PetscInt bs, const PetscReal loc[], const PetscInt perm[], PetscInt n, PetscReal out[])
+/* Position of each local contact node in the file order of all contact nodes */
+static PetscErrorCode ContactFileOrder(MPI_Comm comm, const SSStarContactNodes *cn, PetscInt *p, PetscInt pos[])
 {
-  PetscMPIInt size, rank, cnt, *counts = NULL, *displs = NULL;
-  PetscReal  *all = NULL;
+  IS              local, all;
+  const PetscInt *tags;
+  PetscInt       *sorted;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(PetscMPIIntCast(nloc * bs, &cnt));
-  if (rank == 0) PetscCall(PetscMalloc3(size, &counts, size, &displs, n * bs, &all));
-  PetscCallMPI(MPI_Gather(&cnt, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
-  if (rank == 0) {
-    displs[0] = 0;
-    for (PetscMPIInt r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
-  }
-  PetscCallMPI(MPI_Gatherv(loc, cnt, MPIU_REAL, all, counts, displs, MPIU_REAL, 0, comm));
-  if (rank == 0) {
-    for (PetscInt i = 0; i < n; i++)
-      for (PetscInt k = 0; k < bs; k++) out[i * bs + k] = all[perm[i] * bs + k];
-    PetscCall(PetscFree3(counts, displs, all));
-  }
+  PetscCall(ISCreateGeneral(comm, cn->n, cn->tag, PETSC_USE_POINTER, &local));
+  PetscCall(ISAllGather(local, &all));
+  PetscCall(ISGetLocalSize(all, p));
+  PetscCall(ISGetIndices(all, &tags));
+  PetscCall(PetscMalloc1(*p, &sorted));
+  PetscCall(PetscArraycpy(sorted, tags, *p));
+  PetscCall(ISRestoreIndices(all, &tags));
+  PetscCall(PetscSortInt(*p, sorted));
+  for (PetscInt i = 0; i < cn->n; i++) PetscCall(PetscFindInt(cn->tag[i], *p, sorted, &pos[i]));
+  PetscCall(PetscFree(sorted));
+  PetscCall(ISDestroy(&all));
+  PetscCall(ISDestroy(&local));
   PetscFunctionReturn(0);
 }
 
@@ -104,17 +104,12 @@ PetscErrorCode SSStarWriteSolution(const char file[], DM dm, Vec u, const SSStar
 {
   MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
   PetscViewer        viewer;
-  PetscMPIInt        rank;
-  PetscInt           p, nloc = cn->n, *tags = NULL, *perm = NULL;
-  PetscReal         *buf = NULL, *locstate, *out;
+  PetscInt           p, *pos;
+  PetscReal         *ul, *rl, *sl;
   const PetscScalar *ua, *ra;
-  PetscReal         *ul, *rl;
-  const PetscReal   *blocks[4];
-  const char        *names[4] = {"coordinates", "displacement", "reaction", "state"};
-  const PetscInt     bs[4]    = {3, 3, 3, 1};
+  Vec                field;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
   PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_WRITE, &viewer));
   PetscCall(PetscViewerPushFormat(viewer, PETSC_VIEWER_HDF5_VIZ));
@@ -122,64 +117,49 @@ PetscErrorCode SSStarWriteSolution(const char file[], DM dm, Vec u, const SSStar
   PetscCall(VecView(u, viewer));
   PetscCall(PetscViewerPopFormat(viewer));
 
-  /* the contact nodes in file order, on rank 0 */
-  PetscCall(MPIU_Allreduce(&nloc, &p, 1, MPIU_INT, MPI_SUM, comm));
-  if (rank == 0) PetscCall(PetscMalloc3(p, &tags, p, &perm, 3 * p, &buf));
-  {
-    PetscMPIInt size, cnt, *counts = NULL, *displs = NULL;
-    PetscCallMPI(MPI_Comm_size(comm, &size));
-    PetscCall(PetscMPIIntCast(nloc, &cnt));
-    if (rank == 0) PetscCall(PetscMalloc2(size, &counts, size, &displs));
-    PetscCallMPI(MPI_Gather(&cnt, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
-    if (rank == 0) {
-      displs[0] = 0;
-      for (PetscMPIInt r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
-    }
-    PetscCallMPI(MPI_Gatherv(cn->tag, cnt, MPIU_INT, tags, counts, displs, MPIU_INT, 0, comm));
-    if (rank == 0) {
-      for (PetscInt i = 0; i < p; i++) perm[i] = i;
-      PetscCall(PetscSortIntWithPermutation(p, tags, perm));
-      PetscCall(PetscFree2(counts, displs));
-    }
-  }
-  PetscCall(PetscMalloc3(3 * nloc, &ul, 3 * nloc, &rl, nloc, &locstate));
+  PetscCall(PetscMalloc4(cn->n, &pos, 3 * cn->n, &ul, 3 * cn->n, &rl, cn->n, &sl));
+  PetscCall(ContactFileOrder(comm, cn, &p, pos));
   PetscCall(VecGetArrayRead(uC, &ua));
   PetscCall(VecGetArrayRead(rC, &ra));
-  for (PetscInt i = 0; i < 3 * nloc; i++) {
+  for (PetscInt i = 0; i < 3 * cn->n; i++) {
     ul[i] = PetscRealPart(ua[i]);
     rl[i] = PetscRealPart(ra[i]);
   }
   PetscCall(VecRestoreArrayRead(rC, &ra));
   PetscCall(VecRestoreArrayRead(uC, &ua));
-  for (PetscInt i = 0; i < nloc; i++) locstate[i] = (PetscReal)states[i];
-  blocks[0] = cn->coords;
-  blocks[1] = ul;
-  blocks[2] = rl;
-  blocks[3] = locstate;
+  for (PetscInt i = 0; i < cn->n; i++) sl[i] = (PetscReal)states[i];
 
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/contact"));
-  for (PetscInt k = 0; k < 4; k++) {
-    out = buf;
-    PetscCall(GatherBlocks(comm, nloc, bs[k], blocks[k], perm, p, out));
-    if (k < 3) PetscCall(WriteRankZeroVec(viewer, names[k], rank ? 0 : p, bs[k], out));
-    else {
-      PetscInt *st = NULL;
-      IS        is;
+  {
+    const char      *names[3]  = {"coordinates", "displacement", "reaction"};
+    const PetscReal *values[3] = {cn->coords, ul, rl};
 
-      if (rank == 0) {
-        PetscCall(PetscMalloc1(p, &st));
-        for (PetscInt i = 0; i < p; i++) st[i] = (PetscInt)out[i];
-      }
-      PetscCall(ISCreateGeneral(comm, rank ? 0 : p, st, PETSC_OWN_POINTER, &is));
-      PetscCall(PetscObjectSetName((PetscObject)is, names[k]));
-      PetscCall(ISView(is, viewer));
-      PetscCall(ISDestroy(&is));
+    for (PetscInt k = 0; k < 3; k++) {
+      PetscCall(ContactFieldCreate(comm, p, cn->n, pos, 3, values[k], names[k], &field));
+      PetscCall(VecView(field, viewer));
+      PetscCall(VecDestroy(&field));
     }
+  }
+  { /* the states as integers */
+    const PetscScalar *fa;
+    PetscInt           m, *st;
+    IS                 is;
+
+    PetscCall(ContactFieldCreate(comm, p, cn->n, pos, 1, sl, "state", &field));
+    PetscCall(VecGetLocalSize(field, &m));
+    PetscCall(PetscMalloc1(m, &st));
+    PetscCall(VecGetArrayRead(field, &fa));
+    for (PetscInt i = 0; i < m; i++) st[i] = (PetscInt)PetscRealPart(fa[i]);
+    PetscCall(VecRestoreArrayRead(field, &fa));
+    PetscCall(ISCreateGeneral(comm, m, st, PETSC_OWN_POINTER, &is));
+    PetscCall(PetscObjectSetName((PetscObject)is, "state"));
+    PetscCall(ISView(is, viewer));
+    PetscCall(ISDestroy(&is));
+    PetscCall(VecDestroy(&field));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(PetscViewerDestroy(&viewer));
-  PetscCall(PetscFree3(ul, rl, locstate));
-  if (rank == 0) PetscCall(PetscFree3(tags, perm, buf));
+  PetscCall(PetscFree4(pos, ul, rl, sl));
   PetscCall(WriteXDMF(dm, file));
   PetscFunctionReturn(0);
 }

@@ -65,7 +65,7 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscFunctionReturn(0);
 }
 
-/* Section 1 on every local node; returns the global infinity norms needed by the classification. */
+/* Section 1 on every local node, with the scaled c = gamma (P u - f) (section 6) */
 static PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec x, Vec c, Vec z, Vec d, Vec b)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
@@ -192,10 +192,10 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, Mat P, Vec z, Vec d, Vec b
     /* MATSCALAPACK chooses its own row layout: move y and du to it and back */
     PetscCall(MatConvert(ss->A, MATSCALAPACK, ss->Ascalapack ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &ss->Ascalapack));
     if (!ss->toScalapack) {
-      PetscCall(MatCreateVecs(ss->Ascalapack, &ss->duScalapack, &ss->yScalapack));
       PetscInt lo, hi;
       IS       own;
 
+      PetscCall(MatCreateVecs(ss->Ascalapack, &ss->duScalapack, &ss->yScalapack));
       PetscCall(VecGetOwnershipRange(y, &lo, &hi));
       PetscCall(ISCreateStride(PETSC_COMM_SELF, hi - lo, lo, 1, &own));
       PetscCall(VecScatterCreate(y, own, ss->yScalapack, own, &ss->toScalapack));
@@ -252,6 +252,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
   for (PetscInt k = 0;; k++) {
     PetscCall(SNESComputeFunction(snes, x, c));
+    if (snes->vec_func) PetscCall(VecCopy(c, snes->vec_func)); /* SNESGetFunction() gives r = P u - f at the last iterate */
     PetscCall(SNESSSStarApproximationStep(snes, x, c, z, d, b));
     PetscCall(VecNorm(z, NORM_2, &znorm));
     PetscCall(SNESSSStarClassify(snes, x, d, b, fnorm_inf));
@@ -271,10 +272,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       ss->reason   = SSSTAR_REASON_MAX_IT;
       snes->reason = SNES_DIVERGED_MAX_IT;
     }
-    if (snes->reason) {
-      if (snes->vec_func) PetscCall(VecCopy(c, snes->vec_func)); /* SNESGetFunction() gives r = P u - f at the solution */
-      break;
-    }
+    if (snes->reason) break;
 
     PetscCall(SNESSSStarNewtonStep(snes, P, z, d, b, y, du, &solved));
     if (!solved) {

@@ -152,7 +152,7 @@ def prism_friction_option():
     run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5"), "--phi", "0.5"])
 
 
-@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same contact solution (level 5) to 1e-10 relative")
+@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 1e-10 relative")
 def prism_ranks_agree():
     out1, s1 = prism(5, 1, h5="ranks1_L5.h5")
     out2, s2 = prism(5, 2, h5="ranks2_L5.h5")
@@ -164,7 +164,7 @@ def prism_ranks_agree():
     run(CHECK + ["compare", os.path.join(OUT, "ranks1_L5.h5"), os.path.join(OUT, "ranks2_L5.h5"), "--tol", "1e-10"])
 
 
-@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution to 1e-10, on 1 and 2 ranks")
+@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 1e-10, on 1 and 2 ranks")
 def prism_schur_paths_agree():
     prism(4, 1, h5="mumps_L4.h5")
     prism(4, 1, extra=["-reduction", "explicit"], h5="explicit_L4.h5")

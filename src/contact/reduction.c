@@ -1,6 +1,10 @@
 /*
    Reduction of K u = F to the contact dofs C (DERIVATION.md section 0):
    P = K_CC - K_CI K_II^-1 K_IC,  f = F_C - K_CI K_II^-1 F_I,  and the recovery u_I = K_II^-1 (F_I - K_IC u_C).
+
+   mumps:    one Cholesky factorization of the whole K with the Schur block C (MUMPS, on rank 0) gives P, and its
+             solves give f and u: x = K^-1 F has x_C = P^-1 f, so f = P x_C; K^-1 (F + E_C (P u_C - f)) = u.
+   explicit: MATSCHURCOMPLEMENT made explicit, with K_II factored once (MUMPS Cholesky, prefix -interior_).
 */
 #include <ssstarcontact.h>
 #include <petscmat.h>
@@ -10,9 +14,13 @@ const char *const SSStarReductionTypes[] = {"mumps", "explicit", "SSStarReductio
 struct _n_SSStarReduction {
   SSStarReductionType type;
   IS                  isC, isI;
-  Mat                 Kii, Kic, Kci, P;
-  KSP                 kspI; /* K_II^-1: MUMPS Cholesky, options prefix -interior_ */
   Vec                 F, f;
+  Mat                 P;
+  Mat                 Kii, Kic, Kci; /* explicit: blocks of K                                   */
+  KSP                 kspI;          /* explicit: K_II^-1                                       */
+  Mat                 Kfactor;       /* mumps: Cholesky of K with the Schur block C, on rank 0  */
+  VecScatter          toZero;        /* mumps: K's vectors to and from their copy on rank 0     */
+  Vec                 bZero, xZero;
 };
 
 static PetscErrorCode CheckFactor(Mat F, const char what[])
@@ -57,7 +65,7 @@ static PetscErrorCode ReduceMUMPS(SSStarReduction red, Mat K)
     PetscCall(MatCholeskyFactorNumeric(F, Kseq[0], &info));
     PetscCall(CheckFactor(F, "MUMPS Cholesky factorization of K with a Schur complement"));
     PetscCall(MatFactorCreateSchurComplement(F, &Sseq, &status));
-    PetscCall(MatDestroy(&F));
+    red->Kfactor = F;
   }
   PetscCall(ISDestroy(&isCall));
   PetscCall(MatDestroyMatrices(1, &Kseq));
@@ -99,12 +107,48 @@ static PetscErrorCode ReduceMUMPS(SSStarReduction red, Mat K)
   PetscFunctionReturn(0);
 }
 
+/* x = K^-1 b by the factor on rank 0 (mumps path) */
+static PetscErrorCode SolveWholeK(SSStarReduction red, Vec b, Vec x)
+{
+  PetscFunctionBegin;
+  PetscCall(VecScatterBegin(red->toZero, b, red->bZero, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(red->toZero, b, red->bZero, INSERT_VALUES, SCATTER_FORWARD));
+  if (red->Kfactor) PetscCall(MatSolve(red->Kfactor, red->bZero, red->xZero));
+  PetscCall(VecScatterBegin(red->toZero, red->xZero, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(red->toZero, red->xZero, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+/* The interior blocks of K and the factorization of K_II (explicit path) */
+static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
+{
+  PC pc;
+
+  PetscFunctionBegin;
+  PetscCall(MatCreateSubMatrix(K, red->isI, red->isI, MAT_INITIAL_MATRIX, &red->Kii));
+  PetscCall(MatCreateSubMatrix(K, red->isI, red->isC, MAT_INITIAL_MATRIX, &red->Kic));
+  PetscCall(MatCreateSubMatrix(K, red->isC, red->isI, MAT_INITIAL_MATRIX, &red->Kci));
+  PetscCall(MatSetOption(red->Kii, MAT_SPD, PETSC_TRUE));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)K), &red->kspI));
+  PetscCall(KSPSetOptionsPrefix(red->kspI, "interior_"));
+  PetscCall(KSPSetOperators(red->kspI, red->Kii, red->Kii));
+  PetscCall(KSPSetType(red->kspI, KSPPREONLY));
+  PetscCall(KSPGetPC(red->kspI, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetErrorIfNotConverged(red->kspI, PETSC_TRUE));
+  PetscCall(KSPSetFromOptions(red->kspI));
+  PetscCall(KSPSetUp(red->kspI));
+  PetscFunctionReturn(0);
+}
+
 /* P by MATSCHURCOMPLEMENT made explicit, sharing the factorization of K_II. */
 static PetscErrorCode ReduceExplicit(SSStarReduction red, Mat K)
 {
   Mat Kcc, S, Paij;
 
   PetscFunctionBegin;
+  PetscCall(SetUpInterior(red, K));
   PetscCall(MatCreateSubMatrix(K, red->isC, red->isC, MAT_INITIAL_MATRIX, &Kcc));
   PetscCall(MatCreateSchurComplement(red->Kii, red->Kii, red->Kic, red->Kci, Kcc, &S));
   PetscCall(MatSchurComplementSetKSP(S, red->kspI));
@@ -113,6 +157,38 @@ static PetscErrorCode ReduceExplicit(SSStarReduction red, Mat K)
   PetscCall(MatDestroy(&Paij));
   PetscCall(MatDestroy(&S));
   PetscCall(MatDestroy(&Kcc));
+  PetscFunctionReturn(0);
+}
+
+/* f = F_C - K_CI K_II^-1 F_I */
+static PetscErrorCode ReducedLoad(SSStarReduction red)
+{
+  Vec FI, FC, x, xC, t;
+
+  PetscFunctionBegin;
+  PetscCall(MatCreateVecs(red->P, NULL, &red->f));
+  PetscCall(PetscObjectSetName((PetscObject)red->f, "f"));
+  switch (red->type) {
+  case SSSTAR_REDUCTION_MUMPS:
+    PetscCall(VecDuplicate(red->F, &x));
+    PetscCall(SolveWholeK(red, red->F, x));
+    PetscCall(VecGetSubVector(x, red->isC, &xC));
+    PetscCall(MatMult(red->P, xC, red->f));
+    PetscCall(VecRestoreSubVector(x, red->isC, &xC));
+    PetscCall(VecDestroy(&x));
+    break;
+  case SSSTAR_REDUCTION_EXPLICIT:
+    PetscCall(MatCreateVecs(red->Kii, &t, NULL));
+    PetscCall(VecGetSubVector(red->F, red->isI, &FI));
+    PetscCall(KSPSolve(red->kspI, FI, t));
+    PetscCall(VecRestoreSubVector(red->F, red->isI, &FI));
+    PetscCall(MatMult(red->Kci, t, red->f));
+    PetscCall(VecGetSubVector(red->F, red->isC, &FC));
+    PetscCall(VecAYPX(red->f, -1.0, FC));
+    PetscCall(VecRestoreSubVector(red->F, red->isC, &FC));
+    PetscCall(VecDestroy(&t));
+    break;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -127,14 +203,12 @@ static PetscErrorCode ReduceExplicit(SSStarReduction red, Mat K)
 -  type - SSSTAR_REDUCTION_MUMPS or SSSTAR_REDUCTION_EXPLICIT
 
    Notes:
-   P is dense and distributed by rows like isC. K_II is factored by a KSP with prefix -interior_
-   (MUMPS Cholesky), used for f and for the recovery of the interior displacement.
+   P is dense and distributed by rows like isC. The factorization that gave P is kept for the recovery.
+   Options: -schur_mat_mumps_* (mumps), -interior_ksp_*, -interior_pc_* (explicit).
 @*/
 PetscErrorCode SSStarReductionCreate(Mat K, Vec F, IS isC, IS isI, SSStarReductionType type, SSStarReduction *red)
 {
   SSStarReduction r;
-  PC              pc;
-  Vec             FI, FC, t, s;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Schur, K, 0, 0, 0));
@@ -146,45 +220,18 @@ PetscErrorCode SSStarReductionCreate(Mat K, Vec F, IS isC, IS isI, SSStarReducti
   r->isC = isC;
   r->isI = isI;
   r->F   = F;
-  PetscCall(MatCreateSubMatrix(K, isI, isI, MAT_INITIAL_MATRIX, &r->Kii));
-  PetscCall(MatCreateSubMatrix(K, isI, isC, MAT_INITIAL_MATRIX, &r->Kic));
-  PetscCall(MatCreateSubMatrix(K, isC, isI, MAT_INITIAL_MATRIX, &r->Kci));
-  PetscCall(MatSetOption(r->Kii, MAT_SPD, PETSC_TRUE));
-
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)K), &r->kspI));
-  PetscCall(KSPSetOptionsPrefix(r->kspI, "interior_"));
-  PetscCall(KSPSetOperators(r->kspI, r->Kii, r->Kii));
-  PetscCall(KSPSetType(r->kspI, KSPPREONLY));
-  PetscCall(KSPGetPC(r->kspI, &pc));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(KSPSetErrorIfNotConverged(r->kspI, PETSC_TRUE));
-  PetscCall(KSPSetFromOptions(r->kspI));
-  PetscCall(KSPSetUp(r->kspI));
-
   switch (type) {
   case SSSTAR_REDUCTION_MUMPS:
     PetscCall(ReduceMUMPS(r, K));
+    PetscCall(VecScatterCreateToZero(F, &r->toZero, &r->bZero));
+    PetscCall(VecDuplicate(r->bZero, &r->xZero));
     break;
   case SSSTAR_REDUCTION_EXPLICIT:
     PetscCall(ReduceExplicit(r, K));
     break;
   }
   PetscCall(PetscObjectSetName((PetscObject)r->P, "P"));
-
-  /* f = F_C - K_CI K_II^-1 F_I */
-  PetscCall(MatCreateVecs(r->P, NULL, &r->f));
-  PetscCall(PetscObjectSetName((PetscObject)r->f, "f"));
-  PetscCall(MatCreateVecs(r->Kii, &t, &s));
-  PetscCall(VecGetSubVector(F, isI, &FI));
-  PetscCall(KSPSolve(r->kspI, FI, t));
-  PetscCall(VecRestoreSubVector(F, isI, &FI));
-  PetscCall(MatMult(r->Kci, t, r->f));
-  PetscCall(VecGetSubVector(F, isC, &FC));
-  PetscCall(VecAYPX(r->f, -1.0, FC));
-  PetscCall(VecRestoreSubVector(F, isC, &FC));
-  PetscCall(VecDestroy(&t));
-  PetscCall(VecDestroy(&s));
+  PetscCall(ReducedLoad(r));
   PetscCall(PetscLogEventEnd(SSSTAR_Schur, K, 0, 0, 0));
   *red = r;
   PetscFunctionReturn(0);
@@ -206,20 +253,37 @@ PetscErrorCode SSStarReductionGetProblem(SSStarReduction red, Mat *P, Vec *f)
 @*/
 PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec uC, Vec u)
 {
-  Vec FI, rhs, uI;
+  Vec FI, rhs, uI, r, bC;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Recovery, 0, 0, 0, 0));
-  PetscCall(MatCreateVecs(red->Kii, &uI, &rhs));
-  PetscCall(MatMult(red->Kic, uC, rhs));
-  PetscCall(VecGetSubVector(red->F, red->isI, &FI));
-  PetscCall(VecAYPX(rhs, -1.0, FI));
-  PetscCall(VecRestoreSubVector(red->F, red->isI, &FI));
-  PetscCall(KSPSolve(red->kspI, rhs, uI));
-  PetscCall(VecISCopy(u, red->isI, SCATTER_FORWARD, uI));
-  PetscCall(VecISCopy(u, red->isC, SCATTER_FORWARD, uC));
-  PetscCall(VecDestroy(&uI));
-  PetscCall(VecDestroy(&rhs));
+  switch (red->type) {
+  case SSSTAR_REDUCTION_MUMPS: /* u = K^-1 (F + E_C (P u_C - f)) */
+    PetscCall(VecDuplicate(red->f, &r));
+    PetscCall(MatMult(red->P, uC, r));
+    PetscCall(VecAXPY(r, -1.0, red->f));
+    PetscCall(VecDuplicate(red->F, &rhs));
+    PetscCall(VecCopy(red->F, rhs));
+    PetscCall(VecGetSubVector(rhs, red->isC, &bC));
+    PetscCall(VecAXPY(bC, 1.0, r));
+    PetscCall(VecRestoreSubVector(rhs, red->isC, &bC));
+    PetscCall(SolveWholeK(red, rhs, u));
+    PetscCall(VecDestroy(&rhs));
+    PetscCall(VecDestroy(&r));
+    break;
+  case SSSTAR_REDUCTION_EXPLICIT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
+    PetscCall(MatCreateVecs(red->Kii, &uI, &rhs));
+    PetscCall(MatMult(red->Kic, uC, rhs));
+    PetscCall(VecGetSubVector(red->F, red->isI, &FI));
+    PetscCall(VecAYPX(rhs, -1.0, FI));
+    PetscCall(VecRestoreSubVector(red->F, red->isI, &FI));
+    PetscCall(KSPSolve(red->kspI, rhs, uI));
+    PetscCall(VecISCopy(u, red->isI, SCATTER_FORWARD, uI));
+    PetscCall(VecDestroy(&uI));
+    PetscCall(VecDestroy(&rhs));
+    break;
+  }
+  PetscCall(VecISCopy(u, red->isC, SCATTER_FORWARD, uC)); /* the contact solution itself, not its round-off image */
   PetscCall(PetscLogEventEnd(SSSTAR_Recovery, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -235,6 +299,10 @@ PetscErrorCode SSStarReductionDestroy(SSStarReduction *red)
   PetscCall(MatDestroy(&(*red)->Kci));
   PetscCall(MatDestroy(&(*red)->P));
   PetscCall(KSPDestroy(&(*red)->kspI));
+  PetscCall(MatDestroy(&(*red)->Kfactor));
+  PetscCall(VecScatterDestroy(&(*red)->toZero));
+  PetscCall(VecDestroy(&(*red)->bZero));
+  PetscCall(VecDestroy(&(*red)->xZero));
   PetscCall(VecDestroy(&(*red)->F));
   PetscCall(VecDestroy(&(*red)->f));
   PetscCall(PetscFree(*red));

@@ -64,6 +64,7 @@ int main(int argc, char **argv)
   PetscOptionsEnd();
   PetscCall(GetVector3("-traction_top", scene.traction_top));
   PetscCall(GetVector3("-traction_right", scene.traction_right));
+  if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
 
   /* mesh, FEM */
   PetscCall(PetscTime(&t0));

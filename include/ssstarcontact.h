@@ -51,6 +51,7 @@ PETSC_EXTERN PetscErrorCode SSStarReductionRecover(SSStarReduction, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarReductionDestroy(SSStarReduction *);
 
 /* HDF5 + XDMF: the full displacement on the mesh and the group /contact (README, "Output") */
+PETSC_EXTERN PetscErrorCode SSStarCheckOutputFile(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarWriteSolution(const char[], DM, Vec, const SSStarContactNodes *, Vec, Vec, const PetscInt[]);
 
 #endif

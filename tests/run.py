@@ -203,7 +203,7 @@ def prism_user_mesh():
     expect(m is not None and m.group(7) == REFERENCE_STATES[3] and m.group(8) == "CONVERGED_FNORM_ABS", "different result from -mesh", out)
 
 
-@test("bad input is refused with an error naming it: a missing mesh file, a mesh without a physical group, a negative friction")
+@test("bad input is refused with an error naming it: a missing mesh file, a mesh without a physical group, a negative friction, an output file that cannot be written")
 def errors_name_the_problem():
     out = run([PRISM, "-mesh", "no/such.msh"], expect_rc=1)
     expect("no/such.msh" in out, "the missing file is not named", out)
@@ -216,6 +216,8 @@ def errors_name_the_problem():
     expect('no physical group named "right"' in out, "the missing group is not named", out)
     out = run([PRISM, "-level", "2", "-snes_ssstar_friction", "-1"], expect_rc=1)
     expect("-snes_ssstar_friction -1" in out, "the bad option is not named", out)
+    out = run([PRISM, "-level", "2", "-o", "no/such/folder/x.h5"], expect_rc=1)
+    expect("Cannot write no/such/folder/x.h5" in out, "the output file is not named", out)
 
 
 def main():

@@ -96,6 +96,25 @@ static PetscErrorCode WriteXDMF(DM dm, const char h5[])
 }
 
 /*@C
+   SSStarCheckOutputFile - errors out, naming the file, when file cannot be created (its folder is missing or read-only)
+@*/
+PetscErrorCode SSStarCheckOutputFile(MPI_Comm comm, const char file[])
+{
+  char      dir[PETSC_MAX_PATH_LEN];
+  char     *slash;
+  PetscBool ok;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrncpy(dir, file, sizeof(dir)));
+  slash = strrchr(dir, '/');
+  if (slash) *slash = 0;
+  else PetscCall(PetscStrncpy(dir, ".", sizeof(dir)));
+  PetscCall(PetscTestDirectory(dir[0] ? dir : "/", 'w', &ok));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot write %s: %s is not a writable folder", file, dir[0] ? dir : "/");
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarWriteSolution - writes file.h5 (and file.xmf for ParaView): the displacement u on the mesh, and the group
    /contact with coordinates (p x 3), displacement (p x 3), reaction (p x 3) and state (p) of the contact nodes in
    file order
@@ -110,6 +129,7 @@ PetscErrorCode SSStarWriteSolution(const char file[], DM dm, Vec u, const SSStar
   Vec                field;
 
   PetscFunctionBegin;
+  PetscCall(SSStarCheckOutputFile(comm, file));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
   PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_WRITE, &viewer));
   PetscCall(PetscViewerPushFormat(viewer, PETSC_VIEWER_HDF5_VIZ));

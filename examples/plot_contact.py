@@ -25,7 +25,7 @@ def main():
     args = parser.parse_args()
     f = h5py.File(args.file, "r")
     x, u, r = f["contact/coordinates"][:], f["contact/displacement"][:], f["contact/reaction"][:]
-    state = f["contact/state"][:].ravel()
+    state = f["contact/state"][:]
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 4.2))
     for s, (label, color) in STATES.items():

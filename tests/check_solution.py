@@ -23,7 +23,16 @@ def coulomb(args):
     f = h5py.File(args.file, "r")
     u = f["contact/displacement"][:]
     r = f["contact/reaction"][:]
-    state = f["contact/state"][:].ravel()
+    state = f["contact/state"][:]
+    p = len(u)
+    shapes = {"coordinates": (p, 3), "displacement": (p, 3), "reaction": (p, 3), "state": (p,)}
+    for name, shape in shapes.items():
+        if f["contact/" + name].shape != shape:
+            print("/contact/%s has shape %s, not %s" % (name, f["contact/" + name].shape, shape))
+            return False
+    if state.dtype.kind != "i" or state.min() < 0 or state.max() > 5:
+        print("/contact/state is not an integer state 0..5")
+        return False
     umax, rmax = np.abs(u).max(), np.abs(r).max()
     ut, rt = np.linalg.norm(u[:, :2], axis=1), np.linalg.norm(r[:, :2], axis=1)
     sliding = ut > args.tol * umax

@@ -95,6 +95,45 @@ static PetscErrorCode WriteXDMF(DM dm, const char h5[])
   PetscFunctionReturn(0);
 }
 
+/* /contact/state: a one-dimensional integer dataset of p entries, from a field held by rank 0 */
+static PetscErrorCode WriteStates(PetscViewer viewer, Vec field)
+{
+  MPI_Comm           comm = PetscObjectComm((PetscObject)viewer);
+  hid_t              file, group, filespace, memspace, dset;
+  hsize_t            p, m;
+  PetscInt           N, n;
+  int               *st;
+  const PetscScalar *fa;
+  herr_t             status;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetSize(field, &N));
+  PetscCall(VecGetLocalSize(field, &n));
+  p = (hsize_t)N;
+  m = (hsize_t)n;
+  PetscCall(PetscMalloc1(n, &st));
+  PetscCall(VecGetArrayRead(field, &fa));
+  for (PetscInt i = 0; i < n; i++) st[i] = (int)PetscRealPart(fa[i]);
+  PetscCall(VecRestoreArrayRead(field, &fa));
+  PetscCall(PetscViewerHDF5OpenGroup(viewer, NULL, &file, &group));
+  filespace = H5Screate_simple(1, &p, NULL);
+  memspace  = H5Screate_simple(1, &m, NULL);
+  dset      = H5Dcreate2(group, "state", H5T_NATIVE_INT, filespace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCheck(filespace >= 0 && memspace >= 0 && dset >= 0, comm, PETSC_ERR_LIB, "HDF5 could not create the dataset /contact/state");
+  if (!n) {
+    H5Sselect_none(filespace);
+    H5Sselect_none(memspace);
+  }
+  status = H5Dwrite(dset, H5T_NATIVE_INT, memspace, filespace, H5P_DEFAULT, st);
+  PetscCheck(status >= 0, comm, PETSC_ERR_LIB, "HDF5 could not write the dataset /contact/state");
+  H5Dclose(dset);
+  H5Sclose(memspace);
+  H5Sclose(filespace);
+  if (group != file) H5Gclose(group);
+  PetscCall(PetscFree(st));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarCheckOutputFile - errors out, naming the file, when file cannot be created (its folder is missing or read-only)
 @*/
@@ -160,23 +199,9 @@ PetscErrorCode SSStarWriteSolution(const char file[], DM dm, Vec u, const SSStar
       PetscCall(VecDestroy(&field));
     }
   }
-  { /* the states as integers */
-    const PetscScalar *fa;
-    PetscInt           m, *st;
-    IS                 is;
-
-    PetscCall(ContactFieldCreate(comm, p, cn->n, pos, 1, sl, "state", &field));
-    PetscCall(VecGetLocalSize(field, &m));
-    PetscCall(PetscMalloc1(m, &st));
-    PetscCall(VecGetArrayRead(field, &fa));
-    for (PetscInt i = 0; i < m; i++) st[i] = (PetscInt)PetscRealPart(fa[i]);
-    PetscCall(VecRestoreArrayRead(field, &fa));
-    PetscCall(ISCreateGeneral(comm, m, st, PETSC_OWN_POINTER, &is));
-    PetscCall(PetscObjectSetName((PetscObject)is, "state"));
-    PetscCall(ISView(is, viewer));
-    PetscCall(ISDestroy(&is));
-    PetscCall(VecDestroy(&field));
-  }
+  PetscCall(ContactFieldCreate(comm, p, cn->n, pos, 1, sl, "state", &field));
+  PetscCall(WriteStates(viewer, field));
+  PetscCall(VecDestroy(&field));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(PetscFree4(pos, ul, rl, sl));

@@ -11,7 +11,7 @@
 @*/
 PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm comm, const char geo[], PetscInt level, const char msh[])
 {
-  PetscMPIInt rank;
+  PetscMPIInt rank, failure = 0;
   PetscBool   exists;
 
   PetscFunctionBegin;
@@ -34,10 +34,12 @@ PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm comm, const char geo[], PetscInt
     PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.%d.msh", msh, (int)getpid()));
     if (!ierr) gmshWrite(tmp, &ierr);
     gmshFinalize(&ierr);
-    PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_LIB, "gmsh failed to mesh %s at level %" PetscInt_FMT " into %s", geo, level, msh);
-    PetscCheck(!rename(tmp, msh), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the mesh file %s", msh);
+    failure = ierr ? 1 : (rename(tmp, msh) ? 2 : 0);
   }
-  PetscCallMPI(MPI_Barrier(comm));
+  /* every rank raises the error, so that none waits for rank 0 */
+  PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, comm));
+  PetscCheck(failure != 1, comm, PETSC_ERR_LIB, "gmsh failed to mesh %s at level %" PetscInt_FMT, geo, level);
+  PetscCheck(failure != 2, comm, PETSC_ERR_FILE_WRITE, "Cannot write the mesh file %s", msh);
   PetscFunctionReturn(0);
 }
 

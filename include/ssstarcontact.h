@@ -8,8 +8,9 @@
 */
 #include <petscdmplex.h>
 #include <petscksp.h>
+#include <ssstarreduction.h>
 
-PETSC_EXTERN PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
+PETSC_EXTERN PetscLogEvent SSSTAR_Assembly;
 
 /* Physical groups a mesh must have (by name): the Dirichlet face, two loaded faces, the contact face. */
 #define SSSTAR_GROUP_DIRICHLET "dirichlet"
@@ -36,19 +37,6 @@ PETSC_EXTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char file[], DM *, Ve
 PETSC_EXTERN PetscErrorCode SSStarAssembleElasticity(DM, const SSStarScene *, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SSStarContactNodesCreate(DM, Vec, SSStarContactNodes *);
 PETSC_EXTERN PetscErrorCode SSStarContactNodesDestroy(SSStarContactNodes *);
-
-/* Reduction of K u = F to the contact dofs: P = K_CC - K_CI K_II^-1 K_IC, f = F_C - K_CI K_II^-1 F_I */
-typedef enum {
-  SSSTAR_REDUCTION_MUMPS,   /* MUMPS's own Schur complement (MatFactorSetSchurIS), computed on rank 0 */
-  SSSTAR_REDUCTION_EXPLICIT /* MATSCHURCOMPLEMENT made explicit, distributed                          */
-} SSStarReductionType;
-PETSC_EXTERN const char *const SSStarReductionTypes[];
-
-typedef struct _n_SSStarReduction *SSStarReduction;
-PETSC_EXTERN PetscErrorCode SSStarReductionCreate(Mat, Vec, IS, IS, SSStarReductionType, SSStarReduction *);
-PETSC_EXTERN PetscErrorCode SSStarReductionGetProblem(SSStarReduction, Mat *, Vec *);
-PETSC_EXTERN PetscErrorCode SSStarReductionRecover(SSStarReduction, Vec, Vec);
-PETSC_EXTERN PetscErrorCode SSStarReductionDestroy(SSStarReduction *);
 
 /* HDF5 + XDMF: the full displacement on the mesh and the group /contact (README, "Output") */
 PETSC_EXTERN PetscErrorCode SSStarCheckOutputFile(MPI_Comm, const char[]);

@@ -23,13 +23,14 @@ static PetscErrorCode SixPStep(PetscInt p, PetscReal gamma, PetscReal phi, const
   for (PetscInt i = 0; i < n; i++)
     for (PetscInt j = 0; j < n; j++) D[j * m + i] = gamma * P[j * n + i]; /* column-major */
   for (PetscInt i = 0; i < p; i++) {
-    PetscReal   z[3], d[3], b[3], gc[3] = {gamma * c[3 * i], gamma * c[3 * i + 1], gamma * c[3 * i + 2]}, G[9], H[9];
-    SSStarState st;
+    const SSStarFriction fr = {SSSTAR_FRICTION_COULOMB, phi, 0.0};
+    PetscReal            z[3], d[3], b[3], gc[3] = {gamma * c[3 * i], gamma * c[3 * i + 1], gamma * c[3 * i + 2]}, G[9], H[9];
+    SSStarState          st;
 
-    SSStarApproximationStep(phi, &u[3 * i], gc, z, d, b);
-    st = SSStarClassify(phi, d, b, 0.0, 0.0);
+    SSStarApproximationStep(&fr, &u[3 * i], gc, z, d, b);
+    st = SSStarClassify(&fr, d, b, 0.0, 0.0);
     counts[st]++;
-    SSStarTangentBlocks(st, phi, d, b, G, H);
+    SSStarTangentBlocks(st, &fr, d, b, G, H);
     for (PetscInt r = 0; r < 3; r++) {
       rhs[3 * i + r]     = z[r];
       rhs[n + 3 * i + r] = z[r];

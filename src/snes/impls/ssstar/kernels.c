@@ -1,32 +1,46 @@
 /*
    Per-node contact kernels of the semismooth* Newton method: pure functions on 3-vectors
-   (u_t1, u_t2, u_n). Section numbers refer to DERIVATION.md.
+   (u_t1, u_t2, u_n) in the node's frame. Section numbers refer to DERIVATION.md.
+
+   The friction law of a node is one of
+     coulomb: Q(u) = { (-phi lam d|u12|, lam) : lam in N_R+(u3) }          (section 0)
+     tresca:  Q(u) = s d|u12| x N_R+(u3), s the slip bound (no normal-tangential coupling)
+     none:    Q(u) = {0} x N_R+(u3)                                          (frictionless)
+   Tresca is Coulomb with the threshold phi (-g3) replaced by the constant s, so its blocks are
+   the Coulomb ones without the coupling terms phi om, with separate normal and tangential states.
 */
 #include <ssstar.h>
 
-const char *const SSStarStateNames[] = {"L", "M1", "M2", "M3+", "M3-", "M4", "SSStarState", "SSSTAR_STATE_", NULL};
+const char *const SSStarStateNames[]   = {"L", "M1", "M2", "M3+", "M3-", "M4", "LS", "SSStarState", "SSSTAR_STATE_", NULL};
+const char *const SSStarFrictionLaws[] = {"none", "tresca", "coulomb", "SSStarFrictionLaw", "SSSTAR_FRICTION_", NULL};
 
 static PetscReal Norm2(const PetscReal v[2])
 {
   return PetscSqrtReal(v[0] * v[0] + v[1] * v[1]);
 }
 
-void SSStarApproximationStep(PetscReal phi, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3])
+void SSStarApproximationStep(const SSStarFriction *fr, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3])
 {
-  const PetscReal s    = phi * PetscMax(0.0, c[2] - u[2]); /* threshold of the prox (12) */
   const PetscReal v[2] = {u[0] - c[0], u[1] - c[1]};
-  const PetscReal nv   = Norm2(v);
 
   z[2] = PetscMax(-c[2], -u[2]); /* (11) */
   d[2] = PetscMax(u[2] - c[2], 0.0);
   b[2] = -PetscMax(0.0, c[2] - u[2]);
-  /* (12): block soft-thresholding; the "if" keeps d12 an exact zero when |v| <= s */
-  if (nv > s) {
-    d[0] = (1.0 - s / nv) * v[0];
-    d[1] = (1.0 - s / nv) * v[1];
+  if (fr->law == SSSTAR_FRICTION_NONE) {
+    d[0] = v[0];
+    d[1] = v[1];
   } else {
-    d[0] = 0.0;
-    d[1] = 0.0;
+    /* (12): block soft-thresholding with the threshold s; the "if" keeps d12 an exact zero when |v| <= s */
+    const PetscReal s  = fr->law == SSSTAR_FRICTION_COULOMB ? fr->phi * PetscMax(0.0, c[2] - u[2]) : fr->bound;
+    const PetscReal nv = Norm2(v);
+
+    if (nv > s) {
+      d[0] = (1.0 - s / nv) * v[0];
+      d[1] = (1.0 - s / nv) * v[1];
+    } else {
+      d[0] = 0.0;
+      d[1] = 0.0;
+    }
   }
   z[0] = d[0] - u[0];
   z[1] = d[1] - u[1];
@@ -34,10 +48,24 @@ void SSStarApproximationStep(PetscReal phi, const PetscReal u[3], const PetscRea
   b[1] = -z[1] - c[1];
 }
 
-SSStarState SSStarClassify(PetscReal phi, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
+/* Tresca: normal and tangential states apart, mapped onto Table 1 (LS: separated and stuck) */
+static SSStarState ClassifyTresca(PetscReal bound, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
 {
   const PetscBool sliding = (PetscBool)(Norm2(d) > tol_d);
+  const PetscBool strong  = (PetscBool)(bound - Norm2(b) > tol_b);
 
+  if (d[2] > tol_d) return sliding ? SSSTAR_STATE_L : SSSTAR_STATE_LS;
+  if (-b[2] <= tol_b) return sliding ? SSSTAR_STATE_M2 : SSSTAR_STATE_M4;
+  if (sliding) return SSSTAR_STATE_M1;
+  return strong ? SSSTAR_STATE_M3P : SSSTAR_STATE_M3M;
+}
+
+SSStarState SSStarClassify(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
+{
+  const PetscReal phi     = fr->law == SSSTAR_FRICTION_COULOMB ? fr->phi : 0.0;
+  const PetscBool sliding = (PetscBool)(Norm2(d) > tol_d);
+
+  if (fr->law == SSSTAR_FRICTION_TRESCA) return ClassifyTresca(fr->bound, d, b, tol_d, tol_b);
   if (d[2] > tol_d) return SSSTAR_STATE_L;
   if (-b[2] <= tol_b) return sliding ? SSSTAR_STATE_M2 : SSSTAR_STATE_M4;
   if (sliding) return SSSTAR_STATE_M1;
@@ -49,26 +77,42 @@ static PetscBool IsStrongContact(SSStarState state)
   return (PetscBool)(state == SSSTAR_STATE_M1 || state == SSSTAR_STATE_M3P || state == SSSTAR_STATE_M3M);
 }
 
-/* Sliding blocks: do the M1 formulas apply? Also for every strong contact when phi = 0 (section 3). */
-static PetscBool UsesSlidingBlocks(SSStarState state, PetscReal phi)
+static PetscBool IsSliding(SSStarState state)
 {
-  return (PetscBool)(state == SSSTAR_STATE_M1 || (phi == 0.0 && IsStrongContact(state)));
+  return (PetscBool)(state == SSSTAR_STATE_L || state == SSSTAR_STATE_M1 || state == SSSTAR_STATE_M2);
 }
 
-/* om = d12/|d12| and W = -phi b3/|d12| (I - om om^T) of section 3; both vanish when phi = 0. */
-static void SlidingDirection(PetscReal phi, const PetscReal d[3], const PetscReal b[3], PetscReal om[2], PetscReal W[4])
+/*
+   The tangential slip of a node at (d, b): om = d12/|d12|, W = s/|d12| (I - om om^T) with s the threshold of the
+   approximation step at (d, b) (Coulomb: -phi b3), and kappa, the coefficient of the normal force in the sliding law
+   (Coulomb: phi; section 3). All vanish without friction.
+*/
+static void SlidingDirection(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal om[2], PetscReal W[4], PetscReal *kappa)
 {
   const PetscReal nd = Norm2(d);
-  PetscReal       w;
+  PetscReal       s, w;
 
-  if (phi == 0.0) {
+  switch (fr->law) {
+  case SSSTAR_FRICTION_COULOMB:
+    s      = -fr->phi * b[2];
+    *kappa = fr->phi;
+    break;
+  case SSSTAR_FRICTION_TRESCA:
+    s      = fr->bound;
+    *kappa = 0.0;
+    break;
+  default:
+    s      = 0.0;
+    *kappa = 0.0;
+  }
+  if (s == 0.0) {
     om[0] = om[1] = 0.0;
     W[0] = W[1] = W[2] = W[3] = 0.0;
     return;
   }
   om[0] = d[0] / nd;
   om[1] = d[1] / nd;
-  w     = -phi * b[2] / nd;
+  w     = s / nd;
   W[0]  = w * (1.0 - om[0] * om[0]);
   W[1]  = -w * om[0] * om[1];
   W[2]  = W[1];
@@ -83,44 +127,101 @@ static void SetDiagonal(PetscReal M[9], PetscReal m0, PetscReal m1, PetscReal m2
   M[8] = m2;
 }
 
-void SSStarTangentBlocks(SSStarState state, PetscReal phi, const PetscReal d[3], const PetscReal b[3], PetscReal G[9], PetscReal H[9])
-{
-  PetscReal om[2], W[4];
+/*
+   Which kind of blocks a node gets. Coulomb and none: the states of Table 1, where without friction (phi = 0 or
+   none) every strong contact slides (section 3, "phi = 0"). Tresca: the normal state (closed when in strong contact)
+   and the tangential one (sliding or stuck) apart.
+*/
+typedef struct {
+  PetscBool closed;  /* normal: u3 = 0 (and g3 free)       */
+  PetscBool slides;  /* tangential: the sliding law holds  */
+  PetscBool tangent; /* tangential part of Q not {0}: G12/H12 from sliding or sticking */
+} BlockKind;
 
-  if (UsesSlidingBlocks(state, phi)) {
-    SlidingDirection(phi, d, b, om, W);
-    SetDiagonal(G, 1.0, 1.0, 0.0);
-    SetDiagonal(H, W[0], W[3], 1.0);
+static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
+{
+  BlockKind k;
+
+  k.closed = IsStrongContact(state);
+  if (fr->law == SSSTAR_FRICTION_TRESCA) {
+    k.tangent = PETSC_TRUE;
+    k.slides  = IsSliding(state);
+  } else {
+    const PetscBool frictionless = (PetscBool)(fr->law == SSSTAR_FRICTION_NONE || fr->phi == 0.0);
+
+    k.tangent = k.closed; /* Coulomb: g12 = 0 unless in strong contact */
+    k.slides  = (PetscBool)(state == SSSTAR_STATE_M1 || (frictionless && k.closed));
+  }
+  return k;
+}
+
+void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal G[9], PetscReal H[9])
+{
+  const BlockKind k = GetBlockKind(state, fr);
+  PetscReal       om[2], W[4], kappa;
+
+  SetDiagonal(G, 1.0, 1.0, k.closed ? 0.0 : 1.0);
+  SetDiagonal(H, 0.0, 0.0, k.closed ? 1.0 : 0.0);
+  if (!k.tangent) return;
+  if (k.slides) {
+    SlidingDirection(fr, d, b, om, W, &kappa);
+    H[0] = W[0];
     H[1] = W[1];
     H[3] = W[2];
-    H[2] = -phi * om[0];
-    H[5] = -phi * om[1];
-  } else if (IsStrongContact(state)) {
-    SetDiagonal(G, 0.0, 0.0, 0.0);
-    SetDiagonal(H, 1.0, 1.0, 1.0);
+    H[4] = W[3];
+    if (k.closed) {
+      H[2] = -kappa * om[0];
+      H[5] = -kappa * om[1];
+    }
   } else {
-    SetDiagonal(G, 1.0, 1.0, 1.0);
-    SetDiagonal(H, 0.0, 0.0, 0.0);
+    G[0] = G[4] = 0.0;
+    H[0] = H[4] = 1.0;
   }
 }
 
-void SSStarReducedBlocks(SSStarState state, PetscReal phi, const PetscReal d[3], const PetscReal b[3], PetscReal S[9], PetscReal T[9])
+void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal S[9], PetscReal T[9])
 {
-  PetscReal om[2], W[4];
+  const BlockKind k = GetBlockKind(state, fr);
+  PetscReal       om[2], W[4], kappa;
 
-  if (UsesSlidingBlocks(state, phi)) {
-    SlidingDirection(phi, d, b, om, W);
-    SetDiagonal(S, 1.0, 1.0, 0.0);
-    S[2] = phi * om[0];
-    S[5] = phi * om[1];
-    SetDiagonal(T, W[0], W[3], 1.0);
+  SetDiagonal(S, 1.0, 1.0, k.closed ? 0.0 : 1.0);
+  SetDiagonal(T, 0.0, 0.0, k.closed ? 1.0 : 0.0);
+  if (!k.tangent) return;
+  if (k.slides) {
+    SlidingDirection(fr, d, b, om, W, &kappa);
+    T[0] = W[0];
     T[1] = W[1];
     T[3] = W[2];
-  } else if (IsStrongContact(state)) {
-    SetDiagonal(S, 0.0, 0.0, 0.0);
-    SetDiagonal(T, 1.0, 1.0, 1.0);
+    T[4] = W[3];
+    if (k.closed) {
+      S[2] = kappa * om[0];
+      S[5] = kappa * om[1];
+    }
   } else {
-    SetDiagonal(S, 1.0, 1.0, 1.0);
-    SetDiagonal(T, 0.0, 0.0, 0.0);
+    S[0] = S[4] = 0.0;
+    T[0] = T[4] = 1.0;
   }
+}
+
+void SSStarNodeFrame(const PetscReal n[3], PetscReal R[9])
+{
+  const PetscReal nn  = PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const PetscReal e[3] = {n[0] / nn, n[1] / nn, n[2] / nn};
+  PetscReal       a[3] = {1, 0, 0}, t1[3], dot, nt;
+
+  if (PetscAbsReal(e[0]) > 0.9) {
+    a[0] = 0;
+    a[1] = 1;
+  }
+  dot = a[0] * e[0] + a[1] * e[1] + a[2] * e[2];
+  for (int k = 0; k < 3; k++) t1[k] = a[k] - dot * e[k];
+  nt = PetscSqrtReal(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (int k = 0; k < 3; k++) {
+    R[k]     = t1[k] / nt;
+    R[6 + k] = e[k];
+  }
+  /* t2 = n x t1: (t1, t2, n) is right-handed */
+  R[3] = e[1] * R[2] - e[2] * R[1];
+  R[4] = e[2] * R[0] - e[0] * R[2];
+  R[5] = e[0] * R[1] - e[1] * R[0];
 }

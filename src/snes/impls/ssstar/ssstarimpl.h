@@ -2,27 +2,89 @@
 #define SSSTARIMPL_H
 
 #include <ssstar.h>
+#include <ssstarreduction.h>
 #include <petsc/private/snesimpl.h>
 
 PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
 
+/*
+   The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R),
+   given P (global frame) and, per local node, R, S and T (9 values each, row-major).
+*/
+typedef struct _n_SSStarNewton *SSStarNewton;
+PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, Mat, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarNewtonView(SSStarNewton, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarNewtonDestroy(SSStarNewton *);
+
+/*
+   The contact declaration and the reduced problem (contact.c). The solver's unknown is u, the displacement of the
+   contact dofs in the global frame (3 per node); in node i's frame it is v_i = R_i u_i + g_i e_3, with v_i3 >= 0.
+*/
 typedef struct {
-  PetscReal    friction;      /* phi                                                 */
-  PetscReal    scaling_user;  /* gamma as set by the user; 0 means 1/mean(diag P)    */
-  PetscReal    scaling;       /* gamma in use for the current solve                  */
-  PetscReal    atol;          /* stopping rule ||z|| <= atol                          */
-  PetscReal    state_tol;     /* tau of the classification (section 2)               */
+  /* as declared by the user */
+  IS                  dofs;         /* contact dofs of the SNES vector, 3 per owned node; NULL: every dof     */
+  Vec                 normals;      /* 3 per node, or NULL for (0, 0, 1)                                    */
+  Vec                 gaps;         /* 1 per node, or NULL for 0                                            */
+  SSStarFrictionLaw   law;          /* of the nodes without a law of their own                              */
+  PetscReal           friction;     /* phi of the nodes without a coefficient of their own                  */
+  Vec                 coefficients; /* phi per node, or NULL                                                */
+  Vec                 bounds;       /* Tresca slip bound per node, or NULL                                  */
+  SSStarFrictionLaw  *nodeLaws;     /* per owned node, or NULL                                              */
+  PetscInt            nNodeLaws;
+  SSStarReductionType reductionType;
+  PetscObjectState    declared;     /* bumped by every setter: the per-node data are rebuilt when it moved  */
+
+  /* derived, in the solver's node order (nodes sorted by their first dof) */
+  PetscObjectState built;           /* value of declared the per-node data were built for                  */
+  PetscInt         nnodes;          /* owned contact nodes                                                  */
+  IS               isC, isI;        /* contact dofs in the solver's order, and the other owned dofs         */
+  PetscInt        *order;           /* solver's node i is the user's node order[i]                          */
+  PetscReal       *frames;          /* 9 per node (rows t1, t2, n), or NULL when every normal is (0, 0, 1)  */
+  PetscReal       *gap;             /* per node, or NULL                                                    */
+  SSStarFriction  *nodeFriction;    /* per node; Tresca bounds as forces                                    */
+  PetscBool        hasFriction;     /* some node has friction (global)                                     */
+  PetscInt         lawCounts[3];    /* nodes per law (global)                                               */
+
+  /* the reduced problem c(u) = P u - f, kept while K and the declaration are unchanged */
+  SSStarReduction  reduction;       /* NULL in the reduced use                                              */
+  Mat              K;               /* the Jacobian the reduction was computed from                          */
+  PetscObjectState Kstate;
+  Mat              P;
+  Vec              b, f;            /* the whole load b = -F(0) and its reduction f                          */
+} SSStarContact;
+
+PETSC_INTERN PetscErrorCode SSStarContactSetUp(SNES, SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactSetUpProblem(SNES, SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactGetInitialGuess(SSStarContact *, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactSetSolution(SSStarContact *, Vec, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactReset(SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactDestroy(SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactView(SSStarContact *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarContactSetLaw(SSStarContact *, SSStarFrictionLaw, PetscReal);
+PETSC_INTERN PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES, IS, Vec, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetSlipBounds_SSStar(SNES, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const SSStarFrictionLaw[]);
+
+typedef struct {
+  SSStarContact contact;
+
+  /* the method */
+  PetscReal    scaling_user; /* gamma as set by the user; 0 means 1/mean(diag P)                     */
+  PetscReal    scaling;      /* gamma in use for the current solve                                    */
+  PetscReal    state_tol;    /* tau of the classification (section 2)                                 */
+  PetscReal    scale;        /* ||gamma f||: the problem's displacement scale in the stopping rule    */
   SSStarReason reason;
-  PetscInt     nnodes;        /* contact nodes owned by this rank                    */
-  SSStarState *states;        /* state of each local node at the last iterate        */
-  PetscInt     counts[SSSTAR_NUM_STATES]; /* global counts per state                 */
-  Mat          S, T;          /* block-diagonal factors of the 3p Newton system      */
-  Mat          P;             /* the P that SP was computed with (not referenced)   */
-  Mat          SP, A;         /* S P and the Newton matrix A = gamma S P + T         */
-  PetscBool    scalapack;     /* A is distributed dense: factor a MATSCALAPACK copy   */
-  Mat          Ascalapack;
-  Vec          yScalapack, duScalapack;
-  VecScatter   toScalapack;
+
+  /* the iteration, per local node in the solver's order */
+  SSStarState *states;                     /* at the last iterate                                   */
+  SSStarState *userStates;                 /* the same in the user's node order                     */
+  PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
+  PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
+  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f (global frame); z, d, b, y, dv (nodes' frames) */
+  SSStarNewton newton;
 } SNES_SSStar;
 
 #endif

@@ -6,7 +6,7 @@
              solves give f and u: x = K^-1 F has x_C = P^-1 f, so f = P x_C; K^-1 (F + E_C (P u_C - f)) = u.
    explicit: MATSCHURCOMPLEMENT made explicit, with K_II factored once (MUMPS Cholesky, prefix -interior_).
 */
-#include <ssstarcontact.h>
+#include <ssstarreduction.h>
 #include <petscmat.h>
 
 const char *const SSStarReductionTypes[] = {"mumps", "explicit", "SSStarReductionType", "SSSTAR_REDUCTION_", NULL};
@@ -14,7 +14,6 @@ const char *const SSStarReductionTypes[] = {"mumps", "explicit", "SSStarReductio
 struct _n_SSStarReduction {
   SSStarReductionType type;
   IS                  isC, isI;
-  Vec                 F, f;
   Mat                 P;
   Mat                 Kii, Kic, Kci; /* explicit: blocks of K                                   */
   KSP                 kspI;          /* explicit: K_II^-1                                       */
@@ -160,45 +159,46 @@ static PetscErrorCode ReduceExplicit(SSStarReduction red, Mat K)
   PetscFunctionReturn(0);
 }
 
-/* f = F_C - K_CI K_II^-1 F_I */
-static PetscErrorCode ReducedLoad(SSStarReduction red)
+/*@C
+   SSStarReductionReduceLoad - f = F_C - K_CI K_II^-1 F_I, the load reduced to the contact dofs (a vector like P's)
+@*/
+PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
 {
   Vec FI, FC, x, xC, t;
 
   PetscFunctionBegin;
-  PetscCall(MatCreateVecs(red->P, NULL, &red->f));
-  PetscCall(PetscObjectSetName((PetscObject)red->f, "f"));
+  PetscCall(PetscLogEventBegin(SSSTAR_Schur, 0, 0, 0, 0));
   switch (red->type) {
-  case SSSTAR_REDUCTION_MUMPS:
-    PetscCall(VecDuplicate(red->F, &x));
-    PetscCall(SolveWholeK(red, red->F, x));
+  case SSSTAR_REDUCTION_MUMPS: /* x = K^-1 F has x_C = P^-1 f */
+    PetscCall(VecDuplicate(F, &x));
+    PetscCall(SolveWholeK(red, F, x));
     PetscCall(VecGetSubVector(x, red->isC, &xC));
-    PetscCall(MatMult(red->P, xC, red->f));
+    PetscCall(MatMult(red->P, xC, f));
     PetscCall(VecRestoreSubVector(x, red->isC, &xC));
     PetscCall(VecDestroy(&x));
     break;
   case SSSTAR_REDUCTION_EXPLICIT:
     PetscCall(MatCreateVecs(red->Kii, &t, NULL));
-    PetscCall(VecGetSubVector(red->F, red->isI, &FI));
+    PetscCall(VecGetSubVector(F, red->isI, &FI));
     PetscCall(KSPSolve(red->kspI, FI, t));
-    PetscCall(VecRestoreSubVector(red->F, red->isI, &FI));
-    PetscCall(MatMult(red->Kci, t, red->f));
-    PetscCall(VecGetSubVector(red->F, red->isC, &FC));
-    PetscCall(VecAYPX(red->f, -1.0, FC));
-    PetscCall(VecRestoreSubVector(red->F, red->isC, &FC));
+    PetscCall(VecRestoreSubVector(F, red->isI, &FI));
+    PetscCall(MatMult(red->Kci, t, f));
+    PetscCall(VecGetSubVector(F, red->isC, &FC));
+    PetscCall(VecAYPX(f, -1.0, FC));
+    PetscCall(VecRestoreSubVector(F, red->isC, &FC));
     PetscCall(VecDestroy(&t));
     break;
   }
+  PetscCall(PetscLogEventEnd(SSSTAR_Schur, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarReductionCreate - eliminates every dof but those of isC from K u = F
+   SSStarReductionCreate - the Schur complement P = K_CC - K_CI K_II^-1 K_IC of K on the dofs isC
 
    Input Parameters:
 +  K    - the (SPD) stiffness
-.  F    - the load
-.  isC  - owned global dofs of the contact nodes (3 per node)
+.  isC  - owned global dofs of the contact nodes (3 per node), in the order P is to have
 .  isI  - all other owned dofs
 -  type - SSSTAR_REDUCTION_MUMPS or SSSTAR_REDUCTION_EXPLICIT
 
@@ -206,7 +206,7 @@ static PetscErrorCode ReducedLoad(SSStarReduction red)
    P is dense and distributed by rows like isC. The factorization that gave P is kept for the recovery.
    Options: -schur_mat_mumps_* (mumps), -interior_ksp_*, -interior_pc_* (explicit).
 @*/
-PetscErrorCode SSStarReductionCreate(Mat K, Vec F, IS isC, IS isI, SSStarReductionType type, SSStarReduction *red)
+PetscErrorCode SSStarReductionCreate(Mat K, IS isC, IS isI, SSStarReductionType type, SSStarReduction *red)
 {
   SSStarReduction r;
 
@@ -216,14 +216,18 @@ PetscErrorCode SSStarReductionCreate(Mat K, Vec F, IS isC, IS isI, SSStarReducti
   r->type = type;
   PetscCall(PetscObjectReference((PetscObject)isC));
   PetscCall(PetscObjectReference((PetscObject)isI));
-  PetscCall(PetscObjectReference((PetscObject)F));
   r->isC = isC;
   r->isI = isI;
-  r->F   = F;
   switch (type) {
   case SSSTAR_REDUCTION_MUMPS:
     PetscCall(ReduceMUMPS(r, K));
-    PetscCall(VecScatterCreateToZero(F, &r->toZero, &r->bZero));
+    {
+      Vec F;
+
+      PetscCall(MatCreateVecs(K, NULL, &F));
+      PetscCall(VecScatterCreateToZero(F, &r->toZero, &r->bZero));
+      PetscCall(VecDestroy(&F));
+    }
     PetscCall(VecDuplicate(r->bZero, &r->xZero));
     break;
   case SSSTAR_REDUCTION_EXPLICIT:
@@ -231,52 +235,47 @@ PetscErrorCode SSStarReductionCreate(Mat K, Vec F, IS isC, IS isI, SSStarReducti
     break;
   }
   PetscCall(PetscObjectSetName((PetscObject)r->P, "P"));
-  PetscCall(ReducedLoad(r));
   PetscCall(PetscLogEventEnd(SSSTAR_Schur, K, 0, 0, 0));
   *red = r;
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarReductionGetProblem - the reduced P (3p x 3p, dense) and f; owned by the reduction
+   SSStarReductionGetSchurComplement - P (3p x 3p, dense, rows distributed like isC); owned by the reduction
 @*/
-PetscErrorCode SSStarReductionGetProblem(SSStarReduction red, Mat *P, Vec *f)
+PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction red, Mat *P)
 {
   PetscFunctionBegin;
-  if (P) *P = red->P;
-  if (f) *f = red->f;
+  *P = red->P;
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarReductionRecover - the full displacement u (a global vector of K) from the contact displacement uC
+   SSStarReductionRecover - the full displacement u (a vector of K) of the load F from the contact displacement uC
+   and the contact force rC = P uC - f
 @*/
-PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec uC, Vec u)
+PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
 {
-  Vec FI, rhs, uI, r, bC;
+  Vec FI, rhs, uI, bC;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Recovery, 0, 0, 0, 0));
   switch (red->type) {
   case SSSTAR_REDUCTION_MUMPS: /* u = K^-1 (F + E_C (P u_C - f)) */
-    PetscCall(VecDuplicate(red->f, &r));
-    PetscCall(MatMult(red->P, uC, r));
-    PetscCall(VecAXPY(r, -1.0, red->f));
-    PetscCall(VecDuplicate(red->F, &rhs));
-    PetscCall(VecCopy(red->F, rhs));
+    PetscCall(VecDuplicate(F, &rhs));
+    PetscCall(VecCopy(F, rhs));
     PetscCall(VecGetSubVector(rhs, red->isC, &bC));
-    PetscCall(VecAXPY(bC, 1.0, r));
+    PetscCall(VecAXPY(bC, 1.0, rC));
     PetscCall(VecRestoreSubVector(rhs, red->isC, &bC));
     PetscCall(SolveWholeK(red, rhs, u));
     PetscCall(VecDestroy(&rhs));
-    PetscCall(VecDestroy(&r));
     break;
   case SSSTAR_REDUCTION_EXPLICIT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
     PetscCall(MatCreateVecs(red->Kii, &uI, &rhs));
     PetscCall(MatMult(red->Kic, uC, rhs));
-    PetscCall(VecGetSubVector(red->F, red->isI, &FI));
+    PetscCall(VecGetSubVector(F, red->isI, &FI));
     PetscCall(VecAYPX(rhs, -1.0, FI));
-    PetscCall(VecRestoreSubVector(red->F, red->isI, &FI));
+    PetscCall(VecRestoreSubVector(F, red->isI, &FI));
     PetscCall(KSPSolve(red->kspI, rhs, uI));
     PetscCall(VecISCopy(u, red->isI, SCATTER_FORWARD, uI));
     PetscCall(VecDestroy(&uI));
@@ -303,8 +302,6 @@ PetscErrorCode SSStarReductionDestroy(SSStarReduction *red)
   PetscCall(VecScatterDestroy(&(*red)->toZero));
   PetscCall(VecDestroy(&(*red)->bZero));
   PetscCall(VecDestroy(&(*red)->xZero));
-  PetscCall(VecDestroy(&(*red)->F));
-  PetscCall(VecDestroy(&(*red)->f));
   PetscCall(PetscFree(*red));
   PetscFunctionReturn(0);
 }

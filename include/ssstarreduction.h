@@ -1,0 +1,26 @@
+#ifndef SSSTARREDUCTION_H
+#define SSSTARREDUCTION_H
+
+/*
+   Reduction of a linear system K u = F (K SPD) to a subset C of its dofs by a Schur complement, and the recovery
+   of the whole u from u_C. Linear algebra only: no mesh, no contact law.
+*/
+#include <petscksp.h>
+
+PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;
+
+/* Reduction of K u = F to the contact dofs: P = K_CC - K_CI K_II^-1 K_IC, f = F_C - K_CI K_II^-1 F_I */
+typedef enum {
+  SSSTAR_REDUCTION_MUMPS,   /* MUMPS's own Schur complement (MatFactorSetSchurIS), computed on rank 0 */
+  SSSTAR_REDUCTION_EXPLICIT /* MATSCHURCOMPLEMENT made explicit, distributed                          */
+} SSStarReductionType;
+PETSC_EXTERN const char *const SSStarReductionTypes[];
+
+typedef struct _n_SSStarReduction *SSStarReduction;
+PETSC_EXTERN PetscErrorCode SSStarReductionCreate(Mat, IS, IS, SSStarReductionType, SSStarReduction *);
+PETSC_EXTERN PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction, Mat *);
+PETSC_EXTERN PetscErrorCode SSStarReductionReduceLoad(SSStarReduction, Vec, Vec);
+PETSC_EXTERN PetscErrorCode SSStarReductionRecover(SSStarReduction, Vec, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode SSStarReductionDestroy(SSStarReduction *);
+
+#endif

@@ -1,0 +1,275 @@
+/*
+   The public functions of the SNES type "ssstar". Setters are no-ops on a SNES of another type (PetscTryMethod), so
+   a program may declare its contact nodes and still run with -snes_type ksponly.
+*/
+#include "ssstarimpl.h"
+
+/*@
+   SNESSSStarSetContactNodes - declares the contact nodes of a whole-body problem F(u) = K u - b with Jacobian K
+
+   Collective
+
+   Input Parameters:
++  snes    - the SNES
+.  dofs    - for each contact node owned by this rank, the global indices of its x, y, z dofs in the SNES vector
+             (3 per node, in node order; owned by this rank)
+.  normals - NULL for (0, 0, 1), or 3 entries per contact node (layout as dofs): the unit normal of the obstacle
+             plane, pointing into the body
+-  gaps    - NULL for 0, or 1 entry per contact node: the initial distance to the obstacle
+
+   Notes:
+   SNESSolve() reduces K to the contact dofs by a Schur complement (-snes_ssstar_reduction), solves the contact
+   problem in each node's frame (t1, t2, n) with non-penetration u.n + gap >= 0, and returns the whole u;
+   SNESGetFunction() then holds K u - b, whose contact entries are the contact forces (global axes).
+   K must be SPD: Dirichlet dofs eliminated or given identity rows. The SNES keeps references to the arguments.
+
+.seealso: `SNESSSStarSetContactProblem()`, `SNESSSStarSetFrictionCoefficients()`
+@*/
+PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec gaps)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(dofs, IS_CLASSID, 2);
+  if (normals) PetscValidHeaderSpecific(normals, VEC_CLASSID, 3);
+  if (gaps) PetscValidHeaderSpecific(gaps, VEC_CLASSID, 4);
+  PetscTryMethod(snes, "SNESSSStarSetContactNodes_C", (SNES, IS, Vec, Vec), (snes, dofs, normals, gaps));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetFrictionLaw - sets the friction law of every contact node without a law of its own (default coulomb)
+
+   Options Database Key:
+.  -snes_ssstar_friction_law <none,tresca,coulomb> - the law
+
+   Notes:
+   tresca needs SNESSSStarSetSlipBounds(). SNESSSStarSetNodeFrictionLaws() sets one law per node.
+@*/
+PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, SSStarFrictionLaw law)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetFrictionLaw_C", (SNES, SSStarFrictionLaw), (snes, law));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, SSStarFrictionLaw *law)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetFrictionLaw_C", (SNES, SSStarFrictionLaw *), (snes, law));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetFriction - sets the Coulomb friction coefficient phi of every node without one of its own (default 0.3)
+
+   Options Database Key:
+.  -snes_ssstar_friction <phi> - the coefficient
+@*/
+PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal phi)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetFriction_C", (SNES, PetscReal), (snes, phi));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetFriction_C", (SNES, PetscReal *), (snes, phi));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetFrictionCoefficients - one Coulomb coefficient per contact node (1 entry per owned node, in the order
+   of the contact nodes; NULL: back to the scalar of SNESSSStarSetFriction())
+@*/
+PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES snes, Vec phi)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  if (phi) PetscValidHeaderSpecific(phi, VEC_CLASSID, 2);
+  PetscTryMethod(snes, "SNESSSStarSetFrictionCoefficients_C", (SNES, Vec), (snes, phi));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetSlipBounds - the Tresca slip bound s of each contact node (a force, in the units of F; 1 entry per
+   owned node): |r_t| <= s, and r_t = -s u_t/|u_t| where the node slips
+@*/
+PetscErrorCode SNESSSStarSetSlipBounds(SNES snes, Vec s)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  if (s) PetscValidHeaderSpecific(s, VEC_CLASSID, 2);
+  PetscTryMethod(snes, "SNESSSStarSetSlipBounds_C", (SNES, Vec), (snes, s));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetNodeFrictionLaws - one friction law per owned contact node (n of them, in node order; NULL: every node
+   has the law of SNESSSStarSetFrictionLaw())
+@*/
+PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStarFrictionLaw laws[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetNodeFrictionLaws_C", (SNES, PetscInt, const SSStarFrictionLaw[]), (snes, n, laws));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use
+
+   Options Database Key:
+.  -snes_ssstar_reduction <mumps,explicit> - the Schur complement
+@*/
+PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetReductionType_C", (SNES, SSStarReductionType), (snes, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetScaling - sets gamma, the scaling of the approximation step (DERIVATION.md section 6);
+   0 (the default) means gamma = 1/mean(diag P)
+
+   Options Database Key:
+.  -snes_ssstar_scaling <gamma> - the scaling
+@*/
+PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetScaling_C", (SNES, PetscReal), (snes, gamma));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetScaling_C", (SNES, PetscReal *), (snes, gamma));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetStateTolerance - sets tau of the contact-state classification (default 1e-13)
+
+   Options Database Key:
+.  -snes_ssstar_state_tol <tau> - the tolerance
+@*/
+PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetStateTolerance_C", (SNES, PetscReal), (snes, tau));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetStates - the state of each owned contact node at the last iterate (in node order), and the global
+   counts per state
+@*/
+PetscErrorCode SNESSSStarGetStates(SNES snes, const SSStarState *states[], PetscInt counts[SSSTAR_NUM_STATES])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetStates_C", (SNES, const SSStarState *[], PetscInt[]), (snes, states, counts));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetReason - why the last solve stopped, finer than SNESGetConvergedReason()
+@*/
+PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetReason_C", (SNES, SSStarReason *), (snes, reason));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
+   order of the contact nodes sorted by their first dof); owned by the SNES
+@*/
+PetscErrorCode SNESSSStarGetReducedProblem(SNES snes, Mat *P, Vec *f)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetReducedProblem_C", (SNES, Mat *, Vec *), (snes, P, f));
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  Mat P;
+  Vec f;
+} ContactProblem;
+
+static PetscErrorCode ContactProblemFunction(SNES snes, Vec u, Vec c, void *ctx)
+{
+  ContactProblem *cp = (ContactProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(cp->P, u, c));
+  PetscCall(VecAXPY(c, -1.0, cp->f));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ContactProblemJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscFunctionReturn(0); /* J = P, constant */
+}
+
+static PetscErrorCode ContactProblemDestroy(void *ctx)
+{
+  ContactProblem *cp = (ContactProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&cp->P));
+  PetscCall(VecDestroy(&cp->f));
+  PetscCall(PetscFree(cp));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetContactProblem - sets the SNES function c(u) = P u - f and the Jacobian P of a reduced contact problem
+   0 in P u - f + Q(u), for a program that has P (dense or sparse, 3 dofs per contact node) and f
+
+   Notes:
+   Works with any SNES type; the SNES keeps references to P and f. After SNESSolve(), SNESGetFunction()
+   gives the reaction r = P u - f at the solution.
+@*/
+PetscErrorCode SNESSSStarSetContactProblem(SNES snes, Mat P, Vec f)
+{
+  ContactProblem *cp;
+  PetscContainer  container;
+  Vec             r;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(P, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(f, VEC_CLASSID, 3);
+  PetscCall(PetscNew(&cp));
+  PetscCall(PetscObjectReference((PetscObject)P));
+  PetscCall(PetscObjectReference((PetscObject)f));
+  cp->P = P;
+  cp->f = f;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)snes), &container));
+  PetscCall(PetscContainerSetPointer(container, cp));
+  PetscCall(PetscContainerSetUserDestroy(container, ContactProblemDestroy));
+  PetscCall(PetscObjectCompose((PetscObject)snes, "SNESSSStarContactProblem", (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscCall(VecDuplicate(f, &r));
+  PetscCall(SNESSetFunction(snes, r, ContactProblemFunction, cp));
+  PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(snes, P, P, ContactProblemJacobian, cp));
+  PetscFunctionReturn(0);
+}

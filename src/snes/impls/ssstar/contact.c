@@ -5,15 +5,15 @@
 */
 #include "ssstarimpl.h"
 
-static PetscErrorCode CheckNodeVector(SSStarContact *ct, Vec v, PetscInt per, const char what[])
+/* A per-node vector must have per entries for each of the nnodes owned contact nodes (nnodes < 0: not known yet) */
+static PetscErrorCode CheckNodeVector(Vec v, PetscInt nnodes, PetscInt per, const char what[])
 {
-  PetscInt n, ndofs;
+  PetscInt n;
 
   PetscFunctionBegin;
-  if (!v || !ct->dofs) PetscFunctionReturn(0);
+  if (!v || nnodes < 0) PetscFunctionReturn(0);
   PetscCall(VecGetLocalSize(v, &n));
-  PetscCall(ISGetLocalSize(ct->dofs, &ndofs));
-  PetscCheck(n == per * (ndofs / 3), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s has %" PetscInt_FMT " local entries, expected %" PetscInt_FMT " (%" PetscInt_FMT " per contact node)", what, n, per * (ndofs / 3), per);
+  PetscCheck(n == per * nnodes, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s has %" PetscInt_FMT " local entries, expected %" PetscInt_FMT " (%" PetscInt_FMT " per contact node)", what, n, per * nnodes, per);
   PetscFunctionReturn(0);
 }
 
@@ -23,6 +23,18 @@ static PetscErrorCode ReplaceVec(Vec *stored, Vec v)
   if (v) PetscCall(PetscObjectReference((PetscObject)v));
   PetscCall(VecDestroy(stored));
   *stored = v;
+  PetscFunctionReturn(0);
+}
+
+/* Owned contact nodes as declared so far (-1: every dof, so not known before the set-up) */
+static PetscErrorCode DeclaredNodes(SSStarContact *ct, PetscInt *n)
+{
+  PetscFunctionBegin;
+  *n = -1;
+  if (ct->dofs) {
+    PetscCall(ISGetLocalSize(ct->dofs, n));
+    *n /= 3;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -43,10 +55,10 @@ PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals,
   PetscCall(PetscObjectReference((PetscObject)dofs));
   PetscCall(ISDestroy(&ct->dofs));
   ct->dofs = dofs;
-  PetscCall(CheckNodeVector(ct, normals, 3, "SNESSSStarSetContactNodes: the normals"));
-  PetscCall(CheckNodeVector(ct, gaps, 1, "SNESSSStarSetContactNodes: the gaps"));
-  PetscCall(CheckNodeVector(ct, ct->coefficients, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
-  PetscCall(CheckNodeVector(ct, ct->bounds, 1, "SNESSSStarSetSlipBounds: the bounds"));
+  PetscCall(CheckNodeVector(normals, n / 3, 3, "SNESSSStarSetContactNodes: the normals"));
+  PetscCall(CheckNodeVector(gaps, n / 3, 1, "SNESSSStarSetContactNodes: the gaps"));
+  PetscCall(CheckNodeVector(ct->coefficients, n / 3, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
+  PetscCall(CheckNodeVector(ct->bounds, n / 3, 1, "SNESSSStarSetSlipBounds: the bounds"));
   PetscCall(ReplaceVec(&ct->normals, normals));
   PetscCall(ReplaceVec(&ct->gaps, gaps));
   Declared(ct);
@@ -56,9 +68,11 @@ PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals,
 PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES snes, Vec phi)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt       n;
 
   PetscFunctionBegin;
-  PetscCall(CheckNodeVector(ct, phi, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
+  PetscCall(DeclaredNodes(ct, &n));
+  PetscCall(CheckNodeVector(phi, n, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
   PetscCall(ReplaceVec(&ct->coefficients, phi));
   Declared(ct);
   PetscFunctionReturn(0);
@@ -67,9 +81,11 @@ PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES snes, Vec phi)
 PetscErrorCode SNESSSStarSetSlipBounds_SSStar(SNES snes, Vec s)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt       n;
 
   PetscFunctionBegin;
-  PetscCall(CheckNodeVector(ct, s, 1, "SNESSSStarSetSlipBounds: the bounds"));
+  PetscCall(DeclaredNodes(ct, &n));
+  PetscCall(CheckNodeVector(s, n, 1, "SNESSSStarSetSlipBounds: the bounds"));
   PetscCall(ReplaceVec(&ct->bounds, s));
   Declared(ct);
   PetscFunctionReturn(0);
@@ -253,8 +269,8 @@ PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct)
     PetscCall(PetscMalloc1(ct->nnodes, &ct->order));
     for (PetscInt i = 0; i < ct->nnodes; i++) ct->order[i] = i;
   }
-  PetscCall(CheckNodeVector(ct, ct->coefficients, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
-  PetscCall(CheckNodeVector(ct, ct->bounds, 1, "SNESSSStarSetSlipBounds: the bounds"));
+  PetscCall(CheckNodeVector(ct->coefficients, ct->nnodes, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
+  PetscCall(CheckNodeVector(ct->bounds, ct->nnodes, 1, "SNESSSStarSetSlipBounds: the bounds"));
   PetscCall(BuildFrames(comm, ct));
   PetscCall(BuildFriction(comm, ct));
   ct->built = ct->declared;

@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""What the ssstar test suites share: running programs, expectations, the test registry."""
+import os
+import re
+import subprocess
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, "tests", "output")
+LIB = os.path.join(ROOT, "lib", "libssstar.so")
+PYTHON = "/usr/bin/python3"  # Debian's, with h5py
+PRISM = os.path.join(ROOT, "examples", "prism")
+CHECK = [PYTHON, os.path.join(ROOT, "tests", "check_solution.py")]
+# iterations from u = 0 and separated/sliding/sticking counts of an independent implementation (DERIVATION.md section 8)
+REFERENCE_ITERATIONS = {3: 7, 4: 7, 5: 8, 6: 9, 7: 9, 8: 10, 9: 9, 10: 10}
+REFERENCE_STATES = {3: "14/55/15", 4: "26/89/29", 6: "51/182/79"}
+
+
+def mpiexec(n, *args):
+    return ["mpiexec", "--oversubscribe", "-n", str(n)] + list(args)
+
+
+class Failure(Exception):
+    pass
+
+
+def run(cmd, expect_rc=0, timeout=600):
+    p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout)
+    if expect_rc is not None and (p.returncode != 0) != (expect_rc != 0):
+        raise Failure("exit status %d from %s\n%s" % (p.returncode, " ".join(cmd), p.stdout[-3000:]))
+    return p.stdout
+
+
+def expect(cond, message, output=""):
+    if not cond:
+        raise Failure(message + ("\n" + output[-3000:] if output else ""))
+
+
+SUMMARY = re.compile(r"^\s*(-?\d+)\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
+
+
+def prism(level, ranks=1, extra=(), h5=None):
+    """Runs examples/prism and returns (output, summary fields)."""
+    cmd = mpiexec(ranks, PRISM, "-level", str(level), "-snes_monitor", "-snes_converged_reason") + list(extra)
+    if h5:
+        cmd += ["-o", os.path.join(OUT, h5)]
+    out = run(cmd)
+    m = SUMMARY.search(out)
+    expect(m is not None, "no summary row", out)
+    return out, {"level": int(m.group(1)), "ranks": int(m.group(2)), "nodes": int(m.group(3)), "contact": int(m.group(4)),
+                 "iters": int(m.group(5)), "states": m.group(6), "sep_sl_st": m.group(7), "reason": m.group(8)}
+
+
+def last_znorm(out):
+    norms = re.findall(r"SNES Function norm ([0-9.eE+-]+)", out)
+    expect(norms, "no -snes_monitor output", out)
+    return float(norms[-1])
+
+
+TESTS = []
+
+
+def test(requirement):
+    def register(fn):
+        TESTS.append((fn.__name__, requirement, fn))
+        return fn
+    return register

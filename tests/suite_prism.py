@@ -1,0 +1,110 @@
+"""The seed's prism through examples/prism: reference iterations and states, the law, ranks, Schur paths, errors."""
+import os
+import re
+
+from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+
+
+def prism_level(level):
+    out, s = prism(level)
+    expect(s["reason"] == "CONVERGED_FNORM_RELATIVE", "level %d: %s" % (level, s["reason"]), out)
+    expect(last_znorm(out) <= 1e-12, "level %d: final |z| %g > 1e-12" % (level, last_znorm(out)), out)
+    ref = REFERENCE_ITERATIONS[level]
+    expect(abs(s["iters"] - ref) <= 1, "level %d: %d iterations, reference %d" % (level, s["iters"], ref), out)
+    expect(s["contact"] == 4 * level * (2 * level + 1), "level %d: %d contact nodes" % (level, s["contact"]), out)
+    expect(s["nodes"] == (4 * level + 1) * (2 * level + 1) ** 2, "level %d: %d nodes" % (level, s["nodes"]), out)
+    if level in REFERENCE_STATES:
+        expect(s["sep_sl_st"] == REFERENCE_STATES[level], "level %d: states %s, reference %s" % (level, s["sep_sl_st"], REFERENCE_STATES[level]), out)
+
+
+for _L in sorted(REFERENCE_ITERATIONS):
+    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations, with the reference node counts%s"
+         % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""))(
+        (lambda L: (lambda: prism_level(L)))(_L))
+    TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]
+
+
+@test("the prism solution (level 4) satisfies the Coulomb law at every contact node to 1e-8 relative, checked from the HDF5 file; the XDMF file matches it; plot_contact.py draws it")
+def prism_coulomb_law():
+    prism(4, h5="coulomb_L4.h5")
+    out = run(CHECK + ["coulomb", os.path.join(OUT, "coulomb_L4.h5"), "--phi", "0.3", "--tol", "1e-8"])
+    expect("VIOLATED" not in out, "law violated", out)
+    png = os.path.join(OUT, "coulomb_L4.png")
+    if os.path.exists(png):
+        os.remove(png)
+    run([PYTHON, os.path.join(ROOT, "examples", "plot_contact.py"), os.path.join(OUT, "coulomb_L4.h5")])
+    expect(os.path.getsize(png) > 10000, "examples/plot_contact.py wrote no picture")
+
+
+@test("a non-default friction (-friction 0.5) reaches the solver and the law holds with it")
+def prism_friction_option():
+    prism(3, extra=["-friction", "0.5"], h5="friction05_L3.h5")
+    run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5"), "--phi", "0.5"])
+
+
+@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 1e-10 relative")
+def prism_ranks_agree():
+    out1, s1 = prism(5, 1, h5="ranks1_L5.h5")
+    out2, s2 = prism(5, 2, h5="ranks2_L5.h5")
+    z1 = [float(z) for z in re.findall(r"SNES Function norm ([0-9.eE+-]+)", out1)]
+    z2 = [float(z) for z in re.findall(r"SNES Function norm ([0-9.eE+-]+)", out2)]
+    expect(len(z1) == len(z2), "%d iterations on 1 rank, %d on 2" % (len(z1) - 1, len(z2) - 1), out1 + out2)
+    for k, (a, b) in enumerate(zip(z1, z2)):
+        expect(a < 1e-10 or abs(a - b) <= 1e-8 * a, "iterate %d: |z| %.12e on 1 rank, %.12e on 2" % (k, a, b), out1 + out2)
+    run(CHECK + ["compare", os.path.join(OUT, "ranks1_L5.h5"), os.path.join(OUT, "ranks2_L5.h5"), "--tol", "1e-10"])
+
+
+@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 1e-10, on 1 and 2 ranks")
+def prism_schur_paths_agree():
+    prism(4, 1, h5="mumps_L4.h5")
+    prism(4, 1, extra=["-reduction", "explicit"], h5="explicit_L4.h5")
+    prism(4, 2, extra=["-reduction", "explicit"], h5="explicit2_L4.h5")
+    run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit_L4.h5"), "--tol", "1e-10"])
+    run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit2_L4.h5"), "--tol", "1e-10"])
+
+
+@test("-snes_view prints the ssstar settings and -log_view shows the assembly, Schur, AS and NS events")
+def prism_view_and_log():
+    out, _ = prism(3, extra=["-snes_view", "-log_view", "-snes_ssstar_monitor_states"])
+    for pattern in [r"type: ssstar", r"friction coefficient phi = 0.3", r"stopping rule \|\|z\|\| <= max\(atol, rtol max\(\|\|u\|\|, \|\|gamma f\|\|\)\), atol = 1e-50, rtol = 1e-10",
+                    r"SSStarAssembly", r"SSStarSchur", r"SSStarAS", r"SSStarNS", r"SSStar states L 14 M1 55 M2 0 M3\+ 15 M3- 0 M4 0"]:
+        expect(re.search(pattern, out) is not None, "missing in output: " + pattern, out)
+
+
+@test("meshes/prism.geo gives the node counts of Table 2 for L = 3..16 and 4L(2L+1) contact nodes")
+def mesh_node_counts():
+    table2 = [637, 1377, 2541, 4225, 6525, 9537, 13357, 18081, 23805, 30625, 38637, 47937, 58621, 70785]
+    for level, nodes in zip(range(3, 17), table2):
+        msh = os.path.join(OUT, "count_L%d.msh" % level)
+        run(["gmsh", "-3", "-setnumber", "L", str(level), "-format", "msh22", os.path.join(ROOT, "meshes", "prism.geo"), "-o", msh])
+        with open(msh) as f:
+            lines = f.read().split("\n")
+        got = int(lines[lines.index("$Nodes") + 1])
+        expect(got == nodes, "level %d: %d nodes, Table 2 has %d" % (level, got, nodes))
+        os.remove(msh)
+
+
+@test("-mesh runs a gmsh file given by the user (here msh 4.1 written by the gmsh command) and finds the same solution as -level")
+def prism_user_mesh():
+    msh = os.path.join(OUT, "user_L3.msh")
+    run(["gmsh", "-3", "-setnumber", "L", "3", "-format", "msh41", os.path.join(ROOT, "meshes", "prism.geo"), "-o", msh])
+    out = run(mpiexec(2, PRISM, "-mesh", msh, "-snes_converged_reason"))
+    m = SUMMARY.search(out)
+    expect(m is not None and m.group(7) == REFERENCE_STATES[3] and m.group(8) == "CONVERGED_FNORM_RELATIVE", "different result from -mesh", out)
+
+
+@test("bad input is refused with an error naming it: a missing mesh file, a mesh without a physical group, a negative friction, an output file that cannot be written")
+def errors_name_the_problem():
+    out = run([PRISM, "-mesh", "no/such.msh"], expect_rc=1)
+    expect("no/such.msh" in out, "the missing file is not named", out)
+    geo = os.path.join(OUT, "no_right.geo")
+    with open(os.path.join(ROOT, "meshes", "prism.geo")) as f:
+        text = f.read().replace('Physical Surface("right") = {4};', "")
+    with open(geo, "w") as f:
+        f.write(text)
+    out = run([PRISM, "-geo", geo, "-level", "2"], expect_rc=1)
+    expect('no physical group named "right"' in out, "the missing group is not named", out)
+    out = run([PRISM, "-level", "2", "-snes_ssstar_friction", "-1"], expect_rc=1)
+    expect("-snes_ssstar_friction -1" in out, "the bad option is not named", out)
+    out = run([PRISM, "-level", "2", "-o", "no/such/folder/x.h5"], expect_rc=1)
+    expect("Cannot write no/such/folder/x.h5" in out, "the output file is not named", out)

@@ -3,6 +3,7 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -level <6>                 mesh level L of meshes/prism.geo: (4L+1)x(2L+1)x(2L+1) nodes\n\
   -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -level)\n\
   -geo <file.geo>            the geometry meshed for -level (default: meshes/prism.geo of the source tree)\n\
+  -mesh_scale <1>            multiply the mesh coordinates by this (a change of length unit, e.g. 1e-3 for mm -> m)\n\
   -E <2.1e5> -nu <0.3>       Young's modulus and Poisson ratio\n\
   -friction <0.3>            Coulomb friction coefficient (same as -snes_ssstar_friction)\n\
   -traction_top <0,0,-500>   traction on the group top\n\
@@ -66,7 +67,7 @@ int main(int argc, char **argv)
 {
   SSStarScene         scene = {2.1e5, 0.3, {0, 0, -500}, {-200, 30, 200}};
   PetscInt            level = 6, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
-  PetscReal           friction = 0.3, t_assembly, t_schur, t_solve, t_recovery, t0;
+  PetscReal           friction = 0.3, meshScale = 1, t_assembly, t_schur, t_solve, t_recovery, t0;
   char                mesh[PETSC_MAX_PATH_LEN] = "", geo[PETSC_MAX_PATH_LEN] = SSSTAR_MESH_DIR "/prism.geo", out[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasMesh, hasOut, header = PETSC_TRUE, isssstar;
   SSStarReductionType rtype = SSSTAR_REDUCTION_MUMPS;
@@ -87,6 +88,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsInt("-level", "Mesh level of meshes/prism.geo", NULL, level, &level, NULL));
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (instead of -level)", NULL, mesh, mesh, sizeof(mesh), &hasMesh));
   PetscCall(PetscOptionsString("-geo", "Geometry meshed for -level", NULL, geo, geo, sizeof(geo), NULL));
+  PetscCall(PetscOptionsReal("-mesh_scale", "Multiply the mesh coordinates by this", NULL, meshScale, &meshScale, NULL));
   PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, scene.E, &scene.E, NULL));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio", NULL, scene.nu, &scene.nu, NULL));
   PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", NULL, friction, &friction, NULL));
@@ -110,6 +112,7 @@ int main(int argc, char **argv)
     PetscCall(SSStarMeshGeneratePrism(PETSC_COMM_WORLD, geo, level, mesh));
   }
   PetscCall(SSStarMeshLoad(PETSC_COMM_WORLD, mesh, &dm, &tags));
+  PetscCall(SSStarMeshScale(dm, meshScale));
   PetscCall(SSStarAssembleElasticity(dm, &scene, &body.K, &body.b));
   PetscCall(SSStarContactNodesCreate(dm, tags, &cn));
   PetscCall(PetscTimeSubtract(&t0));

@@ -34,6 +34,7 @@ typedef struct {
 
 PETSC_EXTERN PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm, const char geo[], PetscInt level, const char msh[]);
 PETSC_EXTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char file[], DM *, Vec *);
+PETSC_EXTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
 PETSC_EXTERN PetscErrorCode SSStarAssembleElasticity(DM, const SSStarScene *, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SSStarContactNodesCreate(DM, Vec, SSStarContactNodes *);
 PETSC_EXTERN PetscErrorCode SSStarContactNodesDestroy(SSStarContactNodes *);

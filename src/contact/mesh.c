@@ -190,6 +190,22 @@ PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], DM *dm, Vec *tag
 }
 
 /*@C
+   SSStarMeshScale - multiplies the coordinates of the mesh by s (a change of length unit)
+@*/
+PetscErrorCode SSStarMeshScale(DM dm, PetscReal s)
+{
+  Vec coordinates;
+
+  PetscFunctionBegin;
+  PetscCheck(s > 0 && !PetscIsInfOrNanReal(s), PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_OUTOFRANGE, "-mesh_scale %g: the scale must be a positive number", (double)s);
+  if (s == 1.0) PetscFunctionReturn(0);
+  PetscCall(DMGetCoordinates(dm, &coordinates));
+  PetscCall(VecScale(coordinates, s));
+  PetscCall(DMSetCoordinates(dm, coordinates));
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarContactNodesCreate - the owned vertices of "contact" that are not in "dirichlet", with their global dofs
 @*/
 PetscErrorCode SSStarContactNodesCreate(DM dm, Vec tags, SSStarContactNodes *cn)

@@ -182,6 +182,14 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal frames[], cons
   PetscFunctionReturn(0);
 }
 
+/* 1/cond of the last factored Newton matrix (an estimate), or -1 when the factorization gives none */
+PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton nt, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  *rcond = -1;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SSStarNewtonView(SSStarNewton nt, PetscViewer viewer)
 {
   PetscFunctionBegin;

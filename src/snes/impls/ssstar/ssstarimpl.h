@@ -15,6 +15,7 @@ typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, Mat, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarNewtonView(SSStarNewton, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarNewtonDestroy(SSStarNewton *);
 

@@ -9,7 +9,7 @@ endif
 LIBNAME  := ssstar
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
-            src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
+            src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
             src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism

@@ -9,6 +9,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -traction_top <0,0,-500>   traction on the group top\n\
   -traction_right <-200,30,200> traction on the group right\n\
   -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
+  -initial_guess <zero>      the solver's starting point: zero, elastic (K u = b, no contact) or random\n\
+  -initial_guess_scale <1>   random: entries uniform in [-scale, scale]\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
   -summary_header <true>     print the header line of the summary table\n";
 
@@ -50,6 +52,56 @@ static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
 {
   PetscFunctionBeginUser;
   PetscFunctionReturn(0); /* K, assembled once */
+}
+
+/* The starting point of the solve: zero, the linear-elastic solution without contact, or a random point */
+typedef enum {
+  INITIAL_GUESS_ZERO,
+  INITIAL_GUESS_ELASTIC,
+  INITIAL_GUESS_RANDOM
+} InitialGuess;
+static const char *const InitialGuesses[] = {"zero", "elastic", "random", "InitialGuess", "INITIAL_GUESS_", NULL};
+
+static PetscErrorCode SetInitialGuess(const Body *body, Vec u)
+{
+  InitialGuess guess = INITIAL_GUESS_ZERO;
+  PetscReal    scale = 1;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Initial guess", "prism");
+  PetscCall(PetscOptionsEnum("-initial_guess", "Starting point: zero, elastic (K u = b) or random", NULL, InitialGuesses, (PetscEnum)guess, (PetscEnum *)&guess, NULL));
+  PetscCall(PetscOptionsReal("-initial_guess_scale", "Random starting point: entries uniform in [-scale, scale]", NULL, scale, &scale, NULL));
+  PetscOptionsEnd();
+  switch (guess) {
+  case INITIAL_GUESS_ZERO:
+    PetscCall(VecZeroEntries(u));
+    break;
+  case INITIAL_GUESS_ELASTIC: {
+    KSP ksp;
+    PC  pc;
+
+    PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
+    PetscCall(KSPSetOptionsPrefix(ksp, "initial_"));
+    PetscCall(KSPSetOperators(ksp, body->K, body->K));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(KSPSetFromOptions(ksp));
+    PetscCall(KSPSolve(ksp, body->b, u));
+    PetscCall(KSPDestroy(&ksp));
+  } break;
+  case INITIAL_GUESS_RANDOM: {
+    PetscRandom rnd;
+
+    PetscCheck(scale > 0 && !PetscIsInfOrNanReal(scale), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-initial_guess_scale %g: must be a number > 0", (double)scale);
+    PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
+    PetscCall(PetscRandomSetInterval(rnd, -scale, scale));
+    PetscCall(VecSetRandom(u, rnd));
+    PetscCall(PetscRandomDestroy(&rnd));
+  } break;
+  }
+  PetscFunctionReturn(0);
 }
 
 /* Time spent in a log event, max over the ranks */
@@ -129,7 +181,7 @@ int main(int argc, char **argv)
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
-  PetscCall(VecZeroEntries(u));
+  PetscCall(SetInitialGuess(&body, u));
   PetscCall(PetscTime(&t0));
   PetscCall(SNESSolve(snes, NULL, u));
   PetscCall(PetscTimeSubtract(&t0));

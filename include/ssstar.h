@@ -51,10 +51,23 @@ typedef enum {
   SSSTAR_REASON_CONVERGED_REL,    /* ||z|| <= rtol max(||u||, ||gamma f||)                         */
   SSSTAR_REASON_MAX_IT,           /* no convergence within -snes_max_it                            */
   SSSTAR_REASON_NAN,              /* ||z|| is NaN or Inf                                           */
-  SSSTAR_REASON_SINGULAR_NEWTON,  /* the reduced Newton matrix S P + T is singular                 */
-  SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided   */
+  SSSTAR_REASON_SINGULAR_NEWTON,  /* the reduced Newton matrix S P + T is singular, even regularized */
+  SSSTAR_REASON_STAGNATION,       /* ||z|| has not decreased for -snes_ssstar_stagnation_its          */
+  SSSTAR_REASON_CYCLE,            /* the iterates cycle (period 2) and the remedies did not break it  */
+  SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided     */
 } SSStarReason;
 PETSC_EXTERN const char *const SSStarReasons[];
+
+/* What the globalization did to keep the iteration going (counted per solve; -snes_view, -snes_ssstar_monitor_states) */
+typedef enum {
+  SSSTAR_REMEDY_DAMPED,      /* a damped Newton step: the full step did not decrease ||z|| enough           */
+  SSSTAR_REMEDY_FULL_STEP,   /* the full Newton step taken although no damping decreased ||z||           */
+  SSSTAR_REMEDY_RESCALE,     /* the scaling gamma of the approximation step doubled (also breaks cycles) */
+  SSSTAR_REMEDY_REGULARIZED, /* a Newton step with the normal-tangential coupling dropped (singular matrix) */
+  SSSTAR_REMEDY_FIXED_POINT, /* approximation-step fixed-point iterations (no Newton step exists)        */
+  SSSTAR_NUM_REMEDIES
+} SSStarRemedy;
+PETSC_EXTERN const char *const SSStarRemedies[];
 
 PETSC_EXTERN PetscErrorCode SSStarInitializePackage(void);
 PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
@@ -80,6 +93,8 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetScaling(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetStateTolerance(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);
 PETSC_EXTERN PetscErrorCode SNESConvergedSSStar(SNES, PetscInt, PetscReal, PetscReal, PetscReal, SNESConvergedReason *, void *);
 

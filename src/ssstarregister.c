@@ -4,7 +4,7 @@
 
 PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 
-PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
+PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSearch;
 PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
@@ -28,6 +28,7 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(SNESRegister(SNESSSSTAR, SNESCreate_SSStar));
   PetscCall(PetscLogEventRegister("SSStarAS", SNES_CLASSID, &SSSTAR_ApproxStep));
   PetscCall(PetscLogEventRegister("SSStarNS", SNES_CLASSID, &SSSTAR_NewtonStep));
+  PetscCall(PetscLogEventRegister("SSStarLS", SNES_CLASSID, &SSSTAR_LineSearch));
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
   PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));

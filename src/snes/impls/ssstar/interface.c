@@ -196,6 +196,51 @@ PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
 }
 
 /*@
+   SNESSSStarSetGlobalization - turns the globalization of ssstar on or off and sets its parameters
+
+   Logically Collective
+
+   Input Parameters:
++  snes          - the SNES
+.  on            - PETSC_TRUE (default): damped steps on the merit function ||z|| and remedies (a full step or a
+                   doubled gamma after a failed line search, a regularized Newton step or fixed-point iterations for a
+                   singular Newton matrix, a doubled gamma on a cycle); PETSC_FALSE: the plain iteration
+.  dampingMin    - the smallest damping factor of the line search (default 1/64), or PETSC_DEFAULT
+-  stagnationIts - stop (SNES_DIVERGED_LOCAL_MIN, sub-reason STAGNATION) after this many iterations without a smaller
+                   ||z|| (default 20), or PETSC_DEFAULT
+
+   Options Database Keys:
++  -snes_ssstar_globalization <true> - on or off
+.  -snes_ssstar_damping_min <0.015625> - dampingMin
+-  -snes_ssstar_stagnation_its <20> - stagnationIts
+
+   Notes:
+   Cycles and stagnation are detected in both cases; without globalization they end the solve. README, "When it does
+   not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
+@*/
+PetscErrorCode SNESSSStarSetGlobalization(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(snes, on, 2);
+  PetscValidLogicalCollectiveReal(snes, dampingMin, 3);
+  PetscValidLogicalCollectiveInt(snes, stagnationIts, 4);
+  PetscTryMethod(snes, "SNESSSStarSetGlobalization_C", (SNES, PetscBool, PetscReal, PetscInt), (snes, on, dampingMin, stagnationIts));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetRemedyCounts - how often the last solve used each remedy of the globalization (SSStarRemedy order)
+@*/
+PetscErrorCode SNESSSStarGetRemedyCounts(SNES snes, PetscInt counts[SSSTAR_NUM_REMEDIES])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetRemedyCounts_C", (SNES, PetscInt[]), (snes, counts));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
    order of the contact nodes sorted by their first dof); owned by the SNES
 @*/

@@ -93,6 +93,7 @@ static PetscErrorCode FactorNewtonMatrix(SNES snes, PetscBool *factored)
   if (ierr != PETSC_ERR_MAT_LU_ZRPVT && ierr != PETSC_ERR_LIB) PetscCall(ierr);
   ok = (PetscBool)(ierr == 0);
   PetscCall(MPIU_Allreduce(&ok, factored, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)snes)));
+  if (!*factored) PetscCall(KSPReset(snes->ksp)); /* the next Newton matrix gets a fresh factorization */
   PetscFunctionReturn(0);
 }
 
@@ -179,6 +180,8 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal frames[], cons
   }
   PetscCall(KSPGetConvergedReason(snes->ksp, &kspreason));
   *solved = (PetscBool)(kspreason >= 0);
+  /* a failed MUMPS factorization cannot be redone (its INFOG(1) stays negative): the next one starts afresh */
+  if (!*solved) PetscCall(KSPReset(snes->ksp));
   PetscFunctionReturn(0);
 }
 

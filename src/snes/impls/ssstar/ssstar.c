@@ -3,7 +3,10 @@
 */
 #include "ssstarimpl.h"
 
-const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+
+/* A Newton matrix whose estimated 1/cond is below this is treated as singular: its LU solution has no reliable digit */
+#define SSSTAR_RCOND_MIN 1e-12
 
 /* gamma = 1/mean(diag P) unless the user set it (section 6) */
 static PetscErrorCode SNESSSStarComputeScaling(SNES snes, Mat P)
@@ -43,7 +46,7 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscCall(PetscMalloc2(9 * n, &ss->S, 9 * n, &ss->T));
   PetscCall(VecDestroy(&ss->u));
   PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)snes), 3 * n, PETSC_DETERMINE, &ss->u));
-  for (Vec *w = &ss->c; w <= &ss->dv; w++) {
+  for (Vec *w = &ss->c; w <= &ss->ca; w++) {
     PetscCall(VecDestroy(w));
     PetscCall(VecDuplicate(ss->u, w));
   }
@@ -79,8 +82,42 @@ static void NodeIterate(const SSStarContact *ct, PetscInt i, const PetscScalar *
   if (ct->gap) v[2] += ct->gap[i];
 }
 
-/* Section 1 on every local node, in the node's frame, with the scaled c = gamma (P u - f) (section 6) */
-static PetscErrorCode SNESSSStarApproximationStep(SNES snes)
+/* c = P u - f */
+PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(ct->P, u, c));
+  PetscCall(VecAXPY(c, -1.0, ct->f));
+  PetscFunctionReturn(0);
+}
+
+/* u += alpha R^T dv: a step given in the nodes' frames */
+PetscErrorCode SNESSSStarAddStep(SNES snes, Vec u, PetscReal alpha, Vec dv)
+{
+  SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscScalar       *ua;
+  const PetscScalar *dva;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArray(u, &ua));
+  PetscCall(VecGetArrayRead(dv, &dva));
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const PetscScalar step[3] = {alpha * dva[3 * i], alpha * dva[3 * i + 1], alpha * dva[3 * i + 2]};
+
+    AddRotatedBack(ct->frames ? &ct->frames[9 * i] : NULL, step, &ua[3 * i]);
+  }
+  PetscCall(VecRestoreArrayRead(dv, &dva));
+  PetscCall(VecRestoreArray(u, &ua));
+  PetscFunctionReturn(0);
+}
+
+/*
+   Section 1 on every local node of the iterate u with c = P u - f, in the node's frame, with the scaled
+   c = gamma (P u - f) (section 6): z, d, b into ss->z, ss->d, ss->b, and ||z||
+*/
+PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *znorm)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
@@ -89,8 +126,8 @@ static PetscErrorCode SNESSSStarApproximationStep(SNES snes)
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_ApproxStep, snes, 0, 0, 0));
-  PetscCall(VecGetArrayRead(ss->u, &ua));
-  PetscCall(VecGetArrayRead(ss->c, &ca));
+  PetscCall(VecGetArrayRead(u, &ua));
+  PetscCall(VecGetArrayRead(c, &ca));
   PetscCall(VecGetArrayWrite(ss->z, &za));
   PetscCall(VecGetArrayWrite(ss->d, &da));
   PetscCall(VecGetArrayWrite(ss->b, &ba));
@@ -106,8 +143,9 @@ static PetscErrorCode SNESSSStarApproximationStep(SNES snes)
   PetscCall(VecRestoreArrayWrite(ss->b, &ba));
   PetscCall(VecRestoreArrayWrite(ss->d, &da));
   PetscCall(VecRestoreArrayWrite(ss->z, &za));
-  PetscCall(VecRestoreArrayRead(ss->c, &ca));
-  PetscCall(VecRestoreArrayRead(ss->u, &ua));
+  PetscCall(VecRestoreArrayRead(c, &ca));
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscCall(VecNorm(ss->z, NORM_2, znorm));
   PetscCall(PetscLogEventEnd(SSSTAR_ApproxStep, snes, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -152,8 +190,16 @@ static PetscErrorCode SNESSSStarClassify(SNES snes, PetscReal fnorm_inf)
   PetscFunctionReturn(0);
 }
 
-/* Section 5 in the nodes' frames: S, T per node, y = (S + T) z, then (gamma S R P + T R) du = y */
-static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool *solved)
+/*
+   Section 5 in the nodes' frames: S, T per node, y = (S + T) z, then (gamma S R P + T R) du = y. solved is false
+   when the matrix is singular or, by the estimate of its condition, nearly so.
+
+   regularized: the coupling phi om of the sliding (M1) rows of S dropped, i.e. the normal force in the linearized
+   sliding law frozen at the iterate. Every row is then a row of gamma P, or a unit row, or a row of gamma P plus
+   the PSD W of section 3 on the node's tangential dofs: after the unit rows the matrix is gamma P_FF + W_FF with
+   P_FF a principal submatrix of the SPD P, nonsingular.
+*/
+static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool regularized, PetscBool *solved)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
@@ -171,6 +217,7 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool *solved)
     PetscReal           *S = &ss->S[9 * i], *T = &ss->T[9 * i];
 
     SSStarReducedBlocks(ss->states[i], &fr, &da[3 * i], &ba[3 * i], S, T);
+    if (regularized) S[2] = S[5] = 0.0;
     for (PetscInt r = 0; r < 3; r++) {
       ya[3 * i + r] = 0;
       for (PetscInt k = 0; k < 3; k++) ya[3 * i + r] += (S[3 * r + k] + T[3 * r + k]) * za[3 * i + k];
@@ -181,6 +228,12 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool *solved)
   PetscCall(VecRestoreArrayRead(ss->d, &da));
   PetscCall(VecRestoreArrayRead(ss->z, &za));
   PetscCall(SSStarNewtonSolve(ss->newton, ct->frames, ss->S, ss->T, ss->y, ss->dv, solved));
+  if (*solved) {
+    PetscReal rcond;
+
+    PetscCall(SSStarNewtonGetConditionEstimate(ss->newton, &rcond));
+    if (rcond >= 0 && rcond < SSSTAR_RCOND_MIN) *solved = PETSC_FALSE;
+  }
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonStep, snes, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -199,6 +252,48 @@ static SSStarReason SubReason(SNES snes)
   default:
     return SSSTAR_REASON_USER;
   }
+}
+
+/* The first entry of v that is NaN or Inf (global index), or -1 */
+static PetscErrorCode FirstNonFinite(Vec v, PetscInt *first)
+{
+  const PetscScalar *a;
+  PetscInt           n, lo, mine = PETSC_MAX_INT;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(VecGetOwnershipRange(v, &lo, NULL));
+  PetscCall(VecGetArrayRead(v, &a));
+  for (PetscInt i = 0; i < n; i++)
+    if (PetscIsInfOrNanScalar(a[i])) {
+      mine = lo + i;
+      break;
+    }
+  PetscCall(VecRestoreArrayRead(v, &a));
+  PetscCall(MPIU_Allreduce(&mine, first, 1, MPIU_INT, MPI_MIN, PetscObjectComm((PetscObject)v)));
+  if (*first == PETSC_MAX_INT) *first = -1;
+  PetscFunctionReturn(0);
+}
+
+/* Refuses what no iteration can solve: NaN or Inf in P, f or the initial guess, tolerances that are not numbers */
+static PetscErrorCode CheckProblem(SNES snes)
+{
+  SNES_SSStar   *ss   = (SNES_SSStar *)snes->data;
+  SSStarContact *ct   = &ss->contact;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)snes);
+  PetscReal      pnorm;
+  PetscInt       first;
+
+  PetscFunctionBegin;
+  PetscCheck(snes->rtol >= 0 && snes->rtol < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_rtol %g: must be in [0, 1)", (double)snes->rtol);
+  PetscCheck(snes->abstol >= 0 && !PetscIsInfOrNanReal(snes->abstol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_atol %g: must be a number >= 0", (double)snes->abstol);
+  PetscCall(FirstNonFinite(ct->f, &first));
+  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the reduced load f is NaN or Inf at contact dof %" PetscInt_FMT " (node %" PetscInt_FMT " of the solver's order): the load b, or the stiffness K, is not finite", first, first / 3);
+  PetscCall(MatNorm(ct->P, NORM_INFINITY, &pnorm));
+  PetscCheck(!PetscIsInfOrNanReal(pnorm), comm, PETSC_ERR_FP, "ssstar: the reduced stiffness P has NaN or Inf entries: the stiffness K is not finite");
+  PetscCall(FirstNonFinite(ss->u, &first));
+  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the initial guess is NaN or Inf at contact dof %" PetscInt_FMT " (node %" PetscInt_FMT " of the solver's order)", first, first / 3);
+  PetscFunctionReturn(0);
 }
 
 static PetscErrorCode SNESSolve_SSStar(SNES snes)
@@ -223,14 +318,17 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   PetscCall(VecNorm(ct->f, NORM_INFINITY, &fnorm_inf));
   ss->scale *= ss->scaling;
   PetscCall(SSStarContactGetInitialGuess(ct, snes->vec_sol, ss->u));
+  PetscCall(CheckProblem(snes));
+  PetscCall(SSStarGlobalizationBegin(snes));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
 
   for (PetscInt k = 0;; k++) {
-    PetscCall(MatMult(ct->P, ss->u, ss->c));
-    PetscCall(VecAXPY(ss->c, -1.0, ct->f));
-    PetscCall(SNESSSStarApproximationStep(snes));
-    PetscCall(VecNorm(ss->z, NORM_2, &znorm));
+    SSStarReason stop = SSSTAR_REASON_ITERATING;
+
+    PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
     PetscCall(VecNorm(ss->u, NORM_2, &unorm));
     PetscCall(SNESSSStarClassify(snes, fnorm_inf));
+    PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
     PetscCall(PetscObjectSAWsTakeAccess((PetscObject)snes));
     snes->iter = k;
     snes->norm = znorm;
@@ -248,25 +346,52 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       snes->reason = SNES_DIVERGED_MAX_IT;
       break;
     }
-    PetscCall(SNESSSStarNewtonStep(snes, &solved));
-    if (!solved) {
-      ss->reason   = SSSTAR_REASON_SINGULAR_NEWTON;
-      snes->reason = SNES_DIVERGED_LINEAR_SOLVE;
+    /* a cycle is broken by a new gamma (the iterate stays); the plain iteration, or one out of rescalings, stops */
+    if (ss->glob.detected == SSSTAR_DETECTED_CYCLE) {
+      PetscBool broken = PETSC_FALSE;
+
+      if (ss->glob.on) PetscCall(SSStarGlobalizationBreakCycle(snes, &broken));
+      if (broken) continue;
+      stop = SSSTAR_REASON_CYCLE;
+    } else if (ss->glob.detected == SSSTAR_DETECTED_STAGNATION) stop = SSSTAR_REASON_STAGNATION;
+    if (!stop) {
+      /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
+      PetscCall(SNESSSStarNewtonStep(snes, PETSC_FALSE, &solved));
+      if (!solved && ss->glob.on && ct->lawCounts[SSSTAR_FRICTION_COULOMB] > 0) {
+        PetscCall(SSStarGlobalizationRecord(&ss->glob, SSSTAR_REMEDY_REGULARIZED));
+        PetscCall(SNESSSStarNewtonStep(snes, PETSC_TRUE, &solved));
+      }
+      if (!solved) {
+        PetscBool improved = PETSC_FALSE;
+
+        if (ss->glob.on) PetscCall(SSStarGlobalizationFixedPoint(snes, znorm, &improved));
+        if (improved) continue;
+        stop = SSSTAR_REASON_SINGULAR_NEWTON;
+      } else {
+        PetscCall(VecNorm(ss->dv, NORM_2, &dunorm));
+        PetscCall(SSStarGlobalizationStep(snes, znorm, &stop));
+      }
+    }
+    if (stop) {
+      ss->reason = stop;
+      switch (stop) {
+      case SSSTAR_REASON_SINGULAR_NEWTON:
+        snes->reason = SNES_DIVERGED_LINEAR_SOLVE;
+        break;
+      case SSSTAR_REASON_NAN:
+        snes->reason = SNES_DIVERGED_FNORM_NAN;
+        break;
+      case SSSTAR_REASON_STAGNATION:
+        snes->reason = SNES_DIVERGED_LOCAL_MIN;
+        break;
+      default: /* a cycle: the steps do not decrease ||z|| and come back */
+        snes->reason = SNES_DIVERGED_LINE_SEARCH;
+      }
       break;
     }
-    {
-      PetscScalar       *ua;
-      const PetscScalar *dva;
-
-      PetscCall(VecGetArray(ss->u, &ua));
-      PetscCall(VecGetArrayRead(ss->dv, &dva));
-      for (PetscInt i = 0; i < ct->nnodes; i++) AddRotatedBack(ct->frames ? &ct->frames[9 * i] : NULL, &dva[3 * i], &ua[3 * i]);
-      PetscCall(VecRestoreArrayRead(ss->dv, &dva));
-      PetscCall(VecRestoreArray(ss->u, &ua));
-    }
-    PetscCall(VecNorm(ss->dv, NORM_2, &dunorm));
   }
-  /* c is P u - f at the last iterate: the contact force; the SNES vector gets the whole u, F(u) its residual */
+  /* the last iterate and its c = P u - f, the contact force: the SNES vector gets the whole u, F(u) its residual */
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SSStarContactSetSolution(ct, ss->u, ss->c, snes->vec_sol));
   PetscCall(SNESComputeFunction(snes, snes->vec_sol, snes->vec_func));
   PetscFunctionReturn(0);
@@ -308,12 +433,13 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
   PetscCall(VecDestroy(&ss->u));
-  for (Vec *w = &ss->c; w <= &ss->dv; w++) PetscCall(VecDestroy(w));
+  for (Vec *w = &ss->c; w <= &ss->ca; w++) PetscCall(VecDestroy(w));
+  PetscCall(SSStarGlobalizationDestroy(&ss->glob));
   PetscFunctionReturn(0);
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -348,7 +474,16 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   if (set) PetscCall(SNESSSStarSetScaling(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
   if (set) PetscCall(SNESSSStarSetStateTolerance(snes, value));
-  PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
+  {
+    PetscBool on = ss->glob.on, setOn, setDamping, setStagnation;
+    PetscInt  its;
+
+    PetscCall(PetscOptionsBool("-snes_ssstar_globalization", "Damped steps on ||z|| and remedies (false: the plain iteration)", "SNESSSStarSetGlobalization", on, &on, &setOn));
+    PetscCall(PetscOptionsReal("-snes_ssstar_damping_min", "Smallest damping factor of the line search on ||z||", "SNESSSStarSetGlobalization", ss->glob.dampingMin, &value, &setDamping));
+    PetscCall(PetscOptionsInt("-snes_ssstar_stagnation_its", "Stop after this many iterations without a smaller ||z||", "SNESSSStarSetGlobalization", ss->glob.stagnationIts, &its, &setStagnation));
+    if (setOn || setDamping || setStagnation) PetscCall(SNESSSStarSetGlobalization(snes, on, setDamping ? value : PETSC_DEFAULT, setStagnation ? its : PETSC_DEFAULT));
+  }
+  PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state, and the remedies", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }
@@ -382,11 +517,13 @@ static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   if (snes->ops->converged == SNESConvergedSSStar) PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
   PetscCall(SSStarNewtonView(ss->newton, viewer));
+  PetscCall(SSStarGlobalizationView(&ss->glob, viewer));
   if (ss->reason != SSSTAR_REASON_ITERATING) {
     char counts[256];
 
     PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s after %" PetscInt_FMT " iterations, ||z|| = %g; contact states %s\n", SSStarReasons[ss->reason], snes->iter, (double)snes->norm, counts));
+    PetscCall(SSStarGlobalizationViewCounts(&ss->glob, viewer));
   }
   PetscFunctionReturn(0);
 }
@@ -420,13 +557,14 @@ PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm,
 {
   SNES_SSStar *ss     = (SNES_SSStar *)snes->data;
   PetscViewer  viewer = vf->viewer;
-  char         counts[256];
+  char         counts[256], events[512];
 
   PetscFunctionBegin;
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s\n", its, counts));
+  PetscCall(SSStarGlobalizationFormatEvents(&ss->glob, events, sizeof(events)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s%s\n", its, counts, events));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
   PetscFunctionReturn(0);
@@ -520,6 +658,30 @@ static PetscErrorCode SNESSSStarGetReason_SSStar(SNES snes, SSStarReason *reason
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarSetGlobalization_SSStar(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
+{
+  SSStarGlobalization *glob = &((SNES_SSStar *)snes->data)->glob;
+
+  PetscFunctionBegin;
+  glob->on = on;
+  if (dampingMin != PETSC_DEFAULT) {
+    PetscCheck(dampingMin > 0 && dampingMin <= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_damping_min %g: must be in (0, 1]", (double)dampingMin);
+    glob->dampingMin = dampingMin;
+  }
+  if (stagnationIts != PETSC_DEFAULT) {
+    PetscCheck(stagnationIts >= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_stagnation_its %" PetscInt_FMT ": must be >= 1", stagnationIts);
+    glob->stagnationIts = stagnationIts;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetRemedyCounts_SSStar(SNES snes, PetscInt counts[])
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(counts, ((SNES_SSStar *)snes->data)->glob.counts, SSSTAR_NUM_REMEDIES));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec *f)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
@@ -548,7 +710,10 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_reduction <mumps> - Schur complement of K: mumps or explicit
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag P))
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
-.  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration
+.  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration, and the remedies
+.  -snes_ssstar_globalization <true> - damped steps on ||z|| and remedies; false: the plain iteration
+.  -snes_ssstar_damping_min <0.015625> - smallest damping factor of the line search
+.  -snes_ssstar_stagnation_its <20> - stop after this many iterations without a smaller ||z||
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol
 
@@ -578,6 +743,9 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   ss->contact.reductionType = SSSTAR_REDUCTION_MUMPS;
   ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
+  ss->glob.on               = PETSC_TRUE;
+  ss->glob.dampingMin       = 1.0 / 64;
+  ss->glob.stagnationIts    = 20;
   snes->data                = (void *)ss;
 
   PetscCall(SNESGetKSP(snes, &snes->ksp));
@@ -603,5 +771,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetStates), SNESSSStarGetStates_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReason), SNESSSStarGetReason_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetGlobalization), SNESSSStarSetGlobalization_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetRemedyCounts), SNESSSStarGetRemedyCounts_SSStar));
   PetscFunctionReturn(0);
 }

@@ -5,7 +5,7 @@
 #include <ssstarreduction.h>
 #include <petsc/private/snesimpl.h>
 
-PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
+PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSearch;
 
 /*
    The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R),
@@ -69,6 +69,43 @@ PETSC_INTERN PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarSetSlipBounds_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const SSStarFrictionLaw[]);
 
+/*
+   The globalization (globalization.c): damped steps on the merit function ||z||, detection of cycles and
+   stagnation, and the remedies of SSStarRemedy. README, "When it does not converge".
+*/
+typedef enum {
+  SSSTAR_DETECTED_NONE,
+  SSSTAR_DETECTED_CYCLE,      /* states as two iterations ago and ||z|| back to its value then, twice in a row */
+  SSSTAR_DETECTED_STAGNATION  /* no new smallest ||z|| for stagnationIts iterations                            */
+} SSStarDetection;
+
+typedef struct {
+  /* settings */
+  PetscBool on;            /* damped steps and remedies; off: the plain iteration of DERIVATION.md section 7   */
+  PetscReal dampingMin;    /* smallest damping factor alpha of the line search                                 */
+  PetscInt  stagnationIts; /* iterations without a new smallest ||z|| before the solve stops                   */
+
+  /* per solve */
+  PetscReal       zbest;                      /* smallest ||z|| since the start or the last rescaling         */
+  PetscInt        kbest;                      /* its iteration                                                  */
+  PetscReal       zhist[4];                   /* ||z|| at k, k-1, k-2, k-3                                      */
+  PetscInt        nhist;                      /* iterations recorded since the start or the last rescaling      */
+  PetscBool       recurred;                   /* the previous iteration recurred to the one two before it      */
+  SSStarState    *older[2];                   /* local states at k-1 and k-2                                     */
+  PetscInt        nnodes;                     /* local nodes of older[]                                          */
+  PetscInt        lsFailures;                 /* failed line searches: odd ones take the full step, even rescale */
+  PetscInt        counts[SSSTAR_NUM_REMEDIES];
+  PetscInt        cycles;                     /* cycles detected                                                 */
+  PetscReal       gamma0;                     /* the scaling the solve started with                              */
+
+  /* the remedies on the way to the next iterate, and those that led to the current one with what was detected at
+     it (printed by -snes_ssstar_monitor_states) */
+  PetscBool       pending[SSSTAR_NUM_REMEDIES], shown[SSSTAR_NUM_REMEDIES];
+  PetscReal       alpha, shownAlpha;          /* damping of the step (1: full, 0: no step)                      */
+  SSStarDetection detected;
+  PetscInt        flipping;                   /* nodes whose state has period 2                                 */
+} SSStarGlobalization;
+
 typedef struct {
   SSStarContact contact;
 
@@ -85,7 +122,26 @@ typedef struct {
   PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
   PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
   Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f (global frame); z, d, b, y, dv (nodes' frames) */
+  Vec          ut, ct, ua, ca;             /* trial iterates and their P u - f: the full step, a damped one  */
   SSStarNewton newton;
+  SSStarGlobalization glob;
 } SNES_SSStar;
+
+/* ssstar.c: the per-node work of an iteration on any iterate (u, c) */
+PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode SNESSSStarAddStep(SNES, Vec, PetscReal, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
+
+/* globalization.c */
+PETSC_INTERN PetscErrorCode SSStarGlobalizationBegin(SNES);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationDetect(SNES, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationRecord(SSStarGlobalization *, SSStarRemedy);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationStep(SNES, PetscReal, SSStarReason *);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationBreakCycle(SNES, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationFixedPoint(SNES, PetscReal, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationView(SSStarGlobalization *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationFormatEvents(SSStarGlobalization *, char[], size_t);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationDestroy(SSStarGlobalization *);
 
 #endif

@@ -1,0 +1,298 @@
+/*
+   The globalization of ssstar: the plain iteration of DERIVATION.md section 7 converges from a good starting point
+   only, and may cycle or stall far from the solution (README, "When it does not converge"). Here:
+
+   - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the
+     solutions, in the units of u);
+   - a Newton step is accepted when it decreases the merit enough (||z+|| <= (1 - sigma alpha) ||z||), else it is
+     damped (alpha = 1/2, 1/4, ... down to dampingMin);
+   - when no damping decreases the merit (a local minimum of ||z||, a kink), the full step is taken anyway or the
+     scaling gamma of the approximation step is doubled, in turn; gamma > 0 does not change the solutions (section 6)
+     but changes the approximation step, the states and the Newton step;
+   - a singular Newton matrix gets a regularized step (ssstar.c), and if that is singular too, a few fixed-point
+     iterations of the approximation step with a gamma small enough for them to be contractive;
+   - cycles (the states of two iterations ago and ||z|| back to its value then, twice in a row) are broken by a
+     rescaling, and a solve whose smallest ||z|| has not decreased for stagnationIts iterations stops.
+   Without globalization the detection still stops the plain iteration, with an honest reason.
+*/
+#include "ssstarimpl.h"
+
+const char *const SSStarRemedies[] = {"damped steps", "full steps after a failed line search", "rescalings of gamma", "regularized Newton steps", "fixed-point rounds", "SSStarRemedy", "SSSTAR_REMEDY_", NULL};
+
+/* Armijo's sufficient decrease of the merit: ||z(u + alpha du)|| <= (1 - SIGMA alpha) ||z(u)|| */
+#define SSSTAR_SIGMA 1e-4
+/* ||z|| "back to its value two iterations ago": within this relative distance */
+#define SSSTAR_CYCLE_TOL 1e-2
+/* gamma is doubled at most this often in a solve (up to 2^10 times its initial value) */
+#define SSSTAR_MAX_RESCALES 10
+/* fixed-point iterations of the approximation step in one round */
+#define SSSTAR_FIXED_POINT_ITS 5
+
+PetscErrorCode SSStarGlobalizationDestroy(SSStarGlobalization *glob)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(glob->older[0]));
+  PetscCall(PetscFree(glob->older[1])); /* apart: Detect() swaps them */
+  glob->nnodes = 0;
+  PetscFunctionReturn(0);
+}
+
+/* A new solve: the history, the counts and gamma0 start afresh */
+PetscErrorCode SSStarGlobalizationBegin(SNES snes)
+{
+  SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
+  SSStarGlobalization *glob = &ss->glob;
+
+  PetscFunctionBegin;
+  if (glob->nnodes != ss->contact.nnodes || !glob->older[0]) {
+    PetscCall(SSStarGlobalizationDestroy(glob));
+    glob->nnodes = ss->contact.nnodes;
+    PetscCall(PetscMalloc1(glob->nnodes, &glob->older[0]));
+    PetscCall(PetscMalloc1(glob->nnodes, &glob->older[1]));
+  }
+  glob->zbest      = PETSC_MAX_REAL;
+  glob->kbest      = 0;
+  glob->nhist      = 0;
+  glob->recurred   = PETSC_FALSE;
+  glob->lsFailures = 0;
+  glob->cycles     = 0;
+  glob->gamma0     = ss->scaling;
+  glob->alpha      = 0;
+  glob->shownAlpha = 0;
+  glob->detected   = SSSTAR_DETECTED_NONE;
+  glob->flipping   = 0;
+  PetscCall(PetscArrayzero(glob->counts, SSSTAR_NUM_REMEDIES));
+  PetscCall(PetscArrayzero(glob->pending, SSSTAR_NUM_REMEDIES));
+  PetscCall(PetscArrayzero(glob->shown, SSSTAR_NUM_REMEDIES));
+  PetscFunctionReturn(0);
+}
+
+/* A remedy applied on the way to the next iterate */
+PetscErrorCode SSStarGlobalizationRecord(SSStarGlobalization *glob, SSStarRemedy remedy)
+{
+  PetscFunctionBegin;
+  glob->counts[remedy]++;
+  glob->pending[remedy] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   Iterate k with ||z|| = znorm and the states of ss->states: records them and detects a cycle (the states of
+   iterate k - 2 and ||z|| within SSSTAR_CYCLE_TOL of its value then, at k and at k - 1) or stagnation (no new
+   smallest ||z|| for stagnationIts iterations). The remedies recorded since the last iterate led to this one:
+   -snes_ssstar_monitor_states shows them with it.
+*/
+PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
+{
+  SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
+  SSStarGlobalization *glob = &ss->glob;
+  PetscInt             local[2] = {0, 0}; /* nodes not in their state of k - 2, nodes flipping with period 2 */
+  PetscBool            recurs = PETSC_FALSE;
+  SSStarState         *oldest;
+
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(glob->shown, glob->pending, SSSTAR_NUM_REMEDIES));
+  PetscCall(PetscArrayzero(glob->pending, SSSTAR_NUM_REMEDIES));
+  glob->shownAlpha = glob->alpha;
+  glob->alpha      = 0;
+  for (PetscInt j = 3; j > 0; j--) glob->zhist[j] = glob->zhist[j - 1];
+  glob->zhist[0] = znorm;
+  glob->nhist++;
+  if (znorm < glob->zbest) {
+    glob->zbest = znorm;
+    glob->kbest = k;
+  }
+  glob->flipping = 0;
+  if (glob->nhist >= 3) {
+    for (PetscInt i = 0; i < glob->nnodes; i++) {
+      if (ss->states[i] != glob->older[1][i]) local[0]++;
+      else if (ss->states[i] != glob->older[0][i]) local[1]++;
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, local, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)snes)));
+    glob->flipping = local[1];
+    recurs         = (PetscBool)(local[0] == 0 && PetscAbsReal(znorm - glob->zhist[2]) <= SSSTAR_CYCLE_TOL * znorm);
+  }
+  if (recurs && glob->recurred) {
+    glob->detected = SSSTAR_DETECTED_CYCLE;
+    glob->cycles++;
+  } else if (k - glob->kbest >= glob->stagnationIts) glob->detected = SSSTAR_DETECTED_STAGNATION;
+  else glob->detected = SSSTAR_DETECTED_NONE;
+  glob->recurred = recurs;
+  /* the states of k become those of k - 1 */
+  oldest         = glob->older[1];
+  glob->older[1] = glob->older[0];
+  glob->older[0] = oldest;
+  PetscCall(PetscArraycpy(glob->older[0], ss->states, glob->nnodes));
+  PetscFunctionReturn(0);
+}
+
+/*
+   Doubles gamma (section 6: the same solutions, another approximation step). The history of ||z|| is forgotten:
+   ||z|| with another gamma is another merit function.
+*/
+static PetscErrorCode Rescale(SNES snes)
+{
+  SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
+  SSStarGlobalization *glob = &ss->glob;
+
+  PetscFunctionBegin;
+  ss->scaling *= 2;
+  ss->scale *= 2;
+  PetscCall(SSStarNewtonSetOperator(ss->newton, ss->contact.P, ss->scaling));
+  glob->zbest    = PETSC_MAX_REAL;
+  glob->nhist    = 0;
+  glob->recurred = PETSC_FALSE;
+  PetscCall(SSStarGlobalizationRecord(glob, SSSTAR_REMEDY_RESCALE));
+  PetscFunctionReturn(0);
+}
+
+static PetscBool CanRescale(SNES_SSStar *ss)
+{
+  return (PetscBool)(ss->glob.counts[SSSTAR_REMEDY_RESCALE] < SSSTAR_MAX_RESCALES);
+}
+
+/* A detected cycle: broken by a rescaling while there are rescalings left */
+PetscErrorCode SSStarGlobalizationBreakCycle(SNES snes, PetscBool *broken)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  *broken = CanRescale(ss);
+  if (*broken) PetscCall(Rescale(snes));
+  PetscFunctionReturn(0);
+}
+
+/* The iterate becomes (v, cv) */
+static PetscErrorCode Accept(SNES_SSStar *ss, Vec v, Vec cv)
+{
+  PetscFunctionBegin;
+  PetscCall(VecCopy(v, ss->u));
+  PetscCall(VecCopy(cv, ss->c));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The step from u along the Newton step ss->dv (nodes' frames), whose ||z|| at u is znorm. Without globalization
+   the full step, unless ||z|| is NaN or Inf there (then reason NAN and u stays the last finite iterate). With it:
+   the full step if it decreases ||z|| enough, else the first damped one that does, else a remedy: the full step
+   anyway (odd failures) or a doubled gamma without a step (even failures). reason is set when nothing can be done.
+*/
+PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscReal znorm, SSStarReason *reason)
+{
+  SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
+  SSStarGlobalization *glob = &ss->glob;
+  PetscReal            mfull, m, alpha;
+  PetscBool            finite, full;
+
+  PetscFunctionBegin;
+  *reason = SSSTAR_REASON_ITERATING;
+  PetscCall(PetscLogEventBegin(SSSTAR_LineSearch, snes, 0, 0, 0));
+  PetscCall(VecCopy(ss->u, ss->ut));
+  PetscCall(SNESSSStarAddStep(snes, ss->ut, 1.0, ss->dv));
+  PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
+  PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &mfull));
+  finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
+  if (!glob->on || mfull <= (1 - SSSTAR_SIGMA) * znorm) {
+    if (finite) {
+      PetscCall(Accept(ss, ss->ut, ss->ct));
+      glob->alpha = 1;
+    } else *reason = SSSTAR_REASON_NAN;
+    PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
+  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c) */
+  for (alpha = 0.5; alpha >= glob->dampingMin; alpha /= 2) {
+    PetscCall(VecCopy(ss->u, ss->ua));
+    PetscCall(SNESSSStarAddStep(snes, ss->ua, alpha, ss->dv));
+    PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
+    PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
+    if (m <= (1 - SSSTAR_SIGMA * alpha) * znorm) {
+      PetscCall(Accept(ss, ss->ua, ss->ca));
+      glob->alpha = alpha;
+      PetscCall(SSStarGlobalizationRecord(glob, SSSTAR_REMEDY_DAMPED));
+      PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
+  /* no damping decreases ||z||: u is near a local minimum (or a kink) of ||z|| that is not a solution */
+  glob->lsFailures++;
+  full = (PetscBool)(finite && (glob->lsFailures % 2 == 1 || !CanRescale(ss)));
+  if (full) {
+    PetscCall(Accept(ss, ss->ut, ss->ct));
+    glob->alpha = 1;
+    PetscCall(SSStarGlobalizationRecord(glob, SSSTAR_REMEDY_FULL_STEP));
+  } else if (CanRescale(ss)) PetscCall(Rescale(snes));
+  else *reason = SSSTAR_REASON_STAGNATION;
+  PetscFunctionReturn(0);
+}
+
+/*
+   No Newton step exists (its matrix is singular, regularized or not): SSSTAR_FIXED_POINT_ITS iterations
+   u <- u + z of the approximation step with gamma = 1/||P||_inf, which bounds 1/lambda_max(P): a projected (and,
+   with friction, proximal) gradient step short enough to decrease the energy of the frictionless and Tresca
+   problems. improved: they decreased ||z|| (with the solve's gamma) enough, and the iterate moved there.
+*/
+PetscErrorCode SSStarGlobalizationFixedPoint(SNES snes, PetscReal znorm, PetscBool *improved)
+{
+  SNES_SSStar *ss    = (SNES_SSStar *)snes->data;
+  PetscReal    gamma = ss->scaling, pnorm, znew;
+
+  PetscFunctionBegin;
+  PetscCall(MatNorm(ss->contact.P, NORM_INFINITY, &pnorm));
+  PetscCall(VecCopy(ss->u, ss->ut));
+  PetscCall(VecCopy(ss->c, ss->ct));
+  ss->scaling = 1 / pnorm;
+  for (PetscInt i = 0; i < SSSTAR_FIXED_POINT_ITS; i++) {
+    PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &znew));
+    PetscCall(SNESSSStarAddStep(snes, ss->ut, 1.0, ss->z));
+    PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
+  }
+  ss->scaling = gamma;
+  PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &znew));
+  *improved = (PetscBool)(znew <= (1 - SSSTAR_SIGMA) * znorm);
+  if (*improved) PetscCall(Accept(ss, ss->ut, ss->ct));
+  PetscCall(SSStarGlobalizationRecord(&ss->glob, SSSTAR_REMEDY_FIXED_POINT));
+  PetscFunctionReturn(0);
+}
+
+/* For -snes_ssstar_monitor_states: "; damped step alpha = 0.25; cycle detected (4 nodes flip with period 2)" */
+PetscErrorCode SSStarGlobalizationFormatEvents(SSStarGlobalization *glob, char buf[], size_t len)
+{
+  static const char *const label[] = {"damped step", "full step after a failed line search", "gamma doubled", "regularized Newton step", "fixed-point round"};
+  size_t                   used    = 0;
+
+  PetscFunctionBegin;
+  buf[0] = 0;
+  for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) {
+    if (!glob->shown[r]) continue;
+    if (r == SSSTAR_REMEDY_DAMPED) PetscCall(PetscSNPrintf(buf + used, len - used, "; %s alpha = %g", label[r], (double)glob->shownAlpha));
+    else PetscCall(PetscSNPrintf(buf + used, len - used, "; %s", label[r]));
+    PetscCall(PetscStrlen(buf, &used));
+  }
+  if (glob->detected == SSSTAR_DETECTED_CYCLE) PetscCall(PetscSNPrintf(buf + used, len - used, "; cycle detected"));
+  else if (glob->detected == SSSTAR_DETECTED_STAGNATION) PetscCall(PetscSNPrintf(buf + used, len - used, "; no decrease of ||z|| for %" PetscInt_FMT " iterations", glob->stagnationIts));
+  PetscCall(PetscStrlen(buf, &used));
+  if (glob->flipping) PetscCall(PetscSNPrintf(buf + used, len - used, "; %" PetscInt_FMT " nodes flip with period 2", glob->flipping));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarGlobalizationView(SSStarGlobalization *glob, PetscViewer viewer)
+{
+  PetscFunctionBegin;
+  if (glob->on) PetscCall(PetscViewerASCIIPrintf(viewer, "  globalization: damped steps on ||z|| (alpha >= %g), remedies on; stop after %" PetscInt_FMT " iterations without a smaller ||z||\n", (double)glob->dampingMin, glob->stagnationIts));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  globalization: off (the plain iteration); stop after %" PetscInt_FMT " iterations without a smaller ||z||, or on a cycle\n", glob->stagnationIts));
+  PetscFunctionReturn(0);
+}
+
+/* The remedies of the last solve, one line: "damped steps 2, full steps after a failed line search 0, ..." */
+PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscViewer viewer)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  remedies:"));
+  PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
+  for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) PetscCall(PetscViewerASCIIPrintf(viewer, "%s %s %" PetscInt_FMT, r ? "," : "", SSStarRemedies[r], glob->counts[r]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; cycles detected %" PetscInt_FMT "\n", glob->cycles));
+  PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}

@@ -6,8 +6,10 @@ from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 
 
 def prism_level(level):
-    out, s = prism(level)
+    out, s = prism(level, extra=["-snes_view"])
     expect(s["reason"] == "CONVERGED_FNORM_RELATIVE", "level %d: %s" % (level, s["reason"]), out)
+    expect(re.search(r"remedies: damped steps 0, full steps after a failed line search 0, rescalings of gamma 0, regularized Newton steps 0, fixed-point rounds 0; cycles detected 0", out),
+           "level %d: the globalization intervened in a healthy iteration" % level, out)
     expect(last_znorm(out) <= 1e-12, "level %d: final |z| %g > 1e-12" % (level, last_znorm(out)), out)
     ref = REFERENCE_ITERATIONS[level]
     expect(abs(s["iters"] - ref) <= 1, "level %d: %d iterations, reference %d" % (level, s["iters"], ref), out)
@@ -18,7 +20,7 @@ def prism_level(level):
 
 
 for _L in sorted(REFERENCE_ITERATIONS):
-    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations, with the reference node counts%s"
+    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations without any remedy of the globalization, with the reference node counts%s"
          % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""))(
         (lambda L: (lambda: prism_level(L)))(_L))
     TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]

@@ -3,7 +3,8 @@ Run with -dll_append <dir>/libssstar.so -snes_type ssstar: it checks the Coulomb
   -p <40>                         contact nodes\n\
   -snes_ssstar_friction <0.3>     friction coefficient (read here too, for the check)\n\
   -dense                          hand P to the solver as a dense matrix\n\
-  -singular                       node 0 gets no stiffness and is pulled off the plane: the Newton matrix is singular\n";
+  -singular                       node 0 gets no stiffness and is pulled off the plane: the Newton matrix is singular\n\
+  -poison <load|stiffness|guess>  a NaN in f, an Inf in P or a NaN in the initial guess at node 3 (the solver must refuse it)\n";
 
 /* Requirement: the SNES type "ssstar" is usable, through -dll_append only, from a program that does not link
    libssstar, on 1 and 2 ranks and with a sparse (AIJ) P; its solution satisfies the Coulomb law at every node
@@ -111,6 +112,37 @@ static PetscErrorCode CoulombViolation(Problem *pb, Vec u, PetscReal phi, PetscR
   PetscFunctionReturn(0);
 }
 
+/* Puts a NaN or Inf at node 3 into what -poison names */
+static PetscErrorCode Poison(Problem *pb, Vec u)
+{
+  char      what[16] = "";
+  PetscBool set, load, stiffness, guess;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-poison", what, sizeof(what), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscStrcmp(what, "load", &load));
+  PetscCall(PetscStrcmp(what, "stiffness", &stiffness));
+  PetscCall(PetscStrcmp(what, "guess", &guess));
+  PetscCheck(load || stiffness || guess, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-poison %s: not load, stiffness or guess", what);
+  if (load) {
+    PetscCall(VecSetValue(pb->f, 11, NAN, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(pb->f));
+    PetscCall(VecAssemblyEnd(pb->f));
+  }
+  if (stiffness) {
+    PetscCall(MatSetValue(pb->P, 11, 11, INFINITY, INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(pb->P, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(pb->P, MAT_FINAL_ASSEMBLY));
+  }
+  if (guess) {
+    PetscCall(VecSetValue(u, 11, NAN, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(u));
+    PetscCall(VecAssemblyEnd(u));
+  }
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   Problem             pb;
@@ -134,6 +166,7 @@ int main(int argc, char **argv)
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(MatCreateVecs(pb.P, &u, NULL));
   PetscCall(VecZeroEntries(u));
+  PetscCall(Poison(&pb, u));
   PetscCall(SNESSolve(snes, NULL, u));
   PetscCall(SNESGetConvergedReason(snes, &reason));
   PetscCall(SNESGetIterationNumber(snes, &its));

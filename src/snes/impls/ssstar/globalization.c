@@ -4,8 +4,10 @@
 
    - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the
      solutions, in the units of u);
-   - a Newton step is accepted when it decreases the merit enough (||z+|| <= (1 - sigma alpha) ||z||), else it is
-     damped (alpha = 1/2, 1/4, ... down to dampingMin);
+   - a Newton step is accepted when it decreases the merit enough, else it is damped (alpha = 1/2, 1/4, ... down to
+     dampingMin): ||z+|| <= (1 - sigma alpha + eta_k) ||z|| at iteration k. eta_k = 2^-(k+1) is a summable
+     allowance, as in Li and Fukushima's derivative-free line search: the first steps of a healthy iteration may
+     raise ||z|| a little, as they do at level 10 of the default scene, by a factor e at most in all;
    - when no damping decreases the merit (a local minimum of ||z||, a kink), the full step is taken anyway or the
      scaling gamma of the approximation step is doubled, in turn; gamma > 0 does not change the solutions (section 6)
      but changes the approximation step, the states and the Newton step;
@@ -19,7 +21,7 @@
 
 const char *const SSStarRemedies[] = {"damped steps", "full steps after a failed line search", "rescalings of gamma", "regularized Newton steps", "fixed-point rounds", "SSStarRemedy", "SSSTAR_REMEDY_", NULL};
 
-/* Armijo's sufficient decrease of the merit: ||z(u + alpha du)|| <= (1 - SIGMA alpha) ||z(u)|| */
+/* Armijo's sufficient decrease of the merit: ||z(u + alpha du)|| <= (1 - SIGMA alpha + eta_k) ||z(u)|| */
 #define SSSTAR_SIGMA 1e-4
 /* ||z|| "back to its value two iterations ago": within this relative distance */
 #define SSSTAR_CYCLE_TOL 1e-2
@@ -172,15 +174,16 @@ static PetscErrorCode Accept(SNES_SSStar *ss, Vec v, Vec cv)
 }
 
 /*
-   The step from u along the Newton step ss->dv (nodes' frames), whose ||z|| at u is znorm. Without globalization
+   The step of iteration k from u along the Newton step ss->dv (nodes' frames), ||z|| = znorm at u. Without globalization
    the full step, unless ||z|| is NaN or Inf there (then reason NAN and u stays the last finite iterate). With it:
    the full step if it decreases ||z|| enough, else the first damped one that does, else a remedy: the full step
    anyway (odd failures) or a doubled gamma without a step (even failures). reason is set when nothing can be done.
 */
-PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscReal znorm, SSStarReason *reason)
+PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, SSStarReason *reason)
 {
   SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
   SSStarGlobalization *glob = &ss->glob;
+  const PetscReal      eta  = PetscPowReal(0.5, (PetscReal)(k + 1));
   PetscReal            mfull, m, alpha;
   PetscBool            finite, full;
 
@@ -192,7 +195,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscReal znorm, SSStarReason 
   PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
   PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &mfull));
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
-  if (!glob->on || mfull <= (1 - SSSTAR_SIGMA) * znorm) {
+  if (!glob->on || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm) {
     if (finite) {
       PetscCall(Accept(ss, ss->ut, ss->ct));
       glob->alpha = 1;
@@ -206,7 +209,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscReal znorm, SSStarReason 
     PetscCall(SNESSSStarAddStep(snes, ss->ua, alpha, ss->dv));
     PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
     PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
-    if (m <= (1 - SSSTAR_SIGMA * alpha) * znorm) {
+    if (m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm) {
       PetscCall(Accept(ss, ss->ua, ss->ca));
       glob->alpha = alpha;
       PetscCall(SSStarGlobalizationRecord(glob, SSSTAR_REMEDY_DAMPED));

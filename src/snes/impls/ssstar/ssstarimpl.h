@@ -136,7 +136,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBegin(SNES);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationDetect(SNES, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationRecord(SSStarGlobalization *, SSStarRemedy);
-PETSC_INTERN PetscErrorCode SSStarGlobalizationStep(SNES, PetscReal, SSStarReason *);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationStep(SNES, PetscInt, PetscReal, SSStarReason *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBreakCycle(SNES, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationFixedPoint(SNES, PetscReal, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationView(SSStarGlobalization *, PetscViewer);

@@ -14,6 +14,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
+BENCHES  := bench/newton_step bench/dense_lu
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
@@ -24,7 +25,7 @@ export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
 
 .PHONY: all run test bench clean distclean
-all: $(LIB) $(EXAMPLES) $(TESTS)
+all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
 	python3 configure.py
@@ -43,6 +44,9 @@ examples/%: examples/%.c $(LIB)
 tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
+bench/newton_step bench/dense_lu: bench/%: bench/%.c $(LIB)
+	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
 # deliberately not linked with libssstar: it gets the type through -dll_append
 tests/test_plain_contact: tests/test_plain_contact.c
 	$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
@@ -57,7 +61,7 @@ bench: all
 	$(PYTHON) bench/table2.py
 
 clean:
-	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf
+	rm -rf build lib $(EXAMPLES) $(TESTS) $(BENCHES) tests/output meshes/*.msh *.h5 *.xmf
 
 distclean: clean
 	rm -f config/ssstar.mk

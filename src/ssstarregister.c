@@ -5,6 +5,7 @@
 PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 
 PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
+PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
@@ -28,6 +29,9 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(SNESRegister(SNESSSSTAR, SNESCreate_SSStar));
   PetscCall(PetscLogEventRegister("SSStarAS", SNES_CLASSID, &SSSTAR_ApproxStep));
   PetscCall(PetscLogEventRegister("SSStarNS", SNES_CLASSID, &SSSTAR_NewtonStep));
+  PetscCall(PetscLogEventRegister("SSStarNSAssemble", SNES_CLASSID, &SSSTAR_NewtonAssemble));
+  PetscCall(PetscLogEventRegister("SSStarNSFactor", SNES_CLASSID, &SSSTAR_NewtonFactor));
+  PetscCall(PetscLogEventRegister("SSStarNSKrylov", SNES_CLASSID, &SSSTAR_NewtonKrylov));
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
   PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));

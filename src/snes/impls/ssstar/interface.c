@@ -172,6 +172,36 @@ PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarSetLUReuse - with a dense P, keep the LU factors of the Newton matrix and solve the next steps by GMRES
+   preconditioned with them while at most this fraction of the contact nodes changed which of their rows are known
+   (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge
+   (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). 0 gives a fresh LU at every step. Default 0.05.
+
+   Options Database Key:
+.  -snes_ssstar_lu_reuse <fraction> - the fraction, in [0, 1]
+@*/
+PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLUReuse_C", (SNES, PetscReal), (snes, fraction));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve were solved: LU factorizations, steps
+   solved on an older LU (by GMRES, SNESSSStarSetLUReuse()) and their Krylov iterations (also in
+   SNESGetLinearSolveIterations())
+@*/
+PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetNewtonStepCounts_C", (SNES, PetscInt *, PetscInt *, PetscInt *), (snes, factorizations, reused, krylov));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SNESSSStarGetStates - the state of each owned contact node at the last iterate (in node order), and the global
    counts per state

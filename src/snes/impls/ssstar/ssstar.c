@@ -47,7 +47,6 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
     PetscCall(VecDestroy(w));
     PetscCall(VecDuplicate(ss->u, w));
   }
-  if (!ss->newton) PetscCall(SSStarNewtonCreate(snes, &ss->newton));
   PetscFunctionReturn(0);
 }
 
@@ -304,7 +303,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 
   PetscFunctionBegin;
   PetscCall(SSStarContactReset(&ss->contact));
-  PetscCall(SSStarNewtonDestroy(&ss->newton));
+  PetscCall(SSStarNewtonReset(ss->newton));
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
   PetscCall(VecDestroy(&ss->u));
@@ -313,7 +312,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -322,6 +321,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
   PetscFunctionBegin;
   PetscCall(SNESReset_SSStar(snes));
   PetscCall(SSStarContactDestroy(&ss->contact));
+  PetscCall(SSStarNewtonDestroy(&ss->newton));
   for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(ComposedNames); k++) PetscCall(PetscObjectComposeFunction((PetscObject)snes, ComposedNames[k], NULL));
   PetscCall(PetscFree(snes->data));
   PetscFunctionReturn(0);
@@ -348,6 +348,9 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   if (set) PetscCall(SNESSSStarSetScaling(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
   if (set) PetscCall(SNESSSStarSetStateTolerance(snes, value));
+  PetscCall(SSStarNewtonGetReuse(ss->newton, &value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_lu_reuse", "Solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: a fresh LU at every step)", "SNESSSStarSetLUReuse", value, &value, &set));
+  if (set) PetscCall(SNESSSStarSetLUReuse(snes, value));
   PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
@@ -421,12 +424,14 @@ PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm,
   SNES_SSStar *ss     = (SNES_SSStar *)snes->data;
   PetscViewer  viewer = vf->viewer;
   char         counts[256];
+  PetscInt     nlu, nreused, nkrylov;
 
   PetscFunctionBegin;
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s\n", its, counts));
+  PetscCall(SSStarNewtonGetCounts(ss->newton, &nlu, &nreused, &nkrylov));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its)\n", its, counts, nlu, nreused, nkrylov));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
   PetscFunctionReturn(0);
@@ -503,6 +508,21 @@ static PetscErrorCode SNESSSStarSetStateTolerance_SSStar(SNES snes, PetscReal ta
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarSetLUReuse_SSStar(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_reuse %g must be at most 1 (negative: never)", (double)fraction);
+  PetscCall(SSStarNewtonSetReuse(((SNES_SSStar *)snes->data)->newton, fraction));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetNewtonStepCounts_SSStar(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonGetCounts(((SNES_SSStar *)snes->data)->newton, factorizations, reused, krylov));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarGetStates_SSStar(SNES snes, const SSStarState *states[], PetscInt counts[])
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
@@ -549,6 +569,7 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag P))
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
 .  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration
+.  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: never); -snes_ssstar_newton_ksp_* set that GMRES
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol
 
@@ -579,6 +600,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
   snes->data                = (void *)ss;
+  PetscCall(SSStarNewtonCreate(snes, &ss->newton));
 
   PetscCall(SNESGetKSP(snes, &snes->ksp));
   PetscCall(KSPSetType(snes->ksp, KSPPREONLY));
@@ -603,5 +625,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetStates), SNESSSStarGetStates_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReason), SNESSSStarGetReason_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetLUReuse), SNESSSStarSetLUReuse_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetNewtonStepCounts), SNESSSStarGetNewtonStepCounts_SSStar));
   PetscFunctionReturn(0);
 }

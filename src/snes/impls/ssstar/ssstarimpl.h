@@ -6,17 +6,24 @@
 #include <petsc/private/snesimpl.h>
 
 PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
+/* parts of the Newton step with a dense P: A_RR and its right-hand side, LU factorizations, Krylov solves on old factors */
+PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
    The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R),
-   given P (global frame) and, per local node, R, S and T (9 values each, row-major).
+   given P (global frame) and, per local node, R, S and T (9 values each, row-major). Created with the SNES (it keeps
+   the settings); Reset drops what was built for a P. Counts and the condition estimate are of the current SNESSolve.
 */
 typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetReuse(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, Mat, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarNewtonView(SSStarNewton, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarNewtonReset(SSStarNewton);
 PETSC_INTERN PetscErrorCode SSStarNewtonDestroy(SSStarNewton *);
 
 /*

@@ -202,6 +202,18 @@ PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetConditionEstimate - LAPACK's estimate of 1/cond_1 of the last LU-factored Newton matrix (dense P: the
+   system of the unknown dofs, A_RR), or -1 when none is known (sparse P, no factorization yet, a singular matrix)
+@*/
+PetscErrorCode SNESSSStarGetConditionEstimate(SNES snes, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetConditionEstimate_C", (SNES, PetscReal *), (snes, rcond));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SNESSSStarGetStates - the state of each owned contact node at the last iterate (in node order), and the global
    counts per state

@@ -306,10 +306,13 @@ static PetscErrorCode AssembleBlocks(SSStarNewton nt, const PetscReal frames[], 
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolveSparse(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
+/* (gamma S R P + T R) du = y, then dv = R du */
+static PetscErrorCode SolveSparse(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec dv, PetscBool *solved)
 {
   SNES               snes = nt->snes;
   KSPConvergedReason kspreason;
+  PetscScalar       *a;
+  PetscInt           n;
 
   PetscFunctionBegin;
   PetscCall(AssembleBlocks(nt, frames, S, T));
@@ -327,9 +330,19 @@ static PetscErrorCode SolveSparse(SSStarNewton nt, const PetscReal frames[], con
   PetscCall(FactorNewtonMatrix(snes, solved));
   nt->nFactor++;
   if (!*solved) PetscFunctionReturn(0);
-  PetscCall(KSPSolve(snes->ksp, y, du));
+  PetscCall(KSPSolve(snes->ksp, y, dv));
   PetscCall(KSPGetConvergedReason(snes->ksp, &kspreason));
   *solved = (PetscBool)(kspreason >= 0);
+  if (!frames) PetscFunctionReturn(0);
+  PetscCall(VecGetLocalSize(dv, &n));
+  PetscCall(VecGetArray(dv, &a));
+  for (PetscInt i = 0; i < n / 3; i++) {
+    const PetscReal  *R     = &frames[9 * i];
+    const PetscScalar du[3] = {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
+
+    for (PetscInt r = 0; r < 3; r++) a[3 * i + r] = R[3 * r] * du[0] + R[3 * r + 1] * du[1] + R[3 * r + 2] * du[2];
+  }
+  PetscCall(VecRestoreArray(dv, &a));
   PetscFunctionReturn(0);
 }
 
@@ -363,21 +376,17 @@ static PetscErrorCode BuildElimination(SSStarNewton nt, const PetscReal S[], con
   PetscCallMPI(MPI_Allgatherv(mask, (PetscMPIInt)nt->nnodes, MPI_UNSIGNED_CHAR, allMask, nt->nodeCounts, nt->nodeStarts, MPI_UNSIGNED_CHAR, comm));
   e->N = 0;
   for (PetscInt j = 0; j < nt->Nnodes; j++) {
-    if (j == nt->nodeStart) e->start = e->N;
     for (PetscInt r = 0; r < 3; r++) {
       if (allMask[j] & (1 << r)) {
         e->index[3 * j + r] = e->N;
         e->dofs[e->N++]     = 3 * j + r;
       } else e->index[3 * j + r] = -1;
     }
-    if (j == nt->nodeStart + nt->nnodes - 1) e->n = e->N - e->start;
   }
-  if (!nt->nnodes) {
-    e->n     = 0;
-    e->start = 0;
-    for (PetscInt j = 0; j < nt->nodeStart; j++)
-      for (PetscInt r = 0; r < 3; r++) e->start += e->index[3 * j + r] >= 0;
-  }
+  e->start = 0;
+  e->n     = 0;
+  for (PetscInt g = 0; g < 3 * nt->nodeStart; g++) e->start += e->index[g] >= 0;
+  for (PetscInt g = 3 * nt->nodeStart; g < 3 * (nt->nodeStart + nt->nnodes); g++) e->n += e->index[g] >= 0;
   PetscCall(PetscArraycpy(e->S, S, 9 * nt->nnodes));
   PetscCall(PetscArraycpy(e->T, T, 9 * nt->nnodes));
   e->valid = PETSC_TRUE;

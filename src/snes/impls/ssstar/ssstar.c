@@ -312,7 +312,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -523,6 +523,13 @@ static PetscErrorCode SNESSSStarGetNewtonStepCounts_SSStar(SNES snes, PetscInt *
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarGetConditionEstimate_SSStar(SNES snes, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonGetConditionEstimate(((SNES_SSStar *)snes->data)->newton, rcond));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarGetStates_SSStar(SNES snes, const SSStarState *states[], PetscInt counts[])
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
@@ -627,5 +634,6 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetLUReuse), SNESSSStarSetLUReuse_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetNewtonStepCounts), SNESSSStarGetNewtonStepCounts_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetConditionEstimate), SNESSSStarGetConditionEstimate_SSStar));
   PetscFunctionReturn(0);
 }

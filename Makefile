@@ -59,6 +59,7 @@ test: all
 
 bench: all
 	$(PYTHON) bench/table2.py
+	$(PYTHON) bench/newton.py
 
 clean:
 	rm -rf build lib $(EXAMPLES) $(TESTS) $(BENCHES) tests/output meshes/*.msh *.h5 *.xmf

@@ -152,7 +152,7 @@ int main(int argc, char **argv)
   if (header) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "level,ranks,dofs,lu_reuse,run,iterations,newton_seconds,lu,reused,krylov_its,reason\n"));
   for (PetscInt r = 0; r < repeat; r++) {
     PetscEventPerfInfo before, after;
-    PetscInt           its, nlu, nreused, nkrylov;
+    PetscInt           its, nlu, nreused, nkrylov, dofs;
     SNESConvergedReason reason;
     PetscReal          t;
 
@@ -163,9 +163,10 @@ int main(int argc, char **argv)
     t = after.time - before.time;
     PetscCall(MPIU_Allreduce(&t, &times[r], 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
     PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(VecGetSize(f, &dofs));
     PetscCall(SNESGetConvergedReason(snes, &reason));
     PetscCall(SNESSSStarGetNewtonStepCounts(snes, &nlu, &nreused, &nkrylov));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT ",%d,%" PetscInt_FMT ",%g,%" PetscInt_FMT ",%" PetscInt_FMT ",%.4f,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%s\n", level, size, 3 * (level * 4) * (2 * level + 1), (double)reuse, r, its, (double)times[r], nlu, nreused, nkrylov, SNESConvergedReasons[reason]));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT ",%d,%" PetscInt_FMT ",%g,%" PetscInt_FMT ",%" PetscInt_FMT ",%.4f,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%s\n", level, size, dofs, (double)reuse, r, its, (double)times[r], nlu, nreused, nkrylov, SNESConvergedReasons[reason]));
   }
   qsort(times, repeat, sizeof(PetscReal), CompareReal);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# median Newton phase %.4f s over %" PetscInt_FMT " solves\n", (double)times[repeat / 2], repeat));

@@ -7,9 +7,10 @@
    triangular, and only
      A_RR dv_R = y_R - A_RK y_K
    is solved. A_RR is assembled column by column from the local rows of P (the rotations applied on the fly) and
-   factored by LAPACK on rank 0 (its rows gathered there); the factors are kept. While few nodes changed their known
-   dofs since that factorization, a step solves A_RR by GMRES preconditioned by the old A's inverse instead (the dofs
-   that changed status moved over, see ApplyFactoredInverse); a fresh LU when many did or GMRES does not converge.
+   factored by LAPACK on rank 0 (its rows gathered there); the factors are kept. While at most a given fraction of the
+   nodes (by default none) changed their known dofs since that factorization, a step solves A_RR by GMRES
+   preconditioned by the old A's inverse instead (the dofs that changed status moved over, see ApplyFactoredInverse);
+   a fresh LU when more did or GMRES does not converge within about the cost of an LU.
 
    Sparse P: A R = gamma S R P + T R is formed by MatMatMult and factored by the SNES's KSP (LU; MUMPS in parallel).
 */
@@ -254,8 +255,8 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, Mat P, PetscReal gamma)
 /* sparse P */
 
 /*
-   Sets up the KSP (the LU factorization of the Newton matrix). Dense LU (LAPACK, ScaLAPACK) raises an error on a
-   zero pivot where sparse LU only flags it: catch that error so that a singular Newton matrix ends the solve with
+   Sets up the KSP (the LU factorization of the Newton matrix). Some LU factorizations raise an error on a zero pivot
+   where others only flag it: catch that error so that a singular Newton matrix ends the solve with
    SNES_DIVERGED_LINEAR_SOLVE instead of aborting the program.
 */
 static PetscErrorCode FactorNewtonMatrix(SNES snes, PetscBool *factored)
@@ -1010,11 +1011,16 @@ PetscErrorCode SSStarNewtonGetCounts(SSStarNewton nt, PetscInt *factorizations, 
 PetscErrorCode SSStarNewtonView(SSStarNewton nt, PetscViewer viewer)
 {
   PetscFunctionBegin;
-  if (!nt->P || nt->dense) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step (dense P): the unknowns of separated and sliding nodes eliminated, LU by LAPACK on rank 0;\n"));
-    if (nt->reuse > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    the LU is kept as a GMRES preconditioner while at most %g%% of the nodes changed their known dofs\n", (double)(100 * nt->reuse)));
-    else PetscCall(PetscViewerASCIIPrintf(viewer, "    a fresh LU at every step\n"));
-  } else PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step (sparse P): (gamma S P + T) du = (S + T) z formed and factored by the KSP\n"));
+  if (nt->P && !nt->dense) PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step (sparse P): (gamma S P + T) du = (S + T) z formed and factored by the KSP\n"));
+  else {
+    char threads[64] = "";
+
+    if (nt->lu.threads > 1) PetscCall(PetscSNPrintf(threads, sizeof(threads), " (%d BLAS threads)", nt->lu.threads));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step (dense P): the dofs of sticking nodes and the normals of nodes in contact eliminated, LU of the others by LAPACK on rank 0%s\n", threads));
+    if (nt->reuse < 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    a fresh LU at every step\n"));
+    else if (nt->reuse == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    a step is solved by GMRES on the last LU when no node changed its known rows since it\n"));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "    a step is solved by GMRES on the last LU when at most %g%% of the nodes changed their known rows since it\n", (double)(100 * nt->reuse)));
+  }
   if (nt->P) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " LU factorizations (last 1/cond %g), %" PetscInt_FMT " steps on an old LU (%" PetscInt_FMT " Krylov iterations), %" PetscInt_FMT " fallbacks to a fresh LU\n", nt->nFactor, (double)nt->rcond, nt->nReused, nt->nKrylov, nt->nFallback));
   PetscFunctionReturn(0);
 }

@@ -5,7 +5,7 @@ level (computed once into bench/output/data/) and solves the reduced problem fro
   bench/newton.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--lu-sizes 1000,2000,3300,5000]
 
 Configurations per level: 1 rank; 2 ranks with mpiexec's core binding (rank 0 factors with one BLAS thread) and with
---bind-to none (its BLAS may use the core of the sleeping rank); each with the default reuse of the LU
+--bind-to none -snes_ssstar_lu_threads 0 (its BLAS uses the core of the sleeping rank too); each with the default reuse of the LU
 (-snes_ssstar_lu_reuse 0) and with a fresh LU at every step (-1). Writes bench/output/newton.csv and newton.png
 (medians), and with --lu-sizes the dense-LU comparison (bench/dense_lu: LAPACK on rank 0 with 1 and 2 threads against
 ScaLAPACK on 2 ranks) into bench/output/dense_lu.csv. OpenBLAS's kernel is the one it detects (or OPENBLAS_CORETYPE, if
@@ -21,8 +21,8 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "bench", "output")
 STEP = os.path.join(ROOT, "bench", "newton_step")
-# (name, ranks, mpiexec binding)
-CONFIGS = [("1 rank", 1, "core"), ("2 ranks", 2, "core"), ("2 ranks, rank 0 on 2 cores", 2, "none")]
+# (name, ranks, mpiexec binding, options)
+CONFIGS = [("1 rank", 1, "core", []), ("2 ranks", 2, "core", []), ("2 ranks, LU on 2 threads", 2, "none", ["-snes_ssstar_lu_threads", "0"])]
 REUSE = [("reuse", "0"), ("fresh LU", "-1")]
 
 
@@ -37,8 +37,8 @@ def run(cmd):
     return p.stdout
 
 
-def newton(level, ranks, binding, reuse, repeat):
-    out = run(mpiexec(ranks, binding, STEP, "-level", str(level), "-repeat", str(repeat), "-snes_ssstar_lu_reuse", reuse))
+def newton(level, ranks, binding, options, reuse, repeat):
+    out = run(mpiexec(ranks, binding, STEP, "-level", str(level), "-repeat", str(repeat), "-snes_ssstar_lu_reuse", reuse, *options))
     lines = [l for l in out.splitlines() if l and not l.startswith("#")]
     runs = list(csv.DictReader(io.StringIO("\n".join(lines))))
     if not runs:
@@ -71,11 +71,11 @@ def main():
     print("Newton phase (SSStarNS), median of %d solves; OPENBLAS_CORETYPE=%s" % (args.repeat, os.environ.get("OPENBLAS_CORETYPE", "(detected)")))
     print("level   3p  configuration                  LU policy  iters  LU  reused  Krylov its  seconds")
     for level in (int(l) for l in args.levels.split(",")):
-        for name, nranks, binding in CONFIGS:
+        for name, nranks, binding, options in CONFIGS:
             if nranks not in ranks:
                 continue
             for policy, reuse in REUSE:
-                row = newton(level, nranks, binding, reuse, args.repeat)
+                row = newton(level, nranks, binding, options, reuse, args.repeat)
                 row.update({"configuration": name, "ranks": nranks, "binding": binding, "policy": policy})
                 print("%5d %5d  %-30s %-9s %5d %3d %7d %11d %8.3f  %s" % (level, row["dofs"], name, policy, row["iterations"], row["lu"],
                                                                         row["reused"], row["krylov_its"], row["newton_seconds"],
@@ -97,8 +97,8 @@ def plot(rows):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5))
-    colors = {name: c for (name, _, _), c in zip(CONFIGS, ("tab:blue", "tab:red", "tab:green"))}
-    for (name, _, _) in CONFIGS:
+    colors = {c[0]: color for c, color in zip(CONFIGS, ("tab:blue", "tab:red", "tab:green"))}
+    for name in colors:
         for policy, style in (("reuse", "-o"), ("fresh LU", ":s")):
             pts = [(r["dofs"], r["newton_seconds"]) for r in rows if r["configuration"] == name and r["policy"] == policy]
             if pts:

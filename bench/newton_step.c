@@ -123,7 +123,7 @@ int main(int argc, char **argv)
   Vec         f, u;
   SNES        snes;
   PetscMPIInt size;
-  PetscReal   times[64], reuse = 0.05;
+  PetscReal   times[64], reuse = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());

@@ -79,6 +79,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetScaling(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetScaling(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetStateTolerance(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);

@@ -190,6 +190,23 @@ PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
 }
 
 /*@
+   SNESSSStarSetLUThreads - on several ranks with a dense P, the LU of the Newton matrix is computed on rank 0 while the
+   other ranks sleep: this many BLAS (OpenBLAS) threads of rank 0 compute it, 0 for as many as the cores rank 0 may run
+   on (start with mpiexec --bind-to none), at most the ranks of its node. Default 1: the BLAS is left as it is (as on one
+   rank, where OPENBLAS_NUM_THREADS decides). Takes effect at the next SNESSolve() with a new P.
+
+   Options Database Key:
+.  -snes_ssstar_lu_threads <n> - the threads
+@*/
+PetscErrorCode SNESSSStarSetLUThreads(SNES snes, PetscInt threads)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLUThreads_C", (SNES, PetscInt), (snes, threads));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve were solved: LU factorizations, steps
    solved on an older LU (by GMRES, SNESSSStarSetLUReuse()) and their Krylov iterations (also in
    SNESGetLinearSolveIterations())

@@ -57,6 +57,7 @@ struct _n_SSStarNewton {
   PetscReal gamma;
   PetscBool dense;    /* the eliminated path */
   PetscReal reuse;    /* reuse the factors while at most this fraction of the nodes changed their known dofs */
+  PetscInt  luThreads;/* rank 0's BLAS threads for the LU on several ranks; 0: the cores it may use */
   PetscReal rcond;    /* of the last factored Newton matrix, -1 if unknown */
   PetscInt  nFactor;  /* counts of the current SNESSolve: LU factorizations, */
   PetscInt  nReused;  /* steps solved on old factors,                         */
@@ -90,7 +91,8 @@ PetscErrorCode SSStarNewtonCreate(SNES snes, SSStarNewton *newton)
   PetscFunctionBegin;
   PetscCall(PetscNew(newton));
   (*newton)->snes  = snes;
-  (*newton)->reuse = 0;
+  (*newton)->reuse     = 0;
+  (*newton)->luThreads = 1;
   (*newton)->rcond = -1;
   (*newton)->lu.N  = -1;
   PetscFunctionReturn(0);
@@ -107,6 +109,21 @@ PetscErrorCode SSStarNewtonGetReuse(SSStarNewton nt, PetscReal *fraction)
 {
   PetscFunctionBegin;
   *fraction = nt->reuse;
+  PetscFunctionReturn(0);
+}
+
+/* Takes effect with the next P */
+PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton nt, PetscInt threads)
+{
+  PetscFunctionBegin;
+  nt->luThreads = threads;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton nt, PetscInt *threads)
+{
+  PetscFunctionBegin;
+  *threads = nt->luThreads;
   PetscFunctionReturn(0);
 }
 
@@ -160,7 +177,7 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 }
 
 static PetscErrorCode ApplyFactoredInverse(PC, Vec, Vec);
-static PetscErrorCode LUThreads(MPI_Comm, int *);
+static PetscErrorCode LUThreads(MPI_Comm, PetscInt, int *);
 
 static PetscErrorCode SetUpDense(SSStarNewton nt)
 {
@@ -183,7 +200,7 @@ static PetscErrorCode SetUpDense(SSStarNewton nt)
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   nt->nodeStart = nt->nodeStarts[rank];
   PetscCall(PetscMalloc2(PetscMax(3 * nt->Nnodes, 1), &nt->w, PetscMax(3 * nt->nnodes, 1), &nt->q));
-  PetscCall(LUThreads(comm, &nt->lu.threads));
+  PetscCall(LUThreads(comm, nt->luThreads, &nt->lu.threads));
 
   /* the Krylov solver of the steps on old factors: GMRES with the preconditioner on the right, so that its residual
      is the true one */
@@ -633,10 +650,11 @@ static PetscErrorCode Expand(SSStarNewton nt, Vec y, Vec dv)
 }
 
 /*
-   On several ranks, the other ranks of rank 0's node sleep while it factors: its BLAS (OpenBLAS) may use their cores,
-   as many as it is allowed to run on (mpiexec --bind-to none). On one rank the user's BLAS settings stay.
+   On several ranks, the other ranks of rank 0's node sleep while it factors: its BLAS (OpenBLAS) may use their cores.
+   The threads asked for (0: as many cores as rank 0 may run on, mpiexec --bind-to none, at most the ranks of its
+   node); 0 = leave the BLAS as it is: on one rank, with 1 asked for, or without OpenBLAS.
 */
-static PetscErrorCode LUThreads(MPI_Comm comm, int *threads)
+static PetscErrorCode LUThreads(MPI_Comm comm, PetscInt requested, int *threads)
 {
   PetscMPIInt size, nodeSize;
   MPI_Comm    node;
@@ -645,7 +663,11 @@ static PetscErrorCode LUThreads(MPI_Comm comm, int *threads)
   PetscFunctionBegin;
   *threads = 0;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (size == 1 || !dlsym(RTLD_DEFAULT, "openblas_set_num_threads")) PetscFunctionReturn(0);
+  if (size == 1 || requested == 1 || !dlsym(RTLD_DEFAULT, "openblas_set_num_threads")) PetscFunctionReturn(0);
+  if (requested > 1) {
+    *threads = (int)requested;
+    PetscFunctionReturn(0);
+  }
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
   PetscCallMPI(MPI_Comm_size(node, &nodeSize));
   PetscCallMPI(MPI_Comm_free(&node));

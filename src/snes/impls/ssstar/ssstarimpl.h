@@ -18,6 +18,8 @@ typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, Mat, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);

@@ -374,6 +374,15 @@ static PetscBool KnownRow(const PetscReal S[9], const PetscReal T[9], PetscInt r
   return PETSC_TRUE;
 }
 
+static PetscErrorCode EliminationAllocate(SSStarNewton nt, Elimination *e)
+{
+  PetscFunctionBegin;
+  if (e->index) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc2(3 * nt->Nnodes, &e->index, 3 * nt->Nnodes, &e->dofs));
+  PetscCall(PetscMalloc2(9 * nt->nnodes, &e->S, 9 * nt->nnodes, &e->T));
+  PetscFunctionReturn(0);
+}
+
 /* The known and unknown dofs of every node, from the blocks of the local nodes */
 static PetscErrorCode BuildElimination(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Elimination *e)
 {
@@ -381,10 +390,7 @@ static PetscErrorCode BuildElimination(SSStarNewton nt, const PetscReal S[], con
   unsigned char *mask, *allMask;
 
   PetscFunctionBegin;
-  if (!e->index) {
-    PetscCall(PetscMalloc2(3 * nt->Nnodes, &e->index, 3 * nt->Nnodes, &e->dofs));
-    PetscCall(PetscMalloc2(9 * nt->nnodes, &e->S, 9 * nt->nnodes, &e->T));
-  }
+  PetscCall(EliminationAllocate(nt, e));
   PetscCall(PetscMalloc2(nt->nnodes, &mask, nt->Nnodes, &allMask));
   for (PetscInt i = 0; i < nt->nnodes; i++) {
     mask[i] = 0;
@@ -415,10 +421,7 @@ static PetscErrorCode BuildElimination(SSStarNewton nt, const PetscReal S[], con
 static PetscErrorCode EliminationCopy(SSStarNewton nt, const Elimination *from, Elimination *to)
 {
   PetscFunctionBegin;
-  if (!to->index) {
-    PetscCall(PetscMalloc2(3 * nt->Nnodes, &to->index, 3 * nt->Nnodes, &to->dofs));
-    PetscCall(PetscMalloc2(9 * nt->nnodes, &to->S, 9 * nt->nnodes, &to->T));
-  }
+  PetscCall(EliminationAllocate(nt, to));
   PetscCall(PetscArraycpy(to->index, from->index, 3 * nt->Nnodes));
   PetscCall(PetscArraycpy(to->dofs, from->dofs, from->N));
   PetscCall(PetscArraycpy(to->S, from->S, 9 * nt->nnodes));

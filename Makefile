@@ -7,6 +7,8 @@ include $(PETSC_DIR)/lib/petsc/conf/variables
 endif
 
 LIBNAME  := ssstar
+VERSION  := 0.3.0
+PREFIX   ?= /usr/local
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
@@ -23,7 +25,7 @@ export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
 
-.PHONY: all run test bench clean distclean
+.PHONY: all run test bench install clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS)
 
 config/ssstar.mk: configure.py
@@ -46,6 +48,15 @@ tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
 # deliberately not linked with libssstar: it gets the type through -dll_append
 tests/test_plain_contact: tests/test_plain_contact.c
 	$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
+
+# make install PREFIX=/some/where: the library, the headers and lib/pkgconfig/ssstar.pc (which carries PETSc's flags),
+# so that a program builds with  mpicc prog.c $$(pkg-config --cflags --libs ssstar)
+install: $(LIB)
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include
+	install -m 644 include/*.h $(DESTDIR)$(PREFIX)/include/
+	install -m 755 $(LIB) $(DESTDIR)$(PREFIX)/lib/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@PETSC_CFLAGS@|$(PETSC_CC_INCLUDES)|' \
+	    -e 's|@PETSC_LIBS@|$(PETSC_LIB)|' ssstar.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/ssstar.pc
 
 run: all
 	$(MPIEXEC_SSSTAR) -n 2 examples/prism -level 6 -snes_converged_reason -o prism_L6.h5

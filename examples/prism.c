@@ -10,6 +10,7 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -traction_right <-200,30,200> traction on the group right\n\
   -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
+  -save_reduced <file.bin>   write P, f and the contact solution u_C (PETSc binary) for other programs (examples/prism.py)\n\
   -summary_header <true>     print the header line of the summary table\n";
 
 #include <ssstar.h>
@@ -68,8 +69,8 @@ int main(int argc, char **argv)
   SSStarScene         scene = {2.1e5, 0.3, {0, 0, -500}, {-200, 30, 200}};
   PetscInt            level = 6, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           friction = 0.3, meshScale = 1, t_assembly, t_schur, t_solve, t_recovery, t0;
-  char                mesh[PETSC_MAX_PATH_LEN] = "", geo[PETSC_MAX_PATH_LEN] = SSSTAR_MESH_DIR "/prism.geo", out[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasMesh, hasOut, header = PETSC_TRUE, isssstar;
+  char                reduced[PETSC_MAX_PATH_LEN] = "", mesh[PETSC_MAX_PATH_LEN] = "", geo[PETSC_MAX_PATH_LEN] = SSSTAR_MESH_DIR "/prism.geo", out[PETSC_MAX_PATH_LEN] = "";
+  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar;
   SSStarReductionType rtype = SSSTAR_REDUCTION_MUMPS;
   DM                  dm;
   Vec                 tags, u, r;
@@ -94,11 +95,13 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", NULL, friction, &friction, NULL));
   PetscCall(PetscOptionsEnum("-reduction", "Schur complement", NULL, SSStarReductionTypes, (PetscEnum)rtype, (PetscEnum *)&rtype, NULL));
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
+  PetscCall(PetscOptionsString("-save_reduced", "Write P, f and u_C to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary table", NULL, header, &header, NULL));
   PetscOptionsEnd();
   PetscCall(GetVector3("-traction_top", scene.traction_top));
   PetscCall(GetVector3("-traction_right", scene.traction_right));
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
+  if (hasReduced) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, reduced));
 
   /* mesh, FEM */
   PetscCall(PetscTime(&t0));
@@ -169,6 +172,21 @@ int main(int argc, char **argv)
     PetscCall(PetscFree(st));
     PetscCall(VecRestoreSubVector(r, cn.isC, &rC));
     PetscCall(VecRestoreSubVector(u, cn.isC, &uC));
+  }
+
+  if (hasReduced && isssstar) { /* the reduced problem of the contact nodes, rows in the order of cn.isC */
+    Mat         P;
+    Vec         f, uC;
+    PetscViewer viewer;
+
+    PetscCall(SNESSSStarGetReducedProblem(snes, &P, &f));
+    PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, reduced, FILE_MODE_WRITE, &viewer));
+    PetscCall(MatView(P, viewer));
+    PetscCall(VecView(f, viewer));
+    PetscCall(VecGetSubVector(u, cn.isC, &uC));
+    PetscCall(VecView(uC, viewer));
+    PetscCall(VecRestoreSubVector(u, cn.isC, &uC));
+    PetscCall(PetscViewerDestroy(&viewer));
   }
 
   PetscCall(SNESDestroy(&snes));

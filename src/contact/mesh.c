@@ -258,6 +258,9 @@ PetscErrorCode SSStarContactNodesCreate(DM dm, Vec tags, SSStarContactNodes *cn)
   PetscFunctionReturn(0);
 }
 
+/*@C
+   SSStarContactNodesDestroy - frees the arrays and index sets of the contact nodes
+@*/
 PetscErrorCode SSStarContactNodesDestroy(SSStarContactNodes *cn)
 {
   PetscFunctionBegin;

@@ -25,7 +25,7 @@ export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
 
-.PHONY: all run test bench install clean distclean
+.PHONY: all run test bench accuracy install clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS)
 
 config/ssstar.mk: configure.py
@@ -66,6 +66,10 @@ test: all
 
 bench: all
 	$(PYTHON) bench/table2.py
+
+# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
+accuracy: all
+	$(PYTHON) bench/accuracy.py
 
 clean:
 	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf

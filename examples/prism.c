@@ -10,7 +10,7 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -traction_right <-200,30,200> traction on the group right\n\
   -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
-  -save_reduced <file.bin>   write P, f and the contact solution u_C (PETSc binary) for other programs (examples/prism.py)\n\
+  -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary)\n\
   -summary_header <true>     print the header line of the summary table\n";
 
 #include <ssstar.h>
@@ -95,7 +95,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", NULL, friction, &friction, NULL));
   PetscCall(PetscOptionsEnum("-reduction", "Schur complement", NULL, SSStarReductionTypes, (PetscEnum)rtype, (PetscEnum *)&rtype, NULL));
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
-  PetscCall(PetscOptionsString("-save_reduced", "Write P, f and u_C to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
+  PetscCall(PetscOptionsString("-save_reduced", "Write P, f, u_C and the contact coordinates to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary table", NULL, header, &header, NULL));
   PetscOptionsEnd();
   PetscCall(GetVector3("-traction_top", scene.traction_top));
@@ -176,7 +176,7 @@ int main(int argc, char **argv)
 
   if (hasReduced && isssstar) { /* the reduced problem of the contact nodes, rows in the order of cn.isC */
     Mat         P;
-    Vec         f, uC;
+    Vec         f, uC, xC;
     PetscViewer viewer;
 
     PetscCall(SNESSSStarGetReducedProblem(snes, &P, &f));
@@ -186,6 +186,9 @@ int main(int argc, char **argv)
     PetscCall(VecGetSubVector(u, cn.isC, &uC));
     PetscCall(VecView(uC, viewer));
     PetscCall(VecRestoreSubVector(u, cn.isC, &uC));
+    PetscCall(VecCreateMPIWithArray(PETSC_COMM_WORLD, 3, 3 * cn.n, PETSC_DETERMINE, cn.coords, &xC));
+    PetscCall(VecView(xC, viewer));
+    PetscCall(VecDestroy(&xC));
     PetscCall(PetscViewerDestroy(&viewer));
   }
 

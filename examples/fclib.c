@@ -43,8 +43,8 @@ typedef struct {
   PetscReal   condition, asymmetry; /* of W: sigma_max/sigma_min, max|W - W^T|/max|W|               */
 } FCLibProblem;
 
-/* Our row i (t1, t2, n per block) is FCLib's row Fc(i) ((n, t1, t2) per block) */
-static inline PetscInt Fc(PetscInt i)
+/* Our row i (t1, t2, n per block) is FCLib's row FCLibIndex(i) ((n, t1, t2) per block) */
+static inline PetscInt FCLibIndex(PetscInt i)
 {
   return 3 * (i / 3) + (i % 3 + 1) % 3;
 }
@@ -71,7 +71,7 @@ static PetscErrorCode ReadDataset(MPI_Comm comm, hid_t fid, const char file[], c
   hssize_t npoints;
   herr_t   status;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCheck(H5PathExists(fid, path), comm, PETSC_ERR_FILE_UNEXPECTED, "%s: no dataset %s", file, path);
   dset = H5Dopen2(fid, path, H5P_DEFAULT);
   PetscCheck(dset >= 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s is not a dataset", file, path);
@@ -89,7 +89,7 @@ static PetscErrorCode ReadDataset(MPI_Comm comm, hid_t fid, const char file[], c
 
 static PetscErrorCode ReadInts(MPI_Comm comm, hid_t fid, const char file[], const char path[], PetscInt *n, PetscInt **x)
 {
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(ReadDataset(comm, fid, file, path, FCLIB_H5_PETSCINT, sizeof(PetscInt), n, (void **)x));
   PetscFunctionReturn(0);
 }
@@ -98,7 +98,7 @@ static PetscErrorCode ReadInt(MPI_Comm comm, hid_t fid, const char file[], const
 {
   PetscInt n, *x;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(ReadInts(comm, fid, file, path, &n, &x));
   PetscCheck(n == 1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s has %" PetscInt_FMT " entries, expected one number", file, path, n);
   *value = x[0];
@@ -111,7 +111,7 @@ static PetscErrorCode ReadReals(MPI_Comm comm, hid_t fid, const char file[], con
 {
   PetscInt len;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(ReadDataset(comm, fid, file, path, H5T_NATIVE_DOUBLE, sizeof(PetscReal), &len, (void **)x));
   PetscCheck(len == n, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s has %" PetscInt_FMT " entries, expected %" PetscInt_FMT, file, path, len, n);
   PetscFunctionReturn(0);
@@ -121,7 +121,7 @@ static PetscErrorCode ReadVec(MPI_Comm comm, hid_t fid, const char file[], const
 {
   PetscReal *x;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(ReadReals(comm, fid, file, path, n, &x));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, v));
   for (PetscInt i = 0; i < n; i++) PetscCall(VecSetValue(*v, i, x[i], INSERT_VALUES));
@@ -142,7 +142,7 @@ static PetscErrorCode ReadSparseMatrix(MPI_Comm comm, hid_t fid, const char file
   PetscInt   m, n, nz, np, ni, nx, nnz, *p, *idx, *row, *col, *perRow;
   PetscReal *x;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/m", group));
   PetscCall(ReadInt(comm, fid, file, path, &m));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/n", group));
@@ -197,7 +197,7 @@ static PetscErrorCode ReadSparseMatrix(MPI_Comm comm, hid_t fid, const char file
 /* Friction coefficients: nc finite values >= 0 */
 static PetscErrorCode ReadFriction(MPI_Comm comm, hid_t fid, FCLibProblem *pb, const char path[])
 {
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(ReadReals(comm, fid, pb->file, path, pb->nc, &pb->mu));
   for (PetscInt c = 0; c < pb->nc; c++) PetscCheck(!PetscIsInfOrNanReal(pb->mu[c]) && pb->mu[c] >= 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s[%" PetscInt_FMT "] = %g is not a friction coefficient >= 0", pb->file, path, c, (double)pb->mu[c]);
   PetscFunctionReturn(0);
@@ -212,7 +212,7 @@ static PetscErrorCode Condense(MPI_Comm comm, FCLibProblem *pb, Vec w)
   Mat                X;
   Vec                y;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(MatGetSize(pb->H, &n, &m));
   PetscCall(MatGetFactor(pb->M, MATSOLVERMUMPS, MAT_FACTOR_LU, &pb->Mlu));
   PetscCall(MatFactorInfoInitialize(&info));
@@ -238,7 +238,7 @@ static PetscErrorCode ReadSpaceDimension(MPI_Comm comm, hid_t fid, const char fi
   char     path[PETSC_MAX_PATH_LEN];
   PetscInt d;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/spacedim", group));
   PetscCall(ReadInt(comm, fid, file, path, &d));
   PetscCheck(d == 3, comm, PETSC_ERR_SUP, "%s: %s = %" PetscInt_FMT "; ssstar solves 3D contact (spacedim 3)", file, path, d);
@@ -250,7 +250,7 @@ static PetscErrorCode ReadLocalProblem(MPI_Comm comm, hid_t fid, FCLibProblem *p
   PetscInt m, n;
   Mat      Wsparse;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCheck(!H5PathExists(fid, "/fclib_local/V") && !H5PathExists(fid, "/fclib_local/R"), comm, PETSC_ERR_SUP, "%s: equality constraints (/fclib_local/V, R) are not supported", pb->file);
   PetscCall(ReadSpaceDimension(comm, fid, pb->file, "/fclib_local"));
   PetscCall(ReadSparseMatrix(comm, fid, pb->file, "/fclib_local/W", &Wsparse));
@@ -270,7 +270,7 @@ static PetscErrorCode ReadGlobalProblem(MPI_Comm comm, hid_t fid, FCLibProblem *
   Mat      Hsparse;
   Vec      w;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCheck(!H5PathExists(fid, "/fclib_global/G"), comm, PETSC_ERR_SUP, "%s: equality constraints (/fclib_global/G, b) are not supported", pb->file);
   PetscCall(ReadSpaceDimension(comm, fid, pb->file, "/fclib_global"));
   PetscCall(ReadSparseMatrix(comm, fid, pb->file, "/fclib_global/M", &pb->M));
@@ -296,7 +296,7 @@ static PetscErrorCode FCLibRead(MPI_Comm comm, const char file[], FCLibProblem *
   htri_t    ishdf5;
   hid_t     fid;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(PetscMemzero(pb, sizeof(*pb)));
   pb->file = file;
   PetscCall(PetscTestFile(file, 'r', &readable));
@@ -315,7 +315,7 @@ static PetscErrorCode FCLibRead(MPI_Comm comm, const char file[], FCLibProblem *
 
 static PetscErrorCode FCLibDestroy(FCLibProblem *pb)
 {
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(MatDestroy(&pb->W));
   PetscCall(VecDestroy(&pb->q));
   PetscCall(PetscFree(pb->mu));
@@ -339,7 +339,7 @@ static PetscErrorCode InvertW(MPI_Comm comm, FCLibProblem *pb, Mat *P)
   PetscInt           N = 3 * pb->nc, lda, rank = 0;
   PetscBLASInt       bn, lwork = -1, info, one = 1, *pivots;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(N, &bn));
   PetscCall(MatDenseGetLDA(pb->W, &lda));
   PetscCall(MatDenseGetArrayRead(pb->W, &w));
@@ -396,7 +396,7 @@ static PetscErrorCode CreateContactProblem(MPI_Comm comm, const FCLibProblem *pb
   PetscScalar       *row;
   Vec                Pq;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(PetscSplitOwnership(comm, &nloc, &nc));
   PetscCall(MatCreateDense(comm, 3 * nloc, 3 * nloc, N, N, NULL, P));
   PetscCall(MatGetOwnershipRange(*P, &lo, &hi));
@@ -404,7 +404,7 @@ static PetscErrorCode CreateContactProblem(MPI_Comm comm, const FCLibProblem *pb
   for (PetscInt j = 0; j < N; j++) cols[j] = j;
   PetscCall(MatDenseGetArrayRead(Pfc, &pa));
   for (PetscInt i = lo; i < hi; i++) {
-    for (PetscInt j = 0; j < N; j++) row[j] = pa[Fc(i) + Fc(j) * N];
+    for (PetscInt j = 0; j < N; j++) row[j] = pa[FCLibIndex(i) + FCLibIndex(j) * N];
     PetscCall(MatSetValues(*P, 1, &i, N, cols, row, INSERT_VALUES));
   }
   PetscCall(MatDenseRestoreArrayRead(Pfc, &pa));
@@ -416,7 +416,7 @@ static PetscErrorCode CreateContactProblem(MPI_Comm comm, const FCLibProblem *pb
   PetscCall(MatMult(Pfc, pb->q, Pq));
   PetscCall(MatCreateVecs(*P, NULL, f));
   PetscCall(VecGetArrayRead(Pq, &fa));
-  for (PetscInt i = lo; i < hi; i++) PetscCall(VecSetValue(*f, i, fa[Fc(i)], INSERT_VALUES));
+  for (PetscInt i = lo; i < hi; i++) PetscCall(VecSetValue(*f, i, fa[FCLibIndex(i)], INSERT_VALUES));
   PetscCall(VecRestoreArrayRead(Pq, &fa));
   PetscCall(VecAssemblyBegin(*f));
   PetscCall(VecAssemblyEnd(*f));
@@ -438,7 +438,7 @@ static PetscErrorCode GatherFCLibOrder(Vec x, Vec *xfc)
   PetscScalar       *b;
   PetscInt           N;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(VecScatterCreateToAll(x, &toAll, &all));
   PetscCall(VecScatterBegin(toAll, x, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(toAll, x, all, INSERT_VALUES, SCATTER_FORWARD));
@@ -446,7 +446,7 @@ static PetscErrorCode GatherFCLibOrder(Vec x, Vec *xfc)
   PetscCall(VecGetSize(all, &N));
   PetscCall(VecGetArrayRead(all, &a));
   PetscCall(VecGetArrayWrite(*xfc, &b));
-  for (PetscInt i = 0; i < N; i++) b[Fc(i)] = a[i];
+  for (PetscInt i = 0; i < N; i++) b[FCLibIndex(i)] = a[i];
   PetscCall(VecRestoreArrayWrite(*xfc, &b));
   PetscCall(VecRestoreArrayRead(all, &a));
   PetscCall(VecDestroy(&all));
@@ -480,7 +480,7 @@ static PetscErrorCode FCLibError(const FCLibProblem *pb, Vec r, PetscReal *error
   const PetscScalar *ra, *ua;
   PetscReal          sum = 0, qnorm;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(VecDuplicate(pb->q, &u));
   PetscCall(MatMult(pb->W, r, u));
   PetscCall(VecAXPY(u, 1.0, pb->q));
@@ -514,7 +514,7 @@ static PetscErrorCode CoulombViolation(const FCLibProblem *pb, Vec u, Vec r, Pet
   const PetscScalar *ua, *ra;
   PetscReal          umax, rmax, worst = 0;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(VecNorm(u, NORM_INFINITY, &umax));
   PetscCall(VecNorm(r, NORM_INFINITY, &rmax));
   umax = umax > 0 ? umax : 1; /* u = 0: the terms in u vanish */
@@ -546,7 +546,7 @@ static PetscErrorCode WriteDataset(const char out[], hid_t group, const char nam
   hid_t              space, dset;
   herr_t             status;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(VecGetSize(x, &n));
   dim   = (hsize_t)n;
   space = H5Screate_simple(1, &dim, NULL);
@@ -568,7 +568,7 @@ static PetscErrorCode WriteSolution(const char out[], const FCLibProblem *pb, Ve
   hid_t       fin, fout, sol;
   herr_t      status;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   fout = H5Fcreate(out, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   PetscCheck(fout >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot create the HDF5 file %s", out);
   fin = H5Fopen(pb->file, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -591,7 +591,7 @@ static PetscErrorCode CheckOutputIsNotInput(MPI_Comm comm, const char file[], co
 {
   struct stat in, o;
 
-  PetscFunctionBegin;
+  PetscFunctionBeginUser;
   PetscCall(SSStarCheckOutputFile(comm, out));
   PetscCheck(stat(out, &o) || stat(file, &in) || in.st_dev != o.st_dev || in.st_ino != o.st_ino, comm, PETSC_ERR_ARG_WRONG, "-o %s is the problem file %s: it would be overwritten", out, file);
   PetscFunctionReturn(0);
@@ -671,8 +671,8 @@ int main(int argc, char **argv)
 
   base = strrchr(file, '/');
   base = base ? base + 1 : file;
-  if (header) PetscCall(PetscPrintf(comm, "%-44s %-6s %8s %8s %8s %5s %8s %8s %11s %11s %8s reason\n", "problem", "kind", "contacts", "cond(W)", "asym(W)", "iters", "setup[s]", "solve[s]", "FCLib-error", "||z||/scale", "Coulomb"));
-  PetscCall(PetscPrintf(comm, "%-44s %-6s %8" PetscInt_FMT " %8.1e %8.1e %5" PetscInt_FMT " %8.3f %8.3f %11.1e %11.1e %8.1e %s\n", base, pb.global ? "global" : "local", pb.nc, (double)pb.condition, (double)pb.asymmetry, its, t1 - t0, t2 - t1, (double)fclibError, (double)(znorm / PetscMax(unorm, gamma * fnorm)), (double)violation, SNESConvergedReasons[reason]));
+  if (header) PetscCall(PetscPrintf(comm, "%-44s %-6s %8s %8s %8s %5s %9s %9s %11s %11s %8s reason\n", "problem", "kind", "contacts", "cond(W)", "asym(W)", "iters", "setup[s]", "solve[s]", "FCLib-error", "||z||/scale", "Coulomb"));
+  PetscCall(PetscPrintf(comm, "%-44s %-6s %8" PetscInt_FMT " %8.1e %8.1e %5" PetscInt_FMT " %9.2e %9.2e %11.1e %11.1e %8.1e %s\n", base, pb.global ? "global" : "local", pb.nc, (double)pb.condition, (double)pb.asymmetry, its, t1 - t0, t2 - t1, (double)fclibError, (double)(znorm / PetscMax(unorm, gamma * fnorm)), (double)violation, SNESConvergedReasons[reason]));
 
   if (hasOut) {
     if (pb.global) { /* v = M^-1 (H r + f) */

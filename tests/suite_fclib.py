@@ -17,7 +17,7 @@ FEM_FILES = ["LMGC_GFC3D_CubeH8.hdf5", "LMGC_GFC3D-i00001-1-00000.hdf5", "LMGC_G
 RIGID_FILES = {"LMGC_100_PR_PerioBox-i00361-60-03000.hdf5": (72, 180), "Capsules-i125-1213.hdf5": (570, 858),
                "BoxesStack_fclib_local_problem_test.hdf5": (72, 144)}
 TOL = 1e-8
-ROW = re.compile(r"^(\S+)\s+(local|global)\s+(\d+)\s+\S+\s+\S+\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)$", re.M)
+ROW = re.compile(r"^(\S+)\s+(local|global)\s+(\d+)\s+\S+\s+\S+\s+(\d+)\s+\S+\s+\S+\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)$", re.M)
 
 
 def fclib(path, *extra, ranks=1, expect_rc=0):

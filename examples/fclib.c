@@ -360,7 +360,7 @@ static PetscErrorCode InvertW(MPI_Comm comm, FCLibProblem *pb, Mat *P)
   PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "%s: the singular values of W did not converge (LAPACK gesvd info %d)", pb->file, (int)info);
   for (PetscInt i = 0; i < N; i++) rank += sigma[i] > N * PETSC_MACHINE_EPSILON * sigma[0];
   pb->condition = sigma[N - 1] > 0 ? sigma[0] / sigma[N - 1] : PETSC_INFINITY;
-  PetscCheck(rank == N, comm, PETSC_ERR_SUP, "%s: W is singular: numerical rank %" PetscInt_FMT " of %" PetscInt_FMT " (condition number %.3g). ssstar solves r = P u - f with P = W^-1 and cannot take a singular W (a rigid-body problem has more contact dofs than body dofs)", pb->file, rank, N, (double)pb->condition);
+  PetscCheck(rank == N, comm, PETSC_ERR_SUP, "%s: W is singular: numerical rank %" PetscInt_FMT " of %" PetscInt_FMT " (condition number %.3g). ssstar solves r = P u - f with P = W^-1 and cannot take a singular W (as in rigid-body problems with more contact dofs than body dofs)", pb->file, rank, N, (double)pb->condition);
 
   for (PetscInt j = 0; j < N; j++)
     for (PetscInt i = 0; i < N; i++) a[i + j * N] = 0.5 * (w[i + j * lda] + w[j + i * lda]);

@@ -14,7 +14,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
             src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
-EXAMPLES := examples/prism examples/generic
+EXAMPLES := examples/prism examples/generic examples/fclib
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"

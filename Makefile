@@ -10,9 +10,10 @@ LIBNAME  := ssstar
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
-            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
+            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c \
+            src/contact/memory.c src/contact/scene.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
-EXAMPLES := examples/prism
+EXAMPLES := examples/prism examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
@@ -29,7 +30,7 @@ all: $(LIB) $(EXAMPLES) $(TESTS)
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
 

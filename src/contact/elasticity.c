@@ -127,10 +127,10 @@ static PetscErrorCode BoundaryTriangle(DM dm, PetscInt f, const char group[], Pe
   PetscBool triangle;
 
   PetscFunctionBegin;
-  PetscCall(DMPlexGetSupportSize(dm, f, &support));
-  PetscCheck(support == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Face %" PetscInt_FMT " of physical group \"%s\" is not on the boundary", f, group);
   PetscCall(GetVertexCoordinates(dm, f, 9, x, &triangle));
   PetscCheck(triangle, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of physical group \"%s\" is not a triangle", f, group);
+  PetscCall(DMPlexGetSupportSize(dm, f, &support));
+  PetscCheck(support == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "The triangle (%g, %g, %g), (%g, %g, %g), (%g, %g, %g) of physical group \"%s\" is not on the boundary of the body", (double)x[0], (double)x[1], (double)x[2], (double)x[3], (double)x[4], (double)x[5], (double)x[6], (double)x[7], (double)x[8], group);
   for (PetscInt k = 0; k < 3; k++) {
     e1[k] = x[3 + k] - x[k];
     e2[k] = x[6 + k] - x[k];

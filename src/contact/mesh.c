@@ -19,7 +19,7 @@ static void GmshOpen(const char geo[], PetscInt level, int *ierr)
 
 /*@C
    SSStarMeshGenerate - meshes geo (a .geo file read with the number L set to level, such as meshes/prism.geo) with the
-   gmsh C API on rank 0 and writes msh (format 2.2)
+   gmsh C API on rank 0 and writes msh (format 4.1)
 
    Notes:
    A .geo may declare the node count of a level with SetNumber("ssstar/nodes", <formula of L>); the level is then
@@ -64,7 +64,7 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
 
     GmshOpen(geo, level, &ierr);
     if (!ierr) gmshModelMeshGenerate(3, &ierr);
-    if (!ierr) gmshOptionSetNumber("Mesh.MshFileVersion", 2.2, &ierr);
+    if (!ierr) gmshOptionSetNumber("Mesh.MshFileVersion", 4.1, &ierr);
     /* write, then rename: a concurrent run never reads half a file */
     PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.%d.msh", msh, (int)getpid()));
     if (!ierr) gmshWrite(tmp, &ierr);
@@ -84,11 +84,76 @@ typedef enum {
   MESH_FILE_EMPTY,
   MESH_FILE_NOT_GMSH,
   MESH_FILE_VERSION,
-  MESH_FILE_NO_NODES
+  MESH_FILE_NO_NODES,
+  MESH_FILE_TAGS
 } MeshFileStatus;
 
-/* The node count from the header of the $Nodes section (msh 2.2 and 4.1, ASCII or binary) */
-static MeshFileStatus ReadNodeCount(const char file[], double *version, PetscInt *nodes)
+/* The dimension of a gmsh element type (0 for the types a scene does not use) */
+static int ElementDimension(int type)
+{
+  switch (type) {
+  case 2:
+  case 3:
+  case 9:
+  case 10:
+    return 2;
+  case 4:
+  case 5:
+  case 6:
+  case 7:
+  case 11:
+    return 3;
+  default:
+    return 0;
+  }
+}
+
+/*
+   PETSc 3.18 reads both tags of an msh 2.2 element (physical, elementary) as physical groups: an element whose
+   elementary tag is the tag of another physical group of its dimension would land in that group too. Finds the first
+   such element of an ASCII msh 2.2 file (elementary tag *tag, dimension *dim); *tag = -1 when there is none.
+*/
+static void FindTagCollision(FILE *fp, int *dim, int *tag)
+{
+  char line[1024];
+  int  phys[2][4096], nphys[2] = {0, 0};
+
+  *tag = -1;
+  while (fgets(line, sizeof(line), fp)) {
+    if (!strncmp(line, "$PhysicalNames", 14)) {
+      int n = 0;
+
+      if (!fgets(line, sizeof(line), fp) || sscanf(line, "%d", &n) != 1) return;
+      for (int i = 0; i < n && fgets(line, sizeof(line), fp); i++) {
+        int d, t;
+
+        if (sscanf(line, "%d %d", &d, &t) == 2 && d >= 2 && d <= 3 && nphys[d - 2] < 4096) phys[d - 2][nphys[d - 2]++] = t;
+      }
+    }
+    if (!strncmp(line, "$Elements", 9)) {
+      long n = 0;
+
+      if (!fgets(line, sizeof(line), fp) || sscanf(line, "%ld", &n) != 1) return;
+      for (long e = 0; e < n && fgets(line, sizeof(line), fp); e++) {
+        int id, type, ntags, physical, elementary, d;
+
+        if (sscanf(line, "%d %d %d %d %d", &id, &type, &ntags, &physical, &elementary) != 5 || ntags < 2 || elementary == physical) continue;
+        d = ElementDimension(type);
+        if (!d) continue;
+        for (int i = 0; i < nphys[d - 2]; i++)
+          if (phys[d - 2][i] == elementary) {
+            *dim = d;
+            *tag = elementary;
+            return;
+          }
+      }
+      return;
+    }
+  }
+}
+
+/* The node count from the header of the $Nodes section (msh 2.2 and 4.1, ASCII or binary), and the tag check of msh 2.2 */
+static MeshFileStatus ReadNodeCount(const char file[], double *version, PetscInt *nodes, int *dim, int *tag)
 {
   FILE          *fp = fopen(file, "rb");
   char           line[1024];
@@ -117,23 +182,30 @@ static MeshFileStatus ReadNodeCount(const char file[], double *version, PetscInt
       break;
     }
   }
+  if (status == MESH_FILE_OK && *version < 4.0 && !binary) {
+    rewind(fp);
+    FindTagCollision(fp, dim, tag);
+    if (*tag >= 0) status = MESH_FILE_TAGS;
+  }
   fclose(fp);
   return status;
 }
 
 /*@C
    SSStarMeshFileNodes - the number of nodes of a gmsh mesh file from its header, with an error naming the file when
-   it is missing, empty, not a gmsh mesh or without nodes
+   it is missing, empty, not a gmsh mesh, without nodes, or an msh 2.2 file whose elementary tags PETSc would take for
+   physical groups
 @*/
 PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *nodes)
 {
   PetscMPIInt rank;
-  int         status = MESH_FILE_OK;
+  int         status = MESH_FILE_OK, tagdim[2] = {0, -1};
   double      version = 0;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) status = (int)ReadNodeCount(file, &version, nodes);
+  if (rank == 0) status = (int)ReadNodeCount(file, &version, nodes, &tagdim[0], &tagdim[1]);
+  PetscCallMPI(MPI_Bcast(tagdim, 2, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&status, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(nodes, 1, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&version, 1, MPI_DOUBLE, 0, comm));
@@ -142,6 +214,7 @@ PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *n
   PetscCheck(status != MESH_FILE_NOT_GMSH, comm, PETSC_ERR_FILE_UNEXPECTED, "The mesh file %s is not a gmsh mesh (it does not start with $MeshFormat)", file);
   PetscCheck(status != MESH_FILE_VERSION, comm, PETSC_ERR_FILE_UNEXPECTED, "The mesh file %s is not in gmsh format 2.2 or 4.x", file);
   PetscCheck(status != MESH_FILE_NO_NODES, comm, PETSC_ERR_FILE_UNEXPECTED, "The mesh file %s has no nodes (no readable $Nodes section)", file);
+  PetscCheck(status != MESH_FILE_TAGS, comm, PETSC_ERR_FILE_UNEXPECTED, "The msh 2.2 file %s has elements of dimension %d whose elementary tag %d is the tag of a physical group: PETSc would put them in that group too. Write it as msh 4.1 (gmsh -format msh41) or number the physical groups apart", file, tagdim[0], tagdim[1]);
   PetscFunctionReturn(0);
 }
 
@@ -236,6 +309,15 @@ static PetscErrorCode CheckGroups(DM dm, const char file[], PetscInt n, const SS
     PetscCallMPI(MPI_Bcast(&verdict, 1, MPI_INT, 0, comm));
     PetscCheck(verdict != 1, comm, PETSC_ERR_ARG_WRONG, "Mesh %s has no physical group named \"%s\" (option %s); its groups: %s", file, uses[g].group, uses[g].option, available[0] ? available : "none");
     PetscCheck(verdict != 2, comm, PETSC_ERR_ARG_WRONG, "Physical group \"%s\" of mesh %s is not a %s group, as option %s needs", uses[g].group, file, kinds[uses[g].kind], uses[g].option);
+  }
+  /* then every rank gets each label once, with the vertices and edges of its faces or cells */
+  for (PetscInt g = 0; g < n; g++) {
+    DMLabel   label;
+    PetscBool seen = PETSC_FALSE;
+
+    for (PetscInt h = 0; h < g && !seen; h++) PetscCall(PetscStrcmp(uses[g].group, uses[h].group, &seen));
+    if (seen) continue;
+    PetscCall(DMGetLabel(dm, uses[g].group, &label));
     if (!label) {
       PetscCall(DMCreateLabel(dm, uses[g].group));
       PetscCall(DMGetLabel(dm, uses[g].group, &label));

@@ -14,7 +14,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
             src/contact/memory.c src/contact/scene.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/contact
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
@@ -41,7 +41,7 @@ $(LIB): $(LIB_OBJ)
 examples/%: examples/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes: tests/%: tests/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 # deliberately not linked with libssstar: it gets the type through -dll_append

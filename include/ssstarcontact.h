@@ -29,6 +29,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneGetSizes(SSStarScene, PetscInt *, PetscIn
 PETSC_EXTERN PetscErrorCode SSStarSceneAssemble(SSStarScene, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SSStarSceneHasContact(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactDofs(SSStarScene, IS *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetContactNodes(SSStarScene, PetscInt *, const PetscReal *[], const PetscReal *[], const PetscReal *[], const PetscReal *[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetContact(SSStarScene, SNES);
 
 /* What the contact nodes of a group (or of all groups) carry at a solution */

@@ -48,7 +48,7 @@ static PetscErrorCode GetFiniteArray(MPI_Comm comm, const char option[], PetscIn
   PetscCall(PetscOptionsGetRealArray(NULL, NULL, option, v, &got, set));
   if (!*set) PetscFunctionReturn(0);
   PetscCheck(got == n, comm, PETSC_ERR_ARG_WRONG, "Option %s needs %" PetscInt_FMT " comma-separated values %s (got %" PetscInt_FMT ")", option, n, form, got);
-  for (PetscInt k = 0; k < n; k++) PetscCheck(!PetscIsInfOrNanReal(v[k]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s: value %" PetscInt_FMT " is %g, not a finite number", option, k + 1, (double)v[k]);
+  for (PetscInt k = 0; k < n; k++) PetscCheck(!PetscIsInfOrNanReal(v[k]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s: value %" PetscInt_FMT " is not a finite number (%g)", option, k + 1, (double)v[k]);
   PetscFunctionReturn(0);
 }
 
@@ -487,7 +487,7 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
       inside.gap   = scene->gap[n];
       PetscCall(PetscArraycpy(inside.x, x, 3));
     }
-    scene->gap[n] = PetscMax(scene->gap[n], 0.0); /* round-off below the plane */
+    if (PetscAbsReal(scene->gap[n]) <= tol) scene->gap[n] = 0.0; /* on the plane up to round-off: touching */
     for (PetscInt k = 0; k < 3; k++) {
       scene->coords[3 * n + k] = x[k];
       scene->normal[3 * n + k] = scene->contact[group].normal[k];
@@ -611,6 +611,22 @@ PetscErrorCode SSStarSceneGetContactDofs(SSStarScene scene, IS *dofs)
 {
   PetscFunctionBegin;
   *dofs = scene->isC;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneGetContactNodes - the owned contact nodes (in the order of SSStarSceneGetContactDofs()): their number,
+   coordinates and plane normals (3 per node), initial gaps and tributary areas (1 per node); NULL for what is not wanted.
+   The arrays belong to the scene.
+@*/
+PetscErrorCode SSStarSceneGetContactNodes(SSStarScene scene, PetscInt *n, const PetscReal *coords[], const PetscReal *normals[], const PetscReal *gaps[], const PetscReal *areas[])
+{
+  PetscFunctionBegin;
+  if (n) *n = scene->n;
+  if (coords) *coords = scene->coords;
+  if (normals) *normals = scene->normal;
+  if (gaps) *gaps = scene->gap;
+  if (areas) *areas = scene->area;
   PetscFunctionReturn(0);
 }
 

@@ -24,7 +24,7 @@ export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
 
-.PHONY: all run test bench clean distclean
+.PHONY: all run test bench bench-scenes scenes clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS)
 
 config/ssstar.mk: configure.py
@@ -57,8 +57,18 @@ test: all
 bench: all
 	$(PYTHON) bench/table2.py
 
+# what an effect costs: the prism scene with effects switched on and off (bench/output/scenes.csv)
+bench-scenes: all
+	$(PYTHON) bench/scenes.py
+
+# every scene of scenes/ at its level: scenes/output/NAME.h5, .xmf and .png
+SCENES := $(basename $(notdir $(wildcard scenes/*.opts)))
+scenes: all
+	@mkdir -p scenes/output
+	for s in $(SCENES); do examples/contact -options_file scenes/$$s.opts -o scenes/output/$$s.h5 && $(PYTHON) examples/plot_contact.py scenes/output/$$s.h5 || exit 1; done
+
 clean:
-	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf
+	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output scenes/output meshes/*.msh *.h5 *.xmf
 
 distclean: clean
 	rm -f config/ssstar.mk

@@ -1,7 +1,7 @@
 static const char help[] = "The seed's test problem: an elastic prism pressed onto a rigid plane with Coulomb friction,\n\
 solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\n\
   -level <6>                 mesh level L of meshes/prism.geo: (4L+1)x(2L+1)x(2L+1) nodes\n\
-  -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -level)\n\
+  -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -geo, -level)\n\
   -geo <file.geo>            the geometry meshed for -level (default: meshes/prism.geo of the source tree)\n\
   -mesh_scale <1>            multiply the mesh coordinates by this (a change of length unit, e.g. 1e-3 for mm -> m)\n\
   -E <2.1e5> -nu <0.3>       Young's modulus and Poisson ratio\n\
@@ -10,7 +10,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -traction_right <-200,30,200> traction on the group right\n\
   -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
-  -summary_header <true>     print the header line of the summary table\n";
+  -summary_header <true>     print the header line of the summary table\n\
+Every option of examples/contact applies too (README \"Scenes\"): the prism is the scene scenes/prism.opts.\n";
 
 #include <ssstar.h>
 #include <ssstarcontact.h>

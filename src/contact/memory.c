@@ -72,6 +72,12 @@ PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, PetscReal conta
   PetscFunctionBegin;
   PetscCall(MemoryLimit(comm, &limit, &fromOption));
   if (limit <= 0) PetscFunctionReturn(0); /* no /proc/meminfo: nothing to compare with */
-  PetscCheck(estimate <= limit, comm, PETSC_ERR_MEM, "%s: %.4g nodes, %.4g contact nodes need at least %.3g GB (mesh and assembly %.3g GB, factorization of K %.3g GB, dense contact matrices %.3g GB), more than the %.3g GB %s; refused before the work", what, (double)nodes, (double)contact, (double)(estimate / 1e9), (double)(mesh / 1e9), (double)(factor / 1e9), (double)(dense / 1e9), (double)(limit / 1e9), fromOption ? "of -snes_ssstar_memory_limit" : "available on this machine (MemAvailable)");
+  if (estimate > limit) {
+    char counts[64];
+
+    if (contact > 0) PetscCall(PetscSNPrintf(counts, sizeof(counts), "%.4g nodes, %.4g contact nodes", (double)nodes, (double)contact));
+    else PetscCall(PetscSNPrintf(counts, sizeof(counts), "%.4g nodes", (double)nodes));
+    SETERRQ(comm, PETSC_ERR_MEM, "%s: %s need at least %.3g GB (mesh and assembly %.3g GB, factorization of K %.3g GB, dense contact matrices %.3g GB), more than the %.3g GB %s; refused before the work", what, counts, (double)(estimate / 1e9), (double)(mesh / 1e9), (double)(factor / 1e9), (double)(dense / 1e9), (double)(limit / 1e9), fromOption ? "of -snes_ssstar_memory_limit" : "available on this machine (MemAvailable)");
+  }
   PetscFunctionReturn(0);
 }

@@ -12,10 +12,11 @@ PREFIX   ?= /usr/local
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
-            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
+            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c \
+            src/contact/memory.c src/contact/scene.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
-EXAMPLES := examples/prism examples/generic examples/fclib
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
+EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
@@ -25,13 +26,13 @@ export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
 
-.PHONY: all run test bench accuracy install clean distclean
+.PHONY: all run test bench bench-scenes scenes accuracy install clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS)
 
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
 
@@ -42,7 +43,7 @@ $(LIB): $(LIB_OBJ)
 examples/%: examples/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes: tests/%: tests/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 # deliberately not linked with libssstar: it gets the type through -dll_append
@@ -71,8 +72,18 @@ bench: all
 accuracy: all
 	$(PYTHON) bench/accuracy.py
 
+# what an effect costs: the prism scene with effects switched on and off (bench/output/scenes.csv)
+bench-scenes: all
+	$(PYTHON) bench/scenes.py
+
+# every scene of scenes/ at its level: scenes/output/NAME.h5, .xmf and .png
+SCENES := $(basename $(notdir $(wildcard scenes/*.opts)))
+scenes: all
+	@mkdir -p scenes/output
+	for s in $(SCENES); do examples/contact -options_file scenes/$$s.opts -o scenes/output/$$s.h5 && $(PYTHON) examples/plot_contact.py scenes/output/$$s.h5 || exit 1; done
+
 clean:
-	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf
+	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output scenes/output meshes/*.msh *.h5 *.xmf
 
 distclean: clean
 	rm -f config/ssstar.mk

@@ -84,7 +84,7 @@ typedef struct {
   SSStarState *userStates;                 /* the same in the user's node order                     */
   PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
   PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
-  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f (global frame); z, d, b, y, dv (nodes' frames) */
+  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f, dv (global frame); z, d, b, y (nodes' frames) */
   SSStarNewton newton;
 } SNES_SSStar;
 

@@ -49,19 +49,23 @@ def help_of(program, *args):
     return run(mpiexec(1, os.path.join(ROOT, "examples", program), "-help", *args))
 
 
-@test("-help lists every option with its default: each -snes_ssstar_* option of the library in examples/prism -help, and each option an example reads in that example's -help")
+@test("-help lists every option with its default: each -snes_ssstar_* option of the library in examples/prism -help, each scene option of src/contact in examples/prism and examples/contact -help, and each option an example reads in that example's -help")
 def help_lists_every_option():
-    library = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)) if o.startswith("-snes_ssstar")}
-    expect(len(library) >= 5, "found only %s in src/" % sorted(library))
+    sources = glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)
+    library = {o for o in options_in(sources) if o.startswith("-snes_ssstar")}
+    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "contact", "*.c")), LITERAL) if not o.startswith("-dm_")}
+    expect(len(library) >= 5 and len(scene) >= 10, "found only %s and %s in src/" % (sorted(library), sorted(scene)))
+    args = {"prism": ["-level", "2"], "contact": ["-options_file", os.path.join(ROOT, "scenes", "prism.opts"), "-level", "2"]}
     for source in sorted(glob.glob(os.path.join(ROOT, "examples", "*.c"))):
         program = os.path.splitext(os.path.basename(source))[0]
         if not os.path.exists(os.path.join(ROOT, "examples", program)):
             continue
-        wanted = options_in([source], LITERAL) | (library if program == "prism" else set())
-        text = help_of(program, *(["-level", "2"] if program == "prism" else []))
+        wanted = options_in([source], LITERAL) | (library if program == "prism" else set()) | (scene if program in args else set())
+        text = help_of(program, *args.get(program, []))
         for name in sorted(wanted):
-            # "-name <default>", or for a monitor "-name ascii[:...]" (off unless given)
-            expect(re.search(re.escape(name) + r"\s+(<|ascii\[)", text) is not None, "examples/%s -help does not list %s with its default" % (program, name), text)
+            # "-name <default>", "-name_<G> <default>" for a family of options, or for a monitor "-name ascii[:...]"
+            pattern = re.escape(name) + (r"<G>\s+<" if name.endswith("_") else r"\s+(<|ascii\[)")
+            expect(re.search(pattern, text) is not None, "examples/%s -help does not list %s with its default" % (program, name), text)
 
 
 PY_LINE = re.compile(r"petsc4py \+ ssstar: (\S+) after (\d+) iterations; (\d+) contact nodes; Coulomb law violation (\S+); \|u - u_C\|/\|u_C\| = (\S+)")

@@ -20,6 +20,9 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   PetscFunctionReturn(0);
 }
 
+/*@C
+   SSStarSceneDestroy - frees the scene, its mesh and contact nodes
+@*/
 PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
 {
   SSStarScene s = *scene;
@@ -568,6 +571,9 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscFunctionReturn(0);
 }
 
+/*@C
+   SSStarSceneGetDM - the distributed mesh of the scene, with its displacement section; owned by the scene
+@*/
 PetscErrorCode SSStarSceneGetDM(SSStarScene scene, DM *dm)
 {
   PetscFunctionBegin;
@@ -596,6 +602,9 @@ PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
   PetscFunctionReturn(0);
 }
 
+/*@C
+   SSStarSceneHasContact - whether the scene names contact groups (-contact); without, one linear solve is all there is to do
+@*/
 PetscErrorCode SSStarSceneHasContact(SSStarScene scene, PetscBool *has)
 {
   PetscFunctionBegin;

@@ -18,6 +18,8 @@ PACKAGES = {
     "python3-numpy": lambda: debian_python_has("numpy"),
     "python3-matplotlib": lambda: debian_python_has("matplotlib"),
     "python3-h5py": lambda: debian_python_has("h5py"),
+    "pkg-config": lambda: shutil.which("pkg-config") is not None,
+    "python3-petsc4py": lambda: debian_python_has("petsc4py"),
 }
 DEBIAN_PYTHON = "/usr/bin/python3"
 REQUIRED_PETSC_PACKAGES = ["MUMPS", "HDF5", "SCALAPACK"]

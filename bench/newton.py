@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The Newton phase of ssstar (event SSStarNS) on the prism, without the Schur step: bench/newton_step loads P, f of a
-level (computed once into bench/output/data/) and solves the reduced problem from u = 0.
+level (written once into bench/output/data/ by examples/prism -save_reduced) and solves the reduced problem from u = 0.
 
   bench/newton.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--lu-sizes 1000,2000,3300,5000]
 
@@ -37,8 +37,17 @@ def run(cmd):
     return p.stdout
 
 
+def data(level):
+    """P, f of the prism at this level (the Schur step runs once)"""
+    path = os.path.join(OUT, "data", "P_L%d.bin" % level)
+    if not os.path.exists(path):
+        print("computing P, f of level %d into %s" % (level, path), flush=True)
+        run(["mpiexec", "-n", "1", os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_max_it", "0", "-save_reduced", path])
+    return path
+
+
 def newton(level, ranks, binding, options, reuse, repeat):
-    out = run(mpiexec(ranks, binding, STEP, "-level", str(level), "-repeat", str(repeat), "-snes_ssstar_lu_reuse", reuse, *options))
+    out = run(mpiexec(ranks, binding, STEP, "-file", data(level), "-level", str(level), "-repeat", str(repeat), "-snes_ssstar_lu_reuse", reuse, *options))
     lines = [l for l in out.splitlines() if l and not l.startswith("#")]
     runs = list(csv.DictReader(io.StringIO("\n".join(lines))))
     if not runs:

@@ -1,109 +1,37 @@
-static const char help[] = "The Newton phase of ssstar on the prism's reduced problem, without the Schur step: P and f of a level are\n\
-computed once (whole-body solve through examples/prism's path) and kept in a PETSc binary file; every run then\n\
-loads them and solves the reduced problem from u = 0, repeatedly, timing the event SSStarNS.\n\
-  -level <10>             prism level\n\
-  -data <bench/output/data> folder of the files P_L<level>.bin\n\
-  -repeat <3>             solves; one line per solve and the medians\n\
+static const char help[] = "The Newton phase of ssstar without the Schur step: loads P and f from a file written by\n\
+examples/prism -save_reduced and solves the reduced problem from u = 0, repeatedly, timing the event SSStarNS.\n\
+  -file <P.bin>           the file of examples/prism -save_reduced (P, then f)\n\
+  -level <0>              the level it was written for (printed only)\n\
+  -repeat <3>             solves; one CSV line per solve and the median\n\
   -csv_header <true>      print the header of the CSV lines\n\
-Any -snes_ssstar_* option applies (-snes_ssstar_lu_reuse, -snes_ssstar_newton_ksp_*).\n";
+Any -snes_ssstar_* option applies (-snes_ssstar_lu_reuse, -snes_ssstar_lu_threads, -snes_ssstar_newton_ksp_*).\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
-
-#ifndef SSSTAR_MESH_DIR
-  #define SSSTAR_MESH_DIR "meshes"
-#endif
 
 PETSC_EXTERN PetscLogEvent SSSTAR_NewtonStep;
 
-typedef struct {
-  Mat K;
-  Vec b;
-} Body;
-
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0); /* K, assembled once (without a routine SNESSetUp() would install finite differences) */
-}
-
-/* P, f of the prism at this level (the default scene), as the whole-body solve computes them, written to file */
-static PetscErrorCode WriteReducedProblem(PetscInt level, const char file[])
-{
-  SSStarScene        scene = {2.1e5, 0.3, {0, 0, -500}, {-200, 30, 200}};
-  char               msh[PETSC_MAX_PATH_LEN];
-  DM                 dm;
-  Vec                tags, u, f;
-  Mat                P;
-  Body               body;
-  SSStarContactNodes cn;
-  SNES               snes;
-  PetscViewer        viewer;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(msh, sizeof(msh), "%s/prism_L%" PetscInt_FMT ".msh", SSSTAR_MESH_DIR, level));
-  PetscCall(SSStarMeshGeneratePrism(PETSC_COMM_WORLD, SSSTAR_MESH_DIR "/prism.geo", level, msh));
-  PetscCall(SSStarMeshLoad(PETSC_COMM_WORLD, msh, &dm, &tags));
-  PetscCall(SSStarAssembleElasticity(dm, &scene, &body.K, &body.b));
-  PetscCall(SSStarContactNodesCreate(dm, tags, &cn));
-  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
-  PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, NULL));
-  PetscCall(SNESSSStarSetContactNodes(snes, cn.isC, NULL, NULL));
-  PetscCall(SNESSetFromOptions(snes));
-  PetscCall(SNESSetTolerances(snes, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 0, PETSC_DEFAULT));
-  PetscCall(DMCreateGlobalVector(dm, &u));
-  PetscCall(VecZeroEntries(u));
-  PetscCall(SNESSolve(snes, NULL, u));
-  PetscCall(SNESSSStarGetReducedProblem(snes, &P, &f));
-  PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_WRITE, &viewer));
-  PetscCall(VecView(f, viewer));
-  PetscCall(MatView(P, viewer));
-  PetscCall(PetscViewerDestroy(&viewer));
-  PetscCall(SNESDestroy(&snes));
-  PetscCall(VecDestroy(&u));
-  PetscCall(SSStarContactNodesDestroy(&cn));
-  PetscCall(MatDestroy(&body.K));
-  PetscCall(VecDestroy(&body.b));
-  PetscCall(VecDestroy(&tags));
-  PetscCall(DMDestroy(&dm));
-  PetscFunctionReturn(0);
-}
-
-/* P dense and f, rows split by whole nodes */
+/* P dense and f, the rows split by whole nodes */
 static PetscErrorCode ReadReducedProblem(const char file[], Mat *P, Vec *f)
 {
   PetscViewer viewer;
-  PetscInt    N, nodes = PETSC_DECIDE, Nnodes;
+  PetscInt    header[4], N, nodes = PETSC_DECIDE, Nnodes;
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_READ, &viewer));
-  PetscCall(VecCreate(PETSC_COMM_WORLD, f));
-  PetscCall(VecLoad(*f, viewer)); /* for the size; then again with whole nodes on each rank */
-  PetscCall(VecGetSize(*f, &N));
-  PetscCall(VecDestroy(f));
+  PetscCall(PetscViewerBinaryRead(viewer, header, 4, NULL, PETSC_INT)); /* MAT_FILE_CLASSID, rows, columns, nonzeros */
   PetscCall(PetscViewerDestroy(&viewer));
+  PetscCheck(header[0] == MAT_FILE_CLASSID && header[1] == header[2] && header[1] % 3 == 0, PETSC_COMM_WORLD, PETSC_ERR_FILE_UNEXPECTED, "%s does not start with a square matrix of 3 dofs per node", file);
+  N      = header[1];
   Nnodes = N / 3;
   PetscCall(PetscSplitOwnership(PETSC_COMM_WORLD, &nodes, &Nnodes));
   PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_READ, &viewer));
-  PetscCall(VecCreate(PETSC_COMM_WORLD, f));
-  PetscCall(VecSetSizes(*f, 3 * nodes, N));
-  PetscCall(VecLoad(*f, viewer));
   PetscCall(MatCreate(PETSC_COMM_WORLD, P));
   PetscCall(MatSetSizes(*P, 3 * nodes, 3 * nodes, N, N));
   PetscCall(MatSetType(*P, MATDENSE));
   PetscCall(MatLoad(*P, viewer));
+  PetscCall(VecCreate(PETSC_COMM_WORLD, f));
+  PetscCall(VecSetSizes(*f, 3 * nodes, N));
+  PetscCall(VecLoad(*f, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
 }
@@ -116,9 +44,9 @@ static int CompareReal(const void *a, const void *b)
 
 int main(int argc, char **argv)
 {
-  PetscInt    level = 10, repeat = 3;
-  char        dir[PETSC_MAX_PATH_LEN] = "bench/output/data", file[PETSC_MAX_PATH_LEN];
-  PetscBool   header = PETSC_TRUE, exists;
+  PetscInt    level = 0, repeat = 3;
+  char        file[PETSC_MAX_PATH_LEN] = "P.bin";
+  PetscBool   header = PETSC_TRUE;
   Mat         P;
   Vec         f, u;
   SNES        snes;
@@ -131,17 +59,10 @@ int main(int argc, char **argv)
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-level", &level, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-repeat", &repeat, NULL));
-  PetscCall(PetscOptionsGetString(NULL, NULL, "-data", dir, sizeof(dir), NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-file", file, sizeof(file), NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-csv_header", &header, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-snes_ssstar_lu_reuse", &reuse, NULL));
   PetscCheck(repeat >= 1 && repeat <= 64, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-repeat %" PetscInt_FMT ": 1 to 64", repeat);
-  PetscCall(PetscSNPrintf(file, sizeof(file), "%s/P_L%" PetscInt_FMT ".bin", dir, level));
-  PetscCall(PetscTestFile(file, 'r', &exists));
-  if (!exists) {
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# computing P, f of level %" PetscInt_FMT " into %s\n", level, file));
-    PetscCall(PetscMkdir(dir));
-    PetscCall(WriteReducedProblem(level, file));
-  }
   PetscCall(ReadReducedProblem(file, &P, &f));
   PetscCall(VecDuplicate(f, &u));
 

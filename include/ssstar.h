@@ -23,6 +23,10 @@
 
 #define SNESSSSTAR "ssstar"
 
+#define SSSTAR_VERSION_MAJOR 0
+#define SSSTAR_VERSION_MINOR 3
+#define SSSTAR_VERSION_SUBMINOR 0
+
 /* The contact states of Table 1 (DERIVATION.md section 2); values are written to output files. */
 typedef enum {
   SSSTAR_STATE_L   = 0, /* no contact                                             */

@@ -10,6 +10,9 @@ PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 
+/*@C
+   SSStarFinalizePackage - called by PetscFinalize(): the next SSStarInitializePackage() registers again
+@*/
 PetscErrorCode SSStarFinalizePackage(void)
 {
   PetscFunctionBegin;

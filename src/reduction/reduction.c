@@ -287,6 +287,9 @@ PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec F, Vec uC, Vec rC
   PetscFunctionReturn(0);
 }
 
+/*@C
+   SSStarReductionDestroy - frees the reduction (its factorization and P)
+@*/
 PetscErrorCode SSStarReductionDestroy(SSStarReduction *red)
 {
   PetscFunctionBegin;

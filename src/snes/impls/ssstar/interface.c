@@ -53,6 +53,9 @@ PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, SSStarFrictionLaw law)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetFrictionLaw - the friction law of the nodes without a law of their own
+@*/
 PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, SSStarFrictionLaw *law)
 {
   PetscFunctionBegin;
@@ -75,6 +78,9 @@ PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal phi)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetFriction - the Coulomb coefficient of the nodes without a coefficient of their own
+@*/
 PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
 {
   PetscFunctionBegin;
@@ -150,6 +156,9 @@ PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetScaling - gamma: the one set by the user, else 1/mean(diag P) of the last solve (0 before it)
+@*/
 PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
 {
   PetscFunctionBegin;

@@ -1,6 +1,7 @@
 /*
    The Newton step of ssstar (DERIVATION.md section 5) in the nodes' frames R: with v = R u,
-     A dv = y,   A = gamma S R P R^T + T   (S, T block diagonal, 3x3 per node; du = R^T dv).
+     A dv = y,   A = gamma S R P R^T + T   (S, T block diagonal, 3x3 per node),
+   returned as du = R^T dv in the global frame.
 
    Dense P (a Schur complement): a row r of node i with S_i row r = 0 and T_i row r = e_r reads dv_ir = y_ir (every row
    of a sticking node, the normal row of a node in strong contact). With K these known dofs and R the others, A is block
@@ -12,7 +13,8 @@
    preconditioned by the old A's inverse instead (the dofs that changed status moved over, see ApplyFactoredInverse);
    a fresh LU when more did or GMRES does not converge within about the cost of an LU.
 
-   Sparse P: A R = gamma S R P + T R is formed by MatMatMult and factored by the SNES's KSP (LU; MUMPS in parallel).
+   Sparse P: A R = gamma S R P + T R (the matrix of du) is formed by MatMatMult and factored by the SNES's KSP (LU;
+   MUMPS in parallel).
 */
 #if !defined(_GNU_SOURCE)
   #define _GNU_SOURCE /* sched_getaffinity */
@@ -324,13 +326,11 @@ static PetscErrorCode AssembleBlocks(SSStarNewton nt, const PetscReal frames[], 
   PetscFunctionReturn(0);
 }
 
-/* (gamma S R P + T R) du = y, then dv = R du */
-static PetscErrorCode SolveSparse(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec dv, PetscBool *solved)
+/* (gamma S R P + T R) du = y */
+static PetscErrorCode SolveSparse(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
 {
   SNES               snes = nt->snes;
   KSPConvergedReason kspreason;
-  PetscScalar       *a;
-  PetscInt           n;
 
   PetscFunctionBegin;
   PetscCall(AssembleBlocks(nt, frames, S, T));
@@ -348,19 +348,9 @@ static PetscErrorCode SolveSparse(SSStarNewton nt, const PetscReal frames[], con
   PetscCall(FactorNewtonMatrix(snes, solved));
   nt->nFactor++;
   if (!*solved) PetscFunctionReturn(0);
-  PetscCall(KSPSolve(snes->ksp, y, dv));
+  PetscCall(KSPSolve(snes->ksp, y, du));
   PetscCall(KSPGetConvergedReason(snes->ksp, &kspreason));
   *solved = (PetscBool)(kspreason >= 0);
-  if (!frames) PetscFunctionReturn(0);
-  PetscCall(VecGetLocalSize(dv, &n));
-  PetscCall(VecGetArray(dv, &a));
-  for (PetscInt i = 0; i < n / 3; i++) {
-    const PetscReal  *R     = &frames[9 * i];
-    const PetscScalar du[3] = {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
-
-    for (PetscInt r = 0; r < 3; r++) a[3 * i + r] = R[3 * r] * du[0] + R[3 * r + 1] * du[1] + R[3 * r + 2] * du[2];
-  }
-  PetscCall(VecRestoreArray(dv, &a));
   PetscFunctionReturn(0);
 }
 
@@ -630,8 +620,8 @@ static PetscErrorCode BuildRightHandSide(SSStarNewton nt, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* dv = y on the known dofs, x on the others */
-static PetscErrorCode Expand(SSStarNewton nt, Vec y, Vec dv)
+/* du = R^T dv with dv = y on the known dofs, x on the others */
+static PetscErrorCode Expand(SSStarNewton nt, Vec y, Vec du)
 {
   const Elimination *e = &nt->cur;
   const PetscScalar *ya, *xa;
@@ -640,13 +630,19 @@ static PetscErrorCode Expand(SSStarNewton nt, Vec y, Vec dv)
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(VecGetArrayRead(nt->x, &xa));
-  PetscCall(VecGetArrayWrite(dv, &da));
-  for (PetscInt k = 0; k < 3 * nt->nnodes; k++) {
-    const PetscInt idx = e->index[3 * nt->nodeStart + k];
+  PetscCall(VecGetArrayWrite(du, &da));
+  for (PetscInt i = 0; i < nt->nnodes; i++) {
+    const PetscReal *R = nt->frames ? &nt->frames[9 * (nt->nodeStart + i)] : NULL;
+    PetscScalar      dv[3];
 
-    da[k] = idx < 0 ? ya[k] : xa[idx - e->start];
+    for (PetscInt r = 0; r < 3; r++) {
+      const PetscInt idx = e->index[3 * (nt->nodeStart + i) + r];
+
+      dv[r] = idx < 0 ? ya[3 * i + r] : xa[idx - e->start];
+    }
+    for (PetscInt k = 0; k < 3; k++) da[3 * i + k] = R ? R[k] * dv[0] + R[3 + k] * dv[1] + R[6 + k] * dv[2] : dv[k];
   }
-  PetscCall(VecRestoreArrayWrite(dv, &da));
+  PetscCall(VecRestoreArrayWrite(du, &da));
   PetscCall(VecRestoreArrayRead(nt->x, &xa));
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscFunctionReturn(0);
@@ -951,7 +947,7 @@ static PetscErrorCode GatherFrames(SSStarNewton nt, const PetscReal frames[])
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolveDense(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec dv, PetscBool *solved)
+static PetscErrorCode SolveDense(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
 {
   PetscBool reuse;
 
@@ -997,21 +993,19 @@ static PetscErrorCode SolveDense(SSStarNewton nt, const PetscReal frames[], cons
     PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
     if (!*solved) PetscFunctionReturn(0);
   }
-  PetscCall(Expand(nt, y, dv));
+  PetscCall(Expand(nt, y, du));
   PetscFunctionReturn(0);
 }
 
 /*
-   Solves (gamma S R P R^T + T) dv = y; solved is PETSC_FALSE (on every rank) when the Newton matrix is singular
-   or the linear solve failed.
+   Solves (gamma S R P R^T + T) R du = y for du (global frame); solved is PETSC_FALSE (on every rank) when the Newton
+   matrix is singular or the linear solve failed.
 */
-PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec dv, PetscBool *solved)
+PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal frames[], const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
 {
   PetscFunctionBegin;
-  if (nt->dense) PetscCall(SolveDense(nt, frames, S, T, y, dv, solved));
-  else {
-    PetscCall(SolveSparse(nt, frames, S, T, y, dv, solved));
-  }
+  if (nt->dense) PetscCall(SolveDense(nt, frames, S, T, y, du, solved));
+  else PetscCall(SolveSparse(nt, frames, S, T, y, du, solved));
   PetscFunctionReturn(0);
 }
 

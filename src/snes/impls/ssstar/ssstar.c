@@ -65,12 +65,6 @@ static void Rotate(const PetscReal *R, const PetscScalar x[3], PetscReal y[3])
   for (PetscInt k = 0; k < 3; k++) y[k] = R ? R[3 * k] * x[0] + R[3 * k + 1] * x[1] + R[3 * k + 2] * x[2] : PetscRealPart(x[k]);
 }
 
-/* x += R^T y (R NULL: identity) */
-static void AddRotatedBack(const PetscReal *R, const PetscScalar y[3], PetscScalar x[3])
-{
-  for (PetscInt k = 0; k < 3; k++) x[k] += R ? R[k] * y[0] + R[3 + k] * y[1] + R[6 + k] * y[2] : y[k];
-}
-
 /* v_i = R_i u_i + g_i e3: the iterate in node i's frame, with the gap */
 static void NodeIterate(const SSStarContact *ct, PetscInt i, const PetscScalar *ua, PetscReal v[3])
 {
@@ -253,16 +247,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       snes->reason = SNES_DIVERGED_LINEAR_SOLVE;
       break;
     }
-    {
-      PetscScalar       *ua;
-      const PetscScalar *dva;
-
-      PetscCall(VecGetArray(ss->u, &ua));
-      PetscCall(VecGetArrayRead(ss->dv, &dva));
-      for (PetscInt i = 0; i < ct->nnodes; i++) AddRotatedBack(ct->frames ? &ct->frames[9 * i] : NULL, &dva[3 * i], &ua[3 * i]);
-      PetscCall(VecRestoreArrayRead(ss->dv, &dva));
-      PetscCall(VecRestoreArray(ss->u, &ua));
-    }
+    PetscCall(VecAXPY(ss->u, 1.0, ss->dv)); /* SSStarNewtonSolve() returns du in the global frame */
     PetscCall(VecNorm(ss->dv, NORM_2, &dunorm));
   }
   /* c is P u - f at the last iterate: the contact force; the SNES vector gets the whole u, F(u) its residual */

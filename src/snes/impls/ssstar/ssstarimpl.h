@@ -10,8 +10,9 @@ PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
 PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
-   The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R),
-   given P (global frame) and, per local node, R, S and T (9 values each, row-major). Created with the SNES (it keeps
+   The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R)
+   and returns du = R^T dv (global frame), given P (global frame) and, per local node, R, S and T (9 values each,
+   row-major). Created with the SNES (it keeps
    the settings); Reset drops what was built for a P. Counts and the condition estimate are of the current SNESSolve.
 */
 typedef struct _n_SSStarNewton *SSStarNewton;
@@ -93,7 +94,7 @@ typedef struct {
   SSStarState *userStates;                 /* the same in the user's node order                     */
   PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
   PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
-  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f (global frame); z, d, b, y, dv (nodes' frames) */
+  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f, dv (global frame); z, d, b, y (nodes' frames) */
   SSStarNewton newton;
 } SNES_SSStar;
 

@@ -26,6 +26,14 @@ export OMPI_ALLOW_RUN_AS_ROOT=1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
+# quiet builds: "CC file" lines; make V=1 prints the commands
+ifeq ($(V),1)
+  Q :=
+  SAY = @true
+else
+  Q := @
+  SAY = @echo
+endif
 
 .PHONY: all run test bench bench-scenes scenes accuracy install clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
@@ -35,24 +43,29 @@ config/ssstar.mk: configure.py
 
 build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
-	$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
+	$(SAY) "  CC      $<"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
 
 $(LIB): $(LIB_OBJ)
 	@mkdir -p lib
-	$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB)
+	$(SAY) "  LD      $@"
+	$(Q)$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB)
 
 examples/%: examples/%.c $(LIB)
-	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 tests/test_kernels tests/test_newton tests/test_scenes: tests/%: tests/%.c $(LIB)
-	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 bench/newton_step bench/dense_lu: bench/%: bench/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 # deliberately not linked with libssstar: it gets the type through -dll_append
 tests/test_plain_contact: tests/test_plain_contact.c
-	$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
 
 # make install PREFIX=/some/where: the library, the headers and lib/pkgconfig/ssstar.pc (which carries PETSc's flags),
 # so that a program builds with  mpicc prog.c $$(pkg-config --cflags --libs ssstar)

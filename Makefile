@@ -60,7 +60,8 @@ tests/test_kernels tests/test_newton tests/test_scenes: tests/%: tests/%.c $(LIB
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 bench/newton_step bench/dense_lu: bench/%: bench/%.c $(LIB)
-	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 # deliberately not linked with libssstar: it gets the type through -dll_append
 tests/test_plain_contact: tests/test_plain_contact.c

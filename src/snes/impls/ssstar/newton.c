@@ -694,17 +694,28 @@ static int SetBLASThreads(int threads)
   return previous;
 }
 
-/* The other ranks wait for rank 0 without spinning in MPI, so that rank 0's BLAS threads may use their cores */
+/*
+   The other ranks wait for rank 0 without spinning in MPI, so that rank 0 (and its BLAS threads) may use their cores:
+   they sleep, 10 us at first and up to 1 ms (waking often takes the core from rank 0 on a loaded machine)
+*/
 static PetscErrorCode WaitForRankZero(MPI_Comm comm)
 {
   MPI_Request req;
+  PetscMPIInt rank;
   int         done = 0;
+  useconds_t  nap  = 10;
 
   PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Ibarrier(comm, &req));
+  if (rank == 0) {
+    PetscCallMPI(MPI_Wait(&req, MPI_STATUS_IGNORE));
+    done = 1;
+  }
   while (!done) {
     PetscCallMPI(MPI_Test(&req, &done, MPI_STATUS_IGNORE));
-    if (!done) usleep(100);
+    if (!done) usleep(nap);
+    nap = PetscMin(2 * nap, 1000);
   }
   PetscFunctionReturn(0);
 }

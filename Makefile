@@ -10,11 +10,12 @@ LIBNAME  := ssstar
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
-            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
+            src/reduction/reduction.c src/reduction/direct.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
-CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
+# MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
+CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
 # mpiexec as root (CI, containers) needs these; harmless otherwise
@@ -29,13 +30,13 @@ all: $(LIB) $(EXAMPLES) $(TESTS)
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/reduction/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
 
 $(LIB): $(LIB_OBJ)
 	@mkdir -p lib
-	$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB)
+	$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB) $(MUMPS_LIB) $(METIS_LIB)
 
 examples/%: examples/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)

@@ -8,7 +8,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -friction <0.3>            Coulomb friction coefficient (same as -snes_ssstar_friction)\n\
   -traction_top <0,0,-500>   traction on the group top\n\
   -traction_right <-200,30,200> traction on the group right\n\
-  -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
+  -reduction <direct>        Schur complement: direct (MUMPS + METIS, every rank), mumps (PETSc's MUMPS Schur, on\n\
+                             rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
   -summary_header <true>     print the header line of the summary table\n";
 
@@ -70,7 +71,7 @@ int main(int argc, char **argv)
   PetscReal           friction = 0.3, meshScale = 1, t_assembly, t_schur, t_solve, t_recovery, t0;
   char                mesh[PETSC_MAX_PATH_LEN] = "", geo[PETSC_MAX_PATH_LEN] = SSSTAR_MESH_DIR "/prism.geo", out[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasMesh, hasOut, header = PETSC_TRUE, isssstar;
-  SSStarReductionType rtype = SSSTAR_REDUCTION_MUMPS;
+  SSStarReductionType rtype = SSSTAR_REDUCTION_DIRECT;
   DM                  dm;
   Vec                 tags, u, r;
   Body                body;

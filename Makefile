@@ -13,7 +13,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
             src/reduction/reduction.c src/reduction/direct.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_reduction
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
@@ -41,7 +41,7 @@ $(LIB): $(LIB_OBJ)
 examples/%: examples/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_reduction: tests/%: tests/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 # deliberately not linked with libssstar: it gets the type through -dll_append

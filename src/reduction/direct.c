@@ -18,6 +18,8 @@
 #define CNTL(i)  cntl[(i) - 1]
 #define INFO(i)  info[(i) - 1]
 #define INFOG(i) infog[(i) - 1]
+#define RINFO(i)  rinfo[(i) - 1]
+#define RINFOG(i) rinfog[(i) - 1]
 
 /* options -schur_direct_mumps_icntl_<i> this reduction relies on, and may not be changed */
 static const int ReservedICNTL[] = {5, 7, 18, 19, 20, 21, 26, 28};
@@ -432,6 +434,7 @@ PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDi
   PetscCall(PetscLogEventBegin(SSSTAR_SchurAnalysis, K, 0, 0, 0));
   PetscCall(RunMUMPS(d, 1, "the analysis of K (MUMPS)"));
   PetscCall(PetscLogEventEnd(SSSTAR_SchurAnalysis, K, 0, 0, 0));
+  PetscCall(PetscInfo(K, "MUMPS analysis: %g flops to factor, %g entries in the factors, memory %d MB per rank at most, %d MB in all\n", (double)d->id.RINFOG(1), (double)d->id.INFOG(20), (int)d->id.INFOG(16), (int)d->id.INFOG(17)));
   {
     const PetscInt expect = PetscMax(0, PetscMin(NC, (d->rank + 1) * nb) - PetscMin(NC, d->rank * nb));
 
@@ -449,6 +452,7 @@ PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDi
   d->id.schur     = schur;
   PetscCall(PetscLogEventBegin(SSSTAR_SchurFactor, K, 0, 0, 0));
   PetscCall(RunMUMPS(d, 2, "the factorization of K with the Schur block (MUMPS)"));
+  PetscCall(PetscLogFlops(d->id.RINFO(3)));
   PetscCall(PetscLogEventEnd(SSSTAR_SchurFactor, K, 0, 0, 0));
   d->id.schur = NULL;
   PetscCall(PetscFree3(d->irn, d->jcn, d->a)); /* the factors are all the solves need */

@@ -289,15 +289,12 @@ static PetscErrorCode ReduceExplicit(SSStarReduction red, Mat K)
   PetscFunctionReturn(0);
 }
 
-/*@C
-   SSStarReductionReduceLoad - f = F_C - K_CI K_II^-1 F_I, the load reduced to the contact dofs (a vector like P's)
-@*/
-PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
+/* f = F_C - K_CI K_II^-1 F_I */
+static PetscErrorCode ReduceLoad(SSStarReduction red, Vec F, Vec f)
 {
   Vec FI, FC, x, xC, t;
 
   PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(SSSTAR_Schur, 0, 0, 0, 0));
   switch (red->type) {
   case SSSTAR_REDUCTION_DIRECT:
     PetscCall(SSStarDirectReduceLoad(red->direct, F, f));
@@ -322,6 +319,95 @@ PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
     PetscCall(VecDestroy(&t));
     break;
   }
+  PetscFunctionReturn(0);
+}
+
+/* u with u_C = uC and u_I = K_II^-1 (F_I - K_IC u_C); rC = P uC - f */
+static PetscErrorCode Recover(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
+{
+  Vec FI, rhs, uI, bC;
+
+  PetscFunctionBegin;
+  switch (red->type) {
+  case SSSTAR_REDUCTION_DIRECT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
+    PetscCall(SSStarDirectRecover(red->direct, F, uC, u));
+    break;
+  case SSSTAR_REDUCTION_MUMPS: /* u = K^-1 (F + E_C (P u_C - f)) */
+    PetscCall(VecDuplicate(F, &rhs));
+    PetscCall(VecCopy(F, rhs));
+    PetscCall(VecGetSubVector(rhs, red->isC, &bC));
+    PetscCall(VecAXPY(bC, 1.0, rC));
+    PetscCall(VecRestoreSubVector(rhs, red->isC, &bC));
+    PetscCall(SolveWholeK(red, rhs, u));
+    PetscCall(VecDestroy(&rhs));
+    break;
+  case SSSTAR_REDUCTION_EXPLICIT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
+    PetscCall(MatCreateVecs(red->Kii, &uI, &rhs));
+    PetscCall(MatMult(red->Kic, uC, rhs));
+    PetscCall(VecGetSubVector(F, red->isI, &FI));
+    PetscCall(VecAYPX(rhs, -1.0, FI));
+    PetscCall(VecRestoreSubVector(F, red->isI, &FI));
+    PetscCall(KSPSolve(red->kspI, rhs, uI));
+    PetscCall(VecISCopy(u, red->isI, SCATTER_FORWARD, uI));
+    PetscCall(VecDestroy(&uI));
+    PetscCall(VecDestroy(&rhs));
+    break;
+  }
+  PetscCall(VecISCopy(u, red->isC, SCATTER_FORWARD, uC)); /* the contact solution itself, not its round-off image */
+  PetscFunctionReturn(0);
+}
+
+/*
+   The Cholesky factorizations of K (K_II) do not pivot, and MUMPS does not look for zero pivots there: a singular K_II
+   factors into garbage. Solving K_II x = b for a b of positive, irregular entries tells: the relative residual is
+   round-off for a K_II of any reasonable condition, and of the order of b itself for a singular one.
+*/
+static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
+{
+  Vec          b, f, zero, x, r, rI, bI;
+  PetscInt     lo, hi;
+  PetscScalar *ba;
+  PetscReal    rnorm, bnorm;
+
+  PetscFunctionBegin;
+  PetscCall(MatCreateVecs(K, &x, &b));
+  PetscCall(VecDuplicate(b, &r));
+  PetscCall(VecGetOwnershipRange(b, &lo, &hi));
+  PetscCall(VecGetArrayWrite(b, &ba));
+  for (PetscInt i = lo; i < hi; i++) ba[i - lo] = 1.0 + 0.5 * PetscSinReal((PetscReal)i);
+  PetscCall(VecRestoreArrayWrite(b, &ba));
+  PetscCall(MatCreateVecs(red->P, &f, &zero));
+  PetscCall(VecZeroEntries(zero));
+  PetscCall(ReduceLoad(red, b, f));
+  PetscCall(VecScale(f, -1.0)); /* the contact force of u_C = 0 */
+  PetscCall(Recover(red, b, zero, f, x));
+  PetscCall(MatMult(K, x, r));
+  PetscCall(VecAXPY(r, -1.0, b));
+  PetscCall(VecGetSubVector(r, red->isI, &rI));
+  PetscCall(VecGetSubVector(b, red->isI, &bI));
+  PetscCall(VecNorm(rI, NORM_INFINITY, &rnorm));
+  PetscCall(VecNorm(bI, NORM_INFINITY, &bnorm));
+  PetscCall(VecRestoreSubVector(b, red->isI, &bI));
+  PetscCall(VecRestoreSubVector(r, red->isI, &rI));
+  PetscCall(PetscInfo(K, "K_II x = b solved to a relative residual %g\n", (double)(rnorm / bnorm)));
+  PetscCheck(rnorm <= SSSTAR_SINGULAR_RESIDUAL * bnorm, PetscObjectComm((PetscObject)K), PETSC_ERR_MAT_CH_ZRPVT,
+             "K is singular: is the body held? (Dirichlet conditions). K_II, K without the contact dofs, is singular or nearly so: a solve with it leaves a relative residual of %.1e, so some part of the body is held neither by Dirichlet conditions nor through the contact dofs", (double)(rnorm / bnorm));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&f));
+  PetscCall(VecDestroy(&zero));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionReduceLoad - f = F_C - K_CI K_II^-1 F_I, the load reduced to the contact dofs (a vector like P's)
+@*/
+PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_Schur, 0, 0, 0, 0));
+  PetscCall(ReduceLoad(red, F, f));
   PetscCall(PetscLogEventEnd(SSSTAR_Schur, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -377,6 +463,7 @@ PetscErrorCode SSStarReductionCreate(Mat K, IS isC, IS isI, SSStarReductionType 
     break;
   }
   PetscCall(PetscObjectSetName((PetscObject)r->P, "P"));
+  PetscCall(CheckInteriorSolve(r, K));
   PetscCall(PetscLogEventEnd(SSSTAR_Schur, K, 0, 0, 0));
   *red = r;
   PetscFunctionReturn(0);
@@ -398,36 +485,9 @@ PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction red, Mat *P)
 @*/
 PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
 {
-  Vec FI, rhs, uI, bC;
-
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Recovery, 0, 0, 0, 0));
-  switch (red->type) {
-  case SSSTAR_REDUCTION_DIRECT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
-    PetscCall(SSStarDirectRecover(red->direct, F, uC, u));
-    break;
-  case SSSTAR_REDUCTION_MUMPS: /* u = K^-1 (F + E_C (P u_C - f)) */
-    PetscCall(VecDuplicate(F, &rhs));
-    PetscCall(VecCopy(F, rhs));
-    PetscCall(VecGetSubVector(rhs, red->isC, &bC));
-    PetscCall(VecAXPY(bC, 1.0, rC));
-    PetscCall(VecRestoreSubVector(rhs, red->isC, &bC));
-    PetscCall(SolveWholeK(red, rhs, u));
-    PetscCall(VecDestroy(&rhs));
-    break;
-  case SSSTAR_REDUCTION_EXPLICIT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
-    PetscCall(MatCreateVecs(red->Kii, &uI, &rhs));
-    PetscCall(MatMult(red->Kic, uC, rhs));
-    PetscCall(VecGetSubVector(F, red->isI, &FI));
-    PetscCall(VecAYPX(rhs, -1.0, FI));
-    PetscCall(VecRestoreSubVector(F, red->isI, &FI));
-    PetscCall(KSPSolve(red->kspI, rhs, uI));
-    PetscCall(VecISCopy(u, red->isI, SCATTER_FORWARD, uI));
-    PetscCall(VecDestroy(&uI));
-    PetscCall(VecDestroy(&rhs));
-    break;
-  }
-  PetscCall(VecISCopy(u, red->isC, SCATTER_FORWARD, uC)); /* the contact solution itself, not its round-off image */
+  PetscCall(Recover(red, F, uC, rC, u));
   PetscCall(PetscLogEventEnd(SSSTAR_Recovery, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -9,6 +9,9 @@
 */
 #define SSSTAR_DENSE_WORK 2
 
+/* relative residual of a solve with K_II above which K_II is taken for singular (round-off is ~1e-15 cond-free) */
+#define SSSTAR_SINGULAR_RESIDUAL 1e-6
+
 typedef struct _n_SSStarDirect *SSStarDirect;
 
 struct _n_SSStarReduction {

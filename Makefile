@@ -14,6 +14,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_reduction
+BENCHES  := bench/cholesky
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
@@ -25,7 +26,7 @@ export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
 
 .PHONY: all run test bench clean distclean
-all: $(LIB) $(EXAMPLES) $(TESTS)
+all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
 	python3 configure.py
@@ -44,6 +45,9 @@ examples/%: examples/%.c $(LIB)
 tests/test_kernels tests/test_newton tests/test_reduction: tests/%: tests/%.c $(LIB)
 	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
+bench/%: bench/%.c $(LIB)
+	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
 # deliberately not linked with libssstar: it gets the type through -dll_append
 tests/test_plain_contact: tests/test_plain_contact.c
 	$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
@@ -56,9 +60,10 @@ test: all
 
 bench: all
 	$(PYTHON) bench/table2.py
+	$(PYTHON) bench/schur.py
 
 clean:
-	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf
+	rm -rf build lib $(EXAMPLES) $(TESTS) $(BENCHES) tests/output meshes/*.msh *.h5 *.xmf
 
 distclean: clean
 	rm -f config/ssstar.mk

@@ -2,7 +2,8 @@ static const char help[] = "The Schur reduction on a hand-assembled K: a lattice
 the face z = 0 the contact dofs. Computes P, f and the recovered u by each of -types and prints their differences.\n\
   -n <5>                 nodes per side\n\
   -types <direct,mumps,explicit>  the reductions to run and compare (the first one is the reference)\n\
-  -floating              add a small lattice connected to nothing and held nowhere: K is singular\n\
+  -floating <0>          nodes per side of a lattice connected to nothing and held nowhere: K is singular\n\
+                         (1: a node without any stiffness)\n\
   -memory_limit <0>      GB per rank the reduction may plan for (0: MemAvailable)\n";
 
 #include <ssstarreduction.h>
@@ -78,7 +79,6 @@ static PetscErrorCode AddLattice(Mat K, const Lattice *lat, PetscInt m, PetscInt
 int main(int argc, char **argv)
 {
   Lattice             lat = {5, 0};
-  PetscBool           floating = PETSC_FALSE;
   PetscReal           limit    = 0;
   char               *names[3];
   PetscBool           set;
@@ -94,7 +94,7 @@ int main(int argc, char **argv)
   PetscCall(SSStarInitializePackage());
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-n", &lat.n, NULL));
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-floating", &floating, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-floating", &lat.floating, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-memory_limit", &limit, NULL));
   PetscCall(PetscOptionsGetStringArray(NULL, NULL, "-types", names, &ntypes, &set));
   if (!set) {
@@ -111,7 +111,6 @@ int main(int argc, char **argv)
     PetscCheck(found, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-types: unknown reduction %s", names[t]);
     PetscCall(PetscFree(names[t]));
   }
-  lat.floating = floating ? 2 : 0;
   nfree        = (lat.n - 1) * lat.n * lat.n + lat.floating * lat.floating * lat.floating;
 
   /* K: 3 dofs per free node, nodes split over the ranks */
@@ -128,6 +127,12 @@ int main(int argc, char **argv)
   PetscCall(MatMPIAIJSetPreallocation(K, 81, NULL, 81, NULL));
   PetscCall(AddLattice(K, &lat, lat.n, 0, PETSC_TRUE, first, last));
   if (lat.floating) PetscCall(AddLattice(K, &lat, lat.floating, (lat.n - 1) * lat.n * lat.n, PETSC_FALSE, first, last));
+  if (lat.floating == 1 && last == nfree) { /* the lone node: zero entries on its diagonal block */
+    const PetscInt    node    = nfree - 1;
+    const PetscScalar zero[9] = {0};
+
+    PetscCall(MatSetValuesBlocked(K, 1, &node, 1, &node, zero, ADD_VALUES));
+  }
   PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
 

@@ -44,7 +44,7 @@ static PetscErrorCode RunMUMPS(SSStarDirect d, MUMPS_INT job, const char what[])
   PetscFunctionBegin;
   d->id.job = job;
   dmumps_c(&d->id);
-  PetscCall(SSStarReductionCheckMUMPS(d->comm, -1, d->id.INFOG(1), d->id.INFOG(2), d->estimate, what, "-schur_direct_mumps_icntl_14"));
+  PetscCall(SSStarReductionCheckMUMPS(d->comm, -1, d->id.INFOG(1), d->id.INFOG(2), d->estimate, what, "-schur_direct_mumps_icntl_"));
   PetscFunctionReturn(0);
 }
 
@@ -453,6 +453,7 @@ PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDi
   PetscCall(PetscLogEventBegin(SSSTAR_SchurFactor, K, 0, 0, 0));
   PetscCall(RunMUMPS(d, 2, "the factorization of K with the Schur block (MUMPS)"));
   PetscCall(PetscLogFlops(d->id.RINFO(3)));
+  PetscCall(PetscInfo(K, "MUMPS factorization: %g flops\n", (double)d->id.RINFOG(3)));
   PetscCall(PetscLogEventEnd(SSSTAR_SchurFactor, K, 0, 0, 0));
   d->id.schur = NULL;
   PetscCall(PetscFree3(d->irn, d->jcn, d->a)); /* the factors are all the solves need */

@@ -41,6 +41,7 @@ PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, Pets
   MPI_Comm       node;
   PetscMPIInt    rank, nodeSize;
   PetscLogDouble limit = 1e9 * limitGB, available = 0, worst[4];
+  char           parts[128];
   struct {
     double ratio;
     int    rank;
@@ -65,9 +66,11 @@ PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, Pets
   worst[2] = limit;
   worst[3] = available;
   PetscCallMPI(MPI_Bcast(worst, 4, MPI_DOUBLE, max.rank, comm));
+  if (worst[0] > 0) PetscCall(PetscSNPrintf(parts, sizeof(parts), "MUMPS's factors %.3g GB, P and the dense work %.3g GB", worst[0] / 1e9, worst[1] / 1e9));
+  else PetscCall(PetscSNPrintf(parts, sizeof(parts), "P and the dense work"));
   if (limitGB > 0)
-    SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.2f GB on rank %d (sparse factors %.2f GB, P and the dense work %.2f GB), more than the limit of %.2f GB per rank (-snes_ssstar_memory_limit): refused before the factorization", what, (worst[0] + worst[1]) / 1e9, max.rank, worst[0] / 1e9, worst[1] / 1e9, worst[2] / 1e9);
-  SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.2f GB on rank %d (sparse factors %.2f GB, P and the dense work %.2f GB), more than the %.2f GB available to it (MemAvailable %.2f GB of its node over the node's %d ranks): refused before the factorization", what, (worst[0] + worst[1]) / 1e9, max.rank, worst[0] / 1e9, worst[1] / 1e9, worst[2] / 1e9, worst[3] / 1e9, nodeSize);
+    SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.3g GB on rank %d (%s), more than the limit of %.3g GB per rank (-snes_ssstar_memory_limit): refused before the factorization", what, (worst[0] + worst[1]) / 1e9, max.rank, parts, worst[2] / 1e9);
+  SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.3g GB on rank %d (%s), more than the %.3g GB available to it (MemAvailable %.3g GB of its node over the node's %d ranks): refused before the factorization", what, (worst[0] + worst[1]) / 1e9, max.rank, parts, worst[2] / 1e9, worst[3] / 1e9, nodeSize);
 }
 
 /* MUMPS's "INFO(2) entries" (negative: millions of entries) in bytes of an entry of the given size */
@@ -79,9 +82,9 @@ static PetscLogDouble MUMPSEntries(PetscInt info2, size_t entry)
 /*
    Raises MUMPS's failure (INFOG(1) < 0) on every rank of comm, in words: a singular K, memory (with the amount MUMPS
    reports), or the codes. root: the rank that holds INFOG (-1: every rank does). estimate: MUMPS's memory estimate for
-   the factorization (bytes per rank, 0 if unknown). workspace: the option of MUMPS's workspace margin ICNTL(14).
+   the factorization (bytes per rank, 0 if unknown). icntl: the prefix of the options of MUMPS's ICNTL (for 14 and 23).
 */
-PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm comm, PetscMPIInt root, PetscInt infog1, PetscInt infog2, PetscLogDouble estimate, const char what[], const char workspace[])
+PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm comm, PetscMPIInt root, PetscInt infog1, PetscInt infog2, PetscLogDouble estimate, const char what[], const char icntl[])
 {
   PetscInt       infog[2] = {infog1, infog2};
   PetscLogDouble est      = estimate;
@@ -93,17 +96,18 @@ PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm comm, PetscMPIInt root, PetscI
     PetscCallMPI(MPI_Bcast(&est, 1, MPI_DOUBLE, root, comm));
   }
   if (infog[0] >= 0) PetscFunctionReturn(0);
-  if (est > 0) PetscCall(PetscSNPrintf(estimated, sizeof(estimated), "; MUMPS's estimate after its analysis was %.2f GB per rank", est / 1e9));
+  if (est > 0) PetscCall(PetscSNPrintf(estimated, sizeof(estimated), "; MUMPS's estimate after its analysis was %.3g GB per rank", est / 1e9));
   switch (infog[0]) {
   case -6:  /* structurally singular */
   case -10: /* numerically singular (INFOG(2): pivots eliminated) */
   case -40: /* SYM = 1 but a negative or zero pivot */
-    SETERRQ(comm, PETSC_ERR_MAT_CH_ZRPVT, "K is singular: is the body held? (Dirichlet conditions). %s: MUMPS met a zero pivot (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")", what, infog[0], infog[1]);
-  case -9:  /* real workspace too small by INFOG(2) entries */
+    SETERRQ(comm, PETSC_ERR_MAT_CH_ZRPVT, "K is singular: is the body held? (Dirichlet conditions) [MUMPS met a zero pivot in %s: INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT "]", what, infog[0], infog[1]);
+  case -9: /* real workspace too small by INFOG(2) entries */
   case -11:
   case -12:
-  case -19: /* ICNTL(23) too small by INFOG(2) entries */
-    SETERRQ(comm, PETSC_ERR_MEM, "Out of memory in %s: MUMPS's workspace lacked %.3g GB (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")%s. Give it more memory (more ranks or nodes) or a larger margin %s", what, MUMPSEntries(infog[1], sizeof(PetscScalar)) / 1e9, infog[0], infog[1], estimated, workspace);
+    SETERRQ(comm, PETSC_ERR_MEM, "Out of memory in %s: MUMPS's workspace lacked %.3g GB (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")%s. Give it more memory (more ranks or nodes) or a larger margin %s14", what, MUMPSEntries(infog[1], sizeof(PetscScalar)) / 1e9, infog[0], infog[1], estimated, icntl);
+  case -19: /* the working memory allowed by ICNTL(23) too small by INFOG(2) entries */
+    SETERRQ(comm, PETSC_ERR_MEM, "Out of memory in %s: MUMPS needed %.3g GB more than the working memory it was allowed (%s23) (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")%s", what, MUMPSEntries(infog[1], sizeof(PetscScalar)) / 1e9, icntl, infog[0], infog[1], estimated);
   case -13: /* an allocation of INFOG(2) entries failed */
   case -5:
     SETERRQ(comm, PETSC_ERR_MEM, "Out of memory in %s: MUMPS could not allocate %.3g GB (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")%s. Give it more memory (more ranks or nodes)", what, MUMPSEntries(infog[1], sizeof(PetscScalar)) / 1e9, infog[0], infog[1], estimated);
@@ -114,14 +118,14 @@ PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm comm, PetscMPIInt root, PetscI
   case -15:
   case -17: /* send buffer too small */
   case -20: /* receive buffer too small */
-    SETERRQ(comm, PETSC_ERR_MEM, "Out of memory in %s: a workspace or buffer of MUMPS was too small (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")%s. Raise its margin %s", what, infog[0], infog[1], estimated, workspace);
+    SETERRQ(comm, PETSC_ERR_MEM, "Out of memory in %s: a workspace or buffer of MUMPS was too small (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT ")%s. Raise its margin %s14", what, infog[0], infog[1], estimated, icntl);
   default:
     SETERRQ(comm, PETSC_ERR_LIB, "MUMPS failed in %s: INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT " (see the error codes in the MUMPS users' guide)", what, infog[0], infog[1]);
   }
 }
 
 /* A PETSc MUMPS factor's failure, reported on every rank of comm (root: the rank holding F, -1: all) */
-static PetscErrorCode CheckFactor(MPI_Comm comm, PetscMPIInt root, Mat F, PetscLogDouble estimate, const char what[], const char workspace[])
+static PetscErrorCode CheckFactor(MPI_Comm comm, PetscMPIInt root, Mat F, PetscLogDouble estimate, const char what[], const char icntl[])
 {
   PetscInt infog1 = 0, infog2 = 0;
 
@@ -136,7 +140,7 @@ static PetscErrorCode CheckFactor(MPI_Comm comm, PetscMPIInt root, Mat F, PetscL
       if (infog1 >= 0) infog1 = -999; /* PETSc saw a failure MUMPS did not report */
     }
   }
-  PetscCall(SSStarReductionCheckMUMPS(comm, root, infog1, infog2, estimate, what, workspace));
+  PetscCall(SSStarReductionCheckMUMPS(comm, root, infog1, infog2, estimate, what, icntl));
   PetscFunctionReturn(0);
 }
 
@@ -175,13 +179,18 @@ static PetscErrorCode ReduceMUMPS(SSStarReduction red, Mat K)
     PetscCall(MatFactorSetSchurIS(F, isCall));
     PetscCall(MatCholeskyFactorSymbolic(F, Kseq[0], NULL, &info));
   }
-  PetscCall(CheckFactor(comm, 0, F, 0, what, "-schur_mat_mumps_icntl_14"));
+  PetscCall(CheckFactor(comm, 0, F, 0, what, "-schur_mat_mumps_icntl_"));
   if (rank == 0) PetscCall(MatMumpsGetInfo(F, 15, &estimateMB));
   dense = 8.0 * NC * ((rank == 0 ? 2.0 * NC : 0) + (size > 1 ? 2.0 * mC : 0) + SSSTAR_DENSE_WORK * (PetscLogDouble)mC);
   PetscCall(SSStarReductionCheckMemory(comm, red->memoryLimit, 1e6 * (PetscLogDouble)estimateMB, dense, "The mumps Schur reduction"));
   if (rank == 0) PetscCall(MatCholeskyFactorNumeric(F, Kseq[0], &info));
-  PetscCall(CheckFactor(comm, 0, F, 1e6 * (PetscLogDouble)estimateMB, what, "-schur_mat_mumps_icntl_14"));
+  PetscCall(CheckFactor(comm, 0, F, 1e6 * (PetscLogDouble)estimateMB, what, "-schur_mat_mumps_icntl_"));
   if (rank == 0) {
+    PetscReal flops;
+
+    PetscCall(MatMumpsGetRinfo(F, 3, &flops)); /* PETSc does not log MUMPS's flops */
+    PetscCall(PetscLogFlops(flops));
+    PetscCall(PetscInfo(K, "MUMPS factorization (PETSc, rank 0): %g flops\n", (double)flops));
     PetscCall(MatFactorCreateSchurComplement(F, &Sseq, &status));
     red->Kfactor = F;
   }
@@ -240,8 +249,9 @@ static PetscErrorCode SolveWholeK(SSStarReduction red, Vec b, Vec x)
 /* The interior blocks of K and the factorization of K_II (explicit path) */
 static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
 {
-  PC  pc;
-  Mat F;
+  PC        pc;
+  Mat       F;
+  PetscReal flops;
 
   PetscFunctionBegin;
   PetscCall(MatCreateSubMatrix(K, red->isI, red->isI, MAT_INITIAL_MATRIX, &red->Kii));
@@ -258,7 +268,10 @@ static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
   PetscCall(KSPSetFromOptions(red->kspI));
   PetscCall(KSPSetUp(red->kspI));
   PetscCall(PCFactorGetMatrix(pc, &F));
-  PetscCall(CheckFactor(PetscObjectComm((PetscObject)K), -1, F, 0, "the MUMPS Cholesky factorization of K_II (explicit Schur complement)", "-interior_mat_mumps_icntl_14"));
+  PetscCall(CheckFactor(PetscObjectComm((PetscObject)K), -1, F, 0, "the MUMPS Cholesky factorization of K_II (explicit Schur complement)", "-interior_mat_mumps_icntl_"));
+  PetscCall(MatMumpsGetRinfo(F, 3, &flops)); /* PETSc does not log MUMPS's flops */
+  PetscCall(PetscLogFlops(flops));
+  PetscCall(PetscInfo(K, "MUMPS factorization of K_II: %g flops on this rank\n", (double)flops));
   PetscCall(KSPSetErrorIfNotConverged(red->kspI, PETSC_TRUE)); /* after the set-up: its failures are reported above */
   PetscFunctionReturn(0);
 }

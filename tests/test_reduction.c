@@ -1,5 +1,5 @@
 static const char help[] = "The Schur reduction on a hand-assembled K: a lattice of springs, n x n x n nodes, held at x = 0,\n\
-the face z = 0 the contact dofs. Computes P, f and the recovered u by each of -types and prints their differences.\n\
+the face y = 0 the contact dofs (on every rank). Computes P, f and the recovered u by each of -types and prints their differences.\n\
   -n <5>                 nodes per side\n\
   -types <direct,mumps,explicit>  the reductions to run and compare (the first one is the reference)\n\
   -floating <0>          nodes per side of a lattice connected to nothing and held nowhere: K is singular\n\
@@ -136,10 +136,10 @@ int main(int argc, char **argv)
   PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
 
-  /* contact dofs: the nodes at z = 0, in decreasing node order (any order is allowed) */
+  /* contact dofs: the nodes at y = 0, in decreasing node order (any order is allowed) */
   PetscCall(PetscMalloc2(3 * (last - first), &idxC, 3 * (last - first), &idxI));
   for (PetscInt v = last - 1; v >= first; v--) {
-    const PetscBool contact = (PetscBool)(v < (lat.n - 1) * lat.n * lat.n && v / ((lat.n - 1) * lat.n) == 0);
+    const PetscBool contact = (PetscBool)(v < (lat.n - 1) * lat.n * lat.n && (v / (lat.n - 1)) % lat.n == 0);
 
     for (PetscInt c = 0; c < 3; c++) {
       if (contact) idxC[nC++] = 3 * v + c;

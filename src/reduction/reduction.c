@@ -271,7 +271,8 @@ static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
   PetscCall(CheckFactor(PetscObjectComm((PetscObject)K), -1, F, 0, "the MUMPS Cholesky factorization of K_II (explicit Schur complement)", "-interior_mat_mumps_icntl_"));
   PetscCall(MatMumpsGetRinfo(F, 3, &flops)); /* PETSc does not log MUMPS's flops */
   PetscCall(PetscLogFlops(flops));
-  PetscCall(PetscInfo(K, "MUMPS factorization of K_II: %g flops on this rank\n", (double)flops));
+  PetscCall(MatMumpsGetRinfog(F, 3, &flops));
+  PetscCall(PetscInfo(K, "MUMPS factorization of K_II: %g flops\n", (double)flops));
   PetscCall(KSPSetErrorIfNotConverged(red->kspI, PETSC_TRUE)); /* after the set-up: its failures are reported above */
   PetscFunctionReturn(0);
 }

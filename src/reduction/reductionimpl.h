@@ -4,12 +4,13 @@
 #include <ssstarreduction.h>
 
 /*
-   Dense matrices of P's size that the caller holds beside P while the reduction is alive (the SNES's Newton system
-   and its factor): counted in the memory estimate checked before the factorization.
+   Dense matrices of P's size that the caller holds beside P while the reduction is alive (the SNES's Newton step:
+   S P, the Newton matrix, and its LU factor or ScaLAPACK copy): counted in the memory estimate checked before the
+   factorization.
 */
-#define SSSTAR_DENSE_WORK 2
+#define SSSTAR_DENSE_WORK 3
 
-/* relative residual of a solve with K_II above which K_II is taken for singular (round-off is ~1e-15 cond-free) */
+/* relative residual of a solve with K_II above which K_II is taken for singular (round-off: ~1e-15 cond(K_II)) */
 #define SSSTAR_SINGULAR_RESIDUAL 1e-6
 
 typedef struct _n_SSStarDirect *SSStarDirect;

@@ -33,15 +33,15 @@ static PetscErrorCode GetMemAvailable(PetscLogDouble *bytes)
 }
 
 /*
-   Refuses, on every rank, when a rank's estimate (sparse factors + dense matrices, bytes) exceeds its share of memory:
-   limitGB per rank, or (limitGB = 0) MemAvailable of its node split over the node's ranks.
+   Refuses, on every rank, when the estimate (sparse factors + dense matrices, bytes per rank) does not fit: a rank's
+   estimate above limitGB, or (limitGB = 0) the sum of the estimates of a node's ranks above its MemAvailable.
 */
 PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDouble sparse, PetscLogDouble dense, const char what[])
 {
   MPI_Comm       node;
   PetscMPIInt    rank, nodeSize;
-  PetscLogDouble limit = 1e9 * limitGB, available = 0, worst[4];
-  char           parts[128];
+  PetscLogDouble need = sparse + dense, nodeNeed = need, available = 1e9 * limitGB, worst[5];
+  char           parts[160];
   struct {
     double ratio;
     int    rank;
@@ -51,26 +51,26 @@ PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, Pets
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
   PetscCallMPI(MPI_Comm_size(node, &nodeSize));
-  PetscCallMPI(MPI_Comm_free(&node));
   if (limitGB <= 0) {
     PetscCall(GetMemAvailable(&available));
-    limit = available / nodeSize;
+    PetscCallMPI(MPI_Allreduce(&need, &nodeNeed, 1, MPI_DOUBLE, MPI_SUM, node));
   }
-  mine.ratio = limit > 0 ? (sparse + dense) / limit : 0;
+  PetscCallMPI(MPI_Comm_free(&node));
+  mine.ratio = available > 0 ? nodeNeed / available : 0; /* no /proc/meminfo: nothing to compare with */
   mine.rank  = rank;
   PetscCallMPI(MPI_Allreduce(&mine, &max, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
-  PetscCall(PetscInfo(NULL, "%s: estimate %g GB (sparse %g, dense %g) on rank %d, limit %g GB\n", what, (sparse + dense) / 1e9, sparse / 1e9, dense / 1e9, rank, limit / 1e9));
+  PetscCall(PetscInfo(NULL, "%s: estimate %g GB on rank %d (sparse %g, dense %g), %g GB on its node, limit %g GB\n", what, need / 1e9, rank, sparse / 1e9, dense / 1e9, nodeNeed / 1e9, available / 1e9));
   if (max.ratio <= 1) PetscFunctionReturn(0);
   worst[0] = sparse;
   worst[1] = dense;
-  worst[2] = limit;
+  worst[2] = nodeNeed;
   worst[3] = available;
-  PetscCallMPI(MPI_Bcast(worst, 4, MPI_DOUBLE, max.rank, comm));
-  if (worst[0] > 0) PetscCall(PetscSNPrintf(parts, sizeof(parts), "MUMPS's factors %.3g GB, P and the dense work %.3g GB", worst[0] / 1e9, worst[1] / 1e9));
-  else PetscCall(PetscSNPrintf(parts, sizeof(parts), "P and the dense work"));
-  if (limitGB > 0)
-    SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.3g GB on rank %d (%s), more than the limit of %.3g GB per rank (-snes_ssstar_memory_limit): refused before the factorization", what, (worst[0] + worst[1]) / 1e9, max.rank, parts, worst[2] / 1e9);
-  SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.3g GB on rank %d (%s), more than the %.3g GB available to it (MemAvailable %.3g GB of its node over the node's %d ranks): refused before the factorization", what, (worst[0] + worst[1]) / 1e9, max.rank, parts, worst[2] / 1e9, worst[3] / 1e9, nodeSize);
+  worst[4] = nodeSize;
+  PetscCallMPI(MPI_Bcast(worst, 5, MPI_DOUBLE, max.rank, comm));
+  if (worst[0] > 0) PetscCall(PetscSNPrintf(parts, sizeof(parts), "%.3g GB on rank %d (MUMPS's factors %.3g GB, P and the dense work %.3g GB)", (worst[0] + worst[1]) / 1e9, max.rank, worst[0] / 1e9, worst[1] / 1e9));
+  else PetscCall(PetscSNPrintf(parts, sizeof(parts), "%.3g GB on rank %d (P and the dense work)", worst[1] / 1e9, max.rank));
+  if (limitGB > 0) SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %s, more than the limit of %.3g GB per rank (-snes_ssstar_memory_limit): refused before the factorization", what, parts, worst[3] / 1e9);
+  SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.3g GB on the node of rank %d, its %d ranks together (%s), more than the node's %.3g GB of MemAvailable: refused before the factorization (more nodes, or -snes_ssstar_memory_limit to plan for another amount)", what, worst[2] / 1e9, max.rank, (int)worst[4], parts, worst[3] / 1e9);
 }
 
 /* MUMPS's "INFO(2) entries" (negative: millions of entries) in bytes of an entry of the given size */

@@ -54,7 +54,7 @@ def schur_memory_refusal():
     for path in ("direct", "mumps", "explicit"):
         out = run(mpiexec(2, PRISM, "-level", "4", "-reduction", path, "-snes_ssstar_memory_limit", "0.001", "-info"), expect_rc=1)
         msg = error_text(out)
-        expect(re.search(r"The %s Schur reduction.* needs an estimated [\d.e+-]+ GB on rank \d \(.*GB\), more than the limit of 0.001 GB per rank \(-snes_ssstar_memory_limit\): refused before the factorization" % path, msg) is not None,
+        expect(re.search(r"The %s Schur reduction.* needs an estimated [\d.e+-]+ GB on rank \d \(.*\), more than the limit of 0.001 GB per rank \(-snes_ssstar_memory_limit\): refused before the factorization" % path, msg) is not None,
                "%s: no refusal with the estimate and the limit" % path, out)
         expect("MUMPS factorization" not in out, "%s: factored before refusing" % path, out)
         expect(path != "direct" or "MUMPS analysis" in out, "direct: refused before its analysis", out)

@@ -82,3 +82,12 @@ def schur_mumps_out_of_memory():
 def schur_reserved_icntl():
     out = run([PRISM, "-level", "2", "-schur_direct_mumps_icntl_19", "1"], expect_rc=1)
     expect("-schur_direct_mumps_icntl_19: ICNTL(19) is set by the direct reduction itself" in out, "the option is not named", out)
+
+
+@test("a memory limit between MUMPS's out-of-core and in-core estimates puts the factors out of core (on disk), with the same solution as in core to 1e-10 (level 6)")
+def schur_out_of_core():
+    out, s = prism(6, 1, extra=["-snes_ssstar_memory_limit", "0.08", "-info", ":mat"], h5="schur_ooc_L6.h5")
+    expect(re.search(r"MUMPS's factors in core: \d+ MB, out of core: \d+ MB on this rank; out of core", out) is not None, "the factors stayed in core", out)
+    expect(s["iters"] == REFERENCE_ITERATIONS[6], "%d iterations out of core" % s["iters"], out)
+    prism(6, 1, h5="schur_incore_L6.h5")
+    run(CHECK + ["compare", os.path.join(OUT, "schur_incore_L6.h5"), os.path.join(OUT, "schur_ooc_L6.h5"), "--tol", "1e-10"])

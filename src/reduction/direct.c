@@ -267,7 +267,7 @@ static PetscErrorCode OrderOnHost(PetscInt N, PetscInt bs, PetscInt NC, const MU
 /* The Schur variables (host, in the order of isC) and the pivot order of every dof (host) */
 static PetscErrorCode SetOrdering(SSStarDirect d, Mat K, IS isC)
 {
-  PetscInt        N, NC, bs, nnodes, nadj, *deg, *adj, *allDeg = NULL, *allAdj = NULL;
+  PetscInt        N, NC, bs = 1, nnodes = 0, nadj = 0, *deg, *adj, *allDeg = NULL, *allAdj = NULL;
   IS              isCall;
   const PetscInt *cidx;
   PetscMPIInt     cnt[2], *counts = NULL, *displs = NULL, *acounts = NULL, *adispls = NULL;
@@ -388,8 +388,9 @@ static PetscErrorCode MoveSchurToRows(SSStarDirect d, PetscInt NC, PetscInt nb, 
 PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDirect *direct, Mat *P)
 {
   SSStarDirect d;
-  PetscInt     N, NC, mC, nb;
-  PetscScalar *schur;
+  PetscInt       N, NC, mC, nb;
+  PetscLogDouble dense;
+  PetscScalar   *schur;
   Vec          x, c;
 
   PetscFunctionBegin;
@@ -434,16 +435,27 @@ PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDi
   PetscCall(PetscLogEventBegin(SSSTAR_SchurAnalysis, K, 0, 0, 0));
   PetscCall(RunMUMPS(d, 1, "the analysis of K (MUMPS)"));
   PetscCall(PetscLogEventEnd(SSSTAR_SchurAnalysis, K, 0, 0, 0));
-  PetscCall(PetscInfo(K, "MUMPS analysis: %g flops to factor, %g entries in the factors, memory %d MB per rank at most, %d MB in all\n", (double)d->id.RINFOG(1), (double)d->id.INFOG(20), (int)d->id.INFOG(16), (int)d->id.INFOG(17)));
+  PetscCall(PetscInfo(K, "MUMPS analysis: %g flops to factor, %g entries in the factors, memory %d MB per rank at most, %d MB in all (out of core: %d MB, %d MB)\n", (double)d->id.RINFOG(1), (double)d->id.INFOG(20), (int)d->id.INFOG(16), (int)d->id.INFOG(17), (int)d->id.INFOG(26), (int)d->id.INFOG(27)));
   {
     const PetscInt expect = PetscMax(0, PetscMin(NC, (d->rank + 1) * nb) - PetscMin(NC, d->rank * nb));
 
     PetscCheck(d->id.schur_mloc == NC && d->id.schur_nloc == expect, PETSC_COMM_SELF, PETSC_ERR_LIB, "MUMPS laid the Schur complement out as %d x %d on rank %d, not %" PetscInt_FMT " x %" PetscInt_FMT, (int)d->id.schur_mloc, (int)d->id.schur_nloc, d->rank, NC, expect);
   }
 
-  /* memory: MUMPS's estimate (MB = 1e6 bytes), its Schur block, P and the caller's dense work, before any of it */
-  d->estimate = 1e6 * (PetscLogDouble)d->id.INFO(15);
-  PetscCall(SSStarReductionCheckMemory(d->comm, memoryLimit, d->estimate, 8.0 * NC * ((d->size > 1 ? d->id.schur_nloc : 0) + (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC), "The direct Schur reduction"));
+  /*
+     Memory, before any of it is taken: MUMPS's estimate (MB = 1e6 bytes), its Schur block, P and the caller's dense
+     work. When MUMPS's factors do not fit in core, they go out of core (to disk, MUMPS_OOC_TMPDIR) if that fits.
+  */
+  dense = 8.0 * NC * ((d->size > 1 ? d->id.schur_nloc : 0) + (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC);
+  if (!d->id.ICNTL(22)) {
+    PetscBool fits;
+
+    PetscCall(SSStarReductionFitsMemory(d->comm, memoryLimit, 1e6 * (PetscLogDouble)d->id.INFO(15), dense, &fits));
+    if (!fits) d->id.ICNTL(22) = 1;
+  }
+  d->estimate = 1e6 * (PetscLogDouble)(d->id.ICNTL(22) ? d->id.INFO(17) : d->id.INFO(15));
+  PetscCall(PetscInfo(K, "MUMPS's factors in core: %d MB, out of core: %d MB on this rank; %s\n", (int)d->id.INFO(15), (int)d->id.INFO(17), d->id.ICNTL(22) ? "out of core" : "in core"));
+  PetscCall(SSStarReductionCheckMemory(d->comm, memoryLimit, d->estimate, dense, d->id.ICNTL(22) ? "The direct Schur reduction with MUMPS's factors out of core (on disk)" : "The direct Schur reduction"));
 
   PetscCall(MatCreateDense(PetscObjectComm((PetscObject)K), mC, mC, NC, NC, NULL, P));
   if (d->size == 1) PetscCall(MatDenseGetArrayWrite(*P, &schur)); /* MUMPS writes P itself */

@@ -33,10 +33,11 @@ static PetscErrorCode GetMemAvailable(PetscLogDouble *bytes)
 }
 
 /*
-   Refuses, on every rank, when the estimate (sparse factors + dense matrices, bytes per rank) does not fit: a rank's
-   estimate above limitGB, or (limitGB = 0) the sum of the estimates of a node's ranks above its MemAvailable.
+   Whether the estimate (sparse factors + dense matrices, bytes per rank) fits, the same answer on every rank: each
+   rank's estimate within limitGB, or (limitGB = 0) the estimates of a node's ranks together within its MemAvailable.
+   When it does not and what is given, raises the error with the figures of the rank that fits worst.
 */
-PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDouble sparse, PetscLogDouble dense, const char what[])
+static PetscErrorCode CompareMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDouble sparse, PetscLogDouble dense, const char what[], PetscBool *fits)
 {
   MPI_Comm       node;
   PetscMPIInt    rank, nodeSize;
@@ -59,8 +60,9 @@ PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, Pets
   mine.ratio = available > 0 ? nodeNeed / available : 0; /* no /proc/meminfo: nothing to compare with */
   mine.rank  = rank;
   PetscCallMPI(MPI_Allreduce(&mine, &max, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
-  PetscCall(PetscInfo(NULL, "%s: estimate %g GB on rank %d (sparse %g, dense %g), %g GB on its node, limit %g GB\n", what, need / 1e9, rank, sparse / 1e9, dense / 1e9, nodeNeed / 1e9, available / 1e9));
-  if (max.ratio <= 1) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(NULL, "Memory estimate %g GB on rank %d (sparse %g, dense %g), %g GB on its node, limit %g GB\n", need / 1e9, rank, sparse / 1e9, dense / 1e9, nodeNeed / 1e9, available / 1e9));
+  *fits = (PetscBool)(max.ratio <= 1);
+  if (*fits || !what) PetscFunctionReturn(0);
   worst[0] = sparse;
   worst[1] = dense;
   worst[2] = nodeNeed;
@@ -71,6 +73,24 @@ PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, Pets
   else PetscCall(PetscSNPrintf(parts, sizeof(parts), "%.3g GB on rank %d (P and the dense work)", worst[1] / 1e9, max.rank));
   if (limitGB > 0) SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %s, more than the limit of %.3g GB per rank (-snes_ssstar_memory_limit): refused before the factorization", what, parts, worst[3] / 1e9);
   SETERRQ(comm, PETSC_ERR_MEM, "%s needs an estimated %.3g GB on the node of rank %d, its %d ranks together (%s), more than the node's %.3g GB of MemAvailable: refused before the factorization (more nodes, or -snes_ssstar_memory_limit to plan for another amount)", what, worst[2] / 1e9, max.rank, (int)worst[4], parts, worst[3] / 1e9);
+}
+
+/* Whether the estimate fits (collective; see CompareMemory) */
+PetscErrorCode SSStarReductionFitsMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDouble sparse, PetscLogDouble dense, PetscBool *fits)
+{
+  PetscFunctionBegin;
+  PetscCall(CompareMemory(comm, limitGB, sparse, dense, NULL, fits));
+  PetscFunctionReturn(0);
+}
+
+/* Refuses, on every rank, when the estimate does not fit, with the figures in the message (see CompareMemory) */
+PetscErrorCode SSStarReductionCheckMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDouble sparse, PetscLogDouble dense, const char what[])
+{
+  PetscBool fits;
+
+  PetscFunctionBegin;
+  PetscCall(CompareMemory(comm, limitGB, sparse, dense, what, &fits));
+  PetscFunctionReturn(0);
 }
 
 /* MUMPS's "INFO(2) entries" (negative: millions of entries) in bytes of an entry of the given size */

@@ -33,6 +33,7 @@ PETSC_INTERN PetscErrorCode SSStarDirectReduceLoad(SSStarDirect, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarDirectRecover(SSStarDirect, Vec, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarDirectDestroy(SSStarDirect *);
 
+PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarReductionCheckMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, const char[]);
 PETSC_INTERN PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm, PetscMPIInt, PetscInt, PetscInt, PetscLogDouble, const char[], const char[]);
 

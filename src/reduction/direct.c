@@ -521,7 +521,7 @@ PetscErrorCode SSStarDirectReduceLoad(SSStarDirect d, Vec F, Vec f)
   PetscFunctionReturn(0);
 }
 
-/* u with u_I = K_II^-1 (F_I - K_IC u_C): MUMPS's expansion, which follows a condensation of the same F */
+/* u with u_I = K_II^-1 (F_I - K_IC u_C): MUMPS's expansion, which needs the condensation of the same F just before */
 PetscErrorCode SSStarDirectRecover(SSStarDirect d, Vec F, Vec uC, Vec u)
 {
   PetscScalar *x, *c;

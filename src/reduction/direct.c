@@ -443,10 +443,11 @@ PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDi
   }
 
   /*
-     Memory, before any of it is taken: MUMPS's estimate (MB = 1e6 bytes), its Schur block, P and the caller's dense
-     work. When MUMPS's factors do not fit in core, they go out of core (to disk, MUMPS_OOC_TMPDIR) if that fits.
+     Memory, before any of it is taken: MUMPS's estimate (MB = 1e6 bytes), P, and MUMPS's Schur block (several ranks)
+     or later the caller's dense work. When MUMPS's factors do not fit in core, they go out of core (to disk,
+     MUMPS_OOC_TMPDIR) if that fits.
   */
-  dense = 8.0 * NC * ((d->size > 1 ? d->id.schur_nloc : 0) + (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC);
+  dense = 8.0 * NC * (mC + PetscMax(d->size > 1 ? d->id.schur_nloc : 0, SSSTAR_DENSE_WORK * (PetscLogDouble)mC));
   if (!d->id.ICNTL(22)) {
     PetscBool fits;
 

@@ -12,13 +12,14 @@ PREFIX   ?= /usr/local
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c \
-            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c \
+            src/reduction/reduction.c src/reduction/direct.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c \
             src/contact/memory.c src/contact/scene.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes
-BENCHES  := bench/newton_step bench/dense_lu
-CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction
+BENCHES  := bench/cholesky bench/newton_step bench/dense_lu
+# MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
+CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
 # mpiexec as root (CI, containers) needs these; harmless otherwise
@@ -41,7 +42,7 @@ all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h src/reduction/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(SAY) "  CC      $<"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
@@ -49,13 +50,17 @@ build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/
 $(LIB): $(LIB_OBJ)
 	@mkdir -p lib
 	$(SAY) "  LD      $@"
-	$(Q)$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB)
+	$(Q)$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB) $(MUMPS_LIB) $(METIS_LIB)
 
 examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction: tests/%: tests/%.c $(LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
+bench/%: bench/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
@@ -86,6 +91,7 @@ test: all
 bench: all
 	$(PYTHON) bench/table2.py
 	$(PYTHON) bench/newton.py
+	$(PYTHON) bench/schur.py
 
 # the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
 accuracy: all

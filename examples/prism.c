@@ -8,7 +8,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -friction <0.3>            Coulomb friction coefficient (same as -snes_ssstar_friction)\n\
   -traction_top <0,0,-500>   traction on the group top\n\
   -traction_right <-200,30,200> traction on the group right\n\
-  -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
+  -reduction <direct>        Schur complement: direct (MUMPS + METIS, every rank), mumps (PETSc's MUMPS Schur, on\n\
+                             rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
   -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary)\n\
   -summary_header <true>     print the header line of the summary table\n\
@@ -106,7 +107,7 @@ int main(int argc, char **argv)
   PetscReal           friction = 0.3, t_assembly, t_schur, t_solve, t_recovery, t0;
   char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar;
-  SSStarReductionType rtype = SSSTAR_REDUCTION_MUMPS;
+  SSStarReductionType rtype = SSSTAR_REDUCTION_DIRECT;
   DM                  dm;
   Vec                 u, r;
   Body                body;

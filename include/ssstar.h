@@ -68,6 +68,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetMemoryLimit(SNES, PetscReal);
 
 /* The friction law */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionLaw(SNES, SSStarFrictionLaw);

@@ -7,6 +7,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep;
 PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
+PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 
@@ -38,6 +39,10 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
   PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));
+  PetscCall(PetscLogEventRegister("SSStarOrdering", MAT_CLASSID, &SSSTAR_SchurOrdering));
+  PetscCall(PetscLogEventRegister("SSStarAnalysis", MAT_CLASSID, &SSSTAR_SchurAnalysis));
+  PetscCall(PetscLogEventRegister("SSStarFactor", MAT_CLASSID, &SSSTAR_SchurFactor));
+  PetscCall(PetscLogEventRegister("SSStarSchurScat", MAT_CLASSID, &SSSTAR_SchurScatter));
   PetscCall(PetscRegisterFinalize(SSStarFinalizePackage));
   PetscFunctionReturn(0);
 }

@@ -131,13 +131,28 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStar
    SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use
 
    Options Database Key:
-.  -snes_ssstar_reduction <mumps,explicit> - the Schur complement
+.  -snes_ssstar_reduction <direct,mumps,explicit> - the Schur complement
 @*/
 PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
   PetscTryMethod(snes, "SNESSSStarSetReductionType_C", (SNES, SSStarReductionType), (snes, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetMemoryLimit - the memory (GB = 1e9 bytes per rank) the reduction of K may plan for; it refuses before
+   factorizing K when its estimate exceeds it. 0 (the default): MemAvailable of each node split over its ranks
+
+   Options Database Key:
+.  -snes_ssstar_memory_limit <GB> - the limit
+@*/
+PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMemoryLimit_C", (SNES, PetscReal), (snes, gigabytes));
   PetscFunctionReturn(0);
 }
 

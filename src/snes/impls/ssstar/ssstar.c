@@ -297,7 +297,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -330,6 +330,8 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   if (set) PetscCall(SNESSSStarSetFriction(snes, value));
   PetscCall(PetscOptionsEnum("-snes_ssstar_reduction", "Schur complement of K on the contact dofs (whole-body use)", "SNESSSStarSetReductionType", SSStarReductionTypes, (PetscEnum)ct->reductionType, (PetscEnum *)&rtype, &set));
   if (set) PetscCall(SNESSSStarSetReductionType(snes, rtype));
+  PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ct->memoryLimit, &value, &set));
+  if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));
   if (set) PetscCall(SNESSSStarSetScaling(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
@@ -472,6 +474,16 @@ static PetscErrorCode SNESSSStarSetReductionType_SSStar(SNES snes, SSStarReducti
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarSetMemoryLimit_SSStar(SNES snes, PetscReal gigabytes)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  PetscCheck(gigabytes >= 0 && !PetscIsInfOrNanReal(gigabytes), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_memory_limit %g: the limit must be > 0 GB (or 0 for the available memory)", (double)gigabytes);
+  ct->memoryLimit = gigabytes;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarSetScaling_SSStar(SNES snes, PetscReal gamma)
 {
   PetscFunctionBegin;
@@ -569,7 +581,8 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
    Options Database Keys:
 +  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 .  -snes_ssstar_friction <0.3> - Coulomb friction coefficient
-.  -snes_ssstar_reduction <mumps> - Schur complement of K: mumps or explicit
+.  -snes_ssstar_reduction <direct> - Schur complement of K: direct, mumps or explicit
+.  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag P))
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
 .  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration
@@ -601,7 +614,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscNew(&ss));
   ss->contact.law           = SSSTAR_FRICTION_COULOMB;
   ss->contact.friction      = 0.3;
-  ss->contact.reductionType = SSSTAR_REDUCTION_MUMPS;
+  ss->contact.reductionType = SSSTAR_REDUCTION_DIRECT;
   ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
   snes->data                = (void *)ss;
@@ -624,6 +637,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetSlipBounds), SNESSSStarSetSlipBounds_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetNodeFrictionLaws), SNESSSStarSetNodeFrictionLaws_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetReductionType), SNESSSStarSetReductionType_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetMemoryLimit), SNESSSStarSetMemoryLimit_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetScaling), SNESSSStarSetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetScaling), SNESSSStarGetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetStateTolerance), SNESSSStarSetStateTolerance_SSStar));

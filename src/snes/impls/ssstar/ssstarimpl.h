@@ -45,6 +45,7 @@ typedef struct {
   SSStarFrictionLaw  *nodeLaws;     /* per owned node, or NULL                                              */
   PetscInt            nNodeLaws;
   SSStarReductionType reductionType;
+  PetscReal           memoryLimit;  /* GB per rank for the reduction; 0: MemAvailable of the node per rank  */
   PetscObjectState    declared;     /* bumped by every setter: the per-node data are rebuilt when it moved  */
 
   /* derived, in the solver's node order (nodes sorted by their first dof) */

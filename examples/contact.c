@@ -1,19 +1,8 @@
 static const char help[] = "Contact of an elastic body with rigid planes: solves the scene the options describe, and only what\n\
 they name (no contact group: one linear solve; frictionless groups: no friction work; no -gravity: no body force).\n\
 A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
-  -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name\n\
-  -mesh_scale <1>                 multiply the mesh coordinates by this\n\
-  -E <E> -nu <nu>                 material of the cells without -material_<G>\n\
-  -material_<G> <E,nu>            material of volume group G\n\
-  -dirichlet <G1,G2,...>          groups held fixed (u = 0)\n\
-  -traction_<G> <x,y,z>           constant traction on surface group G (global axes)\n\
-  -spring_<G> <k>                 soft elastic support of surface group G: k per unit area, every direction\n\
-  -gravity <gx,gy,gz> -density <rho>  body force rho g (only when given)\n\
-  -contact <G1,G2,...>            the contact groups (none: no contact at all)\n\
-  -obstacle_<G> <px,py,pz,nx,ny,nz>  the rigid plane of G: a point and the normal into the body (default 0,0,0,0,0,1)\n\
-  -friction_law_<G> <coulomb>     none, tresca or coulomb\n\
-  -friction_<G> <phi>             Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
-  -slip_bound_<G> <s>             Tresca slip bound of G, a force per contact node\n\
+  -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
+                                  (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
   -load_steps <1>                 solve at the loads k/N of the given ones, k = 1..N (the last is written)\n\
   -o <file.h5>                    write the solution (HDF5 + XDMF)\n";
 

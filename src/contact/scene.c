@@ -241,6 +241,19 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
   PetscFunctionReturn(0);
 }
 
+/* The options -help lists for the groups (read below by name, so PetscOptions* does not list them itself) */
+static const char SceneGroupHelp[] = "\
+  -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
+  -material_<G> <E,nu>: material of volume group G\n\
+  -traction_<G> <x,y,z>: constant traction on surface group G (global axes)\n\
+  -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
+  -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
+  -contact <G1,G2,...>: the contact groups (none: no contact at all)\n\
+  -obstacle_<G> <0,0,0,0,0,1>: the rigid plane of G: a point px,py,pz and the normal nx,ny,nz into the body\n\
+  -friction_law_<G> <coulomb>: none, tresca or coulomb\n\
+  -friction_<G> <phi>: Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
+  -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n";
+
 /*@C
    SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
    option for unknown, contradictory or incomplete entries
@@ -261,6 +274,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
+  if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) PetscCall((*PetscHelpPrintf)(comm, "%s", SceneGroupHelp));
   PetscOptionsEnd();
   PetscCheck(!(hasMesh && hasGeo), comm, PETSC_ERR_ARG_WRONG, "Options -mesh and -geo contradict each other: give one body");
   PetscCheck(hasMesh || hasGeo, comm, PETSC_ERR_ARG_WRONG, "No body: give -mesh file.msh, or -geo file.geo with -level L");

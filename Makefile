@@ -7,14 +7,19 @@ include $(PETSC_DIR)/lib/petsc/conf/variables
 endif
 
 LIBNAME  := ssstar
+VERSION  := 0.3.0
+PREFIX   ?= /usr/local
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
-            src/reduction/reduction.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c
+            src/reduction/reduction.c src/reduction/direct.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c \
+            src/contact/memory.c src/contact/scene.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
-EXAMPLES := examples/prism
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact
-CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) \
+EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction
+BENCHES  := bench/cholesky bench/newton_step bench/dense_lu
+# MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
+CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
 # mpiexec as root (CI, containers) needs these; harmless otherwise
@@ -22,30 +27,60 @@ export OMPI_ALLOW_RUN_AS_ROOT=1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OPENBLAS_NUM_THREADS=1
 MPIEXEC_SSSTAR := mpiexec --oversubscribe
+# quiet builds: "CC file" lines; make V=1 prints the commands
+ifeq ($(V),1)
+  Q :=
+  SAY = @true
+else
+  Q := @
+  SAY = @echo
+endif
 
-.PHONY: all run test bench clean distclean
-all: $(LIB) $(EXAMPLES) $(TESTS)
+.PHONY: all run test bench bench-scenes scenes accuracy install clean distclean
+all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h src/reduction/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
-	$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
+	$(SAY) "  CC      $<"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
 
 $(LIB): $(LIB_OBJ)
 	@mkdir -p lib
-	$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB)
+	$(SAY) "  LD      $@"
+	$(Q)$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB) $(MUMPS_LIB) $(METIS_LIB)
 
 examples/%: examples/%.c $(LIB)
-	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton: tests/%: tests/%.c $(LIB)
-	$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction: tests/%: tests/%.c $(LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
+bench/%: bench/%.c $(LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
+bench/newton_step bench/dense_lu: bench/%: bench/%.c $(LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 # deliberately not linked with libssstar: it gets the type through -dll_append
 tests/test_plain_contact: tests/test_plain_contact.c
-	$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
+
+# make install PREFIX=/some/where: the library, the headers and lib/pkgconfig/ssstar.pc (which carries PETSc's flags),
+# so that a program builds with  mpicc prog.c $$(pkg-config --cflags --libs ssstar)
+install: $(LIB)
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include
+	install -m 644 include/*.h $(DESTDIR)$(PREFIX)/include/
+	install -m 755 $(LIB) $(DESTDIR)$(PREFIX)/lib/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@PETSC_CFLAGS@|$(PETSC_CC_INCLUDES)|' \
+	    -e 's|@PETSC_LIBS@|$(PETSC_LIB)|' ssstar.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/ssstar.pc
 
 run: all
 	$(MPIEXEC_SSSTAR) -n 2 examples/prism -level 6 -snes_converged_reason -o prism_L6.h5
@@ -55,9 +90,25 @@ test: all
 
 bench: all
 	$(PYTHON) bench/table2.py
+	$(PYTHON) bench/newton.py
+	$(PYTHON) bench/schur.py
+
+# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
+accuracy: all
+	$(PYTHON) bench/accuracy.py
+
+# what an effect costs: the prism scene with effects switched on and off (bench/output/scenes.csv)
+bench-scenes: all
+	$(PYTHON) bench/scenes.py
+
+# every scene of scenes/ at its level: scenes/output/NAME.h5, .xmf and .png
+SCENES := $(basename $(notdir $(wildcard scenes/*.opts)))
+scenes: all
+	@mkdir -p scenes/output
+	for s in $(SCENES); do examples/contact -options_file scenes/$$s.opts -o scenes/output/$$s.h5 && $(PYTHON) examples/plot_contact.py scenes/output/$$s.h5 || exit 1; done
 
 clean:
-	rm -rf build lib $(EXAMPLES) $(TESTS) tests/output meshes/*.msh *.h5 *.xmf
+	rm -rf build lib $(EXAMPLES) $(TESTS) $(BENCHES) tests/output scenes/output meshes/*.msh *.h5 *.xmf
 
 distclean: clean
 	rm -f config/ssstar.mk

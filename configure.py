@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Configure ssstar: find PETSc (PETSC_DIR/PETSC_ARCH, else Debian's /usr/lib/petsc) with MUMPS, HDF5 and
-ScaLAPACK, find gmsh and its C API, and write config/ssstar.mk for the Makefile.
+ScaLAPACK, find gmsh and its C API, MUMPS's C API and METIS, and write config/ssstar.mk for the Makefile.
+The direct reduction calls MUMPS itself: it links the MUMPS PETSc links (MUMPS_LIB of PETSc's petscvariables).
 
 Run as root, it installs the missing Debian packages; otherwise it prints the apt-get line to run.
 """
@@ -18,6 +19,10 @@ PACKAGES = {
     "python3-numpy": lambda: debian_python_has("numpy"),
     "python3-matplotlib": lambda: debian_python_has("matplotlib"),
     "python3-h5py": lambda: debian_python_has("h5py"),
+    "pkg-config": lambda: shutil.which("pkg-config") is not None,
+    "python3-petsc4py": lambda: debian_python_has("petsc4py"),
+    "libmumps-dev": lambda: os.path.exists("/usr/include/dmumps_c.h"),  # MUMPS's C API (the direct reduction)
+    "libmetis-dev": lambda: os.path.exists("/usr/include/metis.h"),  # METIS_NodeND (its ordering)
 }
 DEBIAN_PYTHON = "/usr/bin/python3"
 REQUIRED_PETSC_PACKAGES = ["MUMPS", "HDF5", "SCALAPACK"]
@@ -64,6 +69,11 @@ def find_petsc():
         parts = line.split()
         if len(parts) == 3 and parts[0] == "#define" and parts[1] in ("PETSC_VERSION_MAJOR", "PETSC_VERSION_MINOR", "PETSC_VERSION_SUBMINOR"):
             version[parts[1]] = int(parts[2])
+    variables = os.path.join(petsc_dir, petsc_arch, "lib", "petsc", "conf", "petscvariables")
+    if not os.path.exists(variables):
+        variables = os.path.join(petsc_dir, "lib", "petsc", "conf", "petscvariables")
+    if not any(line.startswith("MUMPS_LIB =") for line in open(variables)):
+        sys.exit("configure: %s names no MUMPS_LIB: the direct reduction links the MUMPS PETSc links" % variables)
     ver = (version["PETSC_VERSION_MAJOR"], version["PETSC_VERSION_MINOR"])
     if ver < (3, 18):
         sys.exit("configure: PETSc %d.%d is too old; ssstar needs 3.18 or newer" % ver)
@@ -79,6 +89,7 @@ def main():
         f.write("# written by configure.py\n")
         f.write("PETSC_DIR := %s\nPETSC_ARCH := %s\n" % (petsc_dir, petsc_arch))
         f.write("GMSH := %s\nGMSH_LIB := -lgmsh\n" % gmsh)
+        f.write("METIS_LIB := -lmetis\n")
         f.write("PYTHON := %s\n" % DEBIAN_PYTHON)
     print("configure: PETSc %s at %s%s (MUMPS, HDF5, ScaLAPACK), gmsh %s; wrote config/ssstar.mk"
           % (version, petsc_dir, ("/" + petsc_arch) if petsc_arch else "", gmsh))

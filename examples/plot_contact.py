@@ -1,10 +1,13 @@
 #!/usr/bin/python3
-"""Picture of the contact face from a solution file of examples/prism (-o file.h5).
+"""Picture of the contact faces of a solution file (examples/contact or examples/prism, -o file.h5).
 
   examples/plot_contact.py file.h5 [-o file.png]
 
-Left: contact nodes by state (separated, sliding, sticking) with the tangential slip u_t as arrows.
-Right: the normal reaction r_n (contact pressure times area) and the gap u_n."""
+One row per contact group, drawn in the coordinates (t1, t2) of its plane (the frame the solver uses, so any plane
+works). Left: the contact nodes by state (separated, sliding, sticking), with the tangential displacement u_t of the nodes in
+contact as arrows (the slip).
+Right: the contact pressure r_n / area (the normal force of the plane over the node's tributary area). With
+-load_steps, a last panel shows the contact area against the load factor."""
 import argparse
 
 import h5py
@@ -15,7 +18,30 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 STATES = {0: ("separated (L)", "0.6"), 1: ("sliding (M1)", "tab:blue"), 2: ("weak sliding (M2)", "tab:cyan"),
-          3: ("sticking (M3+)", "tab:red"), 4: ("weak sticking (M3-)", "tab:orange"), 5: ("weak (M4)", "tab:purple")}
+          3: ("sticking (M3+)", "tab:red"), 4: ("weak sticking (M3-)", "tab:orange"), 5: ("weak (M4)", "tab:purple"),
+          6: ("separated, stuck (LS)", "0.3")}
+
+
+def frame(n):
+    """Rows t1, t2, n of the node frame for the unit normal n, as SSStarNodeFrame computes it."""
+    a = np.array([0.0, 1.0, 0.0]) if abs(n[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
+    t1 = a - a.dot(n) * n
+    t1 /= np.linalg.norm(t1)
+    return np.array([t1, np.cross(n, t1), n])
+
+
+def read(name):
+    f = h5py.File(name, "r")
+    c = f["contact"]
+    p = len(c["coordinates"])
+    data = {k: c[k][:] for k in ("coordinates", "displacement", "reaction", "state")}
+    data["normal"] = c["normal"][:] if "normal" in c else np.tile([0.0, 0.0, 1.0], (p, 1))
+    data["area"] = c["area"][:] if "area" in c else None
+    data["group"] = c["group"][:] if "group" in c else np.zeros(p, int)
+    names = c["group"].attrs.get("names", b"contact") if "group" in c else b"contact"
+    data["names"] = (names.decode() if isinstance(names, bytes) else str(names)).split(",")
+    data["steps"] = {k: f["load_steps"][k][:] for k in f["load_steps"]} if "load_steps" in f else None
+    return data
 
 
 def main():
@@ -23,28 +49,43 @@ def main():
     parser.add_argument("file")
     parser.add_argument("-o", "--output", help="PNG file (default: FILE with .png)")
     args = parser.parse_args()
-    f = h5py.File(args.file, "r")
-    x, u, r = f["contact/coordinates"][:], f["contact/displacement"][:], f["contact/reaction"][:]
-    state = f["contact/state"][:]
-
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 4.2))
-    for s, (label, color) in STATES.items():
-        on = state == s
-        if on.any():
-            ax1.scatter(x[on, 0], x[on, 1], s=14, color=color, label="%s: %d" % (label, on.sum()), zorder=2)
-    ax1.quiver(x[:, 0], x[:, 1], u[:, 0], u[:, 1], angles="xy", color="k", width=0.002, zorder=3)
-    ax1.set_title("contact states and tangential displacement u_t")
-    ax1.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    sc = ax2.scatter(x[:, 0], x[:, 1], c=r[:, 2], s=18, cmap="viridis")
-    fig.colorbar(sc, ax=ax2, label="normal reaction r_n")
-    gap = u[:, 2] > 1e-8 * np.abs(u).max()
-    ax2.scatter(x[gap, 0], x[gap, 1], s=40, facecolors="none", edgecolors="0.4", label="u_n > 0 (lifted off)")
-    ax2.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15))
-    ax2.set_title("normal reaction at the contact nodes")
-    for ax in (ax1, ax2):
-        ax.set_aspect("equal")
-        ax.set_xlabel("x")
-        ax.set_ylabel("y")
+    d = read(args.file)
+    groups = sorted(set(d["group"].tolist()))
+    ncols = 3 if d["steps"] is not None else 2
+    fig, axes = plt.subplots(len(groups), ncols, figsize=(6.5 * ncols, 4.4 * len(groups)), squeeze=False)
+    for row, g in zip(axes, groups):
+        on = d["group"] == g
+        R = frame(d["normal"][on][0])
+        x, u, r = d["coordinates"][on] @ R.T, d["displacement"][on] @ R.T, d["reaction"][on] @ R.T
+        state = d["state"][on]
+        name = d["names"][g] if g < len(d["names"]) else str(g)
+        for s, (label, color) in STATES.items():
+            here = state == s
+            if here.any():
+                row[0].scatter(x[here, 0], x[here, 1], s=14, color=color, label="%s: %d" % (label, here.sum()), zorder=2)
+        touching = ~np.isin(state, (0, 6))
+        row[0].quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", color="k", width=0.002, zorder=3)
+        row[0].set_title("%s: contact states and slip u_t" % name)
+        row[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+        pressure = r[:, 2] / d["area"][on] if d["area"] is not None else r[:, 2]
+        sc = row[1].scatter(x[:, 0], x[:, 1], c=pressure, s=18, cmap="viridis")
+        fig.colorbar(sc, ax=row[1], label="contact pressure r_n / area" if d["area"] is not None else "normal reaction r_n")
+        lifted = ~touching
+        if lifted.any():
+            row[1].scatter(x[lifted, 0], x[lifted, 1], s=40, facecolors="none", edgecolors="0.4", label="separated")
+            row[1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15))
+        row[1].set_title("%s: contact pressure" % name)
+        for ax in row[:2]:
+            ax.set_aspect("equal")
+            ax.set_xlabel("t1")
+            ax.set_ylabel("t2")
+        if d["steps"] is not None:
+            st = d["steps"]
+            row[2].plot(st["factor"], st["area"], "o-")
+            row[2].set_xlabel("load factor")
+            row[2].set_ylabel("contact area (all groups)")
+            row[2].set_title("contact area against load")
+            row[2].grid(True)
     fig.tight_layout()
     out = args.output or args.file.rsplit(".", 1)[0] + ".png"
     fig.savefig(out, dpi=110)

@@ -1,18 +1,21 @@
 static const char help[] = "The seed's test problem: an elastic prism pressed onto a rigid plane with Coulomb friction,\n\
 solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\n\
   -level <6>                 mesh level L of meshes/prism.geo: (4L+1)x(2L+1)x(2L+1) nodes\n\
-  -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -level)\n\
+  -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -geo, -level)\n\
   -geo <file.geo>            the geometry meshed for -level (default: meshes/prism.geo of the source tree)\n\
   -mesh_scale <1>            multiply the mesh coordinates by this (a change of length unit, e.g. 1e-3 for mm -> m)\n\
   -E <2.1e5> -nu <0.3>       Young's modulus and Poisson ratio\n\
   -friction <0.3>            Coulomb friction coefficient (same as -snes_ssstar_friction)\n\
   -traction_top <0,0,-500>   traction on the group top\n\
   -traction_right <-200,30,200> traction on the group right\n\
-  -reduction <mumps>         Schur complement: mumps (MUMPS's own, on rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
+  -reduction <direct>        Schur complement: direct (MUMPS + METIS, every rank), mumps (PETSc's MUMPS Schur, on\n\
+                             rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -initial_guess <zero>      the solver's starting point: zero, elastic (K u = b, no contact) or random\n\
   -initial_guess_scale <1>   random: entries uniform in [-scale, scale]\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
-  -summary_header <true>     print the header line of the summary table\n";
+  -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary)\n\
+  -summary_header <true>     print the header line of the summary table\n\
+Every option of examples/contact applies too (README \"Scenes\"): the prism is the scene scenes/prism.opts.\n";
 
 #include <ssstar.h>
 #include <ssstarcontact.h>
@@ -21,14 +24,18 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-static PetscErrorCode GetVector3(const char name[], PetscReal v[3])
+/* The prism scene (README "The prism") unless the options say otherwise; -mesh replaces -geo and -level */
+static PetscErrorCode SetPrismDefaults(void)
 {
-  PetscInt  n = 3;
-  PetscBool set;
+  const char *defaults[][2] = {{"-dirichlet", "dirichlet"}, {"-contact", "contact"}, {"-traction_top", "0,0,-500"}, {"-traction_right", "-200,30,200"}, {"-E", "2.1e5"}, {"-nu", "0.3"}, {"-geo", SSSTAR_MESH_DIR "/prism.geo"}, {"-level", "6"}};
+  PetscBool   hasMesh, set;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetRealArray(NULL, NULL, name, v, &n, &set));
-  PetscCheck(!set || n == 3, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Option %s needs three comma-separated values x,y,z (got %" PetscInt_FMT ")", name, n);
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &hasMesh));
+  for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(defaults) - (hasMesh ? 2 : 0); k++) {
+    PetscCall(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));
+    if (!set) PetscCall(PetscOptionsSetValue(NULL, defaults[k][0], defaults[k][1]));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -115,18 +122,47 @@ static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
   PetscFunctionReturn(0);
 }
 
+/* P, f (in the solver's node order: nodes sorted by their first dof), u_C and the coordinates in the same order */
+static PetscErrorCode SaveReduced(const char file[], SSStarScene scene, SNES snes, Vec u)
+{
+  Mat              P;
+  Vec              f, uC, xC;
+  IS               isC;
+  PetscInt         n;
+  const PetscReal *coords;
+  PetscBool        sorted;
+  PetscViewer      viewer;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESSSStarGetReducedProblem(snes, &P, &f));
+  PetscCall(SSStarSceneGetContactDofs(scene, &isC));
+  PetscCall(SSStarSceneGetContactNodes(scene, &n, &coords, NULL, NULL, NULL));
+  PetscCall(ISSorted(isC, &sorted));
+  PetscCheck(sorted, PETSC_COMM_SELF, PETSC_ERR_SUP, "-save_reduced: the contact dofs of this mesh are not in increasing order");
+  PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_WRITE, &viewer));
+  PetscCall(MatView(P, viewer));
+  PetscCall(VecView(f, viewer));
+  PetscCall(VecGetSubVector(u, isC, &uC));
+  PetscCall(VecView(uC, viewer));
+  PetscCall(VecRestoreSubVector(u, isC, &uC));
+  PetscCall(VecCreateMPIWithArray(PETSC_COMM_WORLD, 3, 3 * n, PETSC_DETERMINE, coords, &xC));
+  PetscCall(VecView(xC, viewer));
+  PetscCall(VecDestroy(&xC));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
-  SSStarScene         scene = {2.1e5, 0.3, {0, 0, -500}, {-200, 30, 200}};
-  PetscInt            level = 6, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
-  PetscReal           friction = 0.3, meshScale = 1, t_assembly, t_schur, t_solve, t_recovery, t0;
-  char                mesh[PETSC_MAX_PATH_LEN] = "", geo[PETSC_MAX_PATH_LEN] = SSSTAR_MESH_DIR "/prism.geo", out[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasMesh, hasOut, header = PETSC_TRUE, isssstar;
-  SSStarReductionType rtype = SSSTAR_REDUCTION_MUMPS;
+  SSStarScene         scene;
+  PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
+  PetscReal           friction = 0.3, t_assembly, t_schur, t_solve, t_recovery, t0;
+  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
+  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar;
+  SSStarReductionType rtype = SSSTAR_REDUCTION_DIRECT;
   DM                  dm;
-  Vec                 tags, u, r;
+  Vec                 u, r;
   Body                body;
-  SSStarContactNodes  cn;
   SNES                snes;
   SNESConvergedReason reason;
   PetscMPIInt         size;
@@ -136,37 +172,26 @@ int main(int argc, char **argv)
   PetscCall(SSStarInitializePackage());
   PetscCall(PetscLogDefaultBegin()); /* the phases of the summary row are read from the log events */
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(SetPrismDefaults());
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &hasMesh));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-level", &level, NULL));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Prism contact problem", "ssstar");
-  PetscCall(PetscOptionsInt("-level", "Mesh level of meshes/prism.geo", NULL, level, &level, NULL));
-  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (instead of -level)", NULL, mesh, mesh, sizeof(mesh), &hasMesh));
-  PetscCall(PetscOptionsString("-geo", "Geometry meshed for -level", NULL, geo, geo, sizeof(geo), NULL));
-  PetscCall(PetscOptionsReal("-mesh_scale", "Multiply the mesh coordinates by this", NULL, meshScale, &meshScale, NULL));
-  PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, scene.E, &scene.E, NULL));
-  PetscCall(PetscOptionsReal("-nu", "Poisson ratio", NULL, scene.nu, &scene.nu, NULL));
   PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", NULL, friction, &friction, NULL));
   PetscCall(PetscOptionsEnum("-reduction", "Schur complement", NULL, SSStarReductionTypes, (PetscEnum)rtype, (PetscEnum *)&rtype, NULL));
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
+  PetscCall(PetscOptionsString("-save_reduced", "Write P, f, u_C and the contact coordinates to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary table", NULL, header, &header, NULL));
   PetscOptionsEnd();
-  PetscCall(GetVector3("-traction_top", scene.traction_top));
-  PetscCall(GetVector3("-traction_right", scene.traction_right));
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
+  if (hasReduced) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, reduced));
 
-  /* mesh, FEM */
+  /* mesh, FEM: the scene of the options (SetPrismDefaults) */
   PetscCall(PetscTime(&t0));
-  if (!hasMesh) {
-    size_t len;
-
-    /* meshes/prism.geo at level 6 -> meshes/prism_L6.msh */
-    PetscCall(PetscStrlen(geo, &len));
-    PetscCheck(len > 4 && !strcmp(geo + len - 4, ".geo"), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-geo %s: expected a .geo file", geo);
-    PetscCall(PetscSNPrintf(mesh, sizeof(mesh), "%.*s_L%" PetscInt_FMT ".msh", (int)(len - 4), geo, level));
-    PetscCall(SSStarMeshGeneratePrism(PETSC_COMM_WORLD, geo, level, mesh));
-  }
-  PetscCall(SSStarMeshLoad(PETSC_COMM_WORLD, mesh, &dm, &tags));
-  PetscCall(SSStarMeshScale(dm, meshScale));
-  PetscCall(SSStarAssembleElasticity(dm, &scene, &body.K, &body.b));
-  PetscCall(SSStarContactNodesCreate(dm, tags, &cn));
+  PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
+  PetscCall(SSStarSceneSetFromOptions(scene));
+  PetscCall(SSStarSceneSetUp(scene));
+  PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
+  PetscCall(SSStarSceneGetDM(scene, &dm));
   PetscCall(PetscTimeSubtract(&t0));
   t_assembly = -t0;
 
@@ -177,7 +202,7 @@ int main(int argc, char **argv)
   PetscCall(SNESSSStarSetReductionType(snes, rtype));
   PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
   PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
-  PetscCall(SNESSSStarSetContactNodes(snes, cn.isC, NULL, NULL));
+  PetscCall(SSStarSceneSetContact(scene, snes));
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
@@ -193,14 +218,7 @@ int main(int argc, char **argv)
   PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
 
   /* summary in the shape of Table 2 */
-  {
-    Vec coordinates;
-    PetscCall(DMGetCoordinates(dm, &coordinates));
-    PetscCall(VecGetSize(coordinates, &nnodes));
-    nnodes /= 3;
-  }
-  PetscCall(ISGetSize(cn.isC, &ncontact));
-  ncontact /= 3;
+  PetscCall(SSStarSceneGetSizes(scene, &nnodes, &ncontact));
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   if (isssstar) PetscCall(SNESSSStarGetStates(snes, &states, counts));
   else PetscCall(PetscArrayzero(counts, SSSTAR_NUM_STATES));
@@ -209,27 +227,14 @@ int main(int argc, char **argv)
                         hasMesh ? -1 : level, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
                         SNESConvergedReasons[reason]));
 
-  if (hasOut) {
-    Vec       uC, rC;
-    PetscInt *st;
-
-    PetscCall(VecGetSubVector(u, cn.isC, &uC));
-    PetscCall(VecGetSubVector(r, cn.isC, &rC));
-    PetscCall(PetscMalloc1(cn.n, &st));
-    for (PetscInt i = 0; i < cn.n; i++) st[i] = states ? (PetscInt)states[i] : -1;
-    PetscCall(SSStarWriteSolution(out, dm, u, &cn, uC, rC, st));
-    PetscCall(PetscFree(st));
-    PetscCall(VecRestoreSubVector(r, cn.isC, &rC));
-    PetscCall(VecRestoreSubVector(u, cn.isC, &uC));
-  }
+  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, out, u, r, states, NULL, NULL));
+  if (hasReduced && isssstar) PetscCall(SaveReduced(reduced, scene, snes, u));
 
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&u));
-  PetscCall(SSStarContactNodesDestroy(&cn));
   PetscCall(MatDestroy(&body.K));
   PetscCall(VecDestroy(&body.b));
-  PetscCall(VecDestroy(&tags));
-  PetscCall(DMDestroy(&dm));
+  PetscCall(SSStarSceneDestroy(&scene));
   PetscCall(PetscFinalize());
   return 0;
 }

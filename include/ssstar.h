@@ -23,6 +23,10 @@
 
 #define SNESSSSTAR "ssstar"
 
+#define SSSTAR_VERSION_MAJOR 0
+#define SSSTAR_VERSION_MINOR 3
+#define SSSTAR_VERSION_SUBMINOR 0
+
 /* The contact states of Table 1 (DERIVATION.md section 2); values are written to output files. */
 typedef enum {
   SSSTAR_STATE_L   = 0, /* no contact                                             */
@@ -77,6 +81,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetMemoryLimit(SNES, PetscReal);
 
 /* The friction law */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionLaw(SNES, SSStarFrictionLaw);
@@ -91,6 +96,10 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES, PetscInt, const 
 PETSC_EXTERN PetscErrorCode SNESSSStarSetScaling(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetScaling(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetStateTolerance(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);

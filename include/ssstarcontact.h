@@ -2,45 +2,56 @@
 #define SSSTARCONTACT_H
 
 /*
-   The contact problem of an elastic body on a rigid plane z = 0: gmsh meshes on DMPlex, P1 linear
-   elasticity, reduction of the stiffness to the contact dofs (P, f), recovery and output.
-   Kept apart from the SNES type: any program can hand its own P, f to "ssstar".
+   Scenes: elastic bodies (gmsh meshes on DMPlex, P1 linear elasticity) with the effects a scene names -- Dirichlet
+   groups, tractions, gravity, soft springs, rigid planes with a friction law per contact group -- and their output.
+   Kept apart from the solver: a scene assembles K and b and declares its contact nodes to an "ssstar" SNES.
 */
 #include <petscdmplex.h>
 #include <petscksp.h>
-#include <ssstarreduction.h>
+#include <ssstar.h>
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Assembly;
 
-/* Physical groups a mesh must have (by name): the Dirichlet face, two loaded faces, the contact face. */
-#define SSSTAR_GROUP_DIRICHLET "dirichlet"
-#define SSSTAR_GROUP_TOP       "top"
-#define SSSTAR_GROUP_RIGHT     "right"
-#define SSSTAR_GROUP_CONTACT   "contact"
+/*
+   A scene: the body, its material, supports and loads, and its contact groups, read from the options
+   (README "Scenes": -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -traction_<G>, -spring_<G>, -gravity,
+   -density, -contact, -obstacle_<G>, -friction_law_<G>, -friction_<G>, -slip_bound_<G>, -mesh_scale).
+*/
+typedef struct _n_SSStarScene *SSStarScene;
 
+PETSC_EXTERN PetscErrorCode SSStarSceneCreate(MPI_Comm, SSStarScene *);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetFromOptions(SSStarScene);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetUp(SSStarScene);
+PETSC_EXTERN PetscErrorCode SSStarSceneView(SSStarScene, PetscViewer);
+PETSC_EXTERN PetscErrorCode SSStarSceneDestroy(SSStarScene *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetDM(SSStarScene, DM *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetSizes(SSStarScene, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode SSStarSceneAssemble(SSStarScene, Mat *, Vec *);
+PETSC_EXTERN PetscErrorCode SSStarSceneHasContact(SSStarScene, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetContactDofs(SSStarScene, IS *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetContactNodes(SSStarScene, PetscInt *, const PetscReal *[], const PetscReal *[], const PetscReal *[], const PetscReal *[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetContact(SSStarScene, SNES);
+
+/* What the contact nodes of a group (or of all groups) carry at a solution */
 typedef struct {
-  PetscReal E, nu;              /* Young's modulus, Poisson ratio            */
-  PetscReal traction_top[3];    /* constant traction on the group "top"      */
-  PetscReal traction_right[3];  /* constant traction on the group "right"    */
-} SSStarScene;
+  PetscInt  nodes, separated, sliding, sticking; /* states L, LS / M1, M2 / M3+, M3-, M4                 */
+  PetscReal area;                                /* tributary area of the nodes in contact               */
+  PetscReal normal_force;                        /* sum of r.n, the force of the plane(s) on the body    */
+  PetscReal force[3];                            /* sum of r in global axes                              */
+} SSStarContactResult;
+PETSC_EXTERN PetscErrorCode SSStarSceneGetContactResult(SSStarScene, PetscInt, Vec, const SSStarState[], SSStarContactResult *);
+PETSC_EXTERN PetscErrorCode SSStarSceneContactView(SSStarScene, Vec, const SSStarState[], PetscViewer);
 
-/* The owned contact nodes of a distributed mesh: group "contact" minus group "dirichlet". */
-typedef struct {
-  PetscInt   n;        /* owned contact nodes                                     */
-  PetscInt  *tag;      /* index of the node in the mesh file (gmsh node order)     */
-  PetscReal *coords;   /* 3n coordinates                                          */
-  IS         isC, isI; /* owned global dofs of the contact nodes / of all others  */
-} SSStarContactNodes;
-
-PETSC_EXTERN PetscErrorCode SSStarMeshGeneratePrism(MPI_Comm, const char geo[], PetscInt level, const char msh[]);
-PETSC_EXTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char file[], DM *, Vec *);
-PETSC_EXTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
-PETSC_EXTERN PetscErrorCode SSStarAssembleElasticity(DM, const SSStarScene *, Mat *, Vec *);
-PETSC_EXTERN PetscErrorCode SSStarContactNodesCreate(DM, Vec, SSStarContactNodes *);
-PETSC_EXTERN PetscErrorCode SSStarContactNodesDestroy(SSStarContactNodes *);
-
-/* HDF5 + XDMF: the full displacement on the mesh and the group /contact (README, "Output") */
+/*
+   Output: HDF5 + XDMF, written to temporary names and renamed on success, so that a failed run leaves no file
+   behind. extra, if not NULL, adds the caller's datasets to the open file.
+*/
 PETSC_EXTERN PetscErrorCode SSStarCheckOutputFile(MPI_Comm, const char[]);
-PETSC_EXTERN PetscErrorCode SSStarWriteSolution(const char[], DM, Vec, const SSStarContactNodes *, Vec, Vec, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneWriteSolution(SSStarScene, const char[], Vec, Vec, const SSStarState[], PetscErrorCode (*)(PetscViewer, void *), void *);
+
+/* The pieces a scene is made of, for programs of their own */
+PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);
+PETSC_EXTERN PetscErrorCode SSStarMeshFileNodes(MPI_Comm, const char[], PetscInt *);
+PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, PetscReal, const char[]);
 
 #endif

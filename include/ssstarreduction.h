@@ -8,16 +8,19 @@
 #include <petscksp.h>
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;
+/* phases of the direct reduction: METIS ordering, MUMPS analysis, factorization with the Schur block, P to its rows */
+PETSC_EXTERN PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
 
 /* Reduction of K u = F to the contact dofs: P = K_CC - K_CI K_II^-1 K_IC, f = F_C - K_CI K_II^-1 F_I */
 typedef enum {
-  SSSTAR_REDUCTION_MUMPS,   /* MUMPS's own Schur complement (MatFactorSetSchurIS), computed on rank 0 */
-  SSSTAR_REDUCTION_EXPLICIT /* MATSCHURCOMPLEMENT made explicit, distributed                          */
+  SSSTAR_REDUCTION_DIRECT,  /* MUMPS through its C API: METIS nested dissection of K_II, C last, on every rank */
+  SSSTAR_REDUCTION_MUMPS,   /* PETSc's MUMPS Schur complement (MatFactorSetSchurIS), computed on rank 0      */
+  SSSTAR_REDUCTION_EXPLICIT /* MATSCHURCOMPLEMENT made explicit, distributed                                */
 } SSStarReductionType;
 PETSC_EXTERN const char *const SSStarReductionTypes[];
 
 typedef struct _n_SSStarReduction *SSStarReduction;
-PETSC_EXTERN PetscErrorCode SSStarReductionCreate(Mat, IS, IS, SSStarReductionType, SSStarReduction *);
+PETSC_EXTERN PetscErrorCode SSStarReductionCreate(Mat, IS, IS, SSStarReductionType, PetscReal, SSStarReduction *);
 PETSC_EXTERN PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction, Mat *);
 PETSC_EXTERN PetscErrorCode SSStarReductionReduceLoad(SSStarReduction, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarReductionRecover(SSStarReduction, Vec, Vec, Vec, Vec);

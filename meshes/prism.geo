@@ -3,6 +3,8 @@
 If (!Exists(L))
   L = 3;
 EndIf
+// the node count of the level, read by ssstar before meshing (memory check)
+SetNumber("ssstar/nodes", (4*L+1)*(2*L+1)^2);
 SetFactory("Built-in");
 Point(1) = {0, 0, 0};  Point(2) = {2, 0, 0};  Point(3) = {2, 1, 0};  Point(4) = {0, 1, 0};
 Point(5) = {0, 0, 1};  Point(6) = {2, 0, 1};  Point(7) = {2, 1, 1};  Point(8) = {0, 1, 1};

@@ -5,10 +5,15 @@
 PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 
 PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSearch;
+PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
+PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 
+/*@C
+   SSStarFinalizePackage - called by PetscFinalize(): the next SSStarInitializePackage() registers again
+@*/
 PetscErrorCode SSStarFinalizePackage(void)
 {
   PetscFunctionBegin;
@@ -29,9 +34,16 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(PetscLogEventRegister("SSStarAS", SNES_CLASSID, &SSSTAR_ApproxStep));
   PetscCall(PetscLogEventRegister("SSStarNS", SNES_CLASSID, &SSSTAR_NewtonStep));
   PetscCall(PetscLogEventRegister("SSStarLS", SNES_CLASSID, &SSSTAR_LineSearch));
+  PetscCall(PetscLogEventRegister("SSStarNSAssemble", SNES_CLASSID, &SSSTAR_NewtonAssemble));
+  PetscCall(PetscLogEventRegister("SSStarNSFactor", SNES_CLASSID, &SSSTAR_NewtonFactor));
+  PetscCall(PetscLogEventRegister("SSStarNSKrylov", SNES_CLASSID, &SSSTAR_NewtonKrylov));
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
   PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));
+  PetscCall(PetscLogEventRegister("SSStarOrdering", MAT_CLASSID, &SSSTAR_SchurOrdering));
+  PetscCall(PetscLogEventRegister("SSStarAnalysis", MAT_CLASSID, &SSSTAR_SchurAnalysis));
+  PetscCall(PetscLogEventRegister("SSStarFactor", MAT_CLASSID, &SSSTAR_SchurFactor));
+  PetscCall(PetscLogEventRegister("SSStarSchurScat", MAT_CLASSID, &SSSTAR_SchurScatter));
   PetscCall(PetscRegisterFinalize(SSStarFinalizePackage));
   PetscFunctionReturn(0);
 }

@@ -58,7 +58,7 @@ def prism_ranks_agree():
 
 @test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 1e-10, on 1 and 2 ranks")
 def prism_schur_paths_agree():
-    prism(4, 1, h5="mumps_L4.h5")
+    prism(4, 1, extra=["-reduction", "mumps"], h5="mumps_L4.h5")
     prism(4, 1, extra=["-reduction", "explicit"], h5="explicit_L4.h5")
     prism(4, 2, extra=["-reduction", "explicit"], h5="explicit2_L4.h5")
     run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit_L4.h5"), "--tol", "1e-10"])

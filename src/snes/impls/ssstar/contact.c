@@ -318,7 +318,7 @@ PetscErrorCode SSStarContactSetUpProblem(SNES snes, SSStarContact *ct)
     PetscCall(VecDestroy(&ct->f));
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     if (ct->dofs && nI > 0) {
-      PetscCall(SSStarReductionCreate(K, ct->isC, ct->isI, ct->reductionType, &ct->reduction));
+      PetscCall(SSStarReductionCreate(K, ct->isC, ct->isI, ct->reductionType, ct->memoryLimit, &ct->reduction));
       PetscCall(SSStarReductionGetSchurComplement(ct->reduction, &ct->P));
       PetscCall(PetscObjectReference((PetscObject)ct->P));
     } else if (ct->dofs) { /* every dof a contact dof, in another order */

@@ -174,7 +174,7 @@ static PetscErrorCode Accept(SNES_SSStar *ss, Vec v, Vec cv)
 }
 
 /*
-   The step of iteration k from u along the Newton step ss->dv (nodes' frames), ||z|| = znorm at u. Without globalization
+   The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization
    the full step, unless ||z|| is NaN or Inf there (then reason NAN and u stays the last finite iterate). With it:
    the full step if it decreases ||z|| enough, else the first damped one that does, else a remedy: the full step
    anyway (odd failures) or a doubled gamma without a step (even failures). reason is set when nothing can be done.
@@ -190,8 +190,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, S
   PetscFunctionBegin;
   *reason = SSSTAR_REASON_ITERATING;
   PetscCall(PetscLogEventBegin(SSSTAR_LineSearch, snes, 0, 0, 0));
-  PetscCall(VecCopy(ss->u, ss->ut));
-  PetscCall(SNESSSStarAddStep(snes, ss->ut, 1.0, ss->dv));
+  PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u)); /* the Newton step du = ss->dv is in the global frame */
   PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
   PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &mfull));
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
@@ -205,8 +204,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, S
   }
   /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c) */
   for (alpha = 0.5; alpha >= glob->dampingMin; alpha /= 2) {
-    PetscCall(VecCopy(ss->u, ss->ua));
-    PetscCall(SNESSSStarAddStep(snes, ss->ua, alpha, ss->dv));
+    PetscCall(VecWAXPY(ss->ua, alpha, ss->dv, ss->u));
     PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
     PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
     if (m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm) {

@@ -53,6 +53,9 @@ PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, SSStarFrictionLaw law)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetFrictionLaw - the friction law of the nodes without a law of their own
+@*/
 PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, SSStarFrictionLaw *law)
 {
   PetscFunctionBegin;
@@ -75,6 +78,9 @@ PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal phi)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetFriction - the Coulomb coefficient of the nodes without a coefficient of their own
+@*/
 PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
 {
   PetscFunctionBegin;
@@ -125,13 +131,28 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStar
    SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use
 
    Options Database Key:
-.  -snes_ssstar_reduction <mumps,explicit> - the Schur complement
+.  -snes_ssstar_reduction <direct,mumps,explicit> - the Schur complement
 @*/
 PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
   PetscTryMethod(snes, "SNESSSStarSetReductionType_C", (SNES, SSStarReductionType), (snes, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetMemoryLimit - the memory (GB = 1e9 bytes per rank) the reduction of K may plan for; it refuses before
+   factorizing K when its estimate exceeds it. 0 (the default): MemAvailable of each node split over its ranks
+
+   Options Database Key:
+.  -snes_ssstar_memory_limit <GB> - the limit
+@*/
+PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMemoryLimit_C", (SNES, PetscReal), (snes, gigabytes));
   PetscFunctionReturn(0);
 }
 
@@ -150,6 +171,9 @@ PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarGetScaling - gamma: the one set by the user, else 1/mean(diag P) of the last solve (0 before it)
+@*/
 PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
 {
   PetscFunctionBegin;
@@ -169,6 +193,65 @@ PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
   PetscTryMethod(snes, "SNESSSStarSetStateTolerance_C", (SNES, PetscReal), (snes, tau));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLUReuse - with a dense P, keep the LU factors of the Newton matrix and solve the next steps by GMRES
+   preconditioned with them while at most this fraction of the contact nodes changed which of their rows are known
+   (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge
+   (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). 0 gives a fresh LU at every step. Default 0.05.
+
+   Options Database Key:
+.  -snes_ssstar_lu_reuse <fraction> - the fraction, in [0, 1]
+@*/
+PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLUReuse_C", (SNES, PetscReal), (snes, fraction));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLUThreads - on several ranks with a dense P, the LU of the Newton matrix is computed on rank 0 while the
+   other ranks sleep: this many BLAS (OpenBLAS) threads of rank 0 compute it, 0 for as many as the cores rank 0 may run
+   on (start with mpiexec --bind-to none), at most the ranks of its node. Default 1: the BLAS is left as it is (as on one
+   rank, where OPENBLAS_NUM_THREADS decides). Takes effect at the next SNESSolve() with a new P.
+
+   Options Database Key:
+.  -snes_ssstar_lu_threads <n> - the threads
+@*/
+PetscErrorCode SNESSSStarSetLUThreads(SNES snes, PetscInt threads)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLUThreads_C", (SNES, PetscInt), (snes, threads));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve were solved: LU factorizations, steps
+   solved on an older LU (by GMRES, SNESSSStarSetLUReuse()) and their Krylov iterations (also in
+   SNESGetLinearSolveIterations())
+@*/
+PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetNewtonStepCounts_C", (SNES, PetscInt *, PetscInt *, PetscInt *), (snes, factorizations, reused, krylov));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetConditionEstimate - LAPACK's estimate of 1/cond_1 of the last LU-factored Newton matrix (dense P: the
+   system of the unknown dofs, A_RR), or -1 when none is known (sparse P, no factorization yet, a singular matrix)
+@*/
+PetscErrorCode SNESSSStarGetConditionEstimate(SNES snes, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetConditionEstimate_C", (SNES, PetscReal *), (snes, rcond));
   PetscFunctionReturn(0);
 }
 

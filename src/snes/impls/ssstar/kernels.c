@@ -19,6 +19,22 @@ static PetscReal Norm2(const PetscReal v[2])
   return PetscSqrtReal(v[0] * v[0] + v[1] * v[1]);
 }
 
+/*@C
+   SSStarApproximationStep - the approximation step (11)-(12) at one node (DERIVATION.md section 1)
+
+   Input Parameters:
++  fr - the node's friction law (a Tresca bound in the units of c)
+.  u  - the iterate in the node's frame (t1, t2, n), gap included: non-penetration is u[2] >= 0
+-  c  - (scaled) c = gamma (P u - f) in the node's frame
+
+   Output Parameters:
++  z - the step: d = u + z
+.  d - the projected point, with (d, b) in gph Q
+-  b - b = -z - c
+
+   Notes:
+   A pure function; d[2], b[2] and d12 come out as exact zeros where the projection is active.
+@*/
 void SSStarApproximationStep(const SSStarFriction *fr, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3])
 {
   const PetscReal v[2] = {u[0] - c[0], u[1] - c[1]};
@@ -60,6 +76,10 @@ static SSStarState ClassifyTresca(PetscReal bound, const PetscReal d[3], const P
   return strong ? SSSTAR_STATE_M3P : SSSTAR_STATE_M3M;
 }
 
+/*@C
+   SSStarClassify - the state of Table 1 of a point (d, b) of gph Q (DERIVATION.md section 2), with the tolerances
+   tol_d (displacements) and tol_b (forces, scaled); Tresca nodes may also be SSSTAR_STATE_LS
+@*/
 SSStarState SSStarClassify(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
 {
   const PetscReal phi     = fr->law == SSSTAR_FRICTION_COULOMB ? fr->phi : 0.0;
@@ -155,6 +175,10 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
   return k;
 }
 
+/*@C
+   SSStarTangentBlocks - G and H (3x3, row-major) with range [G; H] the tangent space of gph Q at (d, b) for a node in
+   the given state (DERIVATION.md section 3, with its corrected sign of omega)
+@*/
 void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal G[9], PetscReal H[9])
 {
   const BlockKind k = GetBlockKind(state, fr);
@@ -179,6 +203,10 @@ void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const Pets
   }
 }
 
+/*@C
+   SSStarReducedBlocks - S and T (3x3, row-major) of the node's rows of the reduced Newton system
+   (S P + T) du = (S + T) z (DERIVATION.md section 5): T G = S H, [S T] of rank 3
+@*/
 void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal S[9], PetscReal T[9])
 {
   const BlockKind k = GetBlockKind(state, fr);
@@ -203,6 +231,10 @@ void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const Pets
   }
 }
 
+/*@C
+   SSStarNodeFrame - the frame of a contact node from the obstacle's normal n: R (3x3, row-major) has the rows t1, t2,
+   n (normalized), right-handed; for n = (0, 0, 1) it is the identity
+@*/
 void SSStarNodeFrame(const PetscReal n[3], PetscReal R[9])
 {
   const PetscReal nn  = PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);

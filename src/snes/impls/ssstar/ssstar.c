@@ -50,7 +50,6 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
     PetscCall(VecDestroy(w));
     PetscCall(VecDuplicate(ss->u, w));
   }
-  if (!ss->newton) PetscCall(SSStarNewtonCreate(snes, &ss->newton));
   PetscFunctionReturn(0);
 }
 
@@ -67,12 +66,6 @@ static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i)
 static void Rotate(const PetscReal *R, const PetscScalar x[3], PetscReal y[3])
 {
   for (PetscInt k = 0; k < 3; k++) y[k] = R ? R[3 * k] * x[0] + R[3 * k + 1] * x[1] + R[3 * k + 2] * x[2] : PetscRealPart(x[k]);
-}
-
-/* x += R^T y (R NULL: identity) */
-static void AddRotatedBack(const PetscReal *R, const PetscScalar y[3], PetscScalar x[3])
-{
-  for (PetscInt k = 0; k < 3; k++) x[k] += R ? R[k] * y[0] + R[3 + k] * y[1] + R[6 + k] * y[2] : y[k];
 }
 
 /* v_i = R_i u_i + g_i e3: the iterate in node i's frame, with the gap */
@@ -93,7 +86,13 @@ PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
   PetscFunctionReturn(0);
 }
 
-/* u += alpha R^T dv: a step given in the nodes' frames */
+/* x += R^T y (R NULL: identity) */
+static void AddRotatedBack(const PetscReal *R, const PetscScalar y[3], PetscScalar x[3])
+{
+  for (PetscInt k = 0; k < 3; k++) x[k] += R ? R[k] * y[0] + R[3 + k] * y[1] + R[6 + k] * y[2] : y[k];
+}
+
+/* u += alpha R^T dv: a step given in the nodes' frames (the fixed-point step z) */
 PetscErrorCode SNESSSStarAddStep(SNES snes, Vec u, PetscReal alpha, Vec dv)
 {
   SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
@@ -433,7 +432,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 
   PetscFunctionBegin;
   PetscCall(SSStarContactReset(&ss->contact));
-  PetscCall(SSStarNewtonDestroy(&ss->newton));
+  PetscCall(SSStarNewtonReset(ss->newton));
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
   PetscCall(VecDestroy(&ss->u));
@@ -443,7 +442,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -452,6 +451,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
   PetscFunctionBegin;
   PetscCall(SNESReset_SSStar(snes));
   PetscCall(SSStarContactDestroy(&ss->contact));
+  PetscCall(SSStarNewtonDestroy(&ss->newton));
   for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(ComposedNames); k++) PetscCall(PetscObjectComposeFunction((PetscObject)snes, ComposedNames[k], NULL));
   PetscCall(PetscFree(snes->data));
   PetscFunctionReturn(0);
@@ -465,6 +465,7 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   SSStarFrictionLaw   law;
   SSStarReductionType rtype;
   PetscBool           set;
+  PetscInt            threads;
 
   PetscFunctionBegin;
   PetscOptionsHeadBegin(PetscOptionsObject, "SNES ssstar options (semismooth* Newton for contact with friction)");
@@ -474,10 +475,18 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   if (set) PetscCall(SNESSSStarSetFriction(snes, value));
   PetscCall(PetscOptionsEnum("-snes_ssstar_reduction", "Schur complement of K on the contact dofs (whole-body use)", "SNESSSStarSetReductionType", SSStarReductionTypes, (PetscEnum)ct->reductionType, (PetscEnum *)&rtype, &set));
   if (set) PetscCall(SNESSSStarSetReductionType(snes, rtype));
+  PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ct->memoryLimit, &value, &set));
+  if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));
   if (set) PetscCall(SNESSSStarSetScaling(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
   if (set) PetscCall(SNESSSStarSetStateTolerance(snes, value));
+  PetscCall(SSStarNewtonGetReuse(ss->newton, &value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_lu_reuse", "Solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: a fresh LU at every step)", "SNESSSStarSetLUReuse", value, &value, &set));
+  if (set) PetscCall(SNESSSStarSetLUReuse(snes, value));
+  PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
+  PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
+  if (set) PetscCall(SNESSSStarSetLUThreads(snes, threads));
   {
     PetscBool on = ss->glob.on, setOn, setDamping, setStagnation;
     PetscInt  its;
@@ -562,13 +571,15 @@ PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm,
   SNES_SSStar *ss     = (SNES_SSStar *)snes->data;
   PetscViewer  viewer = vf->viewer;
   char         counts[256], events[512];
+  PetscInt     nlu, nreused, nkrylov;
 
   PetscFunctionBegin;
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
+  PetscCall(SSStarNewtonGetCounts(ss->newton, &nlu, &nreused, &nkrylov));
   PetscCall(SSStarGlobalizationFormatEvents(&ss->glob, events, sizeof(events)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s%s\n", its, counts, events));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its)%s\n", its, counts, nlu, nreused, nkrylov, events));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
   PetscFunctionReturn(0);
@@ -620,6 +631,16 @@ static PetscErrorCode SNESSSStarSetReductionType_SSStar(SNES snes, SSStarReducti
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarSetMemoryLimit_SSStar(SNES snes, PetscReal gigabytes)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  PetscCheck(gigabytes >= 0 && !PetscIsInfOrNanReal(gigabytes), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_memory_limit %g: the limit must be > 0 GB (or 0 for the available memory)", (double)gigabytes);
+  ct->memoryLimit = gigabytes;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarSetScaling_SSStar(SNES snes, PetscReal gamma)
 {
   PetscFunctionBegin;
@@ -642,6 +663,36 @@ static PetscErrorCode SNESSSStarSetStateTolerance_SSStar(SNES snes, PetscReal ta
   PetscFunctionBegin;
   PetscCheck(tau >= 0 && tau < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_state_tol %g must be in [0, 1)", (double)tau);
   ((SNES_SSStar *)snes->data)->state_tol = tau;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetLUReuse_SSStar(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_reuse %g must be at most 1 (negative: never)", (double)fraction);
+  PetscCall(SSStarNewtonSetReuse(((SNES_SSStar *)snes->data)->newton, fraction));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetNewtonStepCounts_SSStar(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonGetCounts(((SNES_SSStar *)snes->data)->newton, factorizations, reused, krylov));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetLUThreads_SSStar(SNES snes, PetscInt threads)
+{
+  PetscFunctionBegin;
+  PetscCheck(threads >= 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_threads %" PetscInt_FMT " must be >= 0 (0: the cores rank 0 may run on)", threads);
+  PetscCall(SSStarNewtonSetLUThreads(((SNES_SSStar *)snes->data)->newton, threads));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetConditionEstimate_SSStar(SNES snes, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonGetConditionEstimate(((SNES_SSStar *)snes->data)->newton, rcond));
   PetscFunctionReturn(0);
 }
 
@@ -711,13 +762,16 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
    Options Database Keys:
 +  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 .  -snes_ssstar_friction <0.3> - Coulomb friction coefficient
-.  -snes_ssstar_reduction <mumps> - Schur complement of K: mumps or explicit
+.  -snes_ssstar_reduction <direct> - Schur complement of K: direct, mumps or explicit
+.  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag P))
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
 .  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration, and the remedies
 .  -snes_ssstar_globalization <true> - damped steps on ||z|| and remedies; false: the plain iteration
 .  -snes_ssstar_damping_min <0.015625> - smallest damping factor of the line search
 .  -snes_ssstar_stagnation_its <20> - stop after this many iterations without a smaller ||z||
+.  -snes_ssstar_lu_threads <1> - on several ranks, rank 0's BLAS threads for the LU of the Newton matrix (0: the cores it may run on)
+.  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: never); -snes_ssstar_newton_ksp_* set that GMRES
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol
 
@@ -744,13 +798,14 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscNew(&ss));
   ss->contact.law           = SSSTAR_FRICTION_COULOMB;
   ss->contact.friction      = 0.3;
-  ss->contact.reductionType = SSSTAR_REDUCTION_MUMPS;
+  ss->contact.reductionType = SSSTAR_REDUCTION_DIRECT;
   ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;
   ss->glob.dampingMin       = 1.0 / 64;
   ss->glob.stagnationIts    = 20;
   snes->data                = (void *)ss;
+  PetscCall(SSStarNewtonCreate(snes, &ss->newton));
 
   PetscCall(SNESGetKSP(snes, &snes->ksp));
   PetscCall(KSPSetType(snes->ksp, KSPPREONLY));
@@ -769,6 +824,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetSlipBounds), SNESSSStarSetSlipBounds_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetNodeFrictionLaws), SNESSSStarSetNodeFrictionLaws_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetReductionType), SNESSSStarSetReductionType_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetMemoryLimit), SNESSSStarSetMemoryLimit_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetScaling), SNESSSStarSetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetScaling), SNESSSStarGetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetStateTolerance), SNESSSStarSetStateTolerance_SSStar));
@@ -777,5 +833,9 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetGlobalization), SNESSSStarSetGlobalization_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetRemedyCounts), SNESSSStarGetRemedyCounts_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetLUReuse), SNESSSStarSetLUReuse_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetNewtonStepCounts), SNESSSStarGetNewtonStepCounts_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetConditionEstimate), SNESSSStarGetConditionEstimate_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetLUThreads), SNESSSStarSetLUThreads_SSStar));
   PetscFunctionReturn(0);
 }

@@ -6,17 +6,27 @@
 #include <petsc/private/snesimpl.h>
 
 PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSearch;
+/* parts of the Newton step with a dense P: A_RR and its right-hand side, LU factorizations, Krylov solves on old factors */
+PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
-   The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R),
-   given P (global frame) and, per local node, R, S and T (9 values each, row-major).
+   The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R)
+   and returns du = R^T dv (global frame), given P (global frame) and, per local node, R, S and T (9 values each,
+   row-major). Created with the SNES (it keeps
+   the settings); Reset drops what was built for a P. Counts and the condition estimate are of the current SNESSolve.
 */
 typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetReuse(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, Mat, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarNewtonView(SSStarNewton, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarNewtonReset(SSStarNewton);
 PETSC_INTERN PetscErrorCode SSStarNewtonDestroy(SSStarNewton *);
 
 /*
@@ -35,6 +45,7 @@ typedef struct {
   SSStarFrictionLaw  *nodeLaws;     /* per owned node, or NULL                                              */
   PetscInt            nNodeLaws;
   SSStarReductionType reductionType;
+  PetscReal           memoryLimit;  /* GB per rank for the reduction; 0: MemAvailable of the node per rank  */
   PetscObjectState    declared;     /* bumped by every setter: the per-node data are rebuilt when it moved  */
 
   /* derived, in the solver's node order (nodes sorted by their first dof) */
@@ -121,7 +132,7 @@ typedef struct {
   SSStarState *userStates;                 /* the same in the user's node order                     */
   PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
   PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
-  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f (global frame); z, d, b, y, dv (nodes' frames) */
+  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f, dv (global frame); z, d, b, y (nodes' frames) */
   Vec          ut, ct, ua, ca;             /* trial iterates and their P u - f: the full step, a damped one  */
   SSStarNewton newton;
   SSStarGlobalization glob;

@@ -1,0 +1,189 @@
+static const char help[] = "Contact of an elastic body with rigid planes: solves the scene the options describe, and only what\n\
+they name (no contact group: one linear solve; frictionless groups: no friction work; no -gravity: no body force).\n\
+A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
+  -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
+                                  (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
+  -load_steps <1>                 solve at the loads k/N of the given ones, k = 1..N (the last is written)\n\
+  -o <file.h5>                    write the solution (HDF5 + XDMF)\n";
+
+#include <ssstar.h>
+#include <ssstarcontact.h>
+#include <petscviewerhdf5.h>
+
+/* The elastic body at a fraction of its load: F(u) = K u - load b, Jacobian K */
+typedef struct {
+  Mat       K;
+  Vec       b;
+  PetscReal load;
+} Body;
+
+static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
+{
+  Body *body = (Body *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(body->K, u, r));
+  PetscCall(VecAXPY(r, -body->load, body->b));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscFunctionReturn(0); /* K, assembled once */
+}
+
+/* What each load step gave, for the output file */
+typedef struct {
+  PetscInt   n;
+  PetscReal *factor, *area, *normal_force, *iterations;
+} LoadSteps;
+
+/* The datasets /load_steps/{factor,area,normal_force,iterations}, held by rank 0 */
+static PetscErrorCode WriteLoadSteps(PetscViewer viewer, void *ctx)
+{
+  LoadSteps       *steps = (LoadSteps *)ctx;
+  const char      *names[4] = {"factor", "area", "normal_force", "iterations"};
+  const PetscReal *values[4] = {steps->factor, steps->area, steps->normal_force, steps->iterations};
+  PetscMPIInt      rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/load_steps"));
+  for (PetscInt k = 0; k < 4; k++) {
+    Vec v;
+
+    PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)viewer), rank ? 0 : steps->n, steps->n, &v));
+    PetscCall(PetscObjectSetName((PetscObject)v, names[k]));
+    if (!rank)
+      for (PetscInt i = 0; i < steps->n; i++) PetscCall(VecSetValue(v, i, values[k][i], INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(v));
+    PetscCall(VecAssemblyEnd(v));
+    PetscCall(VecView(v, viewer));
+    PetscCall(VecDestroy(&v));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* Time spent in a log event, max over the ranks */
+static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
+{
+  PetscEventPerfInfo info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventGetPerfInfo(PETSC_DETERMINE, event, &info));
+  PetscCall(MPIU_Allreduce(&info.time, t, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  SSStarScene         scene;
+  Body                body = {NULL, NULL, 1.0};
+  SNES                snes;
+  Vec                 u, r = NULL;
+  PetscInt            nsteps = 1, nodes, ncontact, its = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
+  PetscBool           hasOut, hasContact;
+  char                out[PETSC_MAX_PATH_LEN] = "";
+  SNESConvergedReason reason;
+  const SSStarState  *states = NULL;
+  LoadSteps           steps;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(SSStarInitializePackage());
+  PetscCall(PetscLogDefaultBegin()); /* the phases of the summary are read from the log events */
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Contact driver", "ssstar");
+  PetscCall(PetscOptionsInt("-load_steps", "Solve at the loads k/N of the given ones, k = 1..N", NULL, nsteps, &nsteps, NULL));
+  PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
+  PetscOptionsEnd();
+  PetscCheck(nsteps >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-load_steps %" PetscInt_FMT ": needs at least one step", nsteps);
+  if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
+
+  /* the scene: mesh, groups, contact nodes, K and b */
+  PetscCall(PetscTime(&t0));
+  PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
+  PetscCall(SSStarSceneSetFromOptions(scene));
+  PetscCall(SSStarSceneSetUp(scene));
+  PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
+  PetscCall(PetscTimeSubtract(&t0));
+  t_assembly = -t0;
+  PetscCall(SSStarSceneView(scene, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(SSStarSceneHasContact(scene, &hasContact));
+  PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
+
+  /* contact: ssstar on the whole body; no contact: one linear solve */
+  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+  if (hasContact) {
+    PetscCall(SNESSetType(snes, SNESSSSTAR));
+    PetscCall(SSStarSceneSetContact(scene, snes));
+  } else {
+    KSP ksp;
+    PC  pc;
+
+    PetscCall(SNESSetType(snes, SNESKSPONLY));
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  }
+  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
+  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(SNESSetFromOptions(snes));
+  {
+    DM dm;
+
+    PetscCall(SSStarSceneGetDM(scene, &dm));
+    PetscCall(DMCreateGlobalVector(dm, &u));
+  }
+  PetscCall(VecZeroEntries(u));
+
+  steps.n = nsteps;
+  PetscCall(PetscMalloc4(nsteps, &steps.factor, nsteps, &steps.area, nsteps, &steps.normal_force, nsteps, &steps.iterations));
+  PetscCall(PetscTime(&t0));
+  for (PetscInt k = 1; k <= nsteps; k++) {
+    PetscInt            stepIts;
+    SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}};
+
+    body.load = (PetscReal)k / nsteps;
+    PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
+    PetscCall(SNESGetConvergedReason(snes, &reason));
+    PetscCheck(reason > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The solve of load step %" PetscInt_FMT " did not converge: %s", k, SNESConvergedReasons[reason]);
+    PetscCall(SNESGetIterationNumber(snes, &stepIts));
+    its += hasContact ? stepIts : 0;
+    if (hasContact) {
+      PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
+      PetscCall(SNESSSStarGetStates(snes, &states, counts));
+      PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
+    }
+    steps.factor[k - 1]       = body.load;
+    steps.area[k - 1]         = res.area;
+    steps.normal_force[k - 1] = res.normal_force;
+    steps.iterations[k - 1]   = hasContact ? stepIts : 0;
+    if (nsteps > 1)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g\n", k, nsteps, (double)body.load, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
+                            (double)res.normal_force));
+  }
+  PetscCall(PetscTimeSubtract(&t0));
+  if (hasContact) {
+    PetscCall(EventTime(SSSTAR_Schur, &t_schur));
+    PetscCall(EventTime(SSSTAR_Recovery, &t_recovery));
+  }
+  t_solve = -t0 - t_schur - t_recovery;
+
+  if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s\n", nodes, ncontact, (double)t_assembly,
+                        (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)"));
+  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, out, u, r, states, nsteps > 1 ? WriteLoadSteps : NULL, &steps));
+
+  PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
+  PetscCall(SNESDestroy(&snes));
+  PetscCall(VecDestroy(&u));
+  PetscCall(MatDestroy(&body.K));
+  PetscCall(VecDestroy(&body.b));
+  PetscCall(SSStarSceneDestroy(&scene));
+  PetscCall(PetscFinalize());
+  return 0;
+}

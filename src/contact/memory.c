@@ -1,0 +1,88 @@
+/* Memory before work: an estimate of what a mesh of N nodes with p contact nodes needs, against what the machine has. */
+#include <ssstarcontact.h>
+#include <stdio.h>
+
+/*
+   Measured with the prism at levels 6, 10, 12 (peak resident memory, one rank): reading, interpolating and
+   distributing the mesh, the COO assembly of K and the load take 28-29 kB per node (MESH_BYTES). With contact,
+   three dense 3p x 3p matrices (P, the Newton matrix, its LU factor). A lower bound on purpose: the factors of K
+   (in core or out of core) are left to the Schur reduction, which checks its own estimate after MUMPS's analysis
+   (src/reduction) against the same limit.
+*/
+#define SSSTAR_MESH_BYTES 30000.0
+
+/* MemAvailable of /proc/meminfo in bytes (0 if unknown) */
+static PetscErrorCode MemAvailable(PetscReal *bytes)
+{
+  FILE  *fp;
+  char   line[256];
+  double kb;
+
+  PetscFunctionBegin;
+  *bytes = 0;
+  fp     = fopen("/proc/meminfo", "r");
+  if (!fp) PetscFunctionReturn(0);
+  while (fgets(line, sizeof(line), fp))
+    if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1) *bytes = 1024.0 * kb;
+  fclose(fp);
+  PetscFunctionReturn(0);
+}
+
+/* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
+   summed over the machines */
+static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *perRank)
+{
+  MPI_Comm    node;
+  PetscMPIInt noderank, size;
+  PetscReal   mine = 0;
+  PetscBool   set;
+
+  PetscFunctionBegin;
+  *perRank = 0;
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-snes_ssstar_memory_limit", perRank, &set));
+  PetscCheck(*perRank >= 0 && !PetscIsInfOrNanReal(*perRank), comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_memory_limit %g: the limit must be > 0 GB (or 0 for the available memory)", (double)*perRank);
+  if (*perRank > 0) {
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    *limit = *perRank * 1e9 * size;
+    PetscFunctionReturn(0);
+  }
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_rank(node, &noderank));
+  PetscCallMPI(MPI_Comm_free(&node));
+  if (noderank == 0) PetscCall(MemAvailable(&mine));
+  PetscCall(MPIU_Allreduce(&mine, limit, 1, MPIU_REAL, MPIU_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarCheckMemory - refuses, before the work, a problem whose estimated memory exceeds what the machine has
+
+   Input Parameters:
++  comm    - the ranks that will share the work
+.  nodes   - mesh nodes (estimated or counted)
+.  contact - contact nodes (0 when not known yet)
+-  what    - what the count comes from, for the message (e.g. "-level 400 of meshes/prism.geo")
+
+   Notes:
+   The limit is MemAvailable of /proc/meminfo (summed over the machines of comm) or -snes_ssstar_memory_limit <GB per rank>
+   times the ranks of comm. The factorization of K is checked later, by the reduction, after MUMPS's analysis.
+@*/
+PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, PetscReal contact, const char what[])
+{
+  PetscReal mesh = SSSTAR_MESH_BYTES * nodes, dense = 3.0 * 8.0 * (3 * contact) * (3 * contact);
+  PetscReal limit, perRank, estimate = mesh + dense;
+
+  PetscFunctionBegin;
+  PetscCall(MemoryLimit(comm, &limit, &perRank));
+  if (limit <= 0) PetscFunctionReturn(0); /* no /proc/meminfo: nothing to compare with */
+  if (estimate > limit) {
+    char counts[64], source[128];
+
+    if (contact > 0) PetscCall(PetscSNPrintf(counts, sizeof(counts), "%.4g nodes, %.4g contact nodes", (double)nodes, (double)contact));
+    else PetscCall(PetscSNPrintf(counts, sizeof(counts), "%.4g nodes", (double)nodes));
+    if (perRank > 0) PetscCall(PetscSNPrintf(source, sizeof(source), "of -snes_ssstar_memory_limit (%g GB per rank)", (double)perRank));
+    else PetscCall(PetscSNPrintf(source, sizeof(source), "available on this machine (MemAvailable)"));
+    SETERRQ(comm, PETSC_ERR_MEM, "%s: %s need at least %.3g GB (mesh and assembly %.3g GB, dense contact matrices %.3g GB; the factors of K come on top), more than the %.3g GB %s; refused before the work", what, counts, (double)(estimate / 1e9), (double)(mesh / 1e9), (double)(dense / 1e9), (double)(limit / 1e9), source);
+  }
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,78 @@
+#ifndef SSSTARSCENEIMPL_H
+#define SSSTARSCENEIMPL_H
+
+#include <ssstarcontact.h>
+
+#define SSSTAR_GROUP_NAME_LEN 128
+
+/* The kind of physical group an option needs */
+typedef enum {
+  SSSTAR_GROUP_ANY,     /* a surface or a volume */
+  SSSTAR_GROUP_SURFACE,
+  SSSTAR_GROUP_VOLUME
+} SSStarGroupKind;
+
+/* A group named by an option, to check in the mesh */
+typedef struct {
+  const char     *group;
+  const char     *option;
+  SSStarGroupKind kind;
+} SSStarGroupUse;
+
+/* A group with a vector of values: -traction_<G> (3), -material_<G> E,nu (2), -spring_<G> k (1) */
+typedef struct {
+  char      name[SSSTAR_GROUP_NAME_LEN];
+  PetscReal value[3];
+} SSStarGroupValues;
+
+/* A contact group: its rigid plane and its friction law */
+typedef struct {
+  char              name[SSSTAR_GROUP_NAME_LEN];
+  PetscReal         point[3], normal[3]; /* normal: unit, into the body                          */
+  SSStarFrictionLaw law;
+  PetscBool         lawSet, phiSet, boundSet; /* -friction_law_<G>, -friction_<G>, -slip_bound_<G> given */
+  PetscReal         phi, bound;         /* Coulomb coefficient, Tresca slip bound (a force)      */
+  PetscInt          nodes;              /* contact nodes of the group (global)                  */
+  PetscReal         gapMin, gapMax;     /* initial gaps of its nodes                            */
+} SSStarContactGroup;
+
+struct _n_SSStarScene {
+  MPI_Comm comm;
+
+  /* the description (options) */
+  char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
+  PetscInt           level;
+  PetscReal          meshScale;
+  PetscReal          E, nu;
+  PetscBool          hasE, hasNu;
+  PetscInt           nMaterials, nTractions, nSprings, nDirichlet, nContact;
+  SSStarGroupValues *materials, *tractions, *springs;
+  char             **dirichlet;
+  SSStarContactGroup *contact;
+  PetscBool          hasGravity;
+  PetscReal          gravity[3], density;
+
+  /* set up */
+  DM       dm;
+  Vec      tags;          /* file index of each local vertex                                      */
+  PetscInt nodesGlobal;   /* mesh nodes                                                           */
+  PetscInt cellsGlobal;
+
+  /* the owned contact nodes, in vertex order (their global dofs increase) */
+  PetscInt   n, nGlobal;
+  PetscInt  *tag;         /* index of the node in the mesh file                                   */
+  PetscInt  *group;       /* its contact group                                                    */
+  PetscReal *coords;      /* 3 per node                                                           */
+  PetscReal *normal;      /* 3 per node: the normal of its plane                                  */
+  PetscReal *gap;         /* initial distance to its plane                                        */
+  PetscReal *area;        /* tributary area (a third of the adjacent faces of its group)         */
+  IS         isC;         /* the 3 global dofs of each node                                       */
+};
+
+PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
+PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, Mat *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
+
+#endif

@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""Known answers of the shipped scenes, measured from a solution file of examples/contact (-o file.h5).
+
+  scene_answers.py hertz FILE.h5 [--E 2.1e5 --nu 0.3 --R 10]
+      contact radius a and peak pressure p0 against Hertz's sphere on a rigid plane, with the normal force F the
+      plane carries: a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2), E* = E / (1 - nu^2). Measured: the pressure
+      r_n / area of the nodes in contact well inside the contact zone (r < 0.8 a) fitted by p^2 = p0^2 (1 - r^2/a^2);
+      and the bracket [outermost node in contact, innermost node out of contact]
+  scene_answers.py friction FILE.h5
+      the contact force of the plane(s): normal N, tangential |F_t|, their ratio, and the states
+  scene_answers.py slide FILE.h5 tx,ty,tz
+      the mean displacement of the contact nodes along t (the rigid slide of a block)
+  scene_answers.py first-contact LINEAR.h5 CONTACT.h5
+      the load factor at which a body first touches: min over the contact nodes of gap / (-u.n), with u the
+      displacement without contact (LINEAR.h5, at the full load) and the gaps and normals of CONTACT.h5
+Prints "name value" lines; as a module, the functions return dictionaries.
+"""
+import argparse
+
+import h5py
+import numpy as np
+
+TOUCHING = (1, 2, 3, 4, 5)  # states other than L (0) and LS (6)
+
+
+def contact(name):
+    f = h5py.File(name, "r")
+    c = f["contact"]
+    d = {k: c[k][:] for k in c}
+    d["touching"] = np.isin(d["state"], TOUCHING)
+    d["rn"] = (d["reaction"] * d["normal"]).sum(axis=1)
+    return d
+
+
+def hertz(name, E=2.1e5, nu=0.3, R=10.0):
+    d = contact(name)
+    F = d["rn"].sum()
+    Es = E / (1 - nu ** 2)
+    a = (3 * F * R / (4 * Es)) ** (1 / 3)
+    p0 = 3 * F / (2 * np.pi * a ** 2)
+    r = np.hypot(d["coordinates"][:, 0], d["coordinates"][:, 1])
+    t = d["touching"]
+    inside, outside = r[t].max(), r[~t].min()
+    p = d["rn"] / d["area"]
+    fit = t & (r < 0.8 * inside)
+    A, B = np.linalg.lstsq(np.c_[np.ones(fit.sum()), -r[fit] ** 2], p[fit] ** 2, rcond=None)[0]
+    p0_fit, a_fit = np.sqrt(A), np.sqrt(A / B)
+    return {"force": F, "a_hertz": a, "p0_hertz": p0, "a_fit": a_fit, "p0_fit": p0_fit,
+            "a_error": a_fit / a - 1, "p0_error": p0_fit / p0 - 1, "a_inside": inside, "a_outside": outside,
+            "nodes_in_contact": int(t.sum())}
+
+
+def friction(name):
+    d = contact(name)
+    n = d["normal"][0]
+    force = d["reaction"].sum(axis=0)
+    N = force.dot(n)
+    Ft = np.linalg.norm(force - N * n)
+    s = d["state"]
+    return {"normal_force": N, "tangential_force": Ft, "ratio": Ft / N, "separated": int(np.isin(s, (0, 6)).sum()),
+            "sliding": int(np.isin(s, (1, 2)).sum()), "sticking": int(np.isin(s, (3, 4, 5)).sum()), "nodes": len(s)}
+
+
+def slide(name, direction):
+    """The mean displacement of the contact nodes along a direction (the rigid slide of a block)"""
+    d = contact(name)
+    return {"slide": float((d["displacement"] @ np.asarray(direction, float)).mean())}
+
+
+def first_contact(linear, with_contact):
+    d = contact(with_contact)
+    f = h5py.File(linear, "r")
+    x, u = f["geometry/vertices"][:], f["fields/displacement"][:]
+    index = {tuple(np.round(v, 12)): i for i, v in enumerate(x)}
+    un = np.array([u[index[tuple(np.round(v, 12))]].dot(n) for v, n in zip(d["coordinates"], d["normal"])])
+    closing = un < 0
+    return {"factor": float(np.min(d["gap"][closing] / -un[closing])) if closing.any() else np.inf}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="cmd", required=True)
+    h = sub.add_parser("hertz")
+    h.add_argument("file")
+    h.add_argument("--E", type=float, default=2.1e5)
+    h.add_argument("--nu", type=float, default=0.3)
+    h.add_argument("--R", type=float, default=10.0)
+    fr = sub.add_parser("friction")
+    fr.add_argument("file")
+    sl = sub.add_parser("slide")
+    sl.add_argument("file")
+    sl.add_argument("direction")
+    fc = sub.add_parser("first-contact")
+    fc.add_argument("linear")
+    fc.add_argument("contact")
+    args = parser.parse_args()
+    if args.cmd == "hertz":
+        result = hertz(args.file, args.E, args.nu, args.R)
+    elif args.cmd == "friction":
+        result = friction(args.file)
+    elif args.cmd == "slide":
+        result = slide(args.file, [float(v) for v in args.direction.split(",")])
+    else:
+        result = first_contact(args.linear, args.contact)
+    for k, v in result.items():
+        print("%-18s %.6g" % (k, v))
+
+
+if __name__ == "__main__":
+    main()

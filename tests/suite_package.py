@@ -1,0 +1,85 @@
+"""ssstar as a package: make install + pkg-config, documentation of every public function, -help of every option."""
+import glob
+import os
+import re
+import shutil
+import subprocess
+
+from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+
+OPTION = re.compile(r'(?:PetscOptions\w*|SNESMonitorSetFromOptions)\(\s*(?:[^,()]*,\s*){0,2}"(-[A-Za-z][A-Za-z0-9_]*)"')
+LITERAL = re.compile(r'[(,]\s*"(-[A-Za-z][A-Za-z0-9_]*)"')  # an option name passed to any function
+
+
+@test("make install PREFIX=<tmp> installs the library, the headers and ssstar.pc; a program (examples/generic.c) builds with mpicc and pkg-config alone and solves its contact problem")
+def install_and_build_downstream():
+    prefix = os.path.join(OUT, "prefix")
+    build = os.path.join(OUT, "downstream")
+    shutil.rmtree(prefix, ignore_errors=True)
+    shutil.rmtree(build, ignore_errors=True)
+    os.makedirs(build)
+    run(["make", "-s", "install", "PREFIX=" + prefix])
+    for path in ("lib/libssstar.so", "lib/pkgconfig/ssstar.pc", "include/ssstar.h", "include/ssstarreduction.h", "include/ssstarcontact.h"):
+        expect(os.path.exists(os.path.join(prefix, path)), "make install did not install " + path)
+    shutil.copy(os.path.join(ROOT, "examples", "generic.c"), build)
+    env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(prefix, "lib", "pkgconfig"))
+    flags = subprocess.run(["pkg-config", "--cflags", "--libs", "ssstar"], env=env, stdout=subprocess.PIPE, text=True, check=True).stdout.split()
+    expect(any(f.startswith("-I") and "petsc" in f for f in flags), "ssstar.pc does not carry PETSc's include flags: %s" % flags)
+    p = subprocess.run(["mpicc", "generic.c", "-o", "generic"] + flags, cwd=build, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    expect(p.returncode == 0, "the downstream program does not build with pkg-config alone", p.stdout)
+    out = run(mpiexec(2, os.path.join(build, "generic"), "-snes_type", "ssstar", "-snes_converged_reason"))
+    expect("CONVERGED_FNORM_RELATIVE" in out, "the downstream program did not solve", out)
+    ldd = subprocess.run(["ldd", os.path.join(build, "generic")], stdout=subprocess.PIPE, text=True).stdout
+    expect(os.path.join(prefix, "lib", "libssstar.so") in ldd, "the downstream program does not use the installed library", ldd)
+
+
+@test("every public function (PETSC_EXTERN in include/*.h) has a manual page block in the sources, and docs/manual.md is regenerated from them (docs/mkmanual.py --check)")
+def manual_pages_complete():
+    run([PYTHON, os.path.join(ROOT, "docs", "mkmanual.py"), "--check"])
+
+
+def options_in(paths, pattern=OPTION):
+    names = set()
+    for path in paths:
+        names |= set(pattern.findall(open(path).read()))
+    return names
+
+
+def help_of(program, *args):
+    return run(mpiexec(1, os.path.join(ROOT, "examples", program), "-help", *args))
+
+
+@test("-help lists every option with its default: each -snes_ssstar_* option of the library in examples/prism -help, each scene option of src/contact in examples/prism and examples/contact -help, and each option an example reads in that example's -help")
+def help_lists_every_option():
+    sources = glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)
+    library = {o for o in options_in(sources) if o.startswith("-snes_ssstar")}
+    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "contact", "*.c")), LITERAL) if not o.startswith("-dm_")}
+    expect(len(library) >= 5 and len(scene) >= 10, "found only %s and %s in src/" % (sorted(library), sorted(scene)))
+    args = {"prism": ["-level", "2"], "contact": ["-options_file", os.path.join(ROOT, "scenes", "prism.opts"), "-level", "2"]}
+    for source in sorted(glob.glob(os.path.join(ROOT, "examples", "*.c"))):
+        program = os.path.splitext(os.path.basename(source))[0]
+        if not os.path.exists(os.path.join(ROOT, "examples", program)):
+            continue
+        wanted = options_in([source], LITERAL) | (library if program == "prism" else set()) | (scene if program in args else set())
+        text = help_of(program, *args.get(program, []))
+        for name in sorted(wanted):
+            # "-name <default>", "-name_<G> <default>" for a family of options, or for a monitor "-name ascii[:...]"
+            pattern = re.escape(name) + (r"<G>\s+<" if name.endswith("_") else r"\s+(<|ascii\[)")
+            expect(re.search(pattern, text) is not None, "examples/%s -help does not list %s with its default" % (program, name), text)
+
+
+PY_LINE = re.compile(r"petsc4py \+ ssstar: (\S+) after (\d+) iterations; (\d+) contact nodes; Coulomb law violation (\S+); \|u - u_C\|/\|u_C\| = (\S+)")
+
+
+@test("examples/prism.py (petsc4py, ssstar loaded by -dll_append only) solves the reduced prism problem saved by examples/prism -save_reduced: same iterations, the same u to 1e-10, the Coulomb law to 1e-7, on 1 and 2 ranks")
+def petsc4py_reduced_prism():
+    binary = os.path.join(OUT, "reduced_L4.bin")
+    out = run(mpiexec(1, PRISM, "-level", "4", "-save_reduced", binary))
+    its = int(re.search(r"^\s+4\s+1\s+\d+\s+[\d.]+\s+[\d.]+\s+\d+\s+[\d.]+\s+(\d+)", out, re.M).group(1))
+    for ranks in (1, 2):
+        py = run(mpiexec(ranks, PYTHON, os.path.join(ROOT, "examples", "prism.py"), binary))
+        m = PY_LINE.search(py)
+        expect(m is not None, "%d ranks: no summary from prism.py" % ranks, py)
+        expect(m.group(1) == "CONVERGED_FNORM_RELATIVE" and int(m.group(2)) == its and int(m.group(3)) == 144,
+               "%d ranks: %s after %s iterations (prism: %d)" % (ranks, m.group(1), m.group(2), its), py)
+        expect(float(m.group(4)) <= 1e-7 and float(m.group(5)) <= 1e-10, "%d ranks: law %s, difference %s" % (ranks, m.group(4), m.group(5)), py)

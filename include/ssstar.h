@@ -73,6 +73,13 @@ typedef enum {
 } SSStarRemedy;
 PETSC_EXTERN const char *const SSStarRemedies[];
 
+/* The iteration of an ssstar solve */
+typedef enum {
+  SSSTAR_METHOD_NEWTON,     /* the semismooth* Newton method: approximation step, then Newton step (default) */
+  SSSTAR_METHOD_FIXEDPOINT  /* the first-order baseline: u <- u + z, the approximation step alone            */
+} SSStarMethod;
+PETSC_EXTERN const char *const SSStarMethods[];
+
 PETSC_EXTERN PetscErrorCode SSStarInitializePackage(void);
 PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
 
@@ -96,6 +103,8 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES, PetscInt, const 
 PETSC_EXTERN PetscErrorCode SNESSSStarSetScaling(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetScaling(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetStateTolerance(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetMethod(SNES, SSStarMethod);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetMethod(SNES, SSStarMethod *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, PetscInt *, PetscInt *);

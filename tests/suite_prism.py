@@ -110,3 +110,13 @@ def errors_name_the_problem():
     expect("-snes_ssstar_friction -1" in out, "the bad option is not named", out)
     out = run([PRISM, "-level", "2", "-o", "no/such/folder/x.h5"], expect_rc=1)
     expect("Cannot write no/such/folder/x.h5" in out, "the output file is not named", out)
+
+
+@test("-snes_ssstar_method fixedpoint (u <- u + z, the first-order baseline of make accuracy) converges on level 3 with rtol 1e-12 to the Newton solution (1e-8 relative) with the same states, in over 100 times the iterations; -snes_view names it")
+def prism_fixedpoint_baseline():
+    out, s = prism(3, extra=["-snes_ssstar_method", "fixedpoint", "-snes_max_it", "100000", "-snes_rtol", "1e-12", "-snes_view"], h5="fixedpoint_L3.h5")
+    expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] > 100 * REFERENCE_ITERATIONS[3], "%s after %d iterations" % (s["reason"], s["iters"]), out)
+    expect("method: fixedpoint" in out and "gamma = 1/||P||_inf" in out, "-snes_view does not name the method and its gamma", out)
+    newton, t = prism(3, h5="newton_L3.h5")
+    expect(t["states"] == s["states"], "states %s, Newton %s" % (s["states"], t["states"]), out)
+    run(CHECK + ["compare", os.path.join(OUT, "newton_L3.h5"), os.path.join(OUT, "fixedpoint_L3.h5"), "--tol", "1e-8"])

@@ -197,6 +197,39 @@ PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
 }
 
 /*@
+   SNESSSStarSetMethod - chooses the iteration: the semismooth* Newton method (SSSTAR_METHOD_NEWTON, the default) or
+   the first-order baseline SSSTAR_METHOD_FIXEDPOINT, u <- u + R^T z with the approximation step z alone
+   (DERIVATION.md section 1), for comparisons (bench/accuracy.py)
+
+   Options Database Key:
+.  -snes_ssstar_method <newton|fixedpoint> - the iteration
+
+   Notes:
+   The fixed-point iteration is a projected (with friction, proximal) gradient method: its gamma is 1/||P||_inf
+   unless -snes_ssstar_scaling sets it, small enough for it to converge on frictionless and Tresca problems, at a
+   linear rate 1 - lambda_min(P)/||P||_inf; with Coulomb friction it is not guaranteed to converge. It has no Newton
+   step, hence no globalization; the stopping rule is the same.
+@*/
+PetscErrorCode SNESSSStarSetMethod(SNES snes, SSStarMethod method)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMethod_C", (SNES, SSStarMethod), (snes, method));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetMethod - the iteration chosen by SNESSSStarSetMethod()
+@*/
+PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetMethod_C", (SNES, SSStarMethod *), (snes, method));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarSetLUReuse - with a dense P, keep the LU factors of the Newton matrix and solve the next steps by GMRES
    preconditioned with them while at most this fraction of the contact nodes changed which of their rows are known
    (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge

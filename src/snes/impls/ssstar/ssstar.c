@@ -3,6 +3,7 @@
 */
 #include "ssstarimpl.h"
 
+const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
 const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
 
 /* A Newton matrix whose estimated 1/cond is below this is treated as singular: its LU solution has no reliable digit */
@@ -19,6 +20,14 @@ static PetscErrorCode SNESSSStarComputeScaling(SNES snes, Mat P)
   PetscFunctionBegin;
   if (ss->scaling_user > 0) {
     ss->scaling = ss->scaling_user;
+    PetscFunctionReturn(0);
+  }
+  if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* 1/||P||_inf <= 1/lambda_max(P): a step short enough to converge */
+    PetscReal pnorm;
+
+    PetscCall(MatNorm(P, NORM_INFINITY, &pnorm));
+    PetscCheck(pnorm > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: ||P||_inf = %g, not positive; set -snes_ssstar_scaling", (double)pnorm);
+    ss->scaling = 1 / pnorm;
     PetscFunctionReturn(0);
   }
   PetscCall(MatCreateVecs(P, &diag, NULL));
@@ -316,7 +325,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
   PetscCall(SSStarContactSetUpProblem(snes, ct));
   PetscCall(SNESSSStarComputeScaling(snes, ct->P));
-  PetscCall(SSStarNewtonSetOperator(ss->newton, ct->P, ss->scaling));
+  if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarNewtonSetOperator(ss->newton, ct->P, ss->scaling));
   PetscCall(VecNorm(ct->f, NORM_2, &ss->scale));
   PetscCall(VecNorm(ct->f, NORM_INFINITY, &fnorm_inf));
   ss->scale *= ss->scaling;
@@ -331,7 +340,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
     PetscCall(VecNorm(ss->u, NORM_2, &unorm));
     PetscCall(SNESSSStarClassify(snes, fnorm_inf));
-    PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
+    if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
     PetscCall(PetscObjectSAWsTakeAccess((PetscObject)snes));
     snes->iter = k;
     snes->norm = znorm;
@@ -348,6 +357,12 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       ss->reason   = SSSTAR_REASON_MAX_IT;
       snes->reason = SNES_DIVERGED_MAX_IT;
       break;
+    }
+    if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
+      PetscCall(SNESSSStarAddStep(snes, ss->u, 1.0, ss->z));
+      PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+      dunorm = znorm;
+      continue;
     }
     /* a cycle is broken by a new gamma (the iterate stays); the plain iteration, or one out of rescalings, stops */
     if (ss->glob.detected == SSSTAR_DETECTED_CYCLE) {
@@ -442,7 +457,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts), SSSTAR_COMPOSED(SetMethod), SSSTAR_COMPOSED(GetMethod)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -464,6 +479,7 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   PetscReal           value;
   SSStarFrictionLaw   law;
   SSStarReductionType rtype;
+  SSStarMethod        method;
   PetscBool           set;
   PetscInt            threads;
 
@@ -479,6 +495,8 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));
   if (set) PetscCall(SNESSSStarSetScaling(snes, value));
+  PetscCall(PetscOptionsEnum("-snes_ssstar_method", "The iteration: newton (semismooth*) or fixedpoint (u <- u + z, a first-order baseline)", "SNESSSStarSetMethod", SSStarMethods, (PetscEnum)ss->method, (PetscEnum *)&method, &set));
+  if (set) PetscCall(SNESSSStarSetMethod(snes, method));
   PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
   if (set) PetscCall(SNESSSStarSetStateTolerance(snes, value));
   PetscCall(SSStarNewtonGetReuse(ss->newton, &value));
@@ -525,7 +543,9 @@ static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   PetscCall(SSStarContactView(&ss->contact, viewer));
+  if (ss->method != SSSTAR_METHOD_NEWTON) PetscCall(PetscViewerASCIIPrintf(viewer, "  method: %s (u <- u + z, no Newton step)\n", SSStarMethods[ss->method]));
   if (ss->scaling_user > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = %g\n", (double)ss->scaling_user));
+  else if (ss->method == SSSTAR_METHOD_FIXEDPOINT) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/||P||_inf%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag P)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
   if (snes->ops->converged == SNESConvergedSSStar) PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
@@ -666,6 +686,21 @@ static PetscErrorCode SNESSSStarSetStateTolerance_SSStar(SNES snes, PetscReal ta
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarSetMethod_SSStar(SNES snes, SSStarMethod method)
+{
+  PetscFunctionBegin;
+  PetscCheck(method == SSSTAR_METHOD_NEWTON || method == SSSTAR_METHOD_FIXEDPOINT, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "ssstar: unknown method %d", (int)method);
+  ((SNES_SSStar *)snes->data)->method = method;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetMethod_SSStar(SNES snes, SSStarMethod *method)
+{
+  PetscFunctionBegin;
+  *method = ((SNES_SSStar *)snes->data)->method;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarSetLUReuse_SSStar(SNES snes, PetscReal fraction)
 {
   PetscFunctionBegin;
@@ -765,6 +800,7 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_reduction <direct> - Schur complement of K: direct, mumps or explicit
 .  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag P))
+.  -snes_ssstar_method <newton> - newton (semismooth*) or fixedpoint (the first-order baseline u <- u + z)
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
 .  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration, and the remedies
 .  -snes_ssstar_globalization <true> - damped steps on ||z|| and remedies; false: the plain iteration
@@ -828,6 +864,8 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetScaling), SNESSSStarSetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetScaling), SNESSSStarGetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetStateTolerance), SNESSSStarSetStateTolerance_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetMethod), SNESSSStarSetMethod_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetMethod), SNESSSStarGetMethod_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetStates), SNESSSStarGetStates_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReason), SNESSSStarGetReason_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));

@@ -121,6 +121,7 @@ typedef struct {
   SSStarContact contact;
 
   /* the method */
+  SSStarMethod method;       /* Newton (default) or the fixed-point baseline                          */
   PetscReal    scaling_user; /* gamma as set by the user; 0 means 1/mean(diag P)                     */
   PetscReal    scaling;      /* gamma in use for the current solve                                    */
   PetscReal    state_tol;    /* tau of the classification (section 2)                                 */

@@ -23,6 +23,7 @@ PACKAGES = {
     "python3-petsc4py": lambda: debian_python_has("petsc4py"),
     "libmumps-dev": lambda: os.path.exists("/usr/include/dmumps_c.h"),  # MUMPS's C API (the direct reduction)
     "libmetis-dev": lambda: os.path.exists("/usr/include/metis.h"),  # METIS_NodeND (its ordering)
+    "valgrind": lambda: shutil.which("valgrind") is not None,  # the memory check of the tests (tests/suite_hard.py)
 }
 DEBIAN_PYTHON = "/usr/bin/python3"
 REQUIRED_PETSC_PACKAGES = ["MUMPS", "HDF5", "SCALAPACK"]

@@ -10,7 +10,7 @@
 #include <petscksp.h>
 #include <ssstar.h>
 
-PETSC_EXTERN PetscLogEvent SSSTAR_Assembly;
+PETSC_EXTERN PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output;
 
 /*
    A scene: the body, its material, supports and loads, and its contact groups, read from the options

@@ -6,7 +6,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 
 PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSearch;
 PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
-PetscLogEvent SSSTAR_Assembly, SSSTAR_Schur, SSSTAR_Recovery;
+PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output, SSSTAR_Schur, SSSTAR_Recovery;
 PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
@@ -37,7 +37,9 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(PetscLogEventRegister("SSStarNSAssemble", SNES_CLASSID, &SSSTAR_NewtonAssemble));
   PetscCall(PetscLogEventRegister("SSStarNSFactor", SNES_CLASSID, &SSSTAR_NewtonFactor));
   PetscCall(PetscLogEventRegister("SSStarNSKrylov", SNES_CLASSID, &SSSTAR_NewtonKrylov));
+  PetscCall(PetscLogEventRegister("SSStarMesh", DM_CLASSID, &SSSTAR_Mesh));
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
+  PetscCall(PetscLogEventRegister("SSStarOutput", DM_CLASSID, &SSSTAR_Output));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
   PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));
   PetscCall(PetscLogEventRegister("SSStarOrdering", MAT_CLASSID, &SSSTAR_SchurOrdering));

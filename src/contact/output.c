@@ -264,6 +264,7 @@ PetscErrorCode SSStarSceneWriteSolution(SSStarScene scene, const char file[], Ve
 
   PetscFunctionBegin;
   PetscCheck(!scene->nContact || r, scene->comm, PETSC_ERR_ARG_NULL, "SSStarSceneWriteSolution: a scene with contact needs the contact forces r");
+  PetscCall(PetscLogEventBegin(SSSTAR_Output, 0, 0, 0, 0));
   PetscCall(SSStarCheckOutputFile(scene->comm, file));
   PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
   PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, scene->comm));
@@ -280,5 +281,6 @@ PetscErrorCode SSStarSceneWriteSolution(SSStarScene scene, const char file[], Ve
   PetscCall(ierr);
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, scene->comm));
   PetscCheck(!failure, scene->comm, PETSC_ERR_FILE_WRITE, "Cannot rename the written files to %s and %s", file, xmf);
+  PetscCall(PetscLogEventEnd(SSSTAR_Output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

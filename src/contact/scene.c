@@ -557,6 +557,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   Vec             coordinates;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_Mesh, 0, 0, 0, 0));
   if (scene->geo[0]) {
     PetscCall(MeshFileOfLevel(scene));
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
@@ -582,6 +583,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   }
   PetscCall(CreateContactNodes(scene));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, (PetscReal)scene->nGlobal, scene->mesh));
+  PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

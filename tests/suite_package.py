@@ -63,8 +63,9 @@ def help_lists_every_option():
         wanted = options_in([source], LITERAL) | (library if program == "prism" else set()) | (scene if program in args else set())
         text = help_of(program, *args.get(program, []))
         for name in sorted(wanted):
-            # "-name <default>", "-name_<G> <default>" for a family of options, or for a monitor "-name ascii[:...]"
-            pattern = re.escape(name) + (r"<G>\s+<" if name.endswith("_") else r"\s+(<|ascii\[)")
+            # "-name <default>" ("-name: <default>" for a PetscBool), "-name_<G> <default>" for a family of options, or
+            # for a monitor "-name ascii[:...]"
+            pattern = re.escape(name) + (r"<G>\s+<" if name.endswith("_") else r":?\s+(<|ascii\[)")
             expect(re.search(pattern, text) is not None, "examples/%s -help does not list %s with its default" % (program, name), text)
 
 

@@ -7,8 +7,8 @@
 
    Whole body: the SNES function is F(u) = K u - b and the Jacobian K (SPD); SNESSSStarSetContactNodes()
    names the dofs of the contact nodes, the obstacle's normal and the initial gap of each. The solver
-   reduces K to the contact dofs (a Schur complement P, load f), solves the contact problem in the
-   nodes' frames and returns the whole u.
+   reduces K to the contact dofs (a Schur complement P, load f) or keeps the whole body (reduction none,
+   P never formed), solves the contact problem in the nodes' frames and returns the whole u.
    Reduced: without SNESSSStarSetContactNodes() every dof is a contact dof, the SNES function is
    c(u) = P u - f (or P u with SNESSolve(snes, f, u)) and the Jacobian P, on 3-blocks (u_t1, u_t2, u_n).
    In both, 0 in c(u) + Q(u) with non-penetration u_n + gap >= 0 and Q the friction law
@@ -88,6 +88,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetReductionType(SNES, SSStarReductionType *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetMemoryLimit(SNES, PetscReal);
 
 /* The friction law */
@@ -107,6 +108,8 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetMethod(SNES, SSStarMethod);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetMethod(SNES, SSStarMethod *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetPCReuse(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPRtolMax(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);

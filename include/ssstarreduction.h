@@ -3,24 +3,34 @@
 
 /*
    Reduction of a linear system K u = F (K SPD) to a subset C of its dofs by a Schur complement, and the recovery
-   of the whole u from u_C. Linear algebra only: no mesh, no contact law.
+   of the whole u from u_C; or none, which keeps K. Linear algebra only: no mesh, no contact law.
 */
 #include <petscksp.h>
+
+/* auto takes the direct reduction up to this many dofs of K (the crossover measured on the prism), none above */
+#define SSSTAR_AUTO_DENSE_MAX_DOFS 30000
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;
 /* phases of the direct reduction: METIS ordering, MUMPS analysis, factorization with the Schur block, P to its rows */
 PETSC_EXTERN PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
 
-/* Reduction of K u = F to the contact dofs: P = K_CC - K_CI K_II^-1 K_IC, f = F_C - K_CI K_II^-1 F_I */
+/*
+   Reduction of K u = F to the contact dofs: P = K_CC - K_CI K_II^-1 K_IC, f = F_C - K_CI K_II^-1 F_I, or none (the
+   contact problem stays on the whole body)
+*/
 typedef enum {
-  SSSTAR_REDUCTION_DIRECT,  /* MUMPS through its C API: METIS nested dissection of K_II, C last, on every rank */
-  SSSTAR_REDUCTION_MUMPS,   /* PETSc's MUMPS Schur complement (MatFactorSetSchurIS), computed on rank 0      */
-  SSSTAR_REDUCTION_EXPLICIT /* MATSCHURCOMPLEMENT made explicit, distributed                                */
+  SSSTAR_REDUCTION_DIRECT,   /* MUMPS through its C API: METIS nested dissection of K_II, C last, on every rank */
+  SSSTAR_REDUCTION_MUMPS,    /* PETSc's MUMPS Schur complement (MatFactorSetSchurIS), computed on rank 0      */
+  SSSTAR_REDUCTION_EXPLICIT, /* MATSCHURCOMPLEMENT made explicit, distributed                                */
+  SSSTAR_REDUCTION_NONE,     /* no reduction: P is never formed, the operator is K                            */
+  SSSTAR_REDUCTION_AUTO      /* direct where the dense route is the faster one and P fits, else none          */
 } SSStarReductionType;
 PETSC_EXTERN const char *const SSStarReductionTypes[];
 
 typedef struct _n_SSStarReduction *SSStarReduction;
 PETSC_EXTERN PetscErrorCode SSStarReductionCreate(Mat, IS, IS, SSStarReductionType, PetscReal, SSStarReduction *);
+PETSC_EXTERN PetscErrorCode SSStarReductionGetType(SSStarReduction, SSStarReductionType *);
+PETSC_EXTERN PetscErrorCode SSStarReductionGetOperator(SSStarReduction, Mat *);
 PETSC_EXTERN PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction, Mat *);
 PETSC_EXTERN PetscErrorCode SSStarReductionReduceLoad(SSStarReduction, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarReductionRecover(SSStarReduction, Vec, Vec, Vec, Vec);

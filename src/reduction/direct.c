@@ -24,6 +24,7 @@
 /* options -schur_direct_mumps_icntl_<i> this reduction relies on, and may not be changed */
 static const int ReservedICNTL[] = {5, 7, 18, 19, 20, 21, 26, 28};
 
+typedef struct _n_SSStarDirect *SSStarDirect;
 struct _n_SSStarDirect {
   DMUMPS_STRUC_C id;
   MPI_Comm       comm;     /* MUMPS's communicator: a duplicate of K's                          */
@@ -382,20 +383,17 @@ static PetscErrorCode MoveSchurToRows(SSStarDirect d, PetscInt NC, PetscInt nb, 
 }
 
 /*
-   SSStarDirectCreate - factors K with the Schur block isC and returns P (MPIDENSE, rows like isC); refuses before the
-   factorization when MUMPS's estimate, P and the caller's dense work exceed memoryLimit (GB per rank, 0: MemAvailable)
+   Factors K with the Schur block isC and returns P (MPIDENSE, rows like isC); refuses before the factorization when
+   MUMPS's estimate, P and the caller's dense work exceed memoryLimit (GB per rank, 0: MemAvailable)
 */
-PetscErrorCode SSStarDirectCreate(Mat K, IS isC, PetscReal memoryLimit, SSStarDirect *direct, Mat *P)
+static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memoryLimit, Mat *P)
 {
-  SSStarDirect d;
   PetscInt       N, NC, mC, nb;
   PetscLogDouble dense;
   PetscScalar   *schur;
-  Vec          x, c;
+  Vec            x, c;
 
   PetscFunctionBegin;
-  PetscCall(PetscNew(&d));
-  *direct = d;
   PetscCallMPI(MPI_Comm_dup(PetscObjectComm((PetscObject)K), &d->comm));
   PetscCallMPI(MPI_Comm_rank(d->comm, &d->rank));
   PetscCallMPI(MPI_Comm_size(d->comm, &d->size));
@@ -511,8 +509,10 @@ static PetscErrorCode Condense(SSStarDirect d)
 }
 
 /* f = F_C - K_CI K_II^-1 F_I */
-PetscErrorCode SSStarDirectReduceLoad(SSStarDirect d, Vec F, Vec f)
+static PetscErrorCode SSStarReductionReduceLoad_Direct(SSStarReduction red, Vec F, Vec f)
 {
+  SSStarDirect d = (SSStarDirect)red->data;
+
   PetscFunctionBegin;
   PetscCall(VecScatterBegin(d->toHost, F, d->xHost, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(d->toHost, F, d->xHost, INSERT_VALUES, SCATTER_FORWARD));
@@ -523,8 +523,9 @@ PetscErrorCode SSStarDirectReduceLoad(SSStarDirect d, Vec F, Vec f)
 }
 
 /* u with u_I = K_II^-1 (F_I - K_IC u_C): MUMPS's expansion, which needs the condensation of the same F just before */
-PetscErrorCode SSStarDirectRecover(SSStarDirect d, Vec F, Vec uC, Vec u)
+static PetscErrorCode SSStarReductionRecover_Direct(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
 {
+  SSStarDirect d = (SSStarDirect)red->data;
   PetscScalar *x, *c;
 
   PetscFunctionBegin;
@@ -546,12 +547,11 @@ PetscErrorCode SSStarDirectRecover(SSStarDirect d, Vec F, Vec uC, Vec u)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarDirectDestroy(SSStarDirect *direct)
+static PetscErrorCode SSStarReductionDestroy_Direct(SSStarReduction red)
 {
-  SSStarDirect d = *direct;
+  SSStarDirect d = (SSStarDirect)red->data;
 
   PetscFunctionBegin;
-  if (!d) PetscFunctionReturn(0);
   if (d->initialized) {
     d->id.job = -2;
     dmumps_c(&d->id);
@@ -562,7 +562,21 @@ PetscErrorCode SSStarDirectDestroy(SSStarDirect *direct)
   PetscCall(VecDestroy(&d->xHost));
   PetscCall(VecScatterDestroy(&d->toHostC));
   PetscCall(VecDestroy(&d->cHost));
-  PetscCallMPI(MPI_Comm_free(&d->comm));
-  PetscCall(PetscFree(*direct));
+  if (d->comm != MPI_COMM_NULL) PetscCallMPI(MPI_Comm_free(&d->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction red, Mat K)
+{
+  SSStarDirect d;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&d));
+  d->comm             = MPI_COMM_NULL;
+  red->data           = d;
+  red->ops.reduceload = SSStarReductionReduceLoad_Direct;
+  red->ops.recover    = SSStarReductionRecover_Direct;
+  red->ops.destroy    = SSStarReductionDestroy_Direct;
+  PetscCall(DirectFactor(d, K, red->isC, red->memoryLimit, &red->P));
   PetscFunctionReturn(0);
 }

@@ -1,20 +1,16 @@
 /*
    Reduction of K u = F to the contact dofs C (DERIVATION.md section 0):
-   P = K_CC - K_CI K_II^-1 K_IC,  f = F_C - K_CI K_II^-1 F_I,  and the recovery u_I = K_II^-1 (F_I - K_IC u_C).
+   P = K_CC - K_CI K_II^-1 K_IC,  f = F_C - K_CI K_II^-1 F_I,  and the recovery u_I = K_II^-1 (F_I - K_IC u_C),
+   or no reduction at all (none: the contact problem stays on the whole body, P is never formed).
 
-   direct:   MUMPS through its C API (direct.c): one Cholesky factorization of K with the Schur block C, METIS
-             ordering, on every rank; its condensation gives f and its expansion u.
-   mumps:    one Cholesky factorization of the whole K with the Schur block C (PETSc's MUMPS, on rank 0) gives P, and
-             its solves give f and u: x = K^-1 F has x_C = P^-1 f, so f = P x_C; K^-1 (F + E_C (P u_C - f)) = u.
-   explicit: MATSCHURCOMPLEMENT made explicit, with K_II factored once (MUMPS Cholesky, prefix -interior_).
-
-   Every path checks its memory estimate before the factorization and reports MUMPS's failures on every rank.
+   What every reduction shares: the choice of auto, the memory checks before a factorization, MUMPS's failures in
+   words, the singular-K check. The implementations are direct.c, mumps.c, explicit.c and none.c (reductionimpl.h).
 */
 #include "reductionimpl.h"
 #include <petscmat.h>
 #include <stdio.h>
 
-const char *const SSStarReductionTypes[] = {"direct", "mumps", "explicit", "SSStarReductionType", "SSSTAR_REDUCTION_", NULL};
+const char *const SSStarReductionTypes[] = {"direct", "mumps", "explicit", "none", "auto", "SSStarReductionType", "SSSTAR_REDUCTION_", NULL};
 
 /* MemAvailable of this node (bytes) from /proc/meminfo; 0 when unknown */
 static PetscErrorCode GetMemAvailable(PetscLogDouble *bytes)
@@ -144,8 +140,9 @@ PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm comm, PetscMPIInt root, PetscI
   }
 }
 
+
 /* A PETSc MUMPS factor's failure, reported on every rank of comm (root: the rank holding F, -1: all) */
-static PetscErrorCode CheckFactor(MPI_Comm comm, PetscMPIInt root, Mat F, PetscLogDouble estimate, const char what[], const char icntl[])
+PetscErrorCode SSStarReductionCheckFactor(MPI_Comm comm, PetscMPIInt root, Mat F, PetscLogDouble estimate, const char what[], const char icntl[])
 {
   PetscInt infog1 = 0, infog2 = 0;
 
@@ -164,230 +161,12 @@ static PetscErrorCode CheckFactor(MPI_Comm comm, PetscMPIInt root, Mat F, PetscL
   PetscFunctionReturn(0);
 }
 
-/*
-   P by MUMPS's own Schur complement of the whole K (gathered on rank 0), then scattered by rows like isC. Rank 0
-   holds two dense copies of P beside MUMPS (MUMPS's Schur block and the one created from it) and its scatter buffer.
-*/
-static PetscErrorCode ReduceMUMPS(SSStarReduction red, Mat K)
-{
-  MPI_Comm             comm = PetscObjectComm((PetscObject)K);
-  PetscMPIInt          size, rank;
-  PetscInt             N, mC, NC, estimateMB = 0;
-  PetscLogDouble       dense;
-  IS                   isAll, isCall;
-  Mat                 *Kseq, F = NULL, Sseq = NULL;
-  MatFactorInfo        info;
-  MatFactorSchurStatus status;
-  const char          *what = "the MUMPS Cholesky factorization of K with a Schur complement (PETSc, rank 0)";
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(MatGetSize(K, &N, NULL));
-  PetscCall(ISGetLocalSize(red->isC, &mC));
-  PetscCall(ISGetSize(red->isC, &NC));
-  PetscCall(ISCreateStride(PETSC_COMM_SELF, rank ? 0 : N, 0, 1, &isAll));
-  PetscCall(MatCreateSubMatrices(K, 1, &isAll, &isAll, MAT_INITIAL_MATRIX, &Kseq));
-  PetscCall(ISDestroy(&isAll));
-  PetscCall(ISAllGather(red->isC, &isCall));
-  PetscCall(MatFactorInfoInitialize(&info));
-  if (rank == 0) {
-    PetscCall(MatSetOption(Kseq[0], MAT_SPD, PETSC_TRUE));
-    PetscCall(MatGetFactor(Kseq[0], MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F));
-    PetscCall(MatSetOptionsPrefix(F, "schur_"));
-    PetscCall(MatSetFromOptions(F));
-    PetscCall(MatFactorSetSchurIS(F, isCall));
-    PetscCall(MatCholeskyFactorSymbolic(F, Kseq[0], NULL, &info));
-  }
-  PetscCall(CheckFactor(comm, 0, F, 0, what, "-schur_mat_mumps_icntl_"));
-  if (rank == 0) PetscCall(MatMumpsGetInfo(F, 15, &estimateMB));
-  dense = 8.0 * NC * ((rank == 0 ? 2.0 * NC : 0) + (size > 1 ? 2.0 * mC : 0) + SSSTAR_DENSE_WORK * (PetscLogDouble)mC);
-  PetscCall(SSStarReductionCheckMemory(comm, red->memoryLimit, 1e6 * (PetscLogDouble)estimateMB, dense, "The mumps Schur reduction"));
-  if (rank == 0) PetscCall(MatCholeskyFactorNumeric(F, Kseq[0], &info));
-  PetscCall(CheckFactor(comm, 0, F, 1e6 * (PetscLogDouble)estimateMB, what, "-schur_mat_mumps_icntl_"));
-  if (rank == 0) {
-    PetscReal flops;
-
-    PetscCall(MatMumpsGetRinfo(F, 3, &flops)); /* PETSc does not log MUMPS's flops */
-    PetscCall(PetscLogFlops(flops));
-    PetscCall(PetscInfo(K, "MUMPS factorization (PETSc, rank 0): %g flops\n", (double)flops));
-    PetscCall(MatFactorCreateSchurComplement(F, &Sseq, &status));
-    red->Kfactor = F;
-  }
-  PetscCall(ISDestroy(&isCall));
-  PetscCall(MatDestroyMatrices(1, &Kseq));
-
-  if (size == 1) {
-    red->P = Sseq;
-  } else {
-    /* P is symmetric: rows owned by rank r are the (contiguous) columns r0..r0+mC of the column-major Sseq */
-    PetscMPIInt       *counts = NULL, *displs = NULL, cnt;
-    const PetscScalar *sa     = NULL;
-    PetscScalar       *buf, *pa;
-    PetscInt           lda;
-
-    PetscCall(MatCreateDense(comm, mC, mC, NC, NC, NULL, &red->P));
-    PetscCall(PetscMPIIntCast(mC * NC, &cnt));
-    if (rank == 0) PetscCall(PetscMalloc2(size, &counts, size, &displs));
-    PetscCallMPI(MPI_Gather(&cnt, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
-    if (rank == 0) {
-      displs[0] = 0;
-      for (PetscMPIInt r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
-      PetscCall(MatDenseGetArrayRead(Sseq, &sa));
-    }
-    PetscCall(PetscMalloc1(mC * NC, &buf));
-    PetscCallMPI(MPI_Scatterv(sa, counts, displs, MPIU_SCALAR, buf, cnt, MPIU_SCALAR, 0, comm));
-    if (rank == 0) {
-      PetscCall(MatDenseRestoreArrayRead(Sseq, &sa));
-      PetscCall(MatDestroy(&Sseq));
-      PetscCall(PetscFree2(counts, displs));
-    }
-    PetscCall(MatDenseGetLDA(red->P, &lda));
-    PetscCall(MatDenseGetArrayWrite(red->P, &pa));
-    for (PetscInt i = 0; i < mC; i++)
-      for (PetscInt j = 0; j < NC; j++) pa[j * lda + i] = buf[i * NC + j];
-    PetscCall(MatDenseRestoreArrayWrite(red->P, &pa));
-    PetscCall(PetscFree(buf));
-    PetscCall(MatAssemblyBegin(red->P, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(red->P, MAT_FINAL_ASSEMBLY));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* x = K^-1 b by the factor on rank 0 (mumps path) */
-static PetscErrorCode SolveWholeK(SSStarReduction red, Vec b, Vec x)
+/* u from u_C: the implementation's recovery, then u_C itself on C (not its round-off image) */
+static PetscErrorCode RecoverWithContact(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
 {
   PetscFunctionBegin;
-  PetscCall(VecScatterBegin(red->toZero, b, red->bZero, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(red->toZero, b, red->bZero, INSERT_VALUES, SCATTER_FORWARD));
-  if (red->Kfactor) PetscCall(MatSolve(red->Kfactor, red->bZero, red->xZero));
-  PetscCall(VecScatterBegin(red->toZero, red->xZero, x, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(red->toZero, red->xZero, x, INSERT_VALUES, SCATTER_REVERSE));
-  PetscFunctionReturn(0);
-}
-
-/* The interior blocks of K and the factorization of K_II (explicit path) */
-static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
-{
-  PC        pc;
-  Mat       F;
-  PetscReal flops;
-
-  PetscFunctionBegin;
-  PetscCall(MatCreateSubMatrix(K, red->isI, red->isI, MAT_INITIAL_MATRIX, &red->Kii));
-  PetscCall(MatCreateSubMatrix(K, red->isI, red->isC, MAT_INITIAL_MATRIX, &red->Kic));
-  PetscCall(MatCreateSubMatrix(K, red->isC, red->isI, MAT_INITIAL_MATRIX, &red->Kci));
-  PetscCall(MatSetOption(red->Kii, MAT_SPD, PETSC_TRUE));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)K), &red->kspI));
-  PetscCall(KSPSetOptionsPrefix(red->kspI, "interior_"));
-  PetscCall(KSPSetOperators(red->kspI, red->Kii, red->Kii));
-  PetscCall(KSPSetType(red->kspI, KSPPREONLY));
-  PetscCall(KSPGetPC(red->kspI, &pc));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(KSPSetFromOptions(red->kspI));
-  PetscCall(KSPSetUp(red->kspI));
-  PetscCall(PCFactorGetMatrix(pc, &F));
-  PetscCall(CheckFactor(PetscObjectComm((PetscObject)K), -1, F, 0, "the MUMPS Cholesky factorization of K_II (explicit Schur complement)", "-interior_mat_mumps_icntl_"));
-  PetscCall(MatMumpsGetRinfo(F, 3, &flops)); /* PETSc does not log MUMPS's flops */
-  PetscCall(PetscLogFlops(flops));
-  PetscCall(MatMumpsGetRinfog(F, 3, &flops));
-  PetscCall(PetscInfo(K, "MUMPS factorization of K_II: %g flops\n", (double)flops));
-  PetscCall(KSPSetErrorIfNotConverged(red->kspI, PETSC_TRUE)); /* after the set-up: its failures are reported above */
-  PetscFunctionReturn(0);
-}
-
-/*
-   P by MATSCHURCOMPLEMENT made explicit, sharing the factorization of K_II. MatSchurComplementComputeExplicitOperator
-   holds K_IC and K_II^-1 K_IC as dense matrices and P as AIJ: checked before (the factor of K_II not counted).
-*/
-static PetscErrorCode ReduceExplicit(SSStarReduction red, Mat K)
-{
-  Mat      Kcc, S, Paij;
-  PetscInt nI, mC, NC;
-
-  PetscFunctionBegin;
-  PetscCall(ISGetLocalSize(red->isI, &nI));
-  PetscCall(ISGetLocalSize(red->isC, &mC));
-  PetscCall(ISGetSize(red->isC, &NC));
-  PetscCall(SSStarReductionCheckMemory(PetscObjectComm((PetscObject)K), red->memoryLimit, 0, 8.0 * NC * (2.0 * nI + 1.5 * mC + (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC), "The explicit Schur reduction (its dense blocks K_IC and K_II^-1 K_IC; the factor of K_II not counted)"));
-  PetscCall(SetUpInterior(red, K));
-  PetscCall(MatCreateSubMatrix(K, red->isC, red->isC, MAT_INITIAL_MATRIX, &Kcc));
-  PetscCall(MatCreateSchurComplement(red->Kii, red->Kii, red->Kic, red->Kci, Kcc, &S));
-  PetscCall(MatSchurComplementSetKSP(S, red->kspI));
-  PetscCall(MatSchurComplementComputeExplicitOperator(S, &Paij));
-  PetscCall(MatConvert(Paij, MATDENSE, MAT_INITIAL_MATRIX, &red->P));
-  PetscCall(MatDestroy(&Paij));
-  PetscCall(MatDestroy(&S));
-  PetscCall(MatDestroy(&Kcc));
-  PetscFunctionReturn(0);
-}
-
-/* f = F_C - K_CI K_II^-1 F_I */
-static PetscErrorCode ReduceLoad(SSStarReduction red, Vec F, Vec f)
-{
-  Vec FI, FC, x, xC, t;
-
-  PetscFunctionBegin;
-  switch (red->type) {
-  case SSSTAR_REDUCTION_DIRECT:
-    PetscCall(SSStarDirectReduceLoad(red->direct, F, f));
-    break;
-  case SSSTAR_REDUCTION_MUMPS: /* x = K^-1 F has x_C = P^-1 f */
-    PetscCall(VecDuplicate(F, &x));
-    PetscCall(SolveWholeK(red, F, x));
-    PetscCall(VecGetSubVector(x, red->isC, &xC));
-    PetscCall(MatMult(red->P, xC, f));
-    PetscCall(VecRestoreSubVector(x, red->isC, &xC));
-    PetscCall(VecDestroy(&x));
-    break;
-  case SSSTAR_REDUCTION_EXPLICIT:
-    PetscCall(MatCreateVecs(red->Kii, &t, NULL));
-    PetscCall(VecGetSubVector(F, red->isI, &FI));
-    PetscCall(KSPSolve(red->kspI, FI, t));
-    PetscCall(VecRestoreSubVector(F, red->isI, &FI));
-    PetscCall(MatMult(red->Kci, t, f));
-    PetscCall(VecGetSubVector(F, red->isC, &FC));
-    PetscCall(VecAYPX(f, -1.0, FC));
-    PetscCall(VecRestoreSubVector(F, red->isC, &FC));
-    PetscCall(VecDestroy(&t));
-    break;
-  }
-  PetscFunctionReturn(0);
-}
-
-/* u with u_C = uC and u_I = K_II^-1 (F_I - K_IC u_C); rC = P uC - f */
-static PetscErrorCode Recover(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
-{
-  Vec FI, rhs, uI, bC;
-
-  PetscFunctionBegin;
-  switch (red->type) {
-  case SSSTAR_REDUCTION_DIRECT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
-    PetscCall(SSStarDirectRecover(red->direct, F, uC, u));
-    break;
-  case SSSTAR_REDUCTION_MUMPS: /* u = K^-1 (F + E_C (P u_C - f)) */
-    PetscCall(VecDuplicate(F, &rhs));
-    PetscCall(VecCopy(F, rhs));
-    PetscCall(VecGetSubVector(rhs, red->isC, &bC));
-    PetscCall(VecAXPY(bC, 1.0, rC));
-    PetscCall(VecRestoreSubVector(rhs, red->isC, &bC));
-    PetscCall(SolveWholeK(red, rhs, u));
-    PetscCall(VecDestroy(&rhs));
-    break;
-  case SSSTAR_REDUCTION_EXPLICIT: /* u_I = K_II^-1 (F_I - K_IC u_C) */
-    PetscCall(MatCreateVecs(red->Kii, &uI, &rhs));
-    PetscCall(MatMult(red->Kic, uC, rhs));
-    PetscCall(VecGetSubVector(F, red->isI, &FI));
-    PetscCall(VecAYPX(rhs, -1.0, FI));
-    PetscCall(VecRestoreSubVector(F, red->isI, &FI));
-    PetscCall(KSPSolve(red->kspI, rhs, uI));
-    PetscCall(VecISCopy(u, red->isI, SCATTER_FORWARD, uI));
-    PetscCall(VecDestroy(&uI));
-    PetscCall(VecDestroy(&rhs));
-    break;
-  }
-  PetscCall(VecISCopy(u, red->isC, SCATTER_FORWARD, uC)); /* the contact solution itself, not its round-off image */
+  PetscCall((*red->ops.recover)(red, F, uC, rC, u));
+  PetscCall(VecISCopy(u, red->isC, SCATTER_FORWARD, uC));
   PetscFunctionReturn(0);
 }
 
@@ -413,10 +192,10 @@ static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
   PetscCall(MatCreateVecs(red->P, &f, &zero));
   PetscCall(VecZeroEntries(zero));
   if (red->type == SSSTAR_REDUCTION_MUMPS) { /* its recovery takes the contact force of u_C = 0, -f */
-    PetscCall(ReduceLoad(red, b, f));
+    PetscCall((*red->ops.reduceload)(red, b, f));
     PetscCall(VecScale(f, -1.0));
   }
-  PetscCall(Recover(red, b, zero, f, x));
+  PetscCall(RecoverWithContact(red, b, zero, f, x));
   PetscCall(MatMult(K, x, r));
   PetscCall(VecAXPY(r, -1.0, b));
   PetscCall(VecGetSubVector(r, red->isI, &rI));
@@ -436,27 +215,45 @@ static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
   PetscFunctionReturn(0);
 }
 
-/*@C
-   SSStarReductionReduceLoad - f = F_C - K_CI K_II^-1 F_I, the load reduced to the contact dofs (a vector like P's)
-@*/
-PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
+
+/*
+   auto: the Schur complement (direct) where the dense route is the faster one and P fits in memory, else none.
+   The dense route costs a factorization of K with a dense Schur block (~N^2 flops in 3D) and dense LUs of 3p x 3p;
+   the whole-body path a few multigrid solves per Newton step (~N). SSSTAR_AUTO_DENSE_MAX_DOFS is the crossover
+   measured on the prism (README, "Choosing the path").
+*/
+static PetscErrorCode ResolveAuto(Mat K, IS isC, PetscReal memoryLimit, SSStarReductionType *type)
 {
+  MPI_Comm  comm = PetscObjectComm((PetscObject)K);
+  PetscInt  N, NC, mC;
+  PetscBool fits;
+
   PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(SSSTAR_Schur, 0, 0, 0, 0));
-  PetscCall(ReduceLoad(red, F, f));
-  PetscCall(PetscLogEventEnd(SSSTAR_Schur, 0, 0, 0, 0));
+  PetscCall(MatGetSize(K, &N, NULL));
+  PetscCall(ISGetSize(isC, &NC));
+  PetscCall(ISGetLocalSize(isC, &mC));
+  PetscCall(SSStarReductionFitsMemory(comm, memoryLimit, 0, 8.0 * NC * (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC, &fits));
+  *type = N <= SSSTAR_AUTO_DENSE_MAX_DOFS && fits ? SSSTAR_REDUCTION_DIRECT : SSSTAR_REDUCTION_NONE;
+  PetscCall(PetscInfo(K, "auto: %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact dofs, dense P %s: %s\n", N, NC, fits ? "fits" : "does not fit", SSStarReductionTypes[*type]));
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarReductionCreate - the Schur complement P = K_CC - K_CI K_II^-1 K_IC of K on the dofs isC
+   SSStarReductionCreate - the reduction of K u = F to the dofs isC: the Schur complement P = K_CC - K_CI K_II^-1 K_IC,
+   or none (K itself)
+
+   Collective
 
    Input Parameters:
 +  K           - the (SPD) stiffness
 .  isC         - owned global dofs of the contact nodes (3 per node), in the order P is to have
 .  isI         - all other owned dofs
-.  type        - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS or SSSTAR_REDUCTION_EXPLICIT
+.  type        - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS, SSSTAR_REDUCTION_EXPLICIT, SSSTAR_REDUCTION_NONE or
+                 SSSTAR_REDUCTION_AUTO (direct or none, by size and memory: SSStarReductionGetType() tells which)
 -  memoryLimit - GB (1e9 bytes) per rank the reduction may plan for; 0: MemAvailable of each node split over its ranks
+
+   Output Parameter:
+.  red - the reduction
 
    Notes:
    P is dense and distributed by rows like isC. The factorization that gave P is kept for the recovery.
@@ -465,38 +262,42 @@ PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
    with the estimate and the limit in the message. MUMPS's failures (a singular K, memory) are raised on every rank.
    Options: -schur_direct_mumps_icntl_<i>, -schur_direct_mumps_cntl_<i> (direct), -schur_mat_mumps_* (mumps),
    -interior_ksp_*, -interior_pc_* (explicit).
+
+   Level: developer
+
+.seealso: `SSStarReductionGetSchurComplement()`, `SSStarReductionReduceLoad()`, `SSStarReductionRecover()`
 @*/
 PetscErrorCode SSStarReductionCreate(Mat K, IS isC, IS isI, SSStarReductionType type, PetscReal memoryLimit, SSStarReduction *red)
 {
   SSStarReduction r;
 
   PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(SSSTAR_Schur, K, 0, 0, 0));
   PetscCall(PetscNew(&r));
-  r->type        = type;
   r->memoryLimit = memoryLimit;
   PetscCall(PetscObjectReference((PetscObject)isC));
   PetscCall(PetscObjectReference((PetscObject)isI));
   r->isC = isC;
   r->isI = isI;
+  if (type == SSSTAR_REDUCTION_AUTO) PetscCall(ResolveAuto(K, isC, memoryLimit, &type));
+  r->type = type;
+  if (type == SSSTAR_REDUCTION_NONE) {
+    PetscCall(SSStarReductionCreate_None(r, K));
+    *red = r;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(SSSTAR_Schur, K, 0, 0, 0));
   switch (type) {
   case SSSTAR_REDUCTION_DIRECT:
-    PetscCall(SSStarDirectCreate(K, isC, memoryLimit, &r->direct, &r->P));
+    PetscCall(SSStarReductionCreate_Direct(r, K));
     break;
   case SSSTAR_REDUCTION_MUMPS:
-    PetscCall(ReduceMUMPS(r, K));
-    {
-      Vec F;
-
-      PetscCall(MatCreateVecs(K, NULL, &F));
-      PetscCall(VecScatterCreateToZero(F, &r->toZero, &r->bZero));
-      PetscCall(VecDestroy(&F));
-    }
-    PetscCall(VecDuplicate(r->bZero, &r->xZero));
+    PetscCall(SSStarReductionCreate_MUMPS(r, K));
     break;
   case SSSTAR_REDUCTION_EXPLICIT:
-    PetscCall(ReduceExplicit(r, K));
+    PetscCall(SSStarReductionCreate_Explicit(r, K));
     break;
+  default:
+    SETERRQ(PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_OUTOFRANGE, "Unknown reduction type %d", (int)type);
   }
   PetscCall(PetscObjectSetName((PetscObject)r->P, "P"));
   PetscCall(CheckInteriorSolve(r, K));
@@ -506,47 +307,149 @@ PetscErrorCode SSStarReductionCreate(Mat K, IS isC, IS isI, SSStarReductionType 
 }
 
 /*@C
+   SSStarReductionGetType - the reduction computed (auto resolved to direct or none)
+
+   Not Collective
+
+   Input Parameter:
+.  red - the reduction
+
+   Output Parameter:
+.  type - its type
+
+   Level: developer
+
+.seealso: `SSStarReductionCreate()`
+@*/
+PetscErrorCode SSStarReductionGetType(SSStarReduction red, SSStarReductionType *type)
+{
+  PetscFunctionBegin;
+  *type = red->type;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionGetOperator - the operator the contact problem lives on: P (3p x 3p, dense, rows distributed like
+   isC) after a Schur reduction, K itself for none; owned by the reduction
+
+   Not Collective
+
+   Input Parameter:
+.  red - the reduction
+
+   Output Parameter:
+.  A - P, or K
+
+   Level: developer
+
+.seealso: `SSStarReductionGetSchurComplement()`
+@*/
+PetscErrorCode SSStarReductionGetOperator(SSStarReduction red, Mat *A)
+{
+  PetscFunctionBegin;
+  *A = red->P;
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarReductionGetSchurComplement - P (3p x 3p, dense, rows distributed like isC); owned by the reduction
+
+   Not Collective
+
+   Input Parameter:
+.  red - the reduction (not of type none)
+
+   Output Parameter:
+.  P - the Schur complement
+
+   Level: developer
+
+.seealso: `SSStarReductionGetOperator()`
 @*/
 PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction red, Mat *P)
 {
   PetscFunctionBegin;
+  PetscCheck(red->type != SSSTAR_REDUCTION_NONE, PetscObjectComm((PetscObject)red->P), PETSC_ERR_ARG_WRONGSTATE, "The reduction none forms no Schur complement");
   *P = red->P;
   PetscFunctionReturn(0);
 }
 
 /*@C
+   SSStarReductionReduceLoad - f = F_C - K_CI K_II^-1 F_I, the load reduced to the contact dofs (a vector like P's;
+   for none, F itself)
+
+   Collective
+
+   Input Parameters:
++  red - the reduction
+-  F   - the whole load
+
+   Output Parameter:
+.  f - the reduced load
+
+   Level: developer
+
+.seealso: `SSStarReductionCreate()`
+@*/
+PetscErrorCode SSStarReductionReduceLoad(SSStarReduction red, Vec F, Vec f)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_Schur, 0, 0, 0, 0));
+  PetscCall((*red->ops.reduceload)(red, F, f));
+  PetscCall(PetscLogEventEnd(SSSTAR_Schur, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarReductionRecover - the full displacement u (a vector of K) of the load F from the contact displacement uC
-   and the contact force rC = P uC - f
+   and the contact force rC = P uC - f (for none: uC is already the whole u)
+
+   Collective
+
+   Input Parameters:
++  red - the reduction
+.  F   - the whole load
+.  uC  - the contact displacement
+-  rC  - the contact force P uC - f
+
+   Output Parameter:
+.  u - the whole displacement
+
+   Level: developer
+
+.seealso: `SSStarReductionCreate()`
 @*/
 PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec F, Vec uC, Vec rC, Vec u)
 {
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Recovery, 0, 0, 0, 0));
-  PetscCall(Recover(red, F, uC, rC, u));
+  if (red->type == SSSTAR_REDUCTION_NONE) PetscCall((*red->ops.recover)(red, F, uC, rC, u));
+  else PetscCall(RecoverWithContact(red, F, uC, rC, u));
   PetscCall(PetscLogEventEnd(SSSTAR_Recovery, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 /*@C
    SSStarReductionDestroy - frees the reduction (its factorization and P)
+
+   Collective
+
+   Input Parameter:
+.  red - the reduction
+
+   Level: developer
+
+.seealso: `SSStarReductionCreate()`
 @*/
 PetscErrorCode SSStarReductionDestroy(SSStarReduction *red)
 {
   PetscFunctionBegin;
   if (!*red) PetscFunctionReturn(0);
+  if ((*red)->ops.destroy) PetscCall((*(*red)->ops.destroy)(*red));
+  PetscCall(PetscFree((*red)->data));
   PetscCall(ISDestroy(&(*red)->isC));
   PetscCall(ISDestroy(&(*red)->isI));
-  PetscCall(SSStarDirectDestroy(&(*red)->direct));
-  PetscCall(MatDestroy(&(*red)->Kii));
-  PetscCall(MatDestroy(&(*red)->Kic));
-  PetscCall(MatDestroy(&(*red)->Kci));
   PetscCall(MatDestroy(&(*red)->P));
-  PetscCall(KSPDestroy(&(*red)->kspI));
-  PetscCall(MatDestroy(&(*red)->Kfactor));
-  PetscCall(VecScatterDestroy(&(*red)->toZero));
-  PetscCall(VecDestroy(&(*red)->bZero));
-  PetscCall(VecDestroy(&(*red)->xZero));
   PetscCall(PetscFree(*red));
   PetscFunctionReturn(0);
 }

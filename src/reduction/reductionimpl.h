@@ -4,37 +4,43 @@
 #include <ssstarreduction.h>
 
 /*
+   A reduction behind an ops table, one implementation per file: direct.c (MUMPS's C API + METIS), mumps.c (PETSc's
+   MUMPS Schur complement), explicit.c (MATSCHURCOMPLEMENT made explicit), none.c (no reduction: the operator is K
+   itself). Create_<type> computes P (or keeps K) and fills the ops.
+*/
+typedef struct _SSStarReductionOps *SSStarReductionOps;
+struct _SSStarReductionOps {
+  PetscErrorCode (*reduceload)(SSStarReduction, Vec, Vec);         /* F -> f                                   */
+  PetscErrorCode (*recover)(SSStarReduction, Vec, Vec, Vec, Vec);  /* F, u_C, r_C = P u_C - f -> u             */
+  PetscErrorCode (*destroy)(SSStarReduction);
+};
+
+struct _n_SSStarReduction {
+  struct _SSStarReductionOps ops;
+  SSStarReductionType        type;        /* as resolved: never auto                                          */
+  IS                         isC, isI;
+  Mat                        P;           /* the operator: the Schur complement, or K for none                */
+  PetscReal                  memoryLimit; /* GB per rank; 0: MemAvailable of the node split over its ranks    */
+  void                      *data;        /* the implementation's                                             */
+};
+
+/*
    Dense matrices of P's size that the caller holds beside P while the reduction is alive (the SNES's Newton step:
-   S P, the Newton matrix, and its LU factor or ScaLAPACK copy): counted in the memory estimate checked before the
-   factorization.
+   S P, the Newton matrix, and its LU factor): counted in the memory estimate checked before the factorization.
 */
 #define SSSTAR_DENSE_WORK 3
 
 /* relative residual of a solve with K_II above which K_II is taken for singular (round-off: ~1e-15 cond(K_II)) */
 #define SSSTAR_SINGULAR_RESIDUAL 1e-6
 
-typedef struct _n_SSStarDirect *SSStarDirect;
-
-struct _n_SSStarReduction {
-  SSStarReductionType type;
-  IS                  isC, isI;
-  Mat                 P;
-  PetscReal           memoryLimit;   /* GB per rank; 0: MemAvailable of the node split over its ranks   */
-  SSStarDirect        direct;        /* direct: MUMPS's factorization of K with the Schur block C         */
-  Mat                 Kii, Kic, Kci; /* explicit: blocks of K                                             */
-  KSP                 kspI;          /* explicit: K_II^-1                                                 */
-  Mat                 Kfactor;       /* mumps: Cholesky of K with the Schur block C, on rank 0            */
-  VecScatter          toZero;        /* mumps: K's vectors to and from their copy on rank 0               */
-  Vec                 bZero, xZero;
-};
-
-PETSC_INTERN PetscErrorCode SSStarDirectCreate(Mat, IS, PetscReal, SSStarDirect *, Mat *);
-PETSC_INTERN PetscErrorCode SSStarDirectReduceLoad(SSStarDirect, Vec, Vec);
-PETSC_INTERN PetscErrorCode SSStarDirectRecover(SSStarDirect, Vec, Vec, Vec);
-PETSC_INTERN PetscErrorCode SSStarDirectDestroy(SSStarDirect *);
+PETSC_INTERN PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction, Mat);
+PETSC_INTERN PetscErrorCode SSStarReductionCreate_MUMPS(SSStarReduction, Mat);
+PETSC_INTERN PetscErrorCode SSStarReductionCreate_Explicit(SSStarReduction, Mat);
+PETSC_INTERN PetscErrorCode SSStarReductionCreate_None(SSStarReduction, Mat);
 
 PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarReductionCheckMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, const char[]);
 PETSC_INTERN PetscErrorCode SSStarReductionCheckMUMPS(MPI_Comm, PetscMPIInt, PetscInt, PetscInt, PetscLogDouble, const char[], const char[]);
+PETSC_INTERN PetscErrorCode SSStarReductionCheckFactor(MPI_Comm, PetscMPIInt, Mat, PetscLogDouble, const char[], const char[]);
 
 #endif

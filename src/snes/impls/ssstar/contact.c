@@ -298,36 +298,119 @@ static PetscErrorCode ComputeK(SNES snes, Mat *K)
   PetscFunctionReturn(0);
 }
 
+/* The mean diagonal entry of the contact rows of K and their largest sum |K_ij| (the scaling's data, section 6) */
+static PetscErrorCode ContactRowStatistics(SSStarContact *ct, Mat K)
+{
+  PetscInt           n, rstart, ncols;
+  const PetscInt    *rows = NULL, *cols;
+  const PetscScalar *vals;
+  PetscReal          sums[2] = {0, 0}, rowmax = 0;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
+  if (ct->isC) {
+    PetscCall(ISGetLocalSize(ct->isC, &n));
+    PetscCall(ISGetIndices(ct->isC, &rows));
+  } else PetscCall(MatGetLocalSize(K, &n, NULL));
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt row = rows ? rows[k] : rstart + k;
+    PetscReal      sum = 0;
+
+    PetscCall(MatGetRow(K, row, &ncols, &cols, &vals));
+    for (PetscInt j = 0; j < ncols; j++) {
+      sum += PetscAbsScalar(vals[j]);
+      if (cols[j] == row) sums[0] += PetscRealPart(vals[j]);
+    }
+    PetscCall(MatRestoreRow(K, row, &ncols, &cols, &vals));
+    rowmax = PetscMax(rowmax, sum);
+  }
+  if (rows) PetscCall(ISRestoreIndices(ct->isC, &rows));
+  sums[1] = n;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)K)));
+  PetscCall(MPIU_Allreduce(&rowmax, &ct->maxRowSum, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)K)));
+  ct->meanDiag = sums[1] > 0 ? sums[0] / sums[1] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* Where the contact dofs sit in A's vectors: 3 i + k in a reduced space, their own offsets on the whole body */
+static PetscErrorCode BuildLayout(SSStarContact *ct, PetscBool wholeBody)
+{
+  PetscInt        rstart, nlocal, *mark;
+  const PetscInt *idx;
+
+  PetscFunctionBegin;
+  PetscCall(PetscFree(ct->layoutDofs));
+  PetscCall(PetscFree(ct->free));
+  ct->nfree = 0;
+  PetscCall(PetscMalloc1(3 * ct->nnodes, &ct->layoutDofs));
+  if (!wholeBody) {
+    for (PetscInt k = 0; k < 3 * ct->nnodes; k++) ct->layoutDofs[k] = k;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatGetOwnershipRange(ct->A, &rstart, NULL));
+  PetscCall(MatGetLocalSize(ct->A, &nlocal, NULL));
+  PetscCall(ISGetIndices(ct->isC, &idx));
+  PetscCall(PetscCalloc1(nlocal, &mark));
+  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
+    ct->layoutDofs[k]        = idx[k] - rstart;
+    mark[idx[k] - rstart] = 1;
+  }
+  PetscCall(ISRestoreIndices(ct->isC, &idx));
+  ct->nfree = nlocal - 3 * ct->nnodes;
+  PetscCall(PetscMalloc1(ct->nfree, &ct->free));
+  for (PetscInt j = 0, a = 0; j < nlocal; j++)
+    if (!mark[j]) ct->free[a++] = j;
+  PetscCall(PetscFree(mark));
+  PetscFunctionReturn(0);
+}
+
+/* The Newton step that fits A: the whole body for none, else by P's storage */
+static PetscErrorCode ChooseNewton(SSStarContact *ct)
+{
+  PetscBool dense;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ct->A, &dense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
+  ct->newtonType = dense ? SSSTAR_NEWTON_DENSE : SSSTAR_NEWTON_SPARSE;
+  PetscFunctionReturn(0);
+}
+
 /*
-   P and f for the current K and load: the Jacobian is evaluated once (c is affine), b = -F(0), and in the whole-body
-   use K is reduced to the contact dofs (again only when K changed).
+   A and f for the current K and load: the Jacobian is evaluated once (c is affine), b = -F(0), and in the whole-body
+   use K is reduced to the contact dofs, or kept (reduction none), again only when K changed.
 */
 PetscErrorCode SSStarContactSetUpProblem(SNES snes, SSStarContact *ct)
 {
-  Mat              K = NULL;
-  PetscObjectState state;
-  Vec              zero, bC;
-  PetscInt         nI = 0;
+  Mat                 K = NULL;
+  PetscObjectState    state;
+  Vec                 zero, bC;
+  PetscInt            nI = 0;
+  SSStarReductionType type = SSSTAR_REDUCTION_DIRECT;
 
   PetscFunctionBegin;
   PetscCall(ComputeK(snes, &K));
   PetscCall(PetscObjectStateGet((PetscObject)K, &state));
-  if (K != ct->K || state != ct->Kstate || !ct->P) {
+  if (K != ct->K || state != ct->Kstate || !ct->A) {
     PetscCall(SSStarReductionDestroy(&ct->reduction));
-    PetscCall(MatDestroy(&ct->P));
+    PetscCall(MatDestroy(&ct->A));
     PetscCall(VecDestroy(&ct->f));
+    PetscCall(ContactRowStatistics(ct, K));
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     if (ct->dofs && nI > 0) {
       PetscCall(SSStarReductionCreate(K, ct->isC, ct->isI, ct->reductionType, ct->memoryLimit, &ct->reduction));
-      PetscCall(SSStarReductionGetSchurComplement(ct->reduction, &ct->P));
-      PetscCall(PetscObjectReference((PetscObject)ct->P));
+      PetscCall(SSStarReductionGetOperator(ct->reduction, &ct->A));
+      PetscCall(PetscObjectReference((PetscObject)ct->A));
+      PetscCall(SSStarReductionGetType(ct->reduction, &type));
     } else if (ct->dofs) { /* every dof a contact dof, in another order */
-      PetscCall(MatCreateSubMatrix(K, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &ct->P));
+      PetscCall(MatCreateSubMatrix(K, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &ct->A));
     } else {
       PetscCall(PetscObjectReference((PetscObject)K));
-      ct->P = K;
+      ct->A = K;
     }
-    PetscCall(MatCreateVecs(ct->P, &ct->f, NULL));
+    if (type == SSSTAR_REDUCTION_NONE) ct->newtonType = SSSTAR_NEWTON_FULL;
+    else PetscCall(ChooseNewton(ct));
+    PetscCall(BuildLayout(ct, (PetscBool)(type == SSSTAR_REDUCTION_NONE)));
+    PetscCall(MatCreateVecs(ct->A, &ct->f, NULL));
     ct->K      = K;
     ct->Kstate = state;
   }
@@ -346,13 +429,22 @@ PetscErrorCode SSStarContactSetUpProblem(SNES snes, SSStarContact *ct)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SSStarContactGetLayout(SSStarContact *ct, SSStarContactLayout *layout)
+{
+  PetscFunctionBegin;
+  layout->nnodes = ct->nnodes;
+  layout->dofs   = ct->layoutDofs;
+  layout->frames = ct->frames;
+  PetscFunctionReturn(0);
+}
+
 /* u, the solver's unknown, from the SNES vector x */
 PetscErrorCode SSStarContactGetInitialGuess(SSStarContact *ct, Vec x, Vec u)
 {
   Vec xC;
 
   PetscFunctionBegin;
-  if (!ct->dofs) {
+  if (!ct->dofs || ct->newtonType == SSSTAR_NEWTON_FULL) {
     PetscCall(VecCopy(x, u));
     PetscFunctionReturn(0);
   }
@@ -375,7 +467,15 @@ PetscErrorCode SSStarContactSetSolution(SSStarContact *ct, Vec u, Vec c, Vec x)
 PetscErrorCode SSStarContactView(SSStarContact *ct, PetscViewer viewer)
 {
   PetscFunctionBegin;
-  if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement\n", SSStarReductionTypes[ct->reductionType]));
+  if (ct->dofs && ct->reduction) {
+    SSStarReductionType type;
+    char                chosen[64] = "";
+
+    PetscCall(SSStarReductionGetType(ct->reduction, &type));
+    if (ct->reductionType == SSSTAR_REDUCTION_AUTO) PetscCall(PetscSNPrintf(chosen, sizeof(chosen), " (chosen by auto)"));
+    if (type == SSSTAR_REDUCTION_NONE) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: solved on the whole body, P never formed (reduction none%s)\n", chosen));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", SSStarReductionTypes[type], chosen));
+  } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", SSStarReductionTypes[ct->reductionType]));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
   if (!ct->nodeFriction) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  friction law %s%s", SSStarFrictionLaws[ct->law], ct->nodeLaws ? " (and per node)" : ""));
@@ -400,9 +500,12 @@ PetscErrorCode SSStarContactReset(SSStarContact *ct)
   PetscCall(PetscFree(ct->gap));
   PetscCall(PetscFree(ct->nodeFriction));
   PetscCall(SSStarReductionDestroy(&ct->reduction));
-  PetscCall(MatDestroy(&ct->P));
+  PetscCall(MatDestroy(&ct->A));
   PetscCall(VecDestroy(&ct->f));
   PetscCall(VecDestroy(&ct->b));
+  PetscCall(PetscFree(ct->layoutDofs));
+  PetscCall(PetscFree(ct->free));
+  ct->nfree  = 0;
   ct->K      = NULL;
   ct->nnodes = 0;
   ct->built  = -1;

@@ -140,7 +140,7 @@ static PetscErrorCode Rescale(SNES snes)
   PetscFunctionBegin;
   ss->scaling *= 2;
   ss->scale *= 2;
-  PetscCall(SSStarNewtonSetOperator(ss->newton, ss->contact.P, ss->scaling));
+  PetscCall(SSStarNewtonSetScaling(ss->newton, ss->scaling));
   glob->zbest    = PETSC_MAX_REAL;
   glob->nhist    = 0;
   glob->recurred = PETSC_FALSE;
@@ -230,28 +230,28 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, S
 
 /*
    No Newton step exists (its matrix is singular, regularized or not): SSSTAR_FIXED_POINT_ITS iterations
-   u <- u + z of the approximation step with gamma = 1/||P||_inf, which bounds 1/lambda_max(P): a projected (and,
-   with friction, proximal) gradient step short enough to decrease the energy of the frictionless and Tresca
-   problems. improved: they decreased ||z|| (with the solve's gamma) enough, and the iterate moved there.
+   u <- u + z of the approximation step with gamma = 1/(the largest sum |K_ij| of a contact row), which bounds
+   1/lambda_max(P): a projected (and, with friction, proximal) gradient step short enough to decrease the energy of
+   the frictionless and Tresca problems. improved: they decreased ||z|| (with the solve's gamma) enough, and the
+   iterate moved there.
 */
 PetscErrorCode SSStarGlobalizationFixedPoint(SNES snes, PetscReal znorm, PetscBool *improved)
 {
   SNES_SSStar *ss    = (SNES_SSStar *)snes->data;
-  PetscReal    gamma = ss->scaling, pnorm, znew;
+  PetscReal    gamma = ss->scaling, znew;
+  PetscBool    solved = PETSC_TRUE;
 
   PetscFunctionBegin;
-  PetscCall(MatNorm(ss->contact.P, NORM_INFINITY, &pnorm));
   PetscCall(VecCopy(ss->u, ss->ut));
   PetscCall(VecCopy(ss->c, ss->ct));
-  ss->scaling = 1 / pnorm;
-  for (PetscInt i = 0; i < SSSTAR_FIXED_POINT_ITS; i++) {
+  ss->scaling = 1 / ss->contact.maxRowSum;
+  for (PetscInt i = 0; i < SSSTAR_FIXED_POINT_ITS && solved; i++) {
     PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &znew));
-    PetscCall(SNESSSStarAddStep(snes, ss->ut, 1.0, ss->z));
-    PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
+    PetscCall(SNESSSStarFixedPointStep(snes, ss->ut, ss->ct, &solved));
   }
   ss->scaling = gamma;
   PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &znew));
-  *improved = (PetscBool)(znew <= (1 - SSSTAR_SIGMA) * znorm);
+  *improved = (PetscBool)(solved && znew <= (1 - SSSTAR_SIGMA) * znorm);
   if (*improved) PetscCall(Accept(ss, ss->ut, ss->ct));
   PetscCall(SSStarGlobalizationRecord(&ss->glob, SSSTAR_REMEDY_FIXED_POINT));
   PetscFunctionReturn(0);

@@ -142,6 +142,83 @@ PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
 }
 
 /*@
+   SNESSSStarGetReductionType - the reduction of the last SNESSolve() (auto resolved to direct or none), or the one
+   set before the first
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  type - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS, SSSTAR_REDUCTION_EXPLICIT, SSSTAR_REDUCTION_NONE or (before
+          the first solve) SSSTAR_REDUCTION_AUTO
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetReductionType()`
+@*/
+PetscErrorCode SNESSSStarGetReductionType(SNES snes, SSStarReductionType *type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetReductionType_C", (SNES, SSStarReductionType *), (snes, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetPCReuse - whole body (reduction none): keep the preconditioner (multigrid) of an earlier Newton step
+   while at most this fraction of the contact nodes changed which of their rows are known since it was built; a new
+   one (on the old interpolation, with PCGAMG) when more did
+
+   Logically Collective
+
+   Input Parameters:
++  snes     - the SNES
+-  fraction - at most 1; negative: a new preconditioner at every step (default 0.02)
+
+   Options Database Key:
+.  -snes_ssstar_pc_reuse <fraction> - the fraction
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetKSPRtolMax()`, `SNESSSStarGetNewtonStepCounts()`
+@*/
+PetscErrorCode SNESSSStarSetPCReuse(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetPCReuse_C", (SNES, PetscReal), (snes, fraction));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetKSPRtolMax - whole body (reduction none): the loosest relative tolerance of the linear solve of a
+   Newton step (inexact Newton). The tolerance of step k is min(rtol, ||z_k||/||z_0||), with an absolute floor of a
+   tenth of the stopping threshold; -ksp_rtol fixes it instead.
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  rtol - in (0, 1) (default 0.01)
+
+   Options Database Key:
+.  -snes_ssstar_ksp_rtol_max <rtol> - the tolerance
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetPCReuse()`
+@*/
+PetscErrorCode SNESSSStarSetKSPRtolMax(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetKSPRtolMax_C", (SNES, PetscReal), (snes, rtol));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarSetMemoryLimit - the memory (GB = 1e9 bytes per rank) the reduction of K may plan for; it refuses before
    factorizing K when its estimate exceeds it. 0 (the default): MemAvailable of each node split over its ranks
 

@@ -1,5 +1,6 @@
 /*
-   The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (DERIVATION.md section 7).
+   The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (DERIVATION.md section 7), on the contact
+   dofs of a reduced problem or on the whole body (contact.c says which: the layout of the operator's vectors).
 */
 #include "ssstarimpl.h"
 
@@ -8,35 +9,31 @@ const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERG
 
 /* A Newton matrix whose estimated 1/cond is below this is treated as singular: its LU solution has no reliable digit */
 #define SSSTAR_RCOND_MIN 1e-12
+/* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
+#define SSSTAR_EQUILIBRIUM_RTOL 1e-6
 
-/* gamma = 1/mean(diag P) unless the user set it (section 6) */
-static PetscErrorCode SNESSSStarComputeScaling(SNES snes, Mat P)
+/*
+   gamma = 1/mean(diag K_CC) unless the user set it (section 6); the fixed-point baseline takes 1/(the largest sum
+   |K_ij| of a contact row), which bounds 1/lambda_max(P) from below: a step short enough to converge. In the reduced
+   use K_CC is P itself.
+*/
+static PetscErrorCode SNESSSStarComputeScaling(SNES snes)
 {
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  Vec          diag;
-  PetscScalar  sum;
-  PetscInt     N;
+  SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
+  SSStarContact *ct = &ss->contact;
 
   PetscFunctionBegin;
   if (ss->scaling_user > 0) {
     ss->scaling = ss->scaling_user;
     PetscFunctionReturn(0);
   }
-  if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* 1/||P||_inf <= 1/lambda_max(P): a step short enough to converge */
-    PetscReal pnorm;
-
-    PetscCall(MatNorm(P, NORM_INFINITY, &pnorm));
-    PetscCheck(pnorm > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: ||P||_inf = %g, not positive; set -snes_ssstar_scaling", (double)pnorm);
-    ss->scaling = 1 / pnorm;
+  if (ss->method == SSSTAR_METHOD_FIXEDPOINT) {
+    PetscCheck(ct->maxRowSum > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: the contact rows of the stiffness sum to %g, not positive; set -snes_ssstar_scaling", (double)ct->maxRowSum);
+    ss->scaling = 1 / ct->maxRowSum;
     PetscFunctionReturn(0);
   }
-  PetscCall(MatCreateVecs(P, &diag, NULL));
-  PetscCall(MatGetDiagonal(P, diag));
-  PetscCall(VecSum(diag, &sum));
-  PetscCall(VecGetSize(diag, &N));
-  PetscCall(VecDestroy(&diag));
-  PetscCheck(PetscRealPart(sum) > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: mean diagonal of P is %g, not positive; set -snes_ssstar_scaling", N ? (double)PetscRealPart(sum) / N : 0.0);
-  ss->scaling = N / PetscRealPart(sum);
+  PetscCheck(ct->meanDiag > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: the mean diagonal entry of the stiffness at the contact dofs is %g, not positive; set -snes_ssstar_scaling", (double)ct->meanDiag);
+  ss->scaling = 1 / ct->meanDiag;
   PetscFunctionReturn(0);
 }
 
@@ -53,8 +50,25 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscCall(PetscFree2(ss->S, ss->T));
   PetscCall(PetscCalloc2(n, &ss->states, n, &ss->userStates));
   PetscCall(PetscMalloc2(9 * n, &ss->S, 9 * n, &ss->T));
+  PetscCall(VecDestroy(&ss->d));
+  PetscCall(VecDestroy(&ss->b));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)snes), 3 * n, PETSC_DETERMINE, &ss->d));
+  PetscCall(VecDuplicate(ss->d, &ss->b));
+  PetscFunctionReturn(0);
+}
+
+/* The vectors of the iteration, in the layout of the operator A (they change with it) */
+static PetscErrorCode CreateWorkVectors(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscInt     n = -1, m;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetLocalSize(ss->contact.A, &m, NULL));
+  if (ss->u) PetscCall(VecGetLocalSize(ss->u, &n));
+  if (n == m) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&ss->u));
-  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)snes), 3 * n, PETSC_DETERMINE, &ss->u));
+  PetscCall(MatCreateVecs(ss->contact.A, &ss->u, NULL));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) {
     PetscCall(VecDestroy(w));
     PetscCall(VecDuplicate(ss->u, w));
@@ -71,59 +85,57 @@ static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i)
   return fr;
 }
 
-/* y = R x (R NULL: identity) */
-static void Rotate(const PetscReal *R, const PetscScalar x[3], PetscReal y[3])
+/* y = R x (R NULL: identity), x the entries of node i in a vector of the operator */
+static void NodeRotate(const SSStarContact *ct, PetscInt i, const PetscScalar *a, PetscReal y[3])
 {
-  for (PetscInt k = 0; k < 3; k++) y[k] = R ? R[3 * k] * x[0] + R[3 * k + 1] * x[1] + R[3 * k + 2] * x[2] : PetscRealPart(x[k]);
+  const PetscInt  *dof = &ct->layoutDofs[3 * i];
+  const PetscReal *R   = ct->frames ? &ct->frames[9 * i] : NULL;
+
+  for (PetscInt k = 0; k < 3; k++) y[k] = R ? R[3 * k] * PetscRealPart(a[dof[0]]) + R[3 * k + 1] * PetscRealPart(a[dof[1]]) + R[3 * k + 2] * PetscRealPart(a[dof[2]]) : PetscRealPart(a[dof[k]]);
 }
 
 /* v_i = R_i u_i + g_i e3: the iterate in node i's frame, with the gap */
 static void NodeIterate(const SSStarContact *ct, PetscInt i, const PetscScalar *ua, PetscReal v[3])
 {
-  Rotate(ct->frames ? &ct->frames[9 * i] : NULL, &ua[3 * i], v);
+  NodeRotate(ct, i, ua, v);
   if (ct->gap) v[2] += ct->gap[i];
 }
 
-/* c = P u - f */
+/* c = A u - f */
 PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
 
   PetscFunctionBegin;
-  PetscCall(MatMult(ct->P, u, c));
+  PetscCall(MatMult(ct->A, u, c));
   PetscCall(VecAXPY(c, -1.0, ct->f));
   PetscFunctionReturn(0);
 }
 
-/* x += R^T y (R NULL: identity) */
-static void AddRotatedBack(const PetscReal *R, const PetscScalar y[3], PetscScalar x[3])
-{
-  for (PetscInt k = 0; k < 3; k++) x[k] += R ? R[k] * y[0] + R[3 + k] * y[1] + R[6 + k] * y[2] : y[k];
-}
-
-/* u += alpha R^T dv: a step given in the nodes' frames (the fixed-point step z) */
-PetscErrorCode SNESSSStarAddStep(SNES snes, Vec u, PetscReal alpha, Vec dv)
+/* ||u_C||: the norm of the contact dofs of u */
+static PetscErrorCode ContactNorm(SNES snes, Vec u, PetscReal *norm)
 {
   SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
-  PetscScalar       *ua;
-  const PetscScalar *dva;
+  const PetscScalar *ua;
+  PetscReal          sum = 0;
 
   PetscFunctionBegin;
-  PetscCall(VecGetArray(u, &ua));
-  PetscCall(VecGetArrayRead(dv, &dva));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const PetscScalar step[3] = {alpha * dva[3 * i], alpha * dva[3 * i + 1], alpha * dva[3 * i + 2]};
-
-    AddRotatedBack(ct->frames ? &ct->frames[9 * i] : NULL, step, &ua[3 * i]);
+  if (!ct->nfree) {
+    PetscCall(VecNorm(u, NORM_2, norm));
+    PetscFunctionReturn(0);
   }
-  PetscCall(VecRestoreArrayRead(dv, &dva));
-  PetscCall(VecRestoreArray(u, &ua));
+  PetscCall(VecGetArrayRead(u, &ua));
+  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) sum += PetscRealPart(ua[ct->layoutDofs[k]] * ua[ct->layoutDofs[k]]);
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)snes)));
+  *norm = PetscSqrtReal(sum);
   PetscFunctionReturn(0);
 }
 
 /*
-   Section 1 on every local node of the iterate u with c = P u - f, in the node's frame, with the scaled
-   c = gamma (P u - f) (section 6): z, d, b into ss->z, ss->d, ss->b, and ||z||
+   Section 1 on every local node of the iterate u with c = A u - f, in the node's frame, with the scaled
+   c = gamma (A u - f) (section 6): z, d, b into ss->z, ss->d, ss->b, and ||z||. A free dof (whole body) has no
+   contact law: z = -gamma c, the residual of its equilibrium in displacement units.
 */
 PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *znorm)
 {
@@ -140,14 +152,17 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
   PetscCall(VecGetArrayWrite(ss->d, &da));
   PetscCall(VecGetArrayWrite(ss->b, &ba));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr = ScaledFriction(ss, i);
-    PetscReal            v[3], c[3];
+    const SSStarFriction fr  = ScaledFriction(ss, i);
+    const PetscInt      *dof = &ct->layoutDofs[3 * i];
+    PetscReal            v[3], cv[3], z[3];
 
     NodeIterate(ct, i, ua, v);
-    Rotate(ct->frames ? &ct->frames[9 * i] : NULL, &ca[3 * i], c);
-    for (PetscInt k = 0; k < 3; k++) c[k] *= ss->scaling;
-    SSStarApproximationStep(&fr, v, c, &za[3 * i], &da[3 * i], &ba[3 * i]);
+    NodeRotate(ct, i, ca, cv);
+    for (PetscInt k = 0; k < 3; k++) cv[k] *= ss->scaling;
+    SSStarApproximationStep(&fr, v, cv, z, &da[3 * i], &ba[3 * i]);
+    for (PetscInt k = 0; k < 3; k++) za[dof[k]] = z[k];
   }
+  for (PetscInt j = 0; j < ct->nfree; j++) za[ct->free[j]] = -ss->scaling * ca[ct->free[j]];
   PetscCall(VecRestoreArrayWrite(ss->b, &ba));
   PetscCall(VecRestoreArrayWrite(ss->d, &da));
   PetscCall(VecRestoreArrayWrite(ss->z, &za));
@@ -159,7 +174,7 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
 }
 
 /* Section 2 with tol_d = tau max(|v|, |d|), tol_b = tau max(|gamma f|, |b|) (infinity norms over all nodes) */
-static PetscErrorCode SNESSSStarClassify(SNES snes, PetscReal fnorm_inf)
+static PetscErrorCode SNESSSStarClassify(SNES snes)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
@@ -182,7 +197,7 @@ static PetscErrorCode SNESSSStarClassify(SNES snes, PetscReal fnorm_inf)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, norms, 3, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
   tol_d = ss->state_tol * PetscMax(norms[0], norms[1]);
-  tol_b = ss->state_tol * PetscMax(ss->scaling * fnorm_inf, norms[2]);
+  tol_b = ss->state_tol * PetscMax(ss->scaling * ss->fnorm_inf, norms[2]);
   PetscCall(PetscArrayzero(ss->counts, SSSTAR_NUM_STATES));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     const SSStarFriction fr = ScaledFriction(ss, i);
@@ -199,15 +214,33 @@ static PetscErrorCode SNESSSStarClassify(SNES snes, PetscReal fnorm_inf)
 }
 
 /*
-   Section 5 in the nodes' frames: S, T per node, y = (S + T) z, then (gamma S R P + T R) du = y. solved is false
-   when the matrix is singular or, by the estimate of its condition, nearly so.
+   Whole body: the tolerances of the next linear solve (inexact Newton). Its residual r (units of gamma^-1 y) moves
+   the next ||z|| by about gamma ||r||: relative to ||y|| ~ ||z||, eta = min(etaMax, ||z||/||z_0||) tightens with
+   the convergence, and the absolute floor keeps gamma ||r|| a tenth of the stopping threshold.
+*/
+static PetscErrorCode SetLinearTolerances(SNES snes, PetscReal znorm, PetscReal rtol)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscReal    unorm, threshold;
+
+  PetscFunctionBegin;
+  if (ss->contact.newtonType != SSSTAR_NEWTON_FULL) PetscFunctionReturn(0);
+  PetscCall(ContactNorm(snes, ss->u, &unorm));
+  threshold = PetscMax(snes->abstol, snes->rtol * PetscMax(unorm, ss->scale));
+  PetscCall(SSStarNewtonSetTolerances(ss->newton, rtol, 0.1 * threshold / ss->scaling));
+  PetscFunctionReturn(0);
+}
+
+/*
+   Section 5 in the nodes' frames: S, T per node, y = (S + T) z (and y = z on the free dofs), then the Newton system
+   for du. solved is false when its matrix is singular or, by the estimate of its condition, nearly so.
 
    regularized: the coupling phi om of the sliding (M1) rows of S dropped, i.e. the normal force in the linearized
    sliding law frozen at the iterate. Every row is then a row of gamma P, or a unit row, or a row of gamma P plus
    the PSD W of section 3 on the node's tangential dofs: after the unit rows the matrix is gamma P_FF + W_FF with
    P_FF a principal submatrix of the SPD P, nonsingular.
 */
-static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool regularized, PetscBool *solved)
+static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscReal znorm, PetscReal eta, PetscBool regularized, PetscBool *solved)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
@@ -221,21 +254,24 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool regularized, Pet
   PetscCall(VecGetArrayRead(ss->b, &ba));
   PetscCall(VecGetArrayWrite(ss->y, &ya));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr = ScaledFriction(ss, i);
+    const SSStarFriction fr  = ScaledFriction(ss, i);
+    const PetscInt      *dof = &ct->layoutDofs[3 * i];
     PetscReal           *S = &ss->S[9 * i], *T = &ss->T[9 * i];
 
     SSStarReducedBlocks(ss->states[i], &fr, &da[3 * i], &ba[3 * i], S, T);
     if (regularized) S[2] = S[5] = 0.0;
     for (PetscInt r = 0; r < 3; r++) {
-      ya[3 * i + r] = 0;
-      for (PetscInt k = 0; k < 3; k++) ya[3 * i + r] += (S[3 * r + k] + T[3 * r + k]) * za[3 * i + k];
+      ya[dof[r]] = 0;
+      for (PetscInt k = 0; k < 3; k++) ya[dof[r]] += (S[3 * r + k] + T[3 * r + k]) * za[dof[k]];
     }
   }
+  for (PetscInt j = 0; j < ct->nfree; j++) ya[ct->free[j]] = za[ct->free[j]];
   PetscCall(VecRestoreArrayWrite(ss->y, &ya));
   PetscCall(VecRestoreArrayRead(ss->b, &ba));
   PetscCall(VecRestoreArrayRead(ss->d, &da));
   PetscCall(VecRestoreArrayRead(ss->z, &za));
-  PetscCall(SSStarNewtonSolve(ss->newton, ct->frames, ss->S, ss->T, ss->y, ss->dv, solved));
+  PetscCall(SetLinearTolerances(snes, znorm, eta));
+  PetscCall(SSStarNewtonSolve(ss->newton, ss->S, ss->T, ss->y, ss->dv, solved));
   if (*solved) {
     PetscReal rcond;
 
@@ -243,6 +279,87 @@ static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscBool regularized, Pet
     if (rcond >= 0 && rcond < SSSTAR_RCOND_MIN) *solved = PETSC_FALSE;
   }
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonStep, snes, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The fixed-point step u <- u + R^T z of the approximation step z at u (section 1; z is ss->z), with c = A u - f
+   updated; on the whole body the free dofs follow the contact dofs into equilibrium (one linear solve).
+*/
+PetscErrorCode SNESSSStarFixedPointStep(SNES snes, Vec u, Vec c, PetscBool *solved)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonSolveKnown(ss->newton, ss->z, ss->dv, solved));
+  if (!*solved) PetscFunctionReturn(0);
+  PetscCall(VecAXPY(u, 1.0, ss->dv));
+  PetscCall(SNESSSStarResidual(snes, u, c));
+  PetscFunctionReturn(0);
+}
+
+/*
+   Whole body: the free dofs of u put in equilibrium with its contact dofs (K u - b = 0 there), and the load reduced
+   to the contact dofs, f = -(K u0 - b)_C with u0 in equilibrium and u0_C = 0: what a reduction would give. Into
+   ss->scale, ss->fnorm_inf; u and c = K u - b on return.
+*/
+static PetscErrorCode Equilibrate(SNES snes)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarContact     *ct = &ss->contact;
+  PetscReal          sums[2] = {0, 0}, unorm;
+  const PetscScalar *ca;
+  PetscBool          solved;
+  Vec                uC = ss->ut;
+
+  PetscFunctionBegin;
+  PetscCall(ContactNorm(snes, ss->u, &unorm));
+  PetscCall(VecCopy(ss->u, uC));
+  PetscCall(VecZeroEntries(ss->u));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  for (PetscInt pass = 0; pass < (unorm > 0 ? 2 : 1); pass++) {
+    PetscScalar *za;
+
+    /* pass 0: from u = 0; pass 1: to the given contact displacement. The known step moves the contact dofs by y */
+    PetscCall(VecGetArrayWrite(ss->z, &za));
+    if (pass == 0) {
+      for (PetscInt k = 0; k < 3 * ct->nnodes; k++) za[ct->layoutDofs[k]] = 0;
+    } else {
+      const PetscScalar *ga;
+
+      PetscCall(VecGetArrayRead(uC, &ga));
+      for (PetscInt i = 0; i < ct->nnodes; i++) {
+        PetscReal y[3];
+
+        NodeRotate(ct, i, ga, y);
+        for (PetscInt k = 0; k < 3; k++) za[ct->layoutDofs[3 * i + k]] = y[k];
+      }
+      PetscCall(VecRestoreArrayRead(uC, &ga));
+    }
+    PetscCall(VecRestoreArrayWrite(ss->z, &za));
+    PetscCall(VecGetArrayRead(ss->c, &ca));
+    PetscCall(VecGetArrayWrite(ss->z, &za));
+    for (PetscInt j = 0; j < ct->nfree; j++) za[ct->free[j]] = -ss->scaling * ca[ct->free[j]];
+    PetscCall(VecRestoreArrayWrite(ss->z, &za));
+    PetscCall(VecRestoreArrayRead(ss->c, &ca));
+    PetscCall(SSStarNewtonSetTolerances(ss->newton, SSSTAR_EQUILIBRIUM_RTOL, 0.0));
+    PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
+    PetscCheck(solved, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
+    if (pass > 0) continue;
+    /* f = -(K u0 - b)_C, in the global frame */
+    PetscCall(VecGetArrayRead(ss->c, &ca));
+    for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
+      const PetscReal fk = -PetscRealPart(ca[ct->layoutDofs[k]]);
+
+      sums[0] += fk * fk;
+      sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
+    }
+    PetscCall(VecRestoreArrayRead(ss->c, &ca));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[0], 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)snes)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
+  ss->scale     = ss->scaling * PetscSqrtReal(sums[0]);
+  ss->fnorm_inf = sums[1];
   PetscFunctionReturn(0);
 }
 
@@ -283,28 +400,68 @@ static PetscErrorCode FirstNonFinite(Vec v, PetscInt *first)
   PetscFunctionReturn(0);
 }
 
-/* Refuses what no iteration can solve: NaN or Inf in P, f or the initial guess, tolerances that are not numbers */
+/* " (node 3 of the solver's order)" after the position of a contact dof in a reduced space; nothing on the whole body */
+static PetscErrorCode NodeOfRow(SSStarContact *ct, PetscInt row, char buf[], size_t len)
+{
+  PetscFunctionBegin;
+  buf[0] = 0;
+  if (ct->newtonType != SSSTAR_NEWTON_FULL) PetscCall(PetscSNPrintf(buf, len, " (node %" PetscInt_FMT " of the solver's order)", row / 3));
+  PetscFunctionReturn(0);
+}
+
+/* Refuses what no iteration can solve: NaN or Inf in A, f or the initial guess, tolerances that are not numbers */
 static PetscErrorCode CheckProblem(SNES snes)
 {
-  SNES_SSStar   *ss   = (SNES_SSStar *)snes->data;
-  SSStarContact *ct   = &ss->contact;
-  MPI_Comm       comm = PetscObjectComm((PetscObject)snes);
+  SNES_SSStar   *ss    = (SNES_SSStar *)snes->data;
+  SSStarContact *ct    = &ss->contact;
+  MPI_Comm       comm  = PetscObjectComm((PetscObject)snes);
+  PetscBool      whole = (PetscBool)(ct->newtonType == SSSTAR_NEWTON_FULL);
+  const char    *dof   = whole ? "dof" : "contact dof";
+  char           node[64];
   Vec            rowsum;
   PetscInt       first;
 
   PetscFunctionBegin;
   PetscCheck(snes->rtol >= 0 && snes->rtol < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_rtol %g: must be in [0, 1)", (double)snes->rtol);
   PetscCheck(snes->abstol >= 0 && !PetscIsInfOrNanReal(snes->abstol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_atol %g: must be a number >= 0", (double)snes->abstol);
-  PetscCall(VecDuplicate(ct->f, &rowsum)); /* P 1: a row with a NaN or an Inf sums to NaN or Inf */
+  PetscCall(VecDuplicate(ct->f, &rowsum)); /* A 1: a row with a NaN or an Inf sums to NaN or Inf */
   PetscCall(VecSet(ss->ut, 1.0));
-  PetscCall(MatMult(ct->P, ss->ut, rowsum));
+  PetscCall(MatMult(ct->A, ss->ut, rowsum));
   PetscCall(FirstNonFinite(rowsum, &first));
   PetscCall(VecDestroy(&rowsum));
-  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the reduced stiffness P has NaN or Inf entries in row %" PetscInt_FMT " (node %" PetscInt_FMT " of the solver's order): the stiffness K is not finite", first, first / 3);
+  PetscCall(NodeOfRow(ct, first, node, sizeof(node)));
+  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the %s has NaN or Inf entries in row %" PetscInt_FMT "%s: the stiffness K is not finite", whole ? "stiffness K" : "reduced stiffness P", first, node);
   PetscCall(FirstNonFinite(ct->f, &first));
-  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the reduced load f is NaN or Inf at contact dof %" PetscInt_FMT " (node %" PetscInt_FMT " of the solver's order): the load b is not finite", first, first / 3);
+  PetscCall(NodeOfRow(ct, first, node, sizeof(node)));
+  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the %s is NaN or Inf at %s %" PetscInt_FMT "%s: the load b is not finite", whole ? "load b" : "reduced load f", dof, first, node);
   PetscCall(FirstNonFinite(ss->u, &first));
-  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the initial guess is NaN or Inf at contact dof %" PetscInt_FMT " (node %" PetscInt_FMT " of the solver's order)", first, first / 3);
+  PetscCall(NodeOfRow(ct, first, node, sizeof(node)));
+  PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the initial guess is NaN or Inf at %s %" PetscInt_FMT "%s", dof, first, node);
+  PetscFunctionReturn(0);
+}
+
+/* The problem of this solve: A, f, gamma, the Newton step for A, the displacement scale, the first iterate */
+static PetscErrorCode SetUpSolve(SNES snes)
+{
+  SNES_SSStar        *ss = (SNES_SSStar *)snes->data;
+  SSStarContact      *ct = &ss->contact;
+  SSStarContactLayout layout;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarContactSetUpProblem(snes, ct));
+  PetscCall(CreateWorkVectors(snes));
+  PetscCall(SNESSSStarComputeScaling(snes));
+  PetscCall(SSStarContactGetLayout(ct, &layout));
+  PetscCall(SSStarNewtonSetOperator(ss->newton, ct->newtonType, ct->A, ss->scaling, &layout));
+  PetscCall(SSStarContactGetInitialGuess(ct, snes->vec_sol, ss->u));
+  PetscCall(CheckProblem(snes));
+  if (ct->newtonType == SSSTAR_NEWTON_FULL) PetscCall(Equilibrate(snes));
+  else {
+    PetscCall(VecNorm(ct->f, NORM_2, &ss->scale));
+    PetscCall(VecNorm(ct->f, NORM_INFINITY, &ss->fnorm_inf));
+    ss->scale *= ss->scaling;
+    PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -312,7 +469,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 {
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
   SSStarContact *ct = &ss->contact;
-  PetscReal      znorm, unorm, dunorm = 0, fnorm_inf;
+  PetscReal      znorm, unorm, dunorm = 0, z0 = 0;
   PetscBool      solved;
 
   PetscFunctionBegin;
@@ -323,29 +480,22 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   snes->norm = 0;
   PetscCall(PetscObjectSAWsGrantAccess((PetscObject)snes));
 
-  PetscCall(SSStarContactSetUpProblem(snes, ct));
-  PetscCall(SNESSSStarComputeScaling(snes, ct->P));
-  if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarNewtonSetOperator(ss->newton, ct->P, ss->scaling));
-  PetscCall(VecNorm(ct->f, NORM_2, &ss->scale));
-  PetscCall(VecNorm(ct->f, NORM_INFINITY, &fnorm_inf));
-  ss->scale *= ss->scaling;
-  PetscCall(SSStarContactGetInitialGuess(ct, snes->vec_sol, ss->u));
-  PetscCall(CheckProblem(snes));
+  PetscCall(SetUpSolve(snes));
   PetscCall(SSStarGlobalizationBegin(snes));
-  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
 
   for (PetscInt k = 0;; k++) {
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
-    PetscCall(VecNorm(ss->u, NORM_2, &unorm));
-    PetscCall(SNESSSStarClassify(snes, fnorm_inf));
+    PetscCall(ContactNorm(snes, ss->u, &unorm));
+    PetscCall(SNESSSStarClassify(snes));
     if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
     PetscCall(PetscObjectSAWsTakeAccess((PetscObject)snes));
     snes->iter = k;
     snes->norm = znorm;
     if (k == 0) snes->ttol = znorm * snes->rtol; /* for SNESConvergedDefault(), if the user chose it */
     PetscCall(PetscObjectSAWsGrantAccess((PetscObject)snes));
+    if (k == 0) z0 = znorm;
     PetscCall(SNESLogConvergenceHistory(snes, znorm, snes->linear_its));
     PetscCall(SNESMonitor(snes, k, znorm));
     PetscUseTypeMethod(snes, converged, k, PetscMax(unorm, ss->scale), dunorm, znorm, &snes->reason, snes->cnvP);
@@ -359,13 +509,14 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
     if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
-      PetscCall(SNESSSStarAddStep(snes, ss->u, 1.0, ss->z));
-      PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+      PetscCall(SetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
+      PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
       dunorm = znorm;
-      continue;
+      if (solved) continue;
+      stop = SSSTAR_REASON_SINGULAR_NEWTON;
     }
     /* a cycle is broken by a new gamma (the iterate stays); the plain iteration, or one out of rescalings, stops */
-    if (ss->glob.detected == SSSTAR_DETECTED_CYCLE) {
+    else if (ss->glob.detected == SSSTAR_DETECTED_CYCLE) {
       PetscBool broken = PETSC_FALSE;
 
       if (ss->glob.on) PetscCall(SSStarGlobalizationBreakCycle(snes, &broken));
@@ -373,11 +524,13 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       stop = SSSTAR_REASON_CYCLE;
     } else if (ss->glob.detected == SSSTAR_DETECTED_STAGNATION) stop = SSSTAR_REASON_STAGNATION;
     if (!stop) {
+      const PetscReal eta = PetscMin(ss->etaMax, znorm / z0);
+
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
-      PetscCall(SNESSSStarNewtonStep(snes, PETSC_FALSE, &solved));
+      PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
       if (!solved && ss->glob.on && ct->lawCounts[SSSTAR_FRICTION_COULOMB] > 0) {
         PetscCall(SSStarGlobalizationRecord(&ss->glob, SSSTAR_REMEDY_REGULARIZED));
-        PetscCall(SNESSSStarNewtonStep(snes, PETSC_TRUE, &solved));
+        PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_TRUE, &solved));
       }
       if (!solved) {
         PetscBool improved = PETSC_FALSE;
@@ -386,7 +539,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         if (improved) continue;
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
-        PetscCall(VecNorm(ss->dv, NORM_2, &dunorm));
+        PetscCall(ContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, &stop));
       }
     }
@@ -408,7 +561,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
   }
-  /* the last iterate and its c = P u - f, the contact force: the SNES vector gets the whole u, F(u) its residual */
+  /* the last iterate and its c = A u - f, the contact force: the SNES vector gets the whole u, F(u) its residual */
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SSStarContactSetSolution(ct, ss->u, ss->c, snes->vec_sol));
   PetscCall(SNESComputeFunction(snes, snes->vec_sol, snes->vec_func));
@@ -452,12 +605,14 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(PetscFree2(ss->S, ss->T));
   PetscCall(VecDestroy(&ss->u));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) PetscCall(VecDestroy(w));
+  PetscCall(VecDestroy(&ss->d));
+  PetscCall(VecDestroy(&ss->b));
   PetscCall(SSStarGlobalizationDestroy(&ss->glob));
   PetscFunctionReturn(0);
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts), SSSTAR_COMPOSED(SetMethod), SSSTAR_COMPOSED(GetMethod)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(GetReductionType), SSSTAR_COMPOSED(SetPCReuse), SSSTAR_COMPOSED(SetKSPRtolMax), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts), SSSTAR_COMPOSED(SetMethod), SSSTAR_COMPOSED(GetMethod)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -489,7 +644,7 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   if (set) PetscCall(SNESSSStarSetFrictionLaw(snes, law));
   PetscCall(PetscOptionsReal("-snes_ssstar_friction", "Coulomb friction coefficient phi >= 0", "SNESSSStarSetFriction", ct->friction, &value, &set));
   if (set) PetscCall(SNESSSStarSetFriction(snes, value));
-  PetscCall(PetscOptionsEnum("-snes_ssstar_reduction", "Schur complement of K on the contact dofs (whole-body use)", "SNESSSStarSetReductionType", SSStarReductionTypes, (PetscEnum)ct->reductionType, (PetscEnum *)&rtype, &set));
+  PetscCall(PetscOptionsEnum("-snes_ssstar_reduction", "Whole-body use: K reduced to the contact dofs (direct, mumps, explicit), or none (the whole body, P never formed), or auto", "SNESSSStarSetReductionType", SSStarReductionTypes, (PetscEnum)ct->reductionType, (PetscEnum *)&rtype, &set));
   if (set) PetscCall(SNESSSStarSetReductionType(snes, rtype));
   PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ct->memoryLimit, &value, &set));
   if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
@@ -502,6 +657,11 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   PetscCall(SSStarNewtonGetReuse(ss->newton, &value));
   PetscCall(PetscOptionsReal("-snes_ssstar_lu_reuse", "Solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: a fresh LU at every step)", "SNESSSStarSetLUReuse", value, &value, &set));
   if (set) PetscCall(SNESSSStarSetLUReuse(snes, value));
+  PetscCall(SSStarNewtonGetPCReuse(ss->newton, &value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_pc_reuse", "Whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows since it (negative: a new one every step)", "SNESSSStarSetPCReuse", value, &value, &set));
+  if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
+  if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
   PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
   PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
   if (set) PetscCall(SNESSSStarSetLUThreads(snes, threads));
@@ -545,8 +705,8 @@ static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   PetscCall(SSStarContactView(&ss->contact, viewer));
   if (ss->method != SSSTAR_METHOD_NEWTON) PetscCall(PetscViewerASCIIPrintf(viewer, "  method: %s (u <- u + z, no Newton step)\n", SSStarMethods[ss->method]));
   if (ss->scaling_user > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = %g\n", (double)ss->scaling_user));
-  else if (ss->method == SSSTAR_METHOD_FIXEDPOINT) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/||P||_inf%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag P)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
+  else if (ss->method == SSSTAR_METHOD_FIXEDPOINT) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/(largest contact row sum of K)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag K_CC)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
   if (snes->ops->converged == SNESConvergedSSStar) PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
   PetscCall(SSStarNewtonView(ss->newton, viewer));
@@ -646,8 +806,34 @@ static PetscErrorCode SNESSSStarSetReductionType_SSStar(SNES snes, SSStarReducti
   PetscFunctionBegin;
   if (type != ct->reductionType) {
     ct->reductionType = type;
-    PetscCall(MatDestroy(&ct->P)); /* the next solve reduces K again */
+    PetscCall(MatDestroy(&ct->A)); /* the next solve sets the problem up again */
   }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetReductionType_SSStar(SNES snes, SSStarReductionType *type)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  *type = ct->reductionType;
+  if (ct->reduction) PetscCall(SSStarReductionGetType(ct->reduction, type));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetPCReuse_SSStar(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_pc_reuse %g must be at most 1 (negative: never)", (double)fraction);
+  PetscCall(SSStarNewtonSetPCReuse(((SNES_SSStar *)snes->data)->newton, fraction));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetKSPRtolMax_SSStar(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscCheck(rtol > 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_ksp_rtol_max %g must be in (0, 1)", (double)rtol);
+  ((SNES_SSStar *)snes->data)->etaMax = rtol;
   PetscFunctionReturn(0);
 }
 
@@ -777,8 +963,9 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
 
   PetscFunctionBegin;
-  PetscCheck(ct->P, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: no reduced problem before SNESSolve()");
-  if (P) *P = ct->P;
+  PetscCheck(ct->A, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: no reduced problem before SNESSolve()");
+  PetscCheck(ct->newtonType != SSSTAR_NEWTON_FULL, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: the last solve ran on the whole body (reduction none): no P was formed");
+  if (P) *P = ct->A;
   if (f) *f = ct->f;
   PetscFunctionReturn(0);
 }
@@ -787,8 +974,9 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
    SNESSSSTAR - "ssstar": semismooth* Newton method for 3D contact with friction (Coulomb, Tresca or none)
 
    Whole body: the SNES function is F(u) = K u - b, the Jacobian K, and SNESSSStarSetContactNodes() names the contact
-   nodes' dofs, the obstacle's normals and the gaps; SNESSolve() reduces K to the contact dofs (Schur complement P),
-   solves there and returns the whole u; SNESGetFunction() then holds K u - b, the contact forces.
+   nodes' dofs, the obstacle's normals and the gaps; SNESSolve() reduces K to the contact dofs (Schur complement P)
+   and solves there, or solves on the whole body with K (reduction none: Krylov + multigrid, P never formed), and
+   returns the whole u; SNESGetFunction() then holds K u - b, the contact forces.
    Reduced: the SNES function is c(u) = P u - f and the Jacobian P, one (u_t1, u_t2, u_n) block per contact node.
 
    Each iteration: an approximation step (a closed-form projection per node, in the node's frame), a classification
@@ -797,9 +985,9 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
    Options Database Keys:
 +  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 .  -snes_ssstar_friction <0.3> - Coulomb friction coefficient
-.  -snes_ssstar_reduction <direct> - Schur complement of K: direct, mumps or explicit
+.  -snes_ssstar_reduction <auto> - whole-body use: K reduced to the contact dofs (direct, mumps, explicit), none (the Newton step on the whole body, P never formed) or auto (direct on small problems, none on large ones)
 .  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
-.  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag P))
+.  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag K_CC), the contact block of K)
 .  -snes_ssstar_method <newton> - newton (semismooth*) or fixedpoint (the first-order baseline u <- u + z)
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
 .  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration, and the remedies
@@ -807,7 +995,10 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_damping_min <0.015625> - smallest damping factor of the line search
 .  -snes_ssstar_stagnation_its <20> - stop after this many iterations without a smaller ||z||
 .  -snes_ssstar_lu_threads <1> - on several ranks, rank 0's BLAS threads for the LU of the Newton matrix (0: the cores it may run on)
-.  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: never); -snes_ssstar_newton_ksp_* set that GMRES
+.  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (0: only when none changed; negative: a fresh LU at every step); -snes_ssstar_newton_ksp_* set that GMRES
+.  -snes_ssstar_pc_reuse <0.02> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
+.  -snes_ssstar_ksp_rtol_max <0.01> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||)
+.  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol
 
@@ -834,7 +1025,8 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscNew(&ss));
   ss->contact.law           = SSSTAR_FRICTION_COULOMB;
   ss->contact.friction      = 0.3;
-  ss->contact.reductionType = SSSTAR_REDUCTION_DIRECT;
+  ss->contact.reductionType = SSSTAR_REDUCTION_AUTO;
+  ss->etaMax                = 1e-2;
   ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;
@@ -843,10 +1035,11 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   snes->data                = (void *)ss;
   PetscCall(SSStarNewtonCreate(snes, &ss->newton));
 
+  /* the SNES's KSP solves the Newton steps on the whole body (the sparse path sets LU for itself) */
   PetscCall(SNESGetKSP(snes, &snes->ksp));
-  PetscCall(KSPSetType(snes->ksp, KSPPREONLY));
+  PetscCall(KSPSetType(snes->ksp, KSPGMRES));
   PetscCall(KSPGetPC(snes->ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCSetType(pc, PCGAMG));
   for (PetscInt i = 0; i < snes->numberreasonviews; i++)
     if (snes->reasonview[i] == SNESSSStarConvergedReasonView) registered = PETSC_TRUE;
   if (!registered) PetscCall(SNESConvergedReasonViewSet(snes, SNESSSStarConvergedReasonView, NULL, NULL));
@@ -860,6 +1053,9 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetSlipBounds), SNESSSStarSetSlipBounds_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetNodeFrictionLaws), SNESSSStarSetNodeFrictionLaws_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetReductionType), SNESSSStarSetReductionType_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReductionType), SNESSSStarGetReductionType_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetPCReuse), SNESSSStarSetPCReuse_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetKSPRtolMax), SNESSSStarSetKSPRtolMax_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetMemoryLimit), SNESSSStarSetMemoryLimit_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetScaling), SNESSSStarSetScaling_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetScaling), SNESSSStarGetScaling_SSStar));

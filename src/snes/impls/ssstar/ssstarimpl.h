@@ -10,28 +10,57 @@ PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSear
 PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
-   The Newton step (newton.c): solves (gamma S R P R^T + T) dv = y (DERIVATION.md section 5 in the nodes' frames R)
-   and returns du = R^T dv (global frame), given P (global frame) and, per local node, R, S and T (9 values each,
-   row-major). Created with the SNES (it keeps
-   the settings); Reset drops what was built for a P. Counts and the condition estimate are of the current SNESSolve.
+   The Newton step (newton.c and one file per implementation, newtonimpl.h): for the per-node blocks S, T of
+   DERIVATION.md section 5 it solves the Newton system on the operator A of the solve (P, or K on the whole body)
+   and returns du in the global frame. Created with the SNES (it keeps the settings); each SNESSolve gives it the
+   operator, the implementation that fits it and the contact nodes' layout. Counts are of the current SNESSolve.
 */
+typedef enum {
+  SSSTAR_NEWTON_DENSE,  /* dense P: known dofs eliminated, LU of the rest, GMRES on an older LU        */
+  SSSTAR_NEWTON_SPARSE, /* sparse P (the user's): the Newton matrix factored by the SNES's KSP         */
+  SSSTAR_NEWTON_FULL    /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
+} SSStarNewtonType;
+PETSC_EXTERN const char *const SSStarNewtonTypes[];
+
+/* Where the contact nodes are in the operator's vectors, and their frames */
+typedef struct {
+  PetscInt         nnodes; /* local contact nodes                                              */
+  const PetscInt  *dofs;   /* 3 per node: the local offsets of its dofs in the operator's vectors */
+  const PetscReal *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
+} SSStarContactLayout;
+
+/* the multigrid of an earlier Newton matrix is kept while at most this fraction of the nodes changed known rows */
+#define SSSTAR_PC_REUSE_DEFAULT 0.02
+
 typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, Mat, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, SSStarNewtonType, Mat, PetscReal, const SSStarContactLayout *);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetType(SSStarNewton, SSStarNewtonType *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetScaling(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarNewtonSetTolerances(SSStarNewton, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton, Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
+PETSC_INTERN PetscErrorCode SSStarNewtonGetSteps(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarNewtonView(SSStarNewton, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarNewtonReset(SSStarNewton);
 PETSC_INTERN PetscErrorCode SSStarNewtonDestroy(SSStarNewton *);
 
 /*
-   The contact declaration and the reduced problem (contact.c). The solver's unknown is u, the displacement of the
-   contact dofs in the global frame (3 per node); in node i's frame it is v_i = R_i u_i + g_i e_3, with v_i3 >= 0.
+   The contact declaration and the problem the iteration runs on (contact.c). The solver's unknown u lives in the
+   vectors of an operator A: the contact dofs in the global frame (3 per node; in node i's frame v_i = R_i u_i + g_i e_3,
+   with v_i3 >= 0) and, on the whole body, the other dofs too (free dofs).
+
+     reduced use:          A = the user's P (every dof a contact dof), u = u_C
+     whole body, a Schur reduction of K:  A = P = K_CC - K_CI K_II^-1 K_IC, load f, u = u_C
+     whole body, reduction none:          A = K, load b, u = the whole displacement (P never formed)
 */
 typedef struct {
   /* as declared by the user */
@@ -59,16 +88,22 @@ typedef struct {
   PetscBool        hasFriction;     /* some node has friction (global)                                     */
   PetscInt         lawCounts[3];    /* nodes per law (global)                                               */
 
-  /* the reduced problem c(u) = P u - f, kept while K and the declaration are unchanged */
+  /* the problem c(u) = A u - f, kept while K and the declaration are unchanged */
   SSStarReduction  reduction;       /* NULL in the reduced use                                              */
-  Mat              K;               /* the Jacobian the reduction was computed from                          */
+  Mat              K;               /* the Jacobian the problem was set up from                             */
   PetscObjectState Kstate;
-  Mat              P;
-  Vec              b, f;            /* the whole load b = -F(0) and its reduction f                          */
+  PetscReal        meanDiag;        /* mean of the diagonal of K_CC (P in the reduced use)                  */
+  PetscReal        maxRowSum;       /* largest sum |K_ij| of a contact row: a bound of lambda_max(P)        */
+  Mat              A;               /* the operator: P, or K (reduction none)                               */
+  Vec              b, f;            /* the whole load b = -F(0) and A's load f (the reduced one, or b)      */
+  SSStarNewtonType newtonType;      /* the Newton step that fits A                                          */
+  PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
+  PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
 } SSStarContact;
 
 PETSC_INTERN PetscErrorCode SSStarContactSetUp(SNES, SSStarContact *);
 PETSC_INTERN PetscErrorCode SSStarContactSetUpProblem(SNES, SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactGetLayout(SSStarContact *, SSStarContactLayout *);
 PETSC_INTERN PetscErrorCode SSStarContactGetInitialGuess(SSStarContact *, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactSetSolution(SSStarContact *, Vec, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactReset(SSStarContact *);
@@ -122,10 +157,12 @@ typedef struct {
 
   /* the method */
   SSStarMethod method;       /* Newton (default) or the fixed-point baseline                          */
-  PetscReal    scaling_user; /* gamma as set by the user; 0 means 1/mean(diag P)                     */
+  PetscReal    scaling_user; /* gamma as set by the user; 0 means 1/mean(diag K_CC)                  */
   PetscReal    scaling;      /* gamma in use for the current solve                                    */
   PetscReal    state_tol;    /* tau of the classification (section 2)                                 */
   PetscReal    scale;        /* ||gamma f||: the problem's displacement scale in the stopping rule    */
+  PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
+  PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
   SSStarReason reason;
 
   /* the iteration, per local node in the solver's order */
@@ -133,15 +170,17 @@ typedef struct {
   SSStarState *userStates;                 /* the same in the user's node order                     */
   PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
   PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
-  Vec          u, c, z, d, b, y, dv;       /* u, c = P u - f, dv (global frame); z, d, b, y (nodes' frames) */
-  Vec          ut, ct, ua, ca;             /* trial iterates and their P u - f: the full step, a damped one  */
+  /* in the layout of the operator's vectors (the contact nodes' entries in the global frame, unless said) */
+  Vec          u, c, z, y, dv;             /* u, c = A u - f, dv; z, y: the nodes' frames at the contact dofs */
+  Vec          ut, ct, ua, ca;             /* trial iterates and their A u - f: the full step, a damped one  */
+  Vec          d, b;                       /* 3 per node, the nodes' frames                                 */
   SSStarNewton newton;
   SSStarGlobalization glob;
 } SNES_SSStar;
 
 /* ssstar.c: the per-node work of an iteration on any iterate (u, c) */
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
-PETSC_INTERN PetscErrorCode SNESSSStarAddStep(SNES, Vec, PetscReal, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
 
 /* globalization.c */

@@ -1,0 +1,349 @@
+/*
+   The Newton step on the whole body, P never formed (reduction none). With Q the rotation into the nodes' frames at
+   the contact dofs (identity elsewhere), K' = Q K Q^T and dv = Q du, the system of newtonimpl.h divided by gamma is
+
+     free dof j:      (K' dv)_j                               = y_j / gamma
+     contact node i:  S_i (K' dv)_i + T_i dv_i / gamma        = y_i / gamma
+
+   i.e. M = Shat K' + That / gamma with Shat = blockdiag(S_i, 1), That = blockdiag(T_i, 0). The rows with S row = 0 and
+   T row = e_r (sticking nodes, the normal of a node in contact) say dv = y: they are eliminated symmetrically
+   (MatZeroRowsColumns, unit rows scaled by 1/gamma). Interior and separated rows are K's; a sliding node's tangential
+   rows add phi om times its normal row of K' and W/gamma (DERIVATION.md section 5): the only unsymmetric part. The
+   system is solved by the SNES's KSP: CG where it is symmetric, GMRES (right preconditioned) where it is not, both
+   preconditioned by algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes, rotated like K'),
+   to the tolerances the iteration sets (inexact Newton). The multigrid of an earlier step is kept while few nodes
+   changed their known rows, its interpolation while more did.
+*/
+#include "newtonimpl.h"
+
+typedef struct {
+  Mat            Kr;            /* K' = Q K Q^T; K itself (a reference) when there are no frames                 */
+  Mat            Qt;            /* Q^T, block diagonal; NULL without frames                                      */
+  Mat            Shat;          /* blockdiag(S_i, 1): fixed 3x3 pattern at the contact nodes                     */
+  Mat            M;             /* the Newton matrix of the step                                                 */
+  MatNullSpace   nearNull;      /* K's near-null space in the nodes' frames, or NULL                             */
+  Vec            rhs, dv;       /* of the step, dv = Q du                                                        */
+  PetscInt       rstart;        /* first row of K on this rank                                                   */
+  PetscInt       nknown, *known; /* global rows of the known dofs of the step                                    */
+  unsigned char *mask, *pcMask; /* per local node: bits of its unknown rows, now and when the multigrid was built */
+  PetscBool      pcBuilt;
+  PetscInt       nnodesGlobal;
+  PetscBool      userKSPType, userTolerances;
+  PetscReal     *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
+} Newton_Full;
+
+/* Q^T: at contact node i the 3x3 block R_i^T (frame to global), identity on every other dof */
+static PetscErrorCode CreateRotation(SSStarNewton nt, Mat *Qt)
+{
+  Newton_Full               *nf = (Newton_Full *)nt->data;
+  const SSStarContactLayout *L  = &nt->layout;
+  PetscInt                   m, *nnz;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
+  PetscCall(PetscMalloc1(m, &nnz));
+  for (PetscInt j = 0; j < m; j++) nnz[j] = 1;
+  for (PetscInt k = 0; k < 3 * L->nnodes; k++) nnz[L->dofs[k]] = 3;
+  PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)nt->A), m, m, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz, 0, NULL, Qt));
+  PetscCall(PetscFree(nnz));
+  for (PetscInt j = 0; j < m; j++) PetscCall(MatSetValue(*Qt, nf->rstart + j, nf->rstart + j, 1.0, INSERT_VALUES));
+  for (PetscInt i = 0; i < L->nnodes; i++) {
+    const PetscReal *R = &L->frames[9 * i];
+    PetscInt         rows[3];
+    PetscScalar      RT[9];
+
+    for (PetscInt k = 0; k < 3; k++) rows[k] = nf->rstart + L->dofs[3 * i + k];
+    for (PetscInt r = 0; r < 3; r++)
+      for (PetscInt c = 0; c < 3; c++) RT[3 * r + c] = R[3 * c + r];
+    PetscCall(MatSetValues(*Qt, 3, rows, 3, rows, RT, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(*Qt, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*Qt, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* K's near-null space (the rigid-body modes a scene attaches to K), rotated like K' */
+static PetscErrorCode CreateNearNullSpace(SSStarNewton nt)
+{
+  Newton_Full  *nf = (Newton_Full *)nt->data;
+  MatNullSpace  nsp;
+  PetscBool     hasConstant;
+  PetscInt      n;
+  const Vec    *vecs;
+  Vec          *rotated;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetNearNullSpace(nt->A, &nsp));
+  if (!nsp) PetscFunctionReturn(0);
+  if (!nf->Qt) {
+    PetscCall(PetscObjectReference((PetscObject)nsp));
+    nf->nearNull = nsp;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatNullSpaceGetVecs(nsp, &hasConstant, &n, &vecs));
+  PetscCall(PetscMalloc1(n, &rotated));
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(VecDuplicate(vecs[k], &rotated[k]));
+    PetscCall(MatMultTranspose(nf->Qt, vecs[k], rotated[k]));
+  }
+  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)nt->A), hasConstant, n, rotated, &nf->nearNull));
+  for (PetscInt k = 0; k < n; k++) PetscCall(VecDestroy(&rotated[k]));
+  PetscCall(PetscFree(rotated));
+  PetscFunctionReturn(0);
+}
+
+/* Shat with its pattern: a full 3x3 block per contact node (the identity for now), 1 on every free dof */
+static PetscErrorCode CreateRowCombination(SSStarNewton nt)
+{
+  Newton_Full               *nf = (Newton_Full *)nt->data;
+  const SSStarContactLayout *L  = &nt->layout;
+  PetscInt                   m, *nnz;
+  const PetscScalar          I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+  PetscFunctionBegin;
+  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
+  PetscCall(PetscMalloc1(m, &nnz));
+  for (PetscInt j = 0; j < m; j++) nnz[j] = 1;
+  for (PetscInt k = 0; k < 3 * L->nnodes; k++) nnz[L->dofs[k]] = 3;
+  PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)nt->A), m, m, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz, 0, NULL, &nf->Shat));
+  PetscCall(PetscFree(nnz));
+  PetscCall(MatSetOption(nf->Shat, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
+  for (PetscInt j = 0; j < m; j++) PetscCall(MatSetValue(nf->Shat, nf->rstart + j, nf->rstart + j, 1.0, INSERT_VALUES));
+  for (PetscInt i = 0; i < L->nnodes; i++) {
+    PetscInt rows[3];
+
+    for (PetscInt k = 0; k < 3; k++) rows[k] = nf->rstart + L->dofs[3 * i + k];
+    PetscCall(MatSetValues(nf->Shat, 3, rows, 3, rows, I3, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(nf->Shat, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(nf->Shat, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
+{
+  Newton_Full               *nf  = (Newton_Full *)nt->data;
+  const SSStarContactLayout *L   = &nt->layout;
+  KSP                        ksp = nt->snes->ksp;
+  PC                         pc;
+  PetscBool                  isgamg, set;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetOwnershipRange(nt->A, &nf->rstart, NULL));
+  PetscCall(MPIU_Allreduce(&L->nnodes, &nf->nnodesGlobal, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
+  if (L->frames) {
+    PetscCall(CreateRotation(nt, &nf->Qt));
+    PetscCall(MatPtAP(nt->A, nf->Qt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &nf->Kr));
+  } else {
+    PetscCall(PetscObjectReference((PetscObject)nt->A));
+    nf->Kr = nt->A;
+  }
+  PetscCall(CreateNearNullSpace(nt));
+  PetscCall(CreateRowCombination(nt));
+  PetscCall(MatCreateVecs(nt->A, &nf->dv, &nf->rhs));
+  PetscCall(PetscMalloc2(3 * L->nnodes, &nf->known, L->nnodes, &nf->mask));
+  PetscCall(PetscCalloc1(L->nnodes, &nf->pcMask));
+  PetscCall(PetscMalloc2(9 * L->nnodes, &nf->Sknown, 9 * L->nnodes, &nf->Tknown));
+  for (PetscInt i = 0; i < L->nnodes; i++)
+    for (PetscInt k = 0; k < 9; k++) {
+      nf->Sknown[9 * i + k] = 0;
+      nf->Tknown[9 * i + k] = (PetscReal)(k % 4 == 0);
+    }
+  nf->pcBuilt = PETSC_FALSE;
+
+  /* the SNES's KSP: GMRES or CG with GAMG unless the options name others (they are read again for the new types) */
+  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_type", &nf->userKSPType));
+  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_rtol", &nf->userTolerances));
+  PetscCall(SSStarNewtonSetKSPDefaults(nt, KSPGMRES, PCGAMG));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
+  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_reuse_interpolation", &set));
+  if (isgamg && !set) PetscCall(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscFunctionReturn(0);
+}
+
+/* A new gamma changes the unit rows and W/gamma: the multigrid is built again */
+static PetscErrorCode SSStarNewtonSetScaling_Full(SSStarNewton nt)
+{
+  PetscFunctionBegin;
+  ((Newton_Full *)nt->data)->pcBuilt = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   M, rhs = y / gamma with the known dofs eliminated, and whether M is symmetric: it is unless some unknown row
+   combines K's rows (S row other than e_r: the sliding law's phi om) or T is unsymmetric on the unknown dofs
+*/
+static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, PetscBool *symmetric)
+{
+  Newton_Full               *nf  = (Newton_Full *)nt->data;
+  const SSStarContactLayout *L   = &nt->layout;
+  const PetscReal            ig  = 1 / nt->gamma;
+  PetscBool                  sym = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  nf->nknown = 0;
+  for (PetscInt i = 0; i < L->nnodes; i++) {
+    const PetscReal *Si = &S[9 * i], *Ti = &T[9 * i];
+    PetscInt         rows[3];
+    PetscScalar      Sv[9];
+
+    nf->mask[i] = 0;
+    for (PetscInt r = 0; r < 3; r++) {
+      rows[r] = nf->rstart + L->dofs[3 * i + r];
+      if (SSStarKnownRow(Si, Ti, r)) nf->known[nf->nknown++] = rows[r];
+      else nf->mask[i] |= (unsigned char)(1 << r);
+    }
+    for (PetscInt r = 0; r < 3; r++) {
+      if (!(nf->mask[i] & (1 << r))) continue;
+      for (PetscInt k = 0; k < 3; k++) {
+        if (Si[3 * r + k] != (PetscReal)(k == r)) sym = PETSC_FALSE;
+        if ((nf->mask[i] & (1 << k)) && Ti[3 * r + k] != Ti[3 * k + r]) sym = PETSC_FALSE;
+      }
+    }
+    for (PetscInt k = 0; k < 9; k++) Sv[k] = Si[k];
+    PetscCall(MatSetValues(nf->Shat, 3, rows, 3, rows, Sv, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(nf->Shat, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(nf->Shat, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatMatMult(nf->Shat, nf->Kr, nf->M ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &nf->M));
+  for (PetscInt i = 0; i < L->nnodes; i++) {
+    PetscInt    rows[3];
+    PetscScalar Tv[9];
+
+    for (PetscInt r = 0; r < 3; r++) rows[r] = nf->rstart + L->dofs[3 * i + r];
+    for (PetscInt k = 0; k < 9; k++) Tv[k] = ig * T[9 * i + k];
+    PetscCall(MatSetValues(nf->M, 3, rows, 3, rows, Tv, ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(nf->M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(nf->M, MAT_FINAL_ASSEMBLY));
+  if (nf->nearNull) PetscCall(MatSetNearNullSpace(nf->M, nf->nearNull));
+  PetscCall(VecCopy(y, nf->rhs));
+  PetscCall(VecScale(nf->rhs, ig));
+  PetscCall(MatZeroRowsColumns(nf->M, nf->nknown, nf->known, ig, y, nf->rhs));
+  PetscCall(MPIU_Allreduce(&sym, symmetric, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)nt->A)));
+  PetscFunctionReturn(0);
+}
+
+/* Keep the multigrid of an earlier step while at most pcReuse of the nodes changed their known rows since */
+static PetscErrorCode ChoosePreconditioner(SSStarNewton nt, PetscBool *reuse)
+{
+  Newton_Full               *nf      = (Newton_Full *)nt->data;
+  const SSStarContactLayout *L       = &nt->layout;
+  PetscInt                   changed = 0;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < L->nnodes; i++) changed += nf->mask[i] != nf->pcMask[i];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
+  *reuse = (PetscBool)(nf->pcBuilt && changed <= nt->pcReuse * nf->nnodesGlobal);
+  if (!*reuse) {
+    PetscCall(PetscArraycpy(nf->pcMask, nf->mask, L->nnodes));
+    nf->pcBuilt = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
+{
+  Newton_Full       *nf  = (Newton_Full *)nt->data;
+  KSP                ksp = nt->snes->ksp;
+  KSPConvergedReason reason;
+  PetscBool          symmetric, reuse;
+  PetscInt           its;
+  PetscReal          rnorm, bnorm;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
+  PetscCall(AssembleNewtonMatrix(nt, S, T, y, &symmetric));
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
+  if (!nf->userKSPType) { /* the residual unpreconditioned, in the units of the tolerances */
+    PetscCall(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES));
+    PetscCall(KSPSetPCSide(ksp, symmetric ? PC_LEFT : PC_RIGHT));
+    PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+  }
+  if (!nf->userTolerances) PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(ChoosePreconditioner(nt, &reuse));
+  PetscCall(KSPSetReusePreconditioner(ksp, reuse));
+  PetscCall(KSPSetOperators(ksp, nf->M, nf->M));
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  if (reuse) nt->nReused++;
+  else nt->nFactor++;
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
+  PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCall(KSPGetIterationNumber(ksp, &its));
+  nt->nKrylov += its;
+  nt->snes->linear_its += its;
+  /* an iteration limit that still reduced the residual tenfold is an inexact step; a breakdown is a failure */
+  PetscCall(KSPGetResidualNorm(ksp, &rnorm));
+  PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
+  *solved = (PetscBool)(reason > 0 || (reason == KSP_DIVERGED_ITS && rnorm <= 0.1 * bnorm));
+  if (!*solved) {
+    nf->pcBuilt = PETSC_FALSE;
+    PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not solved: %s after %" PetscInt_FMT " iterations, residual %g of %g\n", KSPConvergedReasons[reason], its, (double)rnorm, (double)bnorm));
+    PetscFunctionReturn(0);
+  }
+  if (nf->Qt) PetscCall(MatMult(nf->Qt, nf->dv, du));
+  else PetscCall(VecCopy(nf->dv, du));
+  PetscFunctionReturn(0);
+}
+
+/* Every contact dof known (S = 0, T = I): the free dofs follow into equilibrium */
+static PetscErrorCode SSStarNewtonSolveKnown_Full(SSStarNewton nt, Vec y, Vec du, PetscBool *solved)
+{
+  Newton_Full *nf = (Newton_Full *)nt->data;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonSolve_Full(nt, nf->Sknown, nf->Tknown, y, du, solved));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SSStarNewtonView_Full(SSStarNewton nt, PetscViewer viewer)
+{
+  Newton_Full *nf = (Newton_Full *)nt->data;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nf->nearNull ? " (multigrid with K's near-null space)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
+  if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SSStarNewtonReset_Full(SSStarNewton nt)
+{
+  Newton_Full *nf = (Newton_Full *)nt->data;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&nf->Kr));
+  PetscCall(MatDestroy(&nf->Qt));
+  PetscCall(MatDestroy(&nf->Shat));
+  PetscCall(MatDestroy(&nf->M));
+  PetscCall(MatNullSpaceDestroy(&nf->nearNull));
+  PetscCall(VecDestroy(&nf->rhs));
+  PetscCall(VecDestroy(&nf->dv));
+  PetscCall(PetscFree2(nf->known, nf->mask));
+  PetscCall(PetscFree(nf->pcMask));
+  PetscCall(PetscFree2(nf->Sknown, nf->Tknown));
+  PetscCall(KSPReset(nt->snes->ksp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonCreate_Full(SSStarNewton nt)
+{
+  Newton_Full *nf;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&nf));
+  nt->data           = nf;
+  nt->ops.setup      = SSStarNewtonSetUp_Full;
+  nt->ops.setscaling = SSStarNewtonSetScaling_Full;
+  nt->ops.solve      = SSStarNewtonSolve_Full;
+  nt->ops.solveknown = SSStarNewtonSolveKnown_Full;
+  nt->ops.view       = SSStarNewtonView_Full;
+  nt->ops.reset      = SSStarNewtonReset_Full;
+  PetscFunctionReturn(0);
+}

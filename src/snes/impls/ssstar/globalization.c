@@ -88,7 +88,7 @@ PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
 {
   SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
   SSStarGlobalization *glob = &ss->glob;
-  PetscInt             local[2] = {0, 0}; /* nodes not in their state of k - 2, nodes flipping with period 2 */
+  PetscInt             local[3] = {0, 0, 0}; /* nodes not in their state of k - 2, flipping with period 2, not in their state of k - 1 */
   PetscBool            recurs = PETSC_FALSE;
   SSStarState         *oldest;
 
@@ -105,12 +105,18 @@ PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
     glob->kbest = k;
   }
   glob->flipping = 0;
-  if (glob->nhist >= 3) {
+  glob->changed  = -1;
+  if (glob->nhist >= 2) {
     for (PetscInt i = 0; i < glob->nnodes; i++) {
+      if (ss->states[i] != glob->older[0][i]) local[2]++;
+      if (glob->nhist < 3) continue;
       if (ss->states[i] != glob->older[1][i]) local[0]++;
       else if (ss->states[i] != glob->older[0][i]) local[1]++;
     }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, local, 2, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)snes)));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, local, 3, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)snes)));
+    glob->changed = local[2];
+  }
+  if (glob->nhist >= 3) {
     glob->flipping = local[1];
     recurs         = (PetscBool)(local[0] == 0 && PetscAbsReal(znorm - glob->zhist[2]) <= SSSTAR_CYCLE_TOL * znorm);
   }

@@ -175,7 +175,7 @@ PetscErrorCode SNESSSStarGetReductionType(SNES snes, SSStarReductionType *type)
 
    Input Parameters:
 +  snes     - the SNES
--  fraction - at most 1; negative: a new preconditioner at every step (default 0.02)
+-  fraction - at most 1; negative: a new preconditioner at every step (default 0.3)
 
    Options Database Key:
 .  -snes_ssstar_pc_reuse <fraction> - the fraction
@@ -201,7 +201,7 @@ PetscErrorCode SNESSSStarSetPCReuse(SNES snes, PetscReal fraction)
 
    Input Parameters:
 +  snes - the SNES
--  rtol - in (0, 1) (default 0.01)
+-  rtol - in (0, 1) (default 0.1)
 
    Options Database Key:
 .  -snes_ssstar_ksp_rtol_max <rtol> - the tolerance

@@ -12,9 +12,13 @@
    system is solved by the SNES's KSP: CG where it is symmetric, GMRES (right preconditioned) where it is not, both
    preconditioned by algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes, rotated like K'),
    to the tolerances the iteration sets (inexact Newton). The multigrid of an earlier step is kept while few nodes
-   changed their known rows, its interpolation while more did.
+   changed their known rows, and built anew (interpolation included) when more did: an interpolation built for
+   other rows known, even on the same matrix pattern, costs more Krylov iterations than its set-up saves.
 */
 #include "newtonimpl.h"
+
+/* GMRES's restart when ssstar chooses GMRES: restarts stall it on the hard steps, and its basis is affordable */
+#define SSSTAR_GMRES_RESTART 100
 
 typedef struct {
   Mat            Kr;            /* K' = Q K Q^T; K itself (a reference) when there are no frames                 */
@@ -24,11 +28,12 @@ typedef struct {
   MatNullSpace   nearNull;      /* K's near-null space in the nodes' frames, or NULL                             */
   Vec            rhs, dv;       /* of the step, dv = Q du                                                        */
   PetscInt       rstart;        /* first row of K on this rank                                                   */
+  PetscInt       bs;            /* K's block size (3: the dofs of a node)                                        */
   PetscInt       nknown, *known; /* global rows of the known dofs of the step                                    */
   unsigned char *mask, *pcMask; /* per local node: bits of its unknown rows, now and when the multigrid was built */
   PetscBool      pcBuilt;
   PetscInt       nnodesGlobal;
-  PetscBool      userKSPType, userTolerances;
+  PetscBool      userKSPType, userTolerances, userRestart;
   PetscReal     *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
 } Newton_Full;
 
@@ -46,6 +51,7 @@ static PetscErrorCode CreateRotation(SSStarNewton nt, Mat *Qt)
   for (PetscInt k = 0; k < 3 * L->nnodes; k++) nnz[L->dofs[k]] = 3;
   PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)nt->A), m, m, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz, 0, NULL, Qt));
   PetscCall(PetscFree(nnz));
+  PetscCall(MatSetBlockSize(*Qt, nf->bs));
   for (PetscInt j = 0; j < m; j++) PetscCall(MatSetValue(*Qt, nf->rstart + j, nf->rstart + j, 1.0, INSERT_VALUES));
   for (PetscInt i = 0; i < L->nnodes; i++) {
     const PetscReal *R = &L->frames[9 * i];
@@ -107,6 +113,7 @@ static PetscErrorCode CreateRowCombination(SSStarNewton nt)
   for (PetscInt k = 0; k < 3 * L->nnodes; k++) nnz[L->dofs[k]] = 3;
   PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)nt->A), m, m, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz, 0, NULL, &nf->Shat));
   PetscCall(PetscFree(nnz));
+  PetscCall(MatSetBlockSize(nf->Shat, nf->bs)); /* M inherits it: the multigrid aggregates nodes, not dofs */
   PetscCall(MatSetOption(nf->Shat, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
   for (PetscInt j = 0; j < m; j++) PetscCall(MatSetValue(nf->Shat, nf->rstart + j, nf->rstart + j, 1.0, INSERT_VALUES));
   for (PetscInt i = 0; i < L->nnodes; i++) {
@@ -125,11 +132,10 @@ static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
   Newton_Full               *nf  = (Newton_Full *)nt->data;
   const SSStarContactLayout *L   = &nt->layout;
   KSP                        ksp = nt->snes->ksp;
-  PC                         pc;
-  PetscBool                  isgamg, set;
 
   PetscFunctionBegin;
   PetscCall(MatGetOwnershipRange(nt->A, &nf->rstart, NULL));
+  PetscCall(MatGetBlockSize(nt->A, &nf->bs));
   PetscCall(MPIU_Allreduce(&L->nnodes, &nf->nnodesGlobal, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
   if (L->frames) {
     PetscCall(CreateRotation(nt, &nf->Qt));
@@ -154,11 +160,8 @@ static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
   /* the SNES's KSP: GMRES or CG with GAMG unless the options name others (they are read again for the new types) */
   PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_type", &nf->userKSPType));
   PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_rtol", &nf->userTolerances));
+  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_gmres_restart", &nf->userRestart));
   PetscCall(SSStarNewtonSetKSPDefaults(nt, KSPGMRES, PCGAMG));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
-  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_reuse_interpolation", &set));
-  if (isgamg && !set) PetscCall(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE));
   PetscCall(KSPSetFromOptions(ksp));
   PetscFunctionReturn(0);
 }
@@ -261,6 +264,7 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
     PetscCall(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES));
     PetscCall(KSPSetPCSide(ksp, symmetric ? PC_LEFT : PC_RIGHT));
     PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+    if (!symmetric && !nf->userRestart) PetscCall(KSPGMRESSetRestart(ksp, SSSTAR_GMRES_RESTART));
   }
   if (!nf->userTolerances) PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(ChoosePreconditioner(nt, &reuse));

@@ -10,7 +10,7 @@ const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERG
 /* A Newton matrix whose estimated 1/cond is below this is treated as singular: its LU solution has no reliable digit */
 #define SSSTAR_RCOND_MIN 1e-12
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
-#define SSSTAR_EQUILIBRIUM_RTOL 1e-6
+#define SSSTAR_EQUILIBRIUM_RTOL 1e-4
 
 /*
    gamma = 1/mean(diag K_CC) unless the user set it (section 6); the fixed-point baseline takes 1/(the largest sum
@@ -216,7 +216,9 @@ static PetscErrorCode SNESSSStarClassify(SNES snes)
 /*
    Whole body: the tolerances of the next linear solve (inexact Newton). Its residual r (units of gamma^-1 y) moves
    the next ||z|| by about gamma ||r||: relative to ||y|| ~ ||z||, eta = min(etaMax, ||z||/||z_0||) tightens with
-   the convergence, and the absolute floor keeps gamma ||r|| a tenth of the stopping threshold.
+   the convergence, and the absolute floor keeps gamma ||r|| a tenth of the stopping threshold. Once a full step
+   left every node in its state, the problem is locally linear and one exact step ends it (as on the dense route):
+   eta = 0, the floor alone.
 */
 static PetscErrorCode SetLinearTolerances(SNES snes, PetscReal znorm, PetscReal rtol)
 {
@@ -524,7 +526,8 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       stop = SSSTAR_REASON_CYCLE;
     } else if (ss->glob.detected == SSSTAR_DETECTED_STAGNATION) stop = SSSTAR_REASON_STAGNATION;
     if (!stop) {
-      const PetscReal eta = PetscMin(ss->etaMax, znorm / z0);
+      /* inexact Newton: loose while the states change; once they repeat, the step is likely the last one, exact */
+      const PetscReal eta = ss->glob.changed == 0 && ss->glob.shownAlpha == 1 ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
 
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
@@ -996,8 +999,8 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_stagnation_its <20> - stop after this many iterations without a smaller ||z||
 .  -snes_ssstar_lu_threads <1> - on several ranks, rank 0's BLAS threads for the LU of the Newton matrix (0: the cores it may run on)
 .  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (0: only when none changed; negative: a fresh LU at every step); -snes_ssstar_newton_ksp_* set that GMRES
-.  -snes_ssstar_pc_reuse <0.02> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
-.  -snes_ssstar_ksp_rtol_max <0.01> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||)
+.  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
+.  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||)
 .  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol
@@ -1026,7 +1029,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   ss->contact.law           = SSSTAR_FRICTION_COULOMB;
   ss->contact.friction      = 0.3;
   ss->contact.reductionType = SSSTAR_REDUCTION_AUTO;
-  ss->etaMax                = 1e-2;
+  ss->etaMax                = 0.1;
   ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;

@@ -30,7 +30,7 @@ typedef struct {
 } SSStarContactLayout;
 
 /* the multigrid of an earlier Newton matrix is kept while at most this fraction of the nodes changed known rows */
-#define SSSTAR_PC_REUSE_DEFAULT 0.02
+#define SSSTAR_PC_REUSE_DEFAULT 0.3
 
 typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
@@ -150,6 +150,7 @@ typedef struct {
   PetscReal       alpha, shownAlpha;          /* damping of the step (1: full, 0: no step)                      */
   SSStarDetection detected;
   PetscInt        flipping;                   /* nodes whose state has period 2                                 */
+  PetscInt        changed;                    /* nodes whose state is not that of the previous iterate (-1: none) */
 } SSStarGlobalization;
 
 typedef struct {

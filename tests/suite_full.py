@@ -1,0 +1,105 @@
+"""The whole-body path (-snes_ssstar_reduction none: P never formed, the Newton step on K by Krylov + multigrid) gives
+the dense route's answer: the same solution to 1e-8, the same contact states, the same iterations within one, on
+every kind of problem the dense route solves; and auto chooses between them."""
+import os
+import re
+
+from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+from suite_generic import GENERIC, TILTED, by_coordinates, generic
+
+import numpy as np
+
+CONTACT = os.path.join(ROOT, "examples", "contact")
+SCENE_SUMMARY = re.compile(r"summary: .* iterations (\d+) states \S+ ([\d/]+) (\S+)")
+
+
+def scene_run(args, h5, ranks=1):
+    out = run(mpiexec(ranks, CONTACT, *args, "-o", os.path.join(OUT, h5)))
+    m = SCENE_SUMMARY.search(out)
+    expect(m is not None, "no summary", out)
+    return out, {"iters": int(m.group(1)), "states": m.group(2), "reason": m.group(3)}
+
+
+def prism_run(args, h5, ranks=1):
+    out = run(mpiexec(ranks, PRISM, *args, "-o", os.path.join(OUT, h5), "-snes_converged_reason"))
+    m = SUMMARY.search(out)
+    expect(m is not None, "no summary row", out)
+    return out, {"iters": int(m.group(5)), "states": m.group(6), "reason": m.group(8)}
+
+
+def same_answer(name, runner, args, tol=1e-8, ranks=1, iterations=1):
+    """runs args on the dense route (direct) and on the whole body (none) and compares them"""
+    dense, d = runner(list(args) + ["-snes_ssstar_reduction", "direct"], "%s_direct.h5" % name, ranks)
+    full, f = runner(list(args) + ["-snes_ssstar_reduction", "none"], "%s_none.h5" % name, ranks)
+    expect(d["reason"] == f["reason"] and d["reason"].startswith("CONVERGED"), "%s: %s dense, %s whole body" % (name, d["reason"], f["reason"]), dense + full)
+    expect(abs(d["iters"] - f["iters"]) <= iterations, "%s: %d iterations dense, %d whole body" % (name, d["iters"], f["iters"]), dense + full)
+    expect(d["states"] == f["states"], "%s: states %s dense, %s whole body" % (name, d["states"], f["states"]), dense + full)
+    run(CHECK + ["compare", os.path.join(OUT, "%s_direct.h5" % name), os.path.join(OUT, "%s_none.h5" % name), "--tol", str(tol)])
+    return dense, full
+
+
+@test("prism levels 3, 5 and 7: the whole-body path gives the dense route's solution (contact face, reactions, whole field) to 1e-8, the same states, the iterations within one; -snes_view names the path, the KSP and PC, and the linear iterations per Newton step")
+def full_prism_same_answer():
+    for level in (3, 5, 7):
+        _, full = same_answer("full_prism_L%d" % level, prism_run, ["-level", str(level), "-snes_view"])
+    for pattern in (r"solved on the whole body, P never formed \(reduction none\)", r"Newton step on the whole body", r"KSP Object:", r"type: gamg",
+                    r"last solve: \d+ linear solves, \d+ Krylov iterations \([\d.]+ per solve\)"):
+        expect(re.search(pattern, full) is not None, "-snes_view lacks /%s/" % pattern, full)
+
+
+@test("the whole-body path on 1, 2 and 3 ranks (prism level 5): the same iterations and states and the same solution to 1e-8; no rank gathers the problem (the Newton step is distributed)")
+def full_ranks_agree():
+    outs = []
+    for ranks in (1, 2, 3):
+        out, s = prism_run(["-level", "5", "-snes_ssstar_reduction", "none"], "full_ranks%d.h5" % ranks, ranks)
+        outs.append((out, s))
+        expect(s["reason"] == "CONVERGED_FNORM_RELATIVE", "%d ranks: %s" % (ranks, s["reason"]), out)
+    for ranks, (out, s) in zip((2, 3), outs[1:]):
+        expect(s["iters"] == outs[0][1]["iters"] and s["states"] == outs[0][1]["states"], "%d ranks: %d iterations, states %s; 1 rank: %d, %s" % (ranks, s["iters"], s["states"], outs[0][1]["iters"], outs[0][1]["states"]), out)
+        run(CHECK + ["compare", os.path.join(OUT, "full_ranks1.h5"), os.path.join(OUT, "full_ranks%d.h5" % ranks), "--tol", "1e-8"])
+
+
+@test("a plain PETSc program (examples/generic, DMDA) with a tilted plane and varying gaps: the whole-body path gives the dense route's solution to 1e-8 on 1 and 3 ranks, the Coulomb law in the nodes' frames holds")
+def full_generic_tilted_gaps():
+    for ranks in (1, 3):
+        generic(ranks, "-snes_type", "ssstar", *TILTED, h5="full_generic_direct%d.h5" % ranks)
+        out, distance, _ = generic(ranks, "-snes_type", "ssstar", "-snes_ssstar_reduction", "none", "-snes_converged_reason", *TILTED, h5="full_generic_none%d.h5" % ranks)
+        expect("CONVERGED_FNORM_RELATIVE" in out and distance >= -1e-11, "%d ranks: not converged or penetrating (%g)" % (ranks, distance), out)
+        law = run(CHECK + ["coulomb", os.path.join(OUT, "full_generic_none%d.h5" % ranks), "--phi", "0.3"])
+        expect("VIOLATED" not in law, "%d ranks: law violated" % ranks, law)
+        a, b = by_coordinates("full_generic_direct%d.h5" % ranks), by_coordinates("full_generic_none%d.h5" % ranks)
+        for name in ("displacement", "reaction"):
+            d = np.abs(a[name] - b[name]).max() / np.abs(a[name]).max()
+            expect(d <= 1e-8, "%d ranks: %s differs by %.1e relative" % (ranks, name, d))
+
+
+@test("every friction law and the scenes on the whole body: frictionless (hertz level 1), Tresca (prism level 3), Coulomb sticking and sliding on a tilted plane with gravity and a soft spring (incline), a stick-slip front (shear), 10 load steps with gaps (gap): the dense route's solution to 1e-8 with the same states")
+def full_scenes_same_answer():
+    same_answer("full_hertz", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "hertz.opts"), "-level", "1"])
+    same_answer("full_tresca", prism_run, ["-level", "3", "-friction_law_contact", "tresca", "-slip_bound_contact", "2"])
+    same_answer("full_incline", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts")])
+    same_answer("full_incline_slides", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-friction_bottom", "0.3"])
+    same_answer("full_shear", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "shear.opts")])
+    same_answer("full_gap", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "gap.opts")], iterations=10)
+
+
+@test("hard cases on the whole body: friction phi = 5, nu = 0.49 (the globalization's damped step acts there too and the plain iteration's cycle is detected), a random start 100x the solution: the dense route's solution to 1e-8; the fixed-point baseline (-snes_ssstar_method fixedpoint, interior in equilibrium at every step) converges to the Newton solution")
+def full_hard_cases():
+    same_answer("full_phi5", prism_run, ["-level", "4", "-snes_ssstar_friction", "5"])
+    dense, full = same_answer("full_nu049", prism_run, ["-level", "4", "-nu", "0.49", "-snes_ssstar_monitor_states"], iterations=2)
+    expect("damped step" in full, "no damped step on the whole body", full)
+    out, s = prism_run(["-level", "4", "-nu", "0.49", "-snes_ssstar_reduction", "none", "-snes_ssstar_globalization", "0", "-snes_ssstar_monitor_states"], "full_nu049_plain.h5")
+    expect(s["reason"] == "DIVERGED_LINE_SEARCH" and "cycle detected" in out, "the plain iteration's cycle on the whole body: %s" % s["reason"], out)
+    same_answer("full_random", prism_run, ["-level", "4", "-initial_guess", "random", "-initial_guess_scale", "2"], iterations=3)
+    out, s = prism_run(["-level", "3", "-snes_ssstar_reduction", "none", "-snes_ssstar_method", "fixedpoint", "-snes_max_it", "100000", "-snes_rtol", "1e-12"], "full_fixedpoint.h5")
+    expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] > 100, "fixed point: %s after %d iterations" % (s["reason"], s["iters"]), out)
+    run(CHECK + ["compare", os.path.join(OUT, "full_prism_L3_none.h5"), os.path.join(OUT, "full_fixedpoint.h5"), "--tol", "1e-8"])
+
+
+@test("auto (the default) takes the dense route on a small problem and the whole body where the dense P does not fit the memory limit; -snes_view says which and that auto chose it")
+def full_auto_chooses():
+    out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_reduction", "auto", "-snes_view"))
+    expect("K reduced to the contact dofs by the direct Schur complement (chosen by auto)" in out, "auto did not choose direct at level 3", out)
+    out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_reduction", "auto", "-snes_ssstar_memory_limit", "1e-6", "-snes_view"))
+    expect("solved on the whole body, P never formed (reduction none (chosen by auto))" in out or "solved on the whole body, P never formed (reduction none, chosen by auto)" in out,
+           "auto did not choose none when P does not fit", out)

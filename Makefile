@@ -12,13 +12,13 @@ PREFIX   ?= /usr/local
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/newton_dense.c src/snes/impls/ssstar/newton_sparse.c \
-            src/snes/impls/ssstar/newton_full.c src/snes/impls/ssstar/denselu.c \
+            src/snes/impls/ssstar/newton_full.c src/snes/impls/ssstar/denselu.c src/snes/impls/ssstar/operator.c \
             src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
             src/reduction/reduction.c src/reduction/direct.c src/reduction/mumps.c src/reduction/explicit.c src/reduction/none.c src/contact/mesh.c src/contact/elasticity.c src/contact/output.c \
             src/contact/memory.c src/contact/scene.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator
 BENCHES  := bench/cholesky bench/newton_step bench/dense_lu
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -58,7 +58,7 @@ examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 

@@ -85,6 +85,7 @@ PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
 
 /* The contact problem: the whole body (K u - b with contact nodes) or the reduced one (P u - f) */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetContactOperator(SNES, IS, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);

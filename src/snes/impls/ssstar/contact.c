@@ -61,7 +61,25 @@ PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals,
   PetscCall(CheckNodeVector(ct->bounds, n / 3, 1, "SNESSSStarSetSlipBounds: the bounds"));
   PetscCall(ReplaceVec(&ct->normals, normals));
   PetscCall(ReplaceVec(&ct->gaps, gaps));
+  PetscCall(MatDestroy(&ct->B)); /* planes: no contact operator */
   Declared(ct);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES snes, IS dofs, Mat B, Vec gaps)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt       n, m;
+
+  PetscFunctionBegin;
+  PetscCall(ISGetLocalSize(dofs, &n));
+  PetscCheck(n % 3 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetContactOperator: the IS of the points' own dofs has %" PetscInt_FMT " local entries, not 3 per point", n);
+  PetscCall(MatGetLocalSize(B, &m, NULL));
+  PetscCheck(m == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetContactOperator: B has %" PetscInt_FMT " local rows, expected 3 per contact point (%" PetscInt_FMT ")", m, n);
+  PetscCall(SNESSSStarSetContactNodes_SSStar(snes, dofs, NULL, gaps));
+  PetscCall(PetscObjectReference((PetscObject)B));
+  PetscCall(MatDestroy(&ct->B));
+  ct->B = B;
   PetscFunctionReturn(0);
 }
 
@@ -271,8 +289,11 @@ PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct)
   }
   PetscCall(CheckNodeVector(ct->coefficients, ct->nnodes, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
   PetscCall(CheckNodeVector(ct->bounds, ct->nnodes, 1, "SNESSSStarSetSlipBounds: the bounds"));
-  PetscCall(BuildFrames(comm, ct));
+  if (ct->B) PetscCall(SSStarContactBuildOperator(comm, ct, snes->vec_func));
+  else PetscCall(BuildFrames(comm, ct));
   PetscCall(BuildFriction(comm, ct));
+  if (ct->gap && ct->pointScale) /* w_i / d_i = R_i (u_s - M_i u) + g_i / d_i */
+    for (PetscInt i = 0; i < ct->nnodes; i++) ct->gap[i] /= ct->pointScale[i];
   ct->built = ct->declared;
   PetscFunctionReturn(0);
 }
@@ -393,16 +414,18 @@ PetscErrorCode SSStarContactSetUpProblem(SNES snes, SSStarContact *ct)
   if (K != ct->K || state != ct->Kstate || !ct->A) {
     PetscCall(SSStarReductionDestroy(&ct->reduction));
     PetscCall(MatDestroy(&ct->A));
+    PetscCall(MatDestroy(&ct->Kw));
     PetscCall(VecDestroy(&ct->f));
-    PetscCall(ContactRowStatistics(ct, K));
+    PetscCall(SSStarContactTransformStiffness(ct, K, &ct->Kw));
+    PetscCall(ContactRowStatistics(ct, ct->Kw));
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     if (ct->dofs && nI > 0) {
-      PetscCall(SSStarReductionCreate(K, ct->isC, ct->isI, ct->reductionType, ct->memoryLimit, &ct->reduction));
+      PetscCall(SSStarReductionCreate(ct->Kw, ct->isC, ct->isI, ct->reductionType, ct->memoryLimit, &ct->reduction));
       PetscCall(SSStarReductionGetOperator(ct->reduction, &ct->A));
       PetscCall(PetscObjectReference((PetscObject)ct->A));
       PetscCall(SSStarReductionGetType(ct->reduction, &type));
     } else if (ct->dofs) { /* every dof a contact dof, in another order */
-      PetscCall(MatCreateSubMatrix(K, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &ct->A));
+      PetscCall(MatCreateSubMatrix(ct->Kw, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &ct->A));
     } else {
       PetscCall(PetscObjectReference((PetscObject)K));
       ct->A = K;
@@ -420,11 +443,19 @@ PetscErrorCode SSStarContactSetUpProblem(SNES snes, SSStarContact *ct)
   PetscCall(SNESComputeFunction(snes, zero, ct->b));
   PetscCall(VecDestroy(&zero));
   PetscCall(VecScale(ct->b, -1.0));
-  if (ct->reduction) PetscCall(SSStarReductionReduceLoad(ct->reduction, ct->b, ct->f));
+  PetscCall(VecDestroy(&ct->bw));
+  if (ct->T) { /* the load in the points' variables: T^T b */
+    PetscCall(VecDuplicate(ct->b, &ct->bw));
+    PetscCall(MatMultTranspose(ct->T, ct->b, ct->bw));
+  } else {
+    PetscCall(PetscObjectReference((PetscObject)ct->b));
+    ct->bw = ct->b;
+  }
+  if (ct->reduction) PetscCall(SSStarReductionReduceLoad(ct->reduction, ct->bw, ct->f));
   else if (ct->dofs) {
-    PetscCall(VecGetSubVector(ct->b, ct->isC, &bC));
+    PetscCall(VecGetSubVector(ct->bw, ct->isC, &bC));
     PetscCall(VecCopy(bC, ct->f));
-    PetscCall(VecRestoreSubVector(ct->b, ct->isC, &bC));
+    PetscCall(VecRestoreSubVector(ct->bw, ct->isC, &bC));
   } else PetscCall(VecCopy(ct->b, ct->f));
   PetscFunctionReturn(0);
 }
@@ -438,29 +469,47 @@ PetscErrorCode SSStarContactGetLayout(SSStarContact *ct, SSStarContactLayout *la
   PetscFunctionReturn(0);
 }
 
-/* u, the solver's unknown, from the SNES vector x */
+/* u, the solver's unknown, from the SNES vector x (in the points' variables, T^-1 x) */
 PetscErrorCode SSStarContactGetInitialGuess(SSStarContact *ct, Vec x, Vec u)
 {
-  Vec xC;
+  Vec v, vC;
 
   PetscFunctionBegin;
-  if (!ct->dofs || ct->newtonType == SSSTAR_NEWTON_FULL) {
+  if (!ct->dofs) {
     PetscCall(VecCopy(x, u));
     PetscFunctionReturn(0);
   }
-  PetscCall(VecGetSubVector(x, ct->isC, &xC));
-  PetscCall(VecCopy(xC, u));
-  PetscCall(VecRestoreSubVector(x, ct->isC, &xC));
+  PetscCall(VecDuplicate(x, &v));
+  PetscCall(SSStarContactToPointVariables(ct, x, v));
+  if (ct->newtonType == SSSTAR_NEWTON_FULL) PetscCall(VecCopy(v, u));
+  else {
+    PetscCall(VecGetSubVector(v, ct->isC, &vC));
+    PetscCall(VecCopy(vC, u));
+    PetscCall(VecRestoreSubVector(v, ct->isC, &vC));
+  }
+  PetscCall(VecDestroy(&v));
   PetscFunctionReturn(0);
 }
 
-/* The SNES vector x from the solution u and its contact force c = P u - f: in the whole-body use, K^-1 (b + E_C c) */
+/*
+   The SNES vector x from the solution u and its contact force c = A u - f: in the whole-body use v = K^-1 (b + E_C c)
+   (or u itself on the whole body), in the points' variables, and x = T v
+*/
 PetscErrorCode SSStarContactSetSolution(SSStarContact *ct, Vec u, Vec c, Vec x)
 {
+  Vec v;
+
   PetscFunctionBegin;
-  if (ct->reduction) PetscCall(SSStarReductionRecover(ct->reduction, ct->b, u, c, x));
-  else if (ct->dofs) PetscCall(VecISCopy(x, ct->isC, SCATTER_FORWARD, u));
-  else PetscCall(VecCopy(u, x));
+  if (!ct->dofs) {
+    PetscCall(VecCopy(u, x));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecDuplicate(x, &v));
+  if (ct->reduction) PetscCall(SSStarReductionRecover(ct->reduction, ct->bw, u, c, v));
+  else PetscCall(VecISCopy(v, ct->isC, SCATTER_FORWARD, u));
+  if (ct->T) PetscCall(MatMult(ct->T, v, x));
+  else PetscCall(VecCopy(v, x));
+  PetscCall(VecDestroy(&v));
   PetscFunctionReturn(0);
 }
 
@@ -483,6 +532,7 @@ PetscErrorCode SSStarContactView(SSStarContact *ct, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
     PetscFunctionReturn(0);
   }
+  if (ct->B) PetscCall(PetscViewerASCIIPrintf(viewer, "  contact points by a contact operator B%s\n", ct->T ? ", compared with master dofs (changed to the points' variables, T^T K T)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  contact nodes: %" PetscInt_FMT " frictionless, %" PetscInt_FMT " Tresca, %" PetscInt_FMT " Coulomb%s%s\n", ct->lawCounts[SSSTAR_FRICTION_NONE], ct->lawCounts[SSSTAR_FRICTION_TRESCA], ct->lawCounts[SSSTAR_FRICTION_COULOMB], ct->frames ? "; tilted obstacle normals (local frames)" : "", ct->gap ? "; initial gaps" : ""));
   if (ct->lawCounts[SSSTAR_FRICTION_COULOMB]) PetscCall(PetscViewerASCIIPrintf(viewer, "  Coulomb friction coefficient phi = %g%s\n", (double)ct->friction, ct->coefficients ? " (or per node)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  active effects: non-penetration%s%s\n", ct->lawCounts[SSSTAR_FRICTION_TRESCA] ? ", Tresca friction" : "", ct->lawCounts[SSSTAR_FRICTION_COULOMB] ? ", Coulomb friction" : ""));
@@ -501,8 +551,12 @@ PetscErrorCode SSStarContactReset(SSStarContact *ct)
   PetscCall(PetscFree(ct->nodeFriction));
   PetscCall(SSStarReductionDestroy(&ct->reduction));
   PetscCall(MatDestroy(&ct->A));
+  PetscCall(MatDestroy(&ct->Kw));
+  PetscCall(MatDestroy(&ct->T));
+  PetscCall(PetscFree(ct->pointScale));
   PetscCall(VecDestroy(&ct->f));
   PetscCall(VecDestroy(&ct->b));
+  PetscCall(VecDestroy(&ct->bw));
   PetscCall(PetscFree(ct->layoutDofs));
   PetscCall(PetscFree(ct->free));
   ct->nfree  = 0;
@@ -517,6 +571,7 @@ PetscErrorCode SSStarContactDestroy(SSStarContact *ct)
   PetscFunctionBegin;
   PetscCall(SSStarContactReset(ct));
   PetscCall(ISDestroy(&ct->dofs));
+  PetscCall(MatDestroy(&ct->B));
   PetscCall(VecDestroy(&ct->normals));
   PetscCall(VecDestroy(&ct->gaps));
   PetscCall(VecDestroy(&ct->coefficients));

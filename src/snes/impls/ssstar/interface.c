@@ -37,6 +37,46 @@ PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec ga
 }
 
 /*@
+   SNESSSStarSetContactOperator - declares the contact points of a whole-body problem F(u) = K u - b by a contact
+   operator B: w = B u + g is each point's relative displacement in its frame (t1, t2, n), with non-penetration
+   w_n >= 0 and the friction law on w_t; the contact force on the body is B^T lambda
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+.  dofs - for each contact point owned by this rank, the global indices of its own x, y, z dofs (its slave node; 3 per
+          point, owned by this rank)
+.  B    - the contact operator: 3 rows per point (t1, t2, n; rows distributed like dofs), a column per dof of u
+-  gaps - NULL for 0, or 1 entry per point: g, the initial normal distance
+
+   Notes:
+   B's 3x3 block at a point's own dofs must be a positive multiple d R of a rotation R (rows t1, t2, n): the point's
+   frame. Its other entries, on dofs of other nodes (a master surface; on no point's own dofs), say what the point is
+   compared with: B_i = d R (E_own - M_i). A rigid obstacle is M_i = 0 (what SNESSSStarSetContactNodes() declares); a
+   point of one body against the surface of another has M_i = the interpolation weights of the master nodes.
+   SNESSolve() changes to the points' variables (u_own - M u per point), reduces or keeps the whole body as for
+   SNESSSStarSetContactNodes(), and returns the whole u; SNESGetFunction() holds K u - b, the contact forces (on the
+   slave nodes and, with the opposite sign, spread on the master nodes). A B that is rank-deficient (a singular or
+   non-rotation block at a point's own dofs, a point's own dofs used as another point's master dofs) is refused,
+   naming the point. docs/contact-operator.md derives the reduced operator and checks it.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetNodeFrictionLaws()`
+@*/
+PetscErrorCode SNESSSStarSetContactOperator(SNES snes, IS dofs, Mat B, Vec gaps)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(dofs, IS_CLASSID, 2);
+  PetscValidHeaderSpecific(B, MAT_CLASSID, 3);
+  if (gaps) PetscValidHeaderSpecific(gaps, VEC_CLASSID, 4);
+  PetscTryMethod(snes, "SNESSSStarSetContactOperator_C", (SNES, IS, Mat, Vec), (snes, dofs, B, gaps));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarSetFrictionLaw - sets the friction law of every contact node without a law of its own (default coulomb)
 
    Options Database Key:

@@ -58,6 +58,7 @@ static PetscErrorCode CreateRotation(SSStarNewton nt, Mat *Qt)
     PetscInt         rows[3];
     PetscScalar      RT[9];
 
+
     for (PetscInt k = 0; k < 3; k++) rows[k] = nf->rstart + L->dofs[3 * i + k];
     for (PetscInt r = 0; r < 3; r++)
       for (PetscInt c = 0; c < 3; c++) RT[3 * r + c] = R[3 * c + r];
@@ -132,12 +133,15 @@ static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
   Newton_Full               *nf  = (Newton_Full *)nt->data;
   const SSStarContactLayout *L   = &nt->layout;
   KSP                        ksp = nt->snes->ksp;
+  PetscBool                  hasFrames;
 
   PetscFunctionBegin;
   PetscCall(MatGetOwnershipRange(nt->A, &nf->rstart, NULL));
   PetscCall(MatGetBlockSize(nt->A, &nf->bs));
   PetscCall(MPIU_Allreduce(&L->nnodes, &nf->nnodesGlobal, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
-  if (L->frames) {
+  hasFrames = (PetscBool)(L->frames != NULL); /* a rank without contact nodes has no frames but joins the PtAP */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hasFrames, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)nt->A)));
+  if (hasFrames) {
     PetscCall(CreateRotation(nt, &nf->Qt));
     PetscCall(MatPtAP(nt->A, nf->Qt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &nf->Kr));
   } else {

@@ -66,6 +66,7 @@ typedef struct {
   /* as declared by the user */
   IS                  dofs;         /* contact dofs of the SNES vector, 3 per owned node; NULL: every dof     */
   Vec                 normals;      /* 3 per node, or NULL for (0, 0, 1)                                    */
+  Mat                 B;            /* the contact operator (operator.c), or NULL: the nodes against planes */
   Vec                 gaps;         /* 1 per node, or NULL for 0                                            */
   SSStarFrictionLaw   law;          /* of the nodes without a law of their own                              */
   PetscReal           friction;     /* phi of the nodes without a coefficient of their own                  */
@@ -84,6 +85,8 @@ typedef struct {
   PetscInt        *order;           /* solver's node i is the user's node order[i]                          */
   PetscReal       *frames;          /* 9 per node (rows t1, t2, n), or NULL when every normal is (0, 0, 1)  */
   PetscReal       *gap;             /* per node, or NULL                                                    */
+  PetscReal       *pointScale;      /* with B: d_i of each point (its block at its own dofs is d_i R_i)     */
+  Mat              T;               /* with B and masters: u = T v, the change to the points' variables      */
   SSStarFriction  *nodeFriction;    /* per node; Tresca bounds as forces                                    */
   PetscBool        hasFriction;     /* some node has friction (global)                                     */
   PetscInt         lawCounts[3];    /* nodes per law (global)                                               */
@@ -91,11 +94,12 @@ typedef struct {
   /* the problem c(u) = A u - f, kept while K and the declaration are unchanged */
   SSStarReduction  reduction;       /* NULL in the reduced use                                              */
   Mat              K;               /* the Jacobian the problem was set up from                             */
+  Mat              Kw;              /* K in the points' variables, T^T K T (K itself without masters)       */
   PetscObjectState Kstate;
   PetscReal        meanDiag;        /* mean of the diagonal of K_CC (P in the reduced use)                  */
   PetscReal        maxRowSum;       /* largest sum |K_ij| of a contact row: a bound of lambda_max(P)        */
   Mat              A;               /* the operator: P, or K (reduction none)                               */
-  Vec              b, f;            /* the whole load b = -F(0) and A's load f (the reduced one, or b)      */
+  Vec              b, bw, f;        /* the whole load b = -F(0), T^T b, and A's load f (reduced, or bw)     */
   SSStarNewtonType newtonType;      /* the Newton step that fits A                                          */
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
@@ -111,6 +115,11 @@ PETSC_INTERN PetscErrorCode SSStarContactDestroy(SSStarContact *);
 PETSC_INTERN PetscErrorCode SSStarContactView(SSStarContact *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarContactSetLaw(SSStarContact *, SSStarFrictionLaw, PetscReal);
 PETSC_INTERN PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES, IS, Vec, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES, IS, Mat, Vec);
+/* operator.c: the contact operator B and the change of variables T */
+PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
+PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarSetSlipBounds_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const SSStarFrictionLaw[]);

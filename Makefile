@@ -19,7 +19,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator
-BENCHES  := bench/cholesky bench/newton_step bench/dense_lu
+BENCHES  := bench/yardstick bench/newton_step bench/dense_lu
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
                  -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
@@ -38,7 +38,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-scenes scenes accuracy install clean distclean
+.PHONY: all run test bench bench-large bench-scenes scenes accuracy install clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -94,6 +94,10 @@ bench: all
 	$(PYTHON) bench/table2.py
 	$(PYTHON) bench/newton.py
 	$(PYTHON) bench/schur.py
+
+# levels 24, 32, 40 on the whole body (2 ranks, one run each, with the AMG yardstick): about 30 minutes
+bench-large: all
+	$(PYTHON) bench/table2.py --large
 
 # the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
 accuracy: all

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The Schur reduction of the prism, its three paths side by side: examples/prism with -reduction direct, mumps and
 explicit at levels L on 1 and 2 ranks, medians of several runs, beside the yardstick of issue 7: one plain MUMPS
-Cholesky factorization of the whole K at the same level and ranks (bench/cholesky).
+Cholesky factorization of the whole K at the same level and ranks (bench/yardstick -yardstick cholesky).
 
   bench/schur.py [--levels 6,8,10,12] [--ranks 1,2] [--repeat 3] [--paths direct,mumps,explicit]
                  [--max-level mumps=16,explicit=10] [--threads 1]
@@ -59,7 +59,7 @@ def run_prism(level, ranks, path, threads):
 
 
 def run_cholesky(level, ranks, threads):
-    cmd = mpiexec(ranks, threads) + [os.path.join(ROOT, "bench", "cholesky"), "-options_file", os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level), "-memory_view"]
+    cmd = mpiexec(ranks, threads) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", "cholesky", "-options_file", os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level), "-memory_view"]
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     m = CHOLESKY.search(p.stdout)
     if p.returncode or not m:

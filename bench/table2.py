@@ -1,14 +1,19 @@
 #!/usr/bin/python3
-"""Table 2 of the seed, measured: examples/prism at levels L on 1 and 2 ranks, the median of several runs.
+"""Table 2 of the seed, measured on both paths: examples/prism at levels L on 1 and 2 ranks, the median of several runs.
 
-  bench/table2.py [--levels 3-12] [--ranks 1,2] [--repeat 3] [--reduction direct] [--no-cholesky]
+  bench/table2.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--paths direct,none]
+                  [--yardsticks cholesky,amg] [--cholesky-max-level 14]
+  bench/table2.py --large          # levels 24, 32, 40 on the whole body, 2 ranks, one run each (make bench-large)
 
-Per level and ranks: the phases of the summary row (assembly = mesh to K, schur = the reduction, solve = the
-Newton phase), the whole run (the process's wall time, mesh to the -o file written), the peak memory of the
-largest rank (-memory_view), and the yardstick measured in the same run: one plain MUMPS Cholesky factorization of
-the whole K (bench/cholesky); "limit" = whole run / that factorization. Beside them the seed's published figures
-(MATLAB) and the ratio seed / ours of the whole run. Writes bench/output/table2.csv and bench/output/table2.png
-(time against contact nodes, ours and the seed's)."""
+Per level, ranks and path (direct: the dense route, P formed by MUMPS and the Newton steps by LU; none: the whole
+body, P never formed, Krylov + multigrid): the phases of the summary row (assembly = mesh to K, schur = the
+reduction, solve = SNESSolve without it), the whole run (the process's wall time, mesh to the -o file written), the
+Newton iterations and the linear (Krylov) iterations per Newton step, and the peak memory of the largest rank
+(-memory_view). Beside them the yardsticks measured in the same run (bench/yardstick): one plain MUMPS Cholesky of
+the whole K, and one CG + GAMG solve of K (set-up + solve, rtol 1e-8), with the ratios whole / yardstick that divide
+out the machine; the seed's published figures (MATLAB) and seed / ours; and, per ranks, the crossover: the first
+level where the whole body is faster than the dense route (what -snes_ssstar_reduction auto follows). Writes
+bench/output/table2.csv (or table2_large.csv) and table2.png (time against contact nodes)."""
 import argparse
 import csv
 import math
@@ -29,104 +34,146 @@ SEED = {3: (637, 0.13, 0.02, 84, 0.03, 6), 4: (1377, 0.19, 0.09, 144, 0.07, 6), 
         15: (58621, 11.92, 684.17, 1860, 43.00, 11), 16: (70785, 13.78, 1217.38, 2112, 57.80, 11)}
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 CHOLESKY = re.compile(r"cholesky level \d+ ranks \d+ dofs (\d+) time (\S+) flops (\S+)")
+AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
+KRYLOV_FULL = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations")
+KRYLOV_DENSE = re.compile(r"last solve: (\d+) LU factorizations .*?, (\d+) steps on an old LU \((\d+) Krylov iterations\)")
 
 
-def levels(spec):
-    lo, _, hi = spec.partition("-")
-    return list(range(int(lo), int(hi or lo) + 1))
+def level_list(spec):
+    out = []
+    for part in spec.split(","):
+        lo, _, hi = part.partition("-")
+        out += list(range(int(lo), int(hi or lo) + 1))
+    return out
 
 
-def measure(level, ranks, reduction):
-    h5 = os.path.join(OUT, "table2_L%d_%d.h5" % (level, ranks))
-    cmd = ["mpiexec", "--oversubscribe", "-n", str(ranks), os.path.join(ROOT, "examples", "prism"), "-level", str(level),
-           "-reduction", reduction, "-summary_header", "0", "-memory_view", "-o", h5]
+def mpiexec(ranks):
+    return ["mpiexec", "--oversubscribe", "-n", str(ranks)]
+
+
+def measure(level, ranks, path):
+    h5 = os.path.join(OUT, "table2_L%d_%d_%s.h5" % (level, ranks, path))
+    cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", path,
+                            "-summary_header", "0", "-memory_view", "-snes_view", "-o", h5]
     t0 = time.perf_counter()
-    out = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
+    p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     whole = time.perf_counter() - t0
-    m = ROW.search(out)
-    if not m:
-        sys.exit("no summary from %s\n%s" % (" ".join(cmd), out[-2000:]))
+    m = ROW.search(p.stdout)
+    if p.returncode or not m:
+        print("  level %d, %d ranks, %s: failed (exit status %d)\n%s" % (level, ranks, path, p.returncode, p.stdout[-1500:]), flush=True)
+        return None
     for name in (h5, h5[:-3] + ".xmf"):
         if os.path.exists(name):
             os.remove(name)
+    full, dense = KRYLOV_FULL.search(p.stdout), KRYLOV_DENSE.search(p.stdout)
+    steps, krylov = (int(full.group(1)), int(full.group(2))) if full else (int(dense.group(1)) + int(dense.group(2)), int(dense.group(3))) if dense else (0, 0)
     return {"assembly": float(m.group(4)), "schur": float(m.group(5)), "solve": float(m.group(7)), "iters": int(m.group(8)),
             "nodes": int(m.group(3)), "contact": int(m.group(6)), "states": m.group(10), "reason": m.group(11), "whole": whole,
-            "peak_gb": float(PEAK.search(out).group(2)) / 1e9}
+            "krylov_per_step": krylov / steps if steps else 0.0, "peak_gb": float(PEAK.search(p.stdout).group(2)) / 1e9}
 
 
-def cholesky(level, ranks):
-    """the yardstick: one MUMPS Cholesky factorization of the whole K (seconds), nan if it fails"""
-    cmd = ["mpiexec", "--oversubscribe", "-n", str(ranks), os.path.join(ROOT, "bench", "cholesky"), "-options_file",
-           os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level)]
-    m = CHOLESKY.search(subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout)
-    return float(m.group(2)) if m else math.nan
+def yardstick(level, ranks, which):
+    """one MUMPS Cholesky of the whole K (seconds), or one CG + GAMG solve (set-up + solve, seconds); nan if it fails"""
+    cmd = mpiexec(ranks) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", which, "-options_file",
+                            os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level)]
+    out = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
+    if which == "cholesky":
+        m = CHOLESKY.search(out)
+        return float(m.group(2)) if m else math.nan
+    m = AMG.search(out)
+    return float(m.group(2)) + float(m.group(3)) if m else math.nan
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--levels", default="3-12")
+    parser.add_argument("--levels", default="4,6,8,10,12,14,16")
     parser.add_argument("--ranks", default="1,2")
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--reduction", default="direct", choices=["direct", "mumps", "explicit"])
-    parser.add_argument("--no-cholesky", action="store_true", help="leave out the yardstick")
+    parser.add_argument("--paths", default="direct,none")
+    parser.add_argument("--yardsticks", default="cholesky,amg", help="the yardsticks to measure (empty: none)")
+    parser.add_argument("--cholesky-max-level", type=int, default=14, help="no Cholesky yardstick above this level (its time and memory)")
+    parser.add_argument("--large", action="store_true", help="levels 24, 32, 40 on the whole body, 2 ranks, one run (make bench-large)")
     args = parser.parse_args()
+    if args.large:
+        args.levels, args.ranks, args.repeat, args.paths, args.yardsticks = "24,32,40", "2", 1, "none", "amg"
     os.makedirs(OUT, exist_ok=True)
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
+    paths = args.paths.split(",")
+    sticks = [s for s in args.yardsticks.split(",") if s]
     rows = []
-    print("medians of %d runs, seconds; seed = the slides' Table 2 (MATLAB); method: %s reduction, semismooth* Newton"
-          % (args.repeat, args.reduction))
-    print("level ranks  nodes contact  assembly (seed)    schur  (seed)   solve  (seed) iters (seed)   whole  (seed) seed/ours  peak[GB] cholesky limit  sep/slide/stick reason")
-    fmt = lambda v, w=7: ("%*.2f" % (w, v)) if v is not None else " " * (w - 1) + "-"
-    for level in levels(args.levels):
+    print("medians of %d runs, seconds; seed = the slides' Table 2 (MATLAB); direct = the dense route, none = the whole body" % args.repeat)
+    print("level ranks path    nodes contact assembly   schur   solve   whole  (seed) seed/ours iters krylov/step peak[GB] cholesky amg  whole/chol whole/amg  sep/slide/stick reason")
+    for level in level_list(args.levels):
         for ranks in (int(r) for r in args.ranks.split(",")):
-            runs = [measure(level, ranks, args.reduction) for _ in range(args.repeat)]
-            row = {"level": level, "ranks": ranks, "nodes": runs[0]["nodes"], "contact": runs[0]["contact"],
-                   "iters": runs[0]["iters"], "states": runs[0]["states"], "reason": runs[0]["reason"], "method": args.reduction}
-            for key in ("assembly", "schur", "solve", "whole", "peak_gb"):
-                row[key] = statistics.median(r[key] for r in runs)
-            row["cholesky"] = math.nan if args.no_cholesky else statistics.median(cholesky(level, ranks) for _ in range(args.repeat))
-            row["limit"] = row["whole"] / row["cholesky"]
-            seed = SEED.get(level, (None,) * 6)
-            row["seed_whole"] = seed[1] + seed[2] + seed[4] if seed[1] is not None else math.nan
-            row["speedup"] = row["seed_whole"] / row["whole"]
-            print("%5d %5d %6d %7d  %7.3f %s  %7.3f %s  %6.3f %s %5d %5s  %6.2f %s %9s  %8.2f %8.3f %5.1f  %-15s %s" % (
-                level, ranks, row["nodes"], row["contact"], row["assembly"], fmt(seed[1]), row["schur"], fmt(seed[2]),
-                row["solve"], fmt(seed[4]), row["iters"], seed[5] if seed[5] else "-", row["whole"], fmt(seed[1] and row["seed_whole"], 8),
-                "%.3gx" % row["speedup"] if not math.isnan(row["speedup"]) else "-", row["peak_gb"], row["cholesky"], row["limit"],
-                row["states"], row["reason"]), flush=True)
-            rows.append(row)
-    with open(os.path.join(OUT, "table2.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["level", "ranks", "nodes", "contact", "method", "assembly", "schur", "solve", "iters", "whole",
-                                          "peak_gb", "cholesky", "limit", "seed_whole", "speedup", "states", "reason"])
+            ys = {}
+            for s in sticks:
+                if s == "cholesky" and level > args.cholesky_max_level:
+                    ys[s] = math.nan
+                    continue
+                ys[s] = statistics.median(yardstick(level, ranks, s) for _ in range(args.repeat))
+            for path in paths:
+                runs = [r for r in (measure(level, ranks, path) for _ in range(args.repeat)) if r]
+                if not runs:
+                    continue
+                row = {"level": level, "ranks": ranks, "path": path, "nodes": runs[0]["nodes"], "contact": runs[0]["contact"],
+                       "iters": runs[0]["iters"], "states": runs[0]["states"], "reason": runs[0]["reason"]}
+                for key in ("assembly", "schur", "solve", "whole", "peak_gb", "krylov_per_step"):
+                    row[key] = statistics.median(r[key] for r in runs)
+                row["cholesky"], row["amg"] = ys.get("cholesky", math.nan), ys.get("amg", math.nan)
+                row["whole_per_cholesky"] = row["whole"] / row["cholesky"]
+                row["whole_per_amg"] = row["whole"] / row["amg"]
+                seed = SEED.get(level)
+                row["seed_whole"] = seed[1] + seed[2] + seed[4] if seed else math.nan
+                row["speedup"] = row["seed_whole"] / row["whole"]
+                print("%5d %5d %-6s %7d %7d %8.3f %7.3f %7.3f %7.2f %7s %9s %5d %11.1f %8.2f %8.3f %6.3f %10.2f %9.2f  %-15s %s" % (
+                    level, ranks, path, row["nodes"], row["contact"], row["assembly"], row["schur"], row["solve"], row["whole"],
+                    "%.2f" % row["seed_whole"] if seed else "-", "%.3gx" % row["speedup"] if seed else "-", row["iters"],
+                    row["krylov_per_step"], row["peak_gb"], row["cholesky"], row["amg"], row["whole_per_cholesky"],
+                    row["whole_per_amg"], row["states"], row["reason"]), flush=True)
+                rows.append(row)
+    if "direct" in paths and "none" in paths:
+        for ranks in sorted({r["ranks"] for r in rows}):
+            whole = {(r["level"], r["path"]): r["whole"] for r in rows if r["ranks"] == ranks}
+            faster = [lv for lv in sorted({lv for lv, _ in whole}) if (lv, "none") in whole and (lv, "direct") in whole and whole[(lv, "none")] < whole[(lv, "direct")]]
+            print("crossover, %d rank%s: the whole body is faster from level %s" % (ranks, "s" if ranks > 1 else "", faster[0] if faster else "- (not in these levels)"))
+    name = "table2_large" if args.large else "table2"
+    with open(os.path.join(OUT, name + ".csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["level", "ranks", "path", "nodes", "contact", "assembly", "schur", "solve", "whole", "iters",
+                                          "krylov_per_step", "peak_gb", "cholesky", "amg", "whole_per_cholesky", "whole_per_amg",
+                                          "seed_whole", "speedup", "states", "reason"])
         w.writeheader()
         w.writerows(rows)
-    plot(rows)
-    print("wrote %s/table2.csv and table2.png" % OUT)
+    plot(rows, name)
+    print("wrote %s/%s.csv and %s.png" % (OUT, name, name))
 
 
-def plot(rows):
+def plot(rows, name):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5))
-    colors = {"whole": "black", "assembly": "tab:blue", "schur": "tab:red", "solve": "tab:green"}
-    seed_index = {"assembly": (1,), "schur": (2,), "solve": (4,), "whole": (1, 2, 4)}
-    for key, color in colors.items():
-        for ranks, style in ((1, "-o"), (2, "--s")):
-            pts = [(r["contact"], r[key]) for r in rows if r["ranks"] == ranks]
+    styles = {1: "-o", 2: "--s"}
+    for path, color in (("direct", "tab:red"), ("none", "tab:blue")):
+        for ranks, style in styles.items():
+            pts = sorted((r["contact"], r["whole"]) for r in rows if r["ranks"] == ranks and r["path"] == path)
             if pts:
-                ax.loglog(*zip(*pts), style, color=color, label="%s, %d rank%s" % (key, ranks, "s" if ranks > 1 else ""))
-        seed = [(v[3], sum(v[i] for i in seed_index[key])) for v in SEED.values()]
-        ax.loglog(*zip(*seed), ":", color=color, alpha=0.6, label="%s, seed (MATLAB)" % key)
+                ax.loglog(*zip(*pts), style, color=color, label="whole run, %s, %d rank%s" % ("dense route" if path == "direct" else "whole body", ranks, "s" if ranks > 1 else ""))
+    for stick, color in (("cholesky", "tab:gray"), ("amg", "tab:green")):
+        for ranks, style in styles.items():
+            pts = sorted({(r["contact"], r[stick]) for r in rows if r["ranks"] == ranks and not math.isnan(r[stick])})
+            if pts:
+                ax.loglog(*zip(*pts), style, color=color, alpha=0.6, label="%s of K, %d rank%s" % ("one Cholesky" if stick == "cholesky" else "one AMG solve", ranks, "s" if ranks > 1 else ""))
+    seed = sorted((v[3], v[1] + v[2] + v[4]) for v in SEED.values())
+    ax.loglog(*zip(*seed), ":", color="black", alpha=0.6, label="seed (MATLAB), whole")
     ax.set_xlabel("contact nodes p")
     ax.set_ylabel("seconds (median)")
-    ax.set_title("ssstar on the seed's prism: whole run and phases")
+    ax.set_title("ssstar on the seed's prism: dense route and whole body")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(fontsize=7, ncol=2, loc="upper left")
     fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "table2.png"), dpi=120)
+    fig.savefig(os.path.join(OUT, name + ".png"), dpi=120)
 
 
 if __name__ == "__main__":

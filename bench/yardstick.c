@@ -1,0 +1,114 @@
+static const char help[] = "The yardsticks of the benchmarks: one plain Cholesky factorization of the whole stiffness K of a scene\n\
+(PETSc's MUMPS with its own ordering; -mat_mumps_icntl_7 to choose another), and one solve of K u = b by CG with\n\
+algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes; rtol 1e-8), each timed.\n\
+  -level <6>                  mesh level of the scene (run with -options_file scenes/prism.opts)\n\
+  -yardstick <cholesky,amg>   which of them\n\
+Prints: cholesky level <L> ranks <R> dofs <N> time <s> flops <MUMPS RINFOG(3)>\n\
+        amg level <L> ranks <R> dofs <N> setup <s> solve <s> its <n>\n";
+
+#include <ssstar.h>
+#include <ssstarcontact.h>
+
+static PetscErrorCode Cholesky(Mat K, PetscInt level)
+{
+  PetscInt       N, infog1;
+  PetscReal      flops;
+  PetscLogDouble t0, t1;
+  Mat            F;
+  KSP            ksp;
+  PC             pc;
+  PetscMPIInt    size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(MatGetSize(K, &N, NULL));
+  PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
+  PetscCall(KSPSetOperators(ksp, K, K));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+  PetscCall(PetscTime(&t0));
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(MatMumpsGetInfog(F, 1, &infog1));
+  PetscCheck(infog1 >= 0, PETSC_COMM_WORLD, PETSC_ERR_LIB, "The MUMPS Cholesky factorization of K failed: INFOG(1) = %" PetscInt_FMT, infog1);
+  PetscCall(MatMumpsGetRinfog(F, 3, &flops));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "cholesky level %" PetscInt_FMT " ranks %d dofs %" PetscInt_FMT " time %.3f flops %.4e\n", level, size, N, t1 - t0, (double)flops));
+  PetscCall(KSPDestroy(&ksp));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AMG(Mat K, Vec b, PetscInt level)
+{
+  PetscInt           N, its;
+  PetscLogDouble     t0, t1, t2;
+  KSP                ksp;
+  PC                 pc;
+  Vec                u;
+  PetscMPIInt        size;
+  KSPConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(MatGetSize(K, &N, NULL));
+  PetscCall(VecDuplicate(b, &u));
+  PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "amg_"));
+  PetscCall(KSPSetOperators(ksp, K, K));
+  PetscCall(KSPSetType(ksp, KSPCG));
+  PetscCall(KSPSetTolerances(ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCGAMG));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+  PetscCall(PetscTime(&t0));
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PetscTime(&t1));
+  PetscCall(KSPSolve(ksp, b, u));
+  PetscCall(PetscTime(&t2));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCheck(reason > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The AMG solve of K did not converge: %s", KSPConvergedReasons[reason]);
+  PetscCall(KSPGetIterationNumber(ksp, &its));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "amg level %" PetscInt_FMT " ranks %d dofs %" PetscInt_FMT " setup %.3f solve %.3f its %" PetscInt_FMT "\n", level, size, N, t1 - t0, t2 - t1, its));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(VecDestroy(&u));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  SSStarScene scene;
+  PetscInt    level = 6, n = 2;
+  char       *which[2] = {NULL, NULL};
+  Vec         b;
+  Mat         K;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(SSStarInitializePackage());
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-level", &level, NULL));
+  PetscCall(PetscOptionsGetStringArray(NULL, NULL, "-yardstick", which, &n, NULL));
+  PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
+  PetscCall(SSStarSceneSetFromOptions(scene));
+  PetscCall(SSStarSceneSetUp(scene));
+  PetscCall(SSStarSceneAssemble(scene, &K, &b));
+  PetscCall(MatSetOption(K, MAT_SPD, PETSC_TRUE));
+  for (PetscInt k = 0; k < (which[0] ? n : 2); k++) {
+    PetscBool cholesky, amg;
+
+    PetscCall(PetscStrcmp(which[0] ? which[k] : (k ? "amg" : "cholesky"), "cholesky", &cholesky));
+    PetscCall(PetscStrcmp(which[0] ? which[k] : (k ? "amg" : "cholesky"), "amg", &amg));
+    PetscCheck(cholesky || amg, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-yardstick %s: not cholesky or amg", which[k]);
+    if (cholesky) PetscCall(Cholesky(K, level));
+    else PetscCall(AMG(K, b, level));
+    PetscCall(PetscFree(which[k]));
+  }
+  PetscCall(MatDestroy(&K));
+  PetscCall(VecDestroy(&b));
+  PetscCall(SSStarSceneDestroy(&scene));
+  PetscCall(PetscFinalize());
+  return 0;
+}

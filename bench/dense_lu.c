@@ -95,8 +95,15 @@ int main(int argc, char **argv)
   PetscRandom rnd;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-n", sizes, (nsizes = 16, &nsizes), NULL));
-  PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-nb", nbs, (nnb = 8, &nnb), NULL));
+  {
+    PetscInt  n = 16, nb = 8;
+    PetscBool set;
+
+    PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-n", sizes, &n, &set));
+    if (set) nsizes = n;
+    PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-nb", nbs, &nb, &set)); /* absent: the default 64 */
+    if (set) nnb = nb;
+  }
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-repeat", &repeat, NULL));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));

@@ -52,6 +52,6 @@ PETSC_EXTERN PetscErrorCode SSStarSceneWriteSolution(SSStarScene, const char[], 
 /* The pieces a scene is made of, for programs of their own */
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarMeshFileNodes(MPI_Comm, const char[], PetscInt *);
-PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, PetscReal, const char[]);
+PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, const char[]);
 
 #endif

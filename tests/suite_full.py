@@ -80,19 +80,27 @@ def full_scenes_same_answer():
     same_answer("full_hertz", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "hertz.opts"), "-level", "1"])
     same_answer("full_tresca", prism_run, ["-level", "3", "-friction_law_contact", "tresca", "-slip_bound_contact", "2"])
     same_answer("full_incline", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts")])
-    same_answer("full_incline_slides", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-friction_bottom", "0.3"])
+    # the whole body slides, held by a soft spring: the error is about 1e4 ‖z‖, so both paths stop at a tighter ‖z‖
+    same_answer("full_incline_slides", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-friction_bottom", "0.3", "-snes_rtol", "1e-13"])
     same_answer("full_shear", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "shear.opts")])
-    same_answer("full_gap", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "gap.opts")], iterations=10)
+    # reactions at each of 10 load steps: both paths stop at a tighter ||z|| to compare them to 1e-8
+    same_answer("full_gap", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "gap.opts"), "-snes_rtol", "1e-12"], iterations=10)
 
 
-@test("hard cases on the whole body: friction phi = 5, nu = 0.49 (the globalization's damped step acts there too and the plain iteration's cycle is detected), a random start 100x the solution: the dense route's solution to 1e-8; the fixed-point baseline (-snes_ssstar_method fixedpoint, interior in equilibrium at every step) converges to the Newton solution")
+@test("hard cases on the whole body: friction phi = 5, nu = 0.49 (the globalization's damped step acts there too; the plain iteration stops at a detected cycle or at a solution of the law), a random start 100x the solution: the dense route's solution to 1e-8; the fixed-point baseline (-snes_ssstar_method fixedpoint, interior in equilibrium at every step) converges to the Newton solution")
 def full_hard_cases():
     same_answer("full_phi5", prism_run, ["-level", "4", "-snes_ssstar_friction", "5"])
     dense, full = same_answer("full_nu049", prism_run, ["-level", "4", "-nu", "0.49", "-snes_ssstar_monitor_states"], iterations=2)
     expect("damped step" in full, "no damped step on the whole body", full)
     out, s = prism_run(["-level", "4", "-nu", "0.49", "-snes_ssstar_reduction", "none", "-snes_ssstar_globalization", "0", "-snes_ssstar_monitor_states"], "full_nu049_plain.h5")
-    expect(s["reason"] == "DIVERGED_LINE_SEARCH" and "cycle detected" in out, "the plain iteration's cycle on the whole body: %s" % s["reason"], out)
-    same_answer("full_random", prism_run, ["-level", "4", "-initial_guess", "random", "-initial_guess_scale", "2"], iterations=3)
+    # the plain iteration's cycle is one of the exact steps; inexact steps may leave it and reach a solution
+    cycled = s["reason"] == "DIVERGED_LINE_SEARCH" and "cycle detected" in out
+    expect(cycled or s["reason"] == "CONVERGED_FNORM_RELATIVE", "the plain iteration on the whole body: %s, no cycle detected" % s["reason"], out)
+    if not cycled:
+        law = run(CHECK + ["coulomb", os.path.join(OUT, "full_nu049_plain.h5"), "--phi", "0.3"])
+        expect("VIOLATED" not in law, "the plain iteration's solution violates the law", law)
+    # far from the solution the inexact first steps take another way through the damped steps: the same solution, a few more iterations
+    same_answer("full_random", prism_run, ["-level", "4", "-initial_guess", "random", "-initial_guess_scale", "2"], iterations=4)
     out, s = prism_run(["-level", "3", "-snes_ssstar_reduction", "none", "-snes_ssstar_method", "fixedpoint", "-snes_max_it", "100000", "-snes_rtol", "1e-12"], "full_fixedpoint.h5")
     expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] > 100, "fixed point: %s after %d iterations" % (s["reason"], s["iters"]), out)
     run(CHECK + ["compare", os.path.join(OUT, "full_prism_L3_none.h5"), os.path.join(OUT, "full_fixedpoint.h5"), "--tol", "1e-8"])
@@ -102,6 +110,7 @@ def full_hard_cases():
 def full_auto_chooses():
     out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_reduction", "auto", "-snes_view"))
     expect("K reduced to the contact dofs by the direct Schur complement (chosen by auto)" in out, "auto did not choose direct at level 3", out)
-    out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_reduction", "auto", "-snes_ssstar_memory_limit", "1e-6", "-snes_view"))
+    # a scene refuses a limit below its mesh's needs before any work (suite_scenes): a plain program (DMDA) meets auto's own check
+    out = run(mpiexec(1, os.path.join(ROOT, "examples", "generic"), "-snes_type", "ssstar", "-snes_ssstar_reduction", "auto", "-snes_ssstar_memory_limit", "1e-6", "-snes_view"))
     expect("solved on the whole body, P never formed (reduction none (chosen by auto))" in out or "solved on the whole body, P never formed (reduction none, chosen by auto)" in out,
            "auto did not choose none when P does not fit", out)

@@ -1,5 +1,6 @@
 /* P1 linear elasticity on tetrahedra: stiffness K (materials per volume group, springs) and load b (tractions, gravity). */
 #include "sceneimpl.h"
+#include <petscsf.h>
 
 /* Gradients of the four barycentric basis functions of the tetrahedron x[12]; returns its volume. */
 static PetscReal TetGradients(const PetscReal x[12], PetscReal grad[4][3])
@@ -163,75 +164,158 @@ static PetscErrorCode GroupFaces(DM dm, const char group[], IS *faces, PetscInt 
   PetscFunctionReturn(0);
 }
 
+/* The global block (node) index of every local vertex, its first global dof / 3; -1 when it is held (no dofs) */
+static PetscErrorCode VertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscInt **blocks)
+{
+  PetscSection gsec;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetGlobalSection(dm, &gsec));
+  PetscCall(PetscMalloc1(vEnd - vStart, blocks));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt dof, cdof, off;
+
+    PetscCall(PetscSectionGetDof(gsec, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(gsec, v, &cdof));
+    PetscCall(PetscSectionGetOffset(gsec, v, &off));
+    if (dof < 0) { /* a ghost: -(dof + 1), -(offset + 1) of its owner */
+      dof = -(dof + 1);
+      off = -(off + 1);
+    }
+    (*blocks)[v - vStart] = dof - cdof == 3 ? off / 3 : -1;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The four vertices of every local cell (closure order, the order of its coordinates), numbered from vStart */
+static PetscErrorCode CellVertices(DM dm, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt vEnd, PetscInt **cv)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(4 * (cEnd - cStart), cv));
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    PetscInt *closure = NULL, n, k = 0;
+
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &n, &closure));
+    for (PetscInt i = 0; i < 2 * n; i += 2)
+      if (closure[i] >= vStart && closure[i] < vEnd) {
+        PetscCheck(k < 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
+        (*cv)[4 * (c - cStart) + k++] = closure[i] - vStart;
+      }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &n, &closure));
+    PetscCheck(k == 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
-   K by COO assembly: every cell adds its 12x12 block, every face of a spring group k area/3 to the diagonal of its
-   vertices' dofs (a lumped elastic support); constrained (Dirichlet) dofs have negative indices and drop out.
+   The block preallocation of K: every vertex couples to the vertices of its cells. A vertex on a partition boundary has
+   cells on other ranks: each rank counts the neighbours it sees (in the owner's diagonal and off-diagonal column
+   ranges) and the counts go to the owner through the point SF, an upper bound of the union.
+*/
+static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt vEnd, const PetscInt cv[], const PetscInt blocks[])
+{
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dm);
+  const PetscInt  nv = vEnd - vStart, nc = cEnd - cStart;
+  const PetscInt *ilocal;
+  const PetscSFNode *iremote;
+  PetscInt       *start, *adj, *fill, *owner, *count, *dnz, *onz, *ranges, pStart, pEnd, nleaves, rstart, rend, m, Ncol;
+  PetscSF         sf;
+  PetscMPIInt     rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(MatGetLocalSize(K, &m, NULL)); /* the rows of each rank (K's layout is not set up before preallocation) */
+  PetscCall(MatGetSize(K, NULL, &Ncol));
+  PetscCall(PetscMalloc1(size + 1, &ranges));
+  ranges[0] = 0;
+  PetscCallMPI(MPI_Allgather(&m, 1, MPIU_INT, ranges + 1, 1, MPIU_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) ranges[r + 1] += ranges[r];
+  rstart = ranges[rank];
+  rend   = ranges[rank + 1];
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &ilocal, &iremote));
+  /* the owner rank of every local vertex */
+  PetscCall(PetscMalloc1(nv, &owner));
+  for (PetscInt v = 0; v < nv; v++) owner[v] = rank;
+  for (PetscInt l = 0; l < nleaves; l++) {
+    const PetscInt p = ilocal ? ilocal[l] : l;
+
+    if (p >= vStart && p < vEnd) owner[p - vStart] = iremote[l].rank;
+  }
+  /* the neighbours of every vertex through its local cells (CSR, 4 per cell and vertex), sorted and unique */
+  PetscCall(PetscCalloc2(nv + 1, &start, nv, &fill));
+  for (PetscInt k = 0; k < 4 * nc; k++) start[cv[k] + 1] += 4;
+  for (PetscInt v = 0; v < nv; v++) start[v + 1] += start[v];
+  PetscCall(PetscMalloc1(start[nv], &adj));
+  for (PetscInt c = 0; c < nc; c++)
+    for (PetscInt a = 0; a < 4; a++) {
+      const PetscInt v = cv[4 * c + a];
+
+      for (PetscInt b = 0; b < 4; b++) adj[start[v] + fill[v]++] = blocks[cv[4 * c + b]];
+    }
+  /* count[2 p], count[2 p + 1]: the diagonal and off-diagonal neighbours of point p, in its owner's ranges */
+  PetscCall(PetscCalloc1(2 * (pEnd - pStart), &count));
+  for (PetscInt v = 0; v < nv; v++) {
+    PetscInt  n = fill[v], *row = adj + start[v];
+    const PetscInt lo = ranges[owner[v]] / 3, hi = ranges[owner[v] + 1] / 3;
+
+    if (blocks[v] < 0) continue;
+    PetscCall(PetscSortRemoveDupsInt(&n, row));
+    for (PetscInt k = 0; k < n; k++) {
+      if (row[k] < 0) continue;
+      count[2 * (vStart + v - pStart) + (row[k] >= lo && row[k] < hi ? 0 : 1)]++;
+    }
+  }
+  {
+    MPI_Datatype pair;
+
+    PetscCallMPI(MPI_Type_contiguous(2, MPIU_INT, &pair));
+    PetscCallMPI(MPI_Type_commit(&pair));
+    PetscCall(PetscSFReduceBegin(sf, pair, count, count, MPI_SUM));
+    PetscCall(PetscSFReduceEnd(sf, pair, count, count, MPI_SUM));
+    PetscCallMPI(MPI_Type_free(&pair));
+  }
+  m = (rend - rstart) / 3;
+  PetscCall(PetscCalloc2(m, &dnz, m, &onz));
+  for (PetscInt v = 0; v < nv; v++) {
+    const PetscInt b = blocks[v] - rstart / 3, Nb = ranges[rank + 1] / 3 - ranges[rank] / 3, No = Ncol / 3 - Nb;
+
+    if (owner[v] != rank || blocks[v] < 0) continue;
+    dnz[b] = PetscMin(count[2 * (vStart + v - pStart)], Nb);
+    onz[b] = PetscMin(count[2 * (vStart + v - pStart) + 1], No);
+  }
+  PetscCall(MatXAIJSetPreallocation(K, 3, dnz, onz, NULL, NULL));
+  PetscCall(PetscFree2(dnz, onz));
+  PetscCall(PetscFree(count));
+  PetscCall(PetscFree(adj));
+  PetscCall(PetscFree2(start, fill));
+  PetscCall(PetscFree(owner));
+  PetscCall(PetscFree(ranges));
+  PetscFunctionReturn(0);
+}
+
+/*
+   K in 3x3 blocks: every cell adds its 12x12 matrix, every face of a spring group k area/3 to the diagonal of its
+   vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out.
 */
 static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
 {
-  DM           dm = scene->dm;
-  PetscSection sec, gsec;
-  PetscInt     cStart, cEnd, n, N, *ci, *cj, ncoo, nspring = 0, k;
-  PetscScalar *values;
+  DM                 dm = scene->dm, cdm;
+  PetscSection       csec;
+  Vec                cloc, global;
+  const PetscScalar *ca;
+  PetscInt           cStart, cEnd, vStart, vEnd, n, N, *cv, *blocks;
   PetscReal(*lame)[2];
-  IS          *springFaces;
-  PetscInt    *nSpringFaces;
-  Vec          global;
 
   PetscFunctionBegin;
-  PetscCall(DMGetLocalSection(dm, &sec));
-  PetscCall(DMGetGlobalSection(dm, &gsec));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(cEnd - cStart, &lame));
   PetscCall(CellMaterials(scene, cStart, cEnd, lame));
-  PetscCall(PetscMalloc2(scene->nSprings, &springFaces, scene->nSprings, &nSpringFaces));
-  for (PetscInt s = 0; s < scene->nSprings; s++) {
-    PetscCall(GroupFaces(dm, scene->springs[s].name, &springFaces[s], &nSpringFaces[s]));
-    nspring += nSpringFaces[s];
-  }
-  ncoo = 144 * (cEnd - cStart) + 9 * nspring;
-  PetscCall(PetscMalloc3(ncoo, &ci, ncoo, &cj, ncoo, &values));
-  for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt *idx = NULL, nidx;
-    PetscReal x[12];
-    PetscBool tet;
-
-    k = 144 * (c - cStart);
-    PetscCall(GetVertexCoordinates(dm, c, 12, x, &tet));
-    PetscCheck(tet, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
-    TetStiffness(x, lame[c - cStart][0], lame[c - cStart][1], &values[k]);
-    PetscCall(DMPlexGetClosureIndices(dm, sec, gsec, c, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-    PetscCheck(nidx == 12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cell %" PetscInt_FMT " has %" PetscInt_FMT " dofs, not 12", c, nidx);
-    for (PetscInt a = 0; a < 12; a++)
-      for (PetscInt b = 0; b < 12; b++) {
-        ci[k + 12 * a + b] = idx[a];
-        cj[k + 12 * a + b] = idx[b];
-      }
-    PetscCall(DMPlexRestoreClosureIndices(dm, sec, gsec, c, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-  }
-  k = 144 * (cEnd - cStart);
-  for (PetscInt s = 0; s < scene->nSprings; s++) {
-    const PetscInt *faces;
-
-    PetscCall(ISGetIndices(springFaces[s], &faces));
-    for (PetscInt i = 0; i < nSpringFaces[s]; i++, k += 9) {
-      PetscInt *idx = NULL, nidx;
-      PetscReal x[9], area;
-
-      PetscCall(BoundaryTriangle(dm, faces[i], scene->springs[s].name, x, &area));
-      PetscCall(DMPlexGetClosureIndices(dm, sec, gsec, faces[i], PETSC_TRUE, &nidx, &idx, NULL, NULL));
-      for (PetscInt a = 0; a < 9; a++) {
-        ci[k + a]     = idx[a];
-        cj[k + a]     = idx[a];
-        values[k + a] = scene->springs[s].value[0] * area / 3.0;
-      }
-      PetscCall(DMPlexRestoreClosureIndices(dm, sec, gsec, faces[i], PETSC_TRUE, &nidx, &idx, NULL, NULL));
-    }
-    PetscCall(ISRestoreIndices(springFaces[s], &faces));
-    PetscCall(ISDestroy(&springFaces[s]));
-  }
-  PetscCall(PetscFree2(springFaces, nSpringFaces));
-  PetscCall(PetscFree(lame));
+  PetscCall(CellVertices(dm, cStart, cEnd, vStart, vEnd, &cv));
+  PetscCall(VertexBlocks(dm, vStart, vEnd, &blocks));
   PetscCall(DMGetGlobalVector(dm, &global));
   PetscCall(VecGetLocalSize(global, &n));
   PetscCall(VecGetSize(global, &N));
@@ -240,9 +324,61 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscCall(MatSetSizes(*K, n, n, N, N));
   PetscCall(MatSetBlockSize(*K, 3));
   PetscCall(MatSetType(*K, MATAIJ));
-  PetscCall(MatSetPreallocationCOO(*K, ncoo, ci, cj));
-  PetscCall(MatSetValuesCOO(*K, values, ADD_VALUES));
-  PetscCall(PetscFree3(ci, cj, values));
+  PetscCall(PreallocateStiffness(dm, *K, cStart, cEnd, vStart, vEnd, cv, blocks));
+
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetCoordinatesLocal(dm, &cloc));
+  PetscCall(VecGetArrayRead(cloc, &ca));
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    const PetscInt *v = &cv[4 * (c - cStart)];
+    PetscInt        b[4];
+    PetscReal       x[12];
+    PetscScalar     Ke[144];
+
+    for (PetscInt a = 0; a < 4; a++) {
+      PetscInt off;
+
+      PetscCall(PetscSectionGetOffset(csec, vStart + v[a], &off));
+      for (PetscInt k = 0; k < 3; k++) x[3 * a + k] = PetscRealPart(ca[off + k]);
+      b[a] = blocks[v[a]];
+    }
+    TetStiffness(x, lame[c - cStart][0], lame[c - cStart][1], Ke);
+    PetscCall(MatSetValuesBlocked(*K, 4, b, 4, b, Ke, ADD_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(cloc, &ca));
+  for (PetscInt s = 0; s < scene->nSprings; s++) {
+    IS              faces;
+    const PetscInt *f;
+    PetscInt        nf;
+
+    PetscCall(GroupFaces(dm, scene->springs[s].name, &faces, &nf));
+    PetscCall(ISGetIndices(faces, &f));
+    for (PetscInt i = 0; i < nf; i++) {
+      PetscInt   *closure = NULL, ncl;
+      PetscReal   x[9], area;
+      PetscScalar D[9] = {0};
+
+      PetscCall(BoundaryTriangle(dm, f[i], scene->springs[s].name, x, &area));
+      D[0] = D[4] = D[8] = scene->springs[s].value[0] * area / 3.0;
+      PetscCall(DMPlexGetTransitiveClosure(dm, f[i], PETSC_TRUE, &ncl, &closure));
+      for (PetscInt k = 0; k < 2 * ncl; k += 2) {
+        PetscInt bk;
+
+        if (closure[k] < vStart || closure[k] >= vEnd) continue;
+        bk = blocks[closure[k] - vStart];
+        PetscCall(MatSetValuesBlocked(*K, 1, &bk, 1, &bk, D, ADD_VALUES));
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, f[i], PETSC_TRUE, &ncl, &closure));
+    }
+    PetscCall(ISRestoreIndices(faces, &f));
+    PetscCall(ISDestroy(&faces));
+  }
+  PetscCall(MatAssemblyBegin(*K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*K, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscFree(blocks));
+  PetscCall(PetscFree(cv));
+  PetscCall(PetscFree(lame));
   PetscFunctionReturn(0);
 }
 

@@ -1,13 +1,13 @@
-/* Memory before work: an estimate of what a mesh of N nodes with p contact nodes needs, against what the machine has. */
+/* Memory before work: an estimate of what a mesh of N nodes needs, against what the machine has. */
 #include <ssstarcontact.h>
 #include <stdio.h>
 
 /*
    Measured with the prism at levels 6, 10, 12 (peak resident memory, one rank): reading, interpolating and
-   distributing the mesh, the COO assembly of K and the load take 28-29 kB per node (MESH_BYTES). With contact,
-   three dense 3p x 3p matrices (P, the Newton matrix, its LU factor). A lower bound on purpose: the factors of K
-   (in core or out of core) are left to the Schur reduction, which checks its own estimate after MUMPS's analysis
-   (src/reduction) against the same limit.
+   distributing the mesh, the assembly of K and the load take less than 30 kB per node (MESH_BYTES): what every path
+   needs. A lower bound on purpose: the factors of K and the dense P of the dense route are left to the reduction,
+   which checks its own estimate (after MUMPS's analysis) against the same limit, and auto takes the whole-body path
+   where P does not fit (src/reduction).
 */
 #define SSSTAR_MESH_BYTES 30000.0
 
@@ -60,29 +60,26 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
    Input Parameters:
 +  comm    - the ranks that will share the work
 .  nodes   - mesh nodes (estimated or counted)
-.  contact - contact nodes (0 when not known yet)
 -  what    - what the count comes from, for the message (e.g. "-level 400 of meshes/prism.geo")
 
    Notes:
    The limit is MemAvailable of /proc/meminfo (summed over the machines of comm) or -snes_ssstar_memory_limit <GB per rank>
-   times the ranks of comm. The factorization of K is checked later, by the reduction, after MUMPS's analysis.
+   times the ranks of comm. The estimate covers the mesh and the assembly, which every path needs; the factorization of K
+   and the dense P are checked later, by the reduction.
 @*/
-PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, PetscReal contact, const char what[])
+PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what[])
 {
-  PetscReal mesh = SSSTAR_MESH_BYTES * nodes, dense = 3.0 * 8.0 * (3 * contact) * (3 * contact);
-  PetscReal limit, perRank, estimate = mesh + dense;
+  PetscReal estimate = SSSTAR_MESH_BYTES * nodes, limit, perRank;
 
   PetscFunctionBegin;
   PetscCall(MemoryLimit(comm, &limit, &perRank));
   if (limit <= 0) PetscFunctionReturn(0); /* no /proc/meminfo: nothing to compare with */
   if (estimate > limit) {
-    char counts[64], source[128];
+    char source[128];
 
-    if (contact > 0) PetscCall(PetscSNPrintf(counts, sizeof(counts), "%.4g nodes, %.4g contact nodes", (double)nodes, (double)contact));
-    else PetscCall(PetscSNPrintf(counts, sizeof(counts), "%.4g nodes", (double)nodes));
     if (perRank > 0) PetscCall(PetscSNPrintf(source, sizeof(source), "of -snes_ssstar_memory_limit (%g GB per rank)", (double)perRank));
     else PetscCall(PetscSNPrintf(source, sizeof(source), "available on this machine (MemAvailable)"));
-    SETERRQ(comm, PETSC_ERR_MEM, "%s: %s need at least %.3g GB (mesh and assembly %.3g GB, dense contact matrices %.3g GB; the factors of K come on top), more than the %.3g GB %s; refused before the work", what, counts, (double)(estimate / 1e9), (double)(mesh / 1e9), (double)(dense / 1e9), (double)(limit / 1e9), source);
+    SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need at least %.3g GB for the mesh and the assembly (the solver's own memory comes on top), more than the %.3g GB %s; refused before the work", what, (double)nodes, (double)(estimate / 1e9), (double)(limit / 1e9), source);
   }
   PetscFunctionReturn(0);
 }

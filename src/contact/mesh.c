@@ -57,7 +57,7 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
     char what[PETSC_MAX_PATH_LEN + 64];
 
     PetscCall(PetscSNPrintf(what, sizeof(what), "-level %" PetscInt_FMT " of %s", level, geo));
-    PetscCall(SSStarCheckMemory(comm, nodes, 0, what));
+    PetscCall(SSStarCheckMemory(comm, nodes, what));
   }
   if (rank == 0) {
     char tmp[PETSC_MAX_PATH_LEN];
@@ -218,215 +218,15 @@ PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *n
   PetscFunctionReturn(0);
 }
 
-/* DMPlex's own labels, not physical groups */
-static PetscBool IsGroupLabel(const char name[])
-{
-  const char *internal[] = {"depth", "celltype", "marker", "Cell Sets", "Face Sets", "Vertex Sets", "ghost", "vtk"};
-  PetscBool   same;
-
-  for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(internal); k++) {
-    PetscStrcmp(name, internal[k], &same);
-    if (same) return PETSC_FALSE;
-  }
-  return PETSC_TRUE;
-}
-
-/* Height of the points of a physical group before completion: 0 for a volume group, 1 for a surface group, -1 if mixed */
-static PetscErrorCode GroupHeight(DM dm, DMLabel label, PetscInt *height)
-{
-  IS              values;
-  const PetscInt *v;
-  PetscInt        nv;
-
-  PetscFunctionBegin;
-  *height = -2;
-  PetscCall(DMLabelGetValueIS(label, &values));
-  PetscCall(ISGetLocalSize(values, &nv));
-  PetscCall(ISGetIndices(values, &v));
-  for (PetscInt k = 0; k < nv; k++) {
-    IS              points;
-    const PetscInt *p;
-    PetscInt        np;
-
-    PetscCall(DMLabelGetStratumIS(label, v[k], &points));
-    if (!points) continue;
-    PetscCall(ISGetLocalSize(points, &np));
-    PetscCall(ISGetIndices(points, &p));
-    for (PetscInt i = 0; i < np; i++) {
-      PetscInt h;
-
-      PetscCall(DMPlexGetPointHeight(dm, p[i], &h));
-      *height = *height == -2 || *height == h ? h : -1;
-    }
-    PetscCall(ISRestoreIndices(points, &p));
-    PetscCall(ISDestroy(&points));
-  }
-  PetscCall(ISRestoreIndices(values, &v));
-  PetscCall(ISDestroy(&values));
-  PetscFunctionReturn(0);
-}
-
 /*
-   The mesh is read on rank 0: the groups are checked there (present, of the kind the option needs), the verdict and
-   the list of the file's groups are broadcast so that every rank raises the same error, and every rank gets the labels.
-*/
-static PetscErrorCode CheckGroups(DM dm, const char file[], PetscInt n, const SSStarGroupUse uses[])
-{
-  MPI_Comm    comm = PetscObjectComm((PetscObject)dm);
-  PetscMPIInt rank;
-  char        available[1024] = "";
-  const char *kinds[]         = {"surface or volume", "surface", "volume"};
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
-    PetscInt nl;
-
-    PetscCall(DMGetNumLabels(dm, &nl));
-    for (PetscInt l = 0; l < nl; l++) {
-      const char *name;
-
-      PetscCall(DMGetLabelName(dm, l, &name));
-      if (!IsGroupLabel(name)) continue;
-      if (available[0]) PetscCall(PetscStrlcat(available, ", ", sizeof(available)));
-      PetscCall(PetscStrlcat(available, name, sizeof(available)));
-    }
-  }
-  PetscCallMPI(MPI_Bcast(available, sizeof(available), MPI_CHAR, 0, comm));
-  for (PetscInt g = 0; g < n; g++) {
-    DMLabel     label;
-    PetscInt    height = -2;
-    PetscMPIInt verdict = 0; /* 0 ok, 1 missing, 2 wrong kind */
-
-    PetscCall(DMGetLabel(dm, uses[g].group, &label));
-    if (rank == 0) {
-      if (!label || !IsGroupLabel(uses[g].group)) verdict = 1;
-      else {
-        PetscCall(GroupHeight(dm, label, &height));
-        if ((uses[g].kind == SSSTAR_GROUP_SURFACE && height != 1) || (uses[g].kind == SSSTAR_GROUP_VOLUME && height != 0) || (uses[g].kind == SSSTAR_GROUP_ANY && height != 0 && height != 1)) verdict = 2;
-      }
-    }
-    PetscCallMPI(MPI_Bcast(&verdict, 1, MPI_INT, 0, comm));
-    PetscCheck(verdict != 1, comm, PETSC_ERR_ARG_WRONG, "Mesh %s has no physical group named \"%s\" (option %s); its groups: %s", file, uses[g].group, uses[g].option, available[0] ? available : "none");
-    PetscCheck(verdict != 2, comm, PETSC_ERR_ARG_WRONG, "Physical group \"%s\" of mesh %s is not a %s group, as option %s needs", uses[g].group, file, kinds[uses[g].kind], uses[g].option);
-  }
-  /* then every rank gets each label once, with the vertices and edges of its faces or cells */
-  for (PetscInt g = 0; g < n; g++) {
-    DMLabel   label;
-    PetscBool seen = PETSC_FALSE;
-
-    for (PetscInt h = 0; h < g && !seen; h++) PetscCall(PetscStrcmp(uses[g].group, uses[h].group, &seen));
-    if (seen) continue;
-    PetscCall(DMGetLabel(dm, uses[g].group, &label));
-    if (!label) {
-      PetscCall(DMCreateLabel(dm, uses[g].group));
-      PetscCall(DMGetLabel(dm, uses[g].group, &label));
-    }
-    PetscCall(DMPlexLabelComplete(dm, label));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* One dof per vertex holding the vertex's index in the file, so that distributed runs can restore the file order. */
-static PetscErrorCode CreateVertexTags(DM dm, PetscSection *sec, Vec *tags)
-{
-  PetscInt     pStart, pEnd, vStart, vEnd;
-  PetscScalar *a;
-
-  PetscFunctionBegin;
-  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(PetscSectionCreate(PetscObjectComm((PetscObject)dm), sec));
-  PetscCall(PetscSectionSetChart(*sec, pStart, pEnd));
-  for (PetscInt v = vStart; v < vEnd; v++) PetscCall(PetscSectionSetDof(*sec, v, 1));
-  PetscCall(PetscSectionSetUp(*sec));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, vEnd - vStart, tags));
-  PetscCall(VecGetArrayWrite(*tags, &a));
-  for (PetscInt v = vStart; v < vEnd; v++) a[v - vStart] = v - vStart;
-  PetscCall(VecRestoreArrayWrite(*tags, &a));
-  PetscFunctionReturn(0);
-}
-
-/* The distributed tags are laid out by the migrated section; the caller wants them by vertex number. */
-static PetscErrorCode TagsInVertexOrder(DM dm, PetscSection sec, Vec migrated, Vec *tags)
-{
-  PetscInt           vStart, vEnd;
-  const PetscScalar *ma;
-  PetscScalar       *a;
-
-  PetscFunctionBegin;
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, vEnd - vStart, tags));
-  PetscCall(VecGetArrayRead(migrated, &ma));
-  PetscCall(VecGetArrayWrite(*tags, &a));
-  for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt off;
-
-    PetscCall(PetscSectionGetOffset(sec, v, &off));
-    a[v - vStart] = ma[off];
-  }
-  PetscCall(VecRestoreArrayWrite(*tags, &a));
-  PetscCall(VecRestoreArrayRead(migrated, &ma));
-  PetscFunctionReturn(0);
-}
-
-/* DMPlexCreateFromFile with its error (a corrupt file) turned into one that names the file */
-static PetscErrorCode ReadMesh(MPI_Comm comm, const char file[], DM *dm)
-{
-  PetscErrorCode ierr;
-  PetscBool      set;
-
-  PetscFunctionBegin;
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_use_regions", &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = DMPlexCreateFromFile(comm, file, "mesh", PETSC_TRUE, dm);
-  PetscCall(PetscPopErrorHandler());
-  if (ierr) {
-    const char *text;
-    char       *specific = NULL;
-
-    PetscCall(PetscErrorMessage(ierr, &text, &specific));
-    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "Cannot read the mesh file %s: %s (is it a complete gmsh file?)", file, specific && specific[0] ? specific : (text ? text : "read error"));
-  }
-  PetscFunctionReturn(0);
-}
-
-/*
-   Reads a gmsh mesh, checks the groups the scene uses and distributes it. tags: a local vector (one entry per local
-   vertex, in vertex order) with each vertex's index in the file.
+   Reads a gmsh mesh through its cache (meshcache.c: every rank reads its slice, the mesh is built and interpolated in
+   parallel), checks the groups the scene uses. tags: a local vector (one entry per local vertex, in vertex order) with
+   each vertex's index in the file's node order.
 */
 PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], PetscInt n, const SSStarGroupUse uses[], DM *dm, Vec *tags)
 {
-  DM               dist;
-  PetscSF          migration;
-  PetscSection     tagSec;
-  PetscPartitioner part;
-
   PetscFunctionBegin;
-  PetscCall(ReadMesh(comm, file, dm));
-  PetscCall(CheckGroups(*dm, file, n, uses));
-  PetscCall(CreateVertexTags(*dm, &tagSec, tags));
-
-  PetscCall(DMPlexGetPartitioner(*dm, &part));
-  PetscCall(PetscPartitionerSetFromOptions(part));
-  PetscCall(DMPlexDistribute(*dm, 0, &migration, &dist));
-  if (dist) {
-    PetscSection newSec;
-    Vec          newTags;
-
-    PetscCall(PetscSectionCreate(comm, &newSec));
-    PetscCall(VecCreate(PETSC_COMM_SELF, &newTags));
-    PetscCall(DMPlexDistributeField(*dm, migration, tagSec, *tags, newSec, newTags));
-    PetscCall(VecDestroy(tags));
-    PetscCall(DMDestroy(dm));
-    *dm = dist;
-    PetscCall(TagsInVertexOrder(*dm, newSec, newTags, tags));
-    PetscCall(PetscSectionDestroy(&newSec));
-    PetscCall(VecDestroy(&newTags));
-  }
-  PetscCall(PetscSFDestroy(&migration));
-  PetscCall(PetscSectionDestroy(&tagSec));
+  PetscCall(SSStarMeshLoadCached(comm, file, n, uses, dm, tags));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscFunctionReturn(0);

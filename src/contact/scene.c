@@ -563,7 +563,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
-  PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, 0, scene->mesh));
+  PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(GroupUses(scene, &nuses, &uses, &options));
   PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, &scene->dm, &scene->tags));
   for (PetscInt k = 0; k < nuses; k++) PetscCall(PetscFree(options[k]));
@@ -582,7 +582,6 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
   PetscCall(CreateContactNodes(scene));
-  PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, (PetscReal)scene->nGlobal, scene->mesh));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -526,8 +526,14 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       stop = SSSTAR_REASON_CYCLE;
     } else if (ss->glob.detected == SSSTAR_DETECTED_STAGNATION) stop = SSSTAR_REASON_STAGNATION;
     if (!stop) {
-      /* inexact Newton: loose while the states change; once they repeat, the step is likely the last one, exact */
-      const PetscReal eta = ss->glob.changed == 0 && ss->glob.shownAlpha == 1 ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
+      /* inexact Newton: eta = (||z||/||z_0||)^2 (superlinear near the solution), at most etaMax, or etaMax^2 once a
+         remedy acted (the damped step compares ||z|| along the step: a 10 % error of the step misleads it); once the
+         states repeat after a full step, the step is likely the last one: exact */
+      PetscInt remedies = 0;
+
+      for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) remedies += ss->glob.counts[r];
+      const PetscReal cap = remedies ? PetscSqr(ss->etaMax) : ss->etaMax;
+      const PetscReal eta = ss->glob.changed == 0 && ss->glob.shownAlpha == 1 ? 0.0 : PetscMin(cap, PetscSqr(znorm / z0));
 
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));

@@ -464,7 +464,7 @@ static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memo
   PetscCall(PetscLogEventBegin(SSSTAR_SchurFactor, K, 0, 0, 0));
   PetscCall(RunMUMPS(d, 2, "the factorization of K with the Schur block (MUMPS)"));
   PetscCall(PetscLogFlops(d->id.RINFO(3)));
-  PetscCall(PetscInfo(K, "MUMPS factorization: %g flops\n", (double)d->id.RINFOG(3)));
+  PetscCall(PetscInfo(K, "MUMPS factorization: %g flops (full rank), %g flops with low-rank blocks (RINFOG(14), ICNTL(35) > 0), %g entries in the factors (INFOG(29))\n", (double)d->id.RINFOG(3), (double)d->id.RINFOG(14), (double)d->id.INFOG(29)));
   PetscCall(PetscLogEventEnd(SSSTAR_SchurFactor, K, 0, 0, 0));
   d->id.schur = NULL;
   PetscCall(PetscFree3(d->irn, d->jcn, d->a)); /* the factors are all the solves need */

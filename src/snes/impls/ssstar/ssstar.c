@@ -215,7 +215,7 @@ static PetscErrorCode SNESSSStarClassify(SNES snes)
 
 /*
    Whole body: the tolerances of the next linear solve (inexact Newton). Its residual r (units of gamma^-1 y) moves
-   the next ||z|| by about gamma ||r||: relative to ||y|| ~ ||z||, eta = min(etaMax, ||z||/||z_0||) tightens with
+   the next ||z|| by about gamma ||r||: relative to ||y|| ~ ||z||, eta (see SNESSolve_SSStar) tightens with
    the convergence, and the absolute floor keeps gamma ||r|| a tenth of the stopping threshold. Once a full step
    left every node in its state, the problem is locally linear and one exact step ends it (as on the dense route):
    eta = 0, the floor alone.
@@ -669,7 +669,7 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   PetscCall(SSStarNewtonGetPCReuse(ss->newton, &value));
   PetscCall(PetscOptionsReal("-snes_ssstar_pc_reuse", "Whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows since it (negative: a new one every step)", "SNESSSStarSetPCReuse", value, &value, &set));
   if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
+  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens as (||z||/||z_0||)^2)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
   PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
   PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
@@ -1006,7 +1006,7 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_lu_threads <1> - on several ranks, rank 0's BLAS threads for the LU of the Newton matrix (0: the cores it may run on)
 .  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (0: only when none changed; negative: a fresh LU at every step); -snes_ssstar_newton_ksp_* set that GMRES
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
-.  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||)
+.  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, (||z||/||z_0||)^2), this squared once a remedy acted
 .  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol

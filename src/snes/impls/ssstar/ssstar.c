@@ -526,14 +526,15 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       stop = SSSTAR_REASON_CYCLE;
     } else if (ss->glob.detected == SSSTAR_DETECTED_STAGNATION) stop = SSSTAR_REASON_STAGNATION;
     if (!stop) {
-      /* inexact Newton: eta = (||z||/||z_0||)^2 (superlinear near the solution), at most etaMax, or etaMax^2 once a
-         remedy acted (the damped step compares ||z|| along the step: a 10 % error of the step misleads it); once the
-         states repeat after a full step, the step is likely the last one: exact */
+      /* inexact Newton: eta = ||z||/||z_0|| (superlinear near the solution), at most etaMax, or etaMax^2 once a remedy
+         acted (the damped step compares ||z|| along the step: a 10 % error of the step misleads it); once the states
+         repeat after a full step, the step is likely the last one: exact. (||z||/||z_0||)^2 saves no Newton iteration
+         at level 16 and costs 30 % more Krylov iterations (186 against 144) */
       PetscInt remedies = 0;
 
       for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) remedies += ss->glob.counts[r];
       const PetscReal cap = remedies ? PetscSqr(ss->etaMax) : ss->etaMax;
-      const PetscReal eta = ss->glob.changed == 0 && ss->glob.shownAlpha == 1 ? 0.0 : PetscMin(cap, PetscSqr(znorm / z0));
+      const PetscReal eta = ss->glob.changed == 0 && ss->glob.shownAlpha == 1 ? 0.0 : PetscMin(cap, znorm / z0);
 
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
@@ -669,7 +670,7 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   PetscCall(SSStarNewtonGetPCReuse(ss->newton, &value));
   PetscCall(PetscOptionsReal("-snes_ssstar_pc_reuse", "Whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows since it (negative: a new one every step)", "SNESSSStarSetPCReuse", value, &value, &set));
   if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens as (||z||/||z_0||)^2)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
+  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
   PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
   PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
@@ -1006,7 +1007,7 @@ static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec 
 .  -snes_ssstar_lu_threads <1> - on several ranks, rank 0's BLAS threads for the LU of the Newton matrix (0: the cores it may run on)
 .  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (0: only when none changed; negative: a fresh LU at every step); -snes_ssstar_newton_ksp_* set that GMRES
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
-.  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, (||z||/||z_0||)^2), this squared once a remedy acted
+.  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||), this squared once a remedy acted
 .  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
 -  -snes_atol <1e-50> - or when ||z|| <= atol

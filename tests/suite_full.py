@@ -38,9 +38,9 @@ def same_answer(name, runner, args, tol=1e-8, ranks=1, iterations=1):
     return dense, full
 
 
-@test("prism levels 3, 5 and 7: the whole-body path gives the dense route's solution (contact face, reactions, whole field) to 1e-8, the same states, the iterations within one; -snes_view names the path, the KSP and PC, and the linear iterations per Newton step")
+@test("prism levels 3, 4, 5 and 7: the whole-body path gives the dense route's solution (contact face, reactions, whole field) to 1e-8, the same states, the iterations within one; -snes_view names the path, the KSP and PC, and the linear iterations per Newton step")
 def full_prism_same_answer():
-    for level in (3, 5, 7):
+    for level in (3, 4, 5, 7):
         _, full = same_answer("full_prism_L%d" % level, prism_run, ["-level", str(level), "-snes_view"])
     for pattern in (r"solved on the whole body, P never formed \(reduction none\)", r"Newton step on the whole body", r"KSP Object:", r"type: gamg",
                     r"last solve: \d+ linear solves, \d+ Krylov iterations \([\d.]+ per solve\)"):

@@ -215,8 +215,9 @@ static PetscErrorCode SNESSSStarClassify(SNES snes)
 
 /*
    Whole body: the tolerances of the next linear solve (inexact Newton). Its residual r (units of gamma^-1 y) moves
-   the next ||z|| by about gamma ||r||: relative to ||y|| ~ ||z||, eta (see SNESSolve_SSStar) tightens with
-   the convergence, and the absolute floor keeps gamma ||r|| a tenth of the stopping threshold. Once a full step
+   the next ||z|| by about gamma ||r||: gamma ||r|| <= eta ||z|| (eta: see SNESSolve_SSStar), never below a tenth of
+   the stopping threshold. The bound is on ||z||, not relative to the right-hand side: the eliminated known dofs
+   make that large, and one CG iteration could meet a relative tolerance with a useless step. Once a full step
    left every node in its state, the problem is locally linear and one exact step ends it (as on the dense route):
    eta = 0, the floor alone.
 */
@@ -229,7 +230,7 @@ static PetscErrorCode SetLinearTolerances(SNES snes, PetscReal znorm, PetscReal 
   if (ss->contact.newtonType != SSSTAR_NEWTON_FULL) PetscFunctionReturn(0);
   PetscCall(ContactNorm(snes, ss->u, &unorm));
   threshold = PetscMax(snes->abstol, snes->rtol * PetscMax(unorm, ss->scale));
-  PetscCall(SSStarNewtonSetTolerances(ss->newton, rtol, 0.1 * threshold / ss->scaling));
+  PetscCall(SSStarNewtonSetTolerances(ss->newton, 0.0, PetscMax(rtol * znorm, 0.1 * threshold) / ss->scaling));
   PetscFunctionReturn(0);
 }
 

@@ -113,8 +113,14 @@ def main():
                     ys[s] = math.nan
                     continue
                 ys[s] = statistics.median(yardstick(level, ranks, s) for _ in range(args.repeat))
+            measured = {path: [] for path in paths}
+            for _ in range(args.repeat):  # the paths interleaved, so that a noisy spell hits both
+                for path in paths:
+                    r = measure(level, ranks, path)
+                    if r:
+                        measured[path].append(r)
             for path in paths:
-                runs = [r for r in (measure(level, ranks, path) for _ in range(args.repeat)) if r]
+                runs = measured[path]
                 if not runs:
                     continue
                 row = {"level": level, "ranks": ranks, "path": path, "nodes": runs[0]["nodes"], "contact": runs[0]["contact"],

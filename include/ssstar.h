@@ -100,6 +100,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetFriction(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetSlipBounds(SNES, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES, PetscInt, const SSStarFrictionLaw[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNodeFriction(SNES, PetscInt, SSStarFrictionLaw[], PetscReal[], PetscReal[]);
 
 /* The method */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetScaling(SNES, PetscReal);
@@ -115,6 +116,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, Pets
 PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);

@@ -429,6 +429,62 @@ PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
 }
 
 /*@
+   SNESSSStarGetTolerance - the threshold the last solve's stopping rule compared ||z|| with
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  tol - max(atol, rtol max(||u||, ||gamma f||)) at the last iterate (SNESConvergedSSStar())
+
+   Level: intermediate
+
+.seealso: `SNESConvergedSSStar()`, `SNESGetFunctionNorm()`, `SNESSSStarGetReason()`
+@*/
+PetscErrorCode SNESSSStarGetTolerance(SNES snes, PetscReal *tol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidRealPointer(tol, 2);
+  PetscUseMethod(snes, "SNESSSStarGetTolerance_C", (SNES, PetscReal *), (snes, tol));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetNodeFriction - the friction law, Coulomb coefficient and Tresca slip bound the solver uses at each
+   contact node of this rank, in the order the nodes were declared
+
+   Not Collective
+
+   Input Parameters:
++  snes - the SNES, after SNESSetUp() or SNESSolve()
+-  n    - the number of contact nodes of this rank (the length of each array)
+
+   Output Parameters:
++  laws   - the law of each node, or NULL
+.  phi    - the Coulomb coefficient of each node (meaningful where the law is coulomb), or NULL
+-  bounds - the Tresca slip bound of each node (a force; meaningful where the law is tresca), or NULL
+
+   Notes:
+   What SNESSSStarSetFrictionLaw(), SNESSSStarSetFriction(), SNESSSStarSetFrictionCoefficients(),
+   SNESSSStarSetSlipBounds() and SNESSSStarSetNodeFrictionLaws() together gave each node; the output files of the
+   scenes record it (/contact/friction_law, /contact/friction, /contact/slip_bound).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetSlipBounds()`
+@*/
+PetscErrorCode SNESSSStarGetNodeFriction(SNES snes, PetscInt n, SSStarFrictionLaw laws[], PetscReal phi[], PetscReal bounds[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetNodeFriction_C", (SNES, PetscInt, SSStarFrictionLaw[], PetscReal[], PetscReal[]), (snes, n, laws, phi, bounds));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarSetGlobalization - turns the globalization of ssstar on or off and sets its parameters
 
    Logically Collective

@@ -174,6 +174,7 @@ typedef struct {
   PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
   PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
   SSStarReason reason;
+  PetscReal    tolerance;    /* the threshold of the last convergence test: max(atol, rtol max(||u||, ||gamma f||)) */
 
   /* the iteration, per local node in the solver's order */
   SSStarState *states;                     /* at the last iterate                                   */

@@ -30,9 +30,9 @@ import ssstar  # noqa: E402  (the source tree's python/ssstar, or the installed 
 
 
 def vector_option(name, default):
-    value = PETSc.Options().getString(name[1:], None)
-    if value is None:
+    if not PETSc.Options().hasName(name[1:]):
         return np.array(default, dtype=float)
+    value = PETSc.Options().getString(name[1:])
     v = np.array([float(x) for x in value.split(",")])
     if v.size != 3 or not np.isfinite(v).all():
         sys.exit("Option %s needs three comma-separated numbers x,y,z" % name)
@@ -152,7 +152,7 @@ def main():
                     % (names.get(reason, reason), ssstar.get_reason(snes), snes.getIterationNumber(),
                        "/".join(str(c) for c in counts), worst, force, "/".join(str(c) for c in lawcounts)), comm=comm)
     if out:
-        write(out, comm, X, ua, forces, normals, gaps, laws, phis, bounds, states)
+        write(out, comm, X, ua, forces, normals, gaps, laws, phis, bounds)
 
 
 def minimum(comm, value):
@@ -174,10 +174,10 @@ def total(comm, values):
     return w.getArray().copy()
 
 
-def write(path, comm, X, u, r, normals, gaps, laws, phi, bounds, states):
+def write(path, comm, X, u, r, normals, gaps, laws, phi, bounds):
     """The layout of examples/generic.c's -o file: /contact/{coordinates, displacement, reaction, normal, gap, friction,
-    slip_bound, friction_law, state}, each rank's nodes after those of the lower ranks"""
-    viewer = PETSc.Viewer().createHDF5(path, "w", comm=comm)
+    slip_bound, friction_law}, each rank's nodes after those of the lower ranks"""
+    viewer = PETSc.ViewerHDF5().createHDF5(path, "w", comm=comm)
     viewer.pushGroup("/contact")
     for name, values, bs in (("coordinates", X, 3), ("displacement", u, 3), ("reaction", r, 3), ("normal", normals, 3),
                              ("gap", gaps, 1), ("friction", np.where(laws == 2, phi, 0.0), 1),
@@ -188,11 +188,10 @@ def write(path, comm, X, u, r, normals, gaps, laws, phi, bounds, states):
         v.setName(name)
         v.view(viewer)
         v.destroy()
-    for name, values in (("friction_law", laws), ("state", states)):
-        iset = PETSc.IS().createGeneral(np.asarray(values, dtype=PETSc.IntType), comm=comm)
-        iset.setName(name)
-        iset.view(viewer)
-        iset.destroy()
+    iset = PETSc.IS().createGeneral(np.asarray(laws, dtype=PETSc.IntType), comm=comm)
+    iset.setName("friction_law")
+    iset.view(viewer)
+    iset.destroy()
     viewer.popGroup()
     viewer.destroy()
 

@@ -172,8 +172,8 @@ def set_contact_nodes(snes, dofs, normals=None, gaps=None):
 
 def get_contact_nodes(snes):
     """SNESSSStarGetContactNodes(): (n, dofs, normals, gaps): the number of contact nodes of this rank and what
-    set_contact_nodes() declared as numpy arrays (None where not declared; n = -1 before the set-up of a reduced
-    problem)"""
+    set_contact_nodes() declared as numpy arrays (None where not declared; n = -1 for a reduced problem whose function
+    vector does not exist yet)"""
     n, handles = _Int(), [_Handle() for _ in range(3)]
     _call(_C["SNESSSStarGetContactNodes"], _h(snes), ctypes.byref(n), *(ctypes.byref(h) for h in handles))
     out = []

@@ -50,7 +50,8 @@ PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec ga
 
    Output Parameters:
 +  n       - the contact nodes of this rank: 1/3 of the declared dofs; in the reduced use 1/3 of the local size of
-             the SNES vectors once they exist (after SNESSetUp()), -1 before
+             the SNES function vector once it exists (SNESSetFunction() with a vector, SNESSSStarSetContactProblem(),
+             SNESSetUp()), -1 before
 .  dofs    - the declared IS of contact dofs, or NULL (reduced use)
 .  normals - the declared normals, or NULL
 -  gaps    - the declared gaps, or NULL

@@ -28,12 +28,12 @@
 /* Opens the group path of file, creating the missing groups on the way */
 static PetscErrorCode GroupOpen(hid_t file, const char path[], hid_t *group)
 {
-  char  part[PETSC_MAX_PATH_LEN];
+  char  part[PETSC_MAX_PATH_LEN], *save = NULL;
   hid_t parent = file, child = -1;
 
   PetscFunctionBegin;
   PetscCall(PetscStrncpy(part, path, sizeof(part)));
-  for (char *name = strtok(part, "/"); name; name = strtok(NULL, "/")) {
+  for (char *name = strtok_r(part, "/", &save); name; name = strtok_r(NULL, "/", &save)) {
     htri_t exists = H5Lexists(parent, name, H5P_DEFAULT);
 
     PetscCheck(exists >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 cannot look up the group %s of %s", name, path);

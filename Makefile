@@ -9,6 +9,8 @@ endif
 LIBNAME  := ssstar
 VERSION  := 0.3.0
 PREFIX   ?= /usr/local
+# where make install puts the Python module ssstar (Debian's python3 searches /usr/local/lib/python3/dist-packages)
+PYTHON_DIR ?= $(PREFIX)/lib/python3/dist-packages
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/newton_dense.c src/snes/impls/ssstar/newton_sparse.c \
@@ -38,7 +40,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-large bench-scenes scenes accuracy install clean distclean
+.PHONY: all run test bench bench-large bench-scenes scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -76,13 +78,21 @@ tests/test_plain_contact: tests/test_plain_contact.c
 	$(Q)$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
 
 # make install PREFIX=/some/where: the library, the headers and lib/pkgconfig/ssstar.pc (which carries PETSc's flags),
-# so that a program builds with  mpicc prog.c $$(pkg-config --cflags --libs ssstar)
+# so that a program builds with  mpicc prog.c $$(pkg-config --cflags --libs ssstar); and the Python module ssstar in
+# $(PYTHON_DIR), told where the library is (_config.py)
 install: $(LIB)
-	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PYTHON_DIR)/ssstar
 	install -m 644 include/*.h $(DESTDIR)$(PREFIX)/include/
 	install -m 755 $(LIB) $(DESTDIR)$(PREFIX)/lib/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@PETSC_CFLAGS@|$(PETSC_CC_INCLUDES)|' \
 	    -e 's|@PETSC_LIBS@|$(PETSC_LIB)|' ssstar.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/ssstar.pc
+	install -m 644 python/ssstar/__init__.py $(DESTDIR)$(PYTHON_DIR)/ssstar/
+	printf 'LIBRARY = "%s"\n' '$(PREFIX)/lib/lib$(LIBNAME).so' > $(DESTDIR)$(PYTHON_DIR)/ssstar/_config.py
+	@echo "The Python module ssstar is in $(PYTHON_DIR): put it on PYTHONPATH unless python3 searches it already"
+
+# the compiler and flags the sources are built with (tests/suite_package.py compiles the manual's synopses with them)
+print-cflags:
+	@echo $(PCC) $(CFLAGS_SSSTAR)
 
 run: all
 	$(MPIEXEC_SSSTAR) -n 2 examples/prism -level 6 -snes_converged_reason -o prism_L6.h5

@@ -176,7 +176,7 @@ int main(int argc, char **argv)
   if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s\n", nodes, ncontact, (double)t_assembly,
                         (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)"));
-  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, out, u, r, states, nsteps > 1 ? WriteLoadSteps : NULL, &steps));
+  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nsteps > 1 ? WriteLoadSteps : NULL, &steps));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
   PetscCall(SNESDestroy(&snes));

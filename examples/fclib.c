@@ -13,7 +13,7 @@ The summary gives the FCLib error (natural map with De Saxce's modified velocity
    component first, u = W r + q and the Coulomb law between the local velocity u and the force r. ssstar's reduced
    form r = P u - f with blocks (t1, t2, n) is the same problem with P = W^-1, f = P q, each block reordered.
    Every rank reads the (small) file and condenses/inverts W itself; the solve is distributed over the ranks, with
-   whole contacts on each rank. Starting point u = 0 (DERIVATION.md section 7); /guesses in a file are not used.
+   whole contacts on each rank. Starting point u = 0 (docs/derivation.md section 7); /guesses in a file are not used.
 */
 #include <ssstar.h>
 #include <ssstarcontact.h>

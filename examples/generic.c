@@ -10,7 +10,8 @@ Options:\n\
   -push <0.005,0,-0.01>           displacement imposed on the top face\n\
   -obstacle_point <0,0,-0.002>    a point of the rigid plane\n\
   -obstacle_normal <0,0,1>        its normal, pointing into the body (normalized here)\n\
-  -o <file.h5>                    write the contact nodes' coordinates, displacement, reaction (K u - b), normal, gap\n";
+  -o <file.h5>                    write the contact nodes' coordinates, displacement, reaction (K u - b), normal, gap\n\
+                                  and, for ssstar, the friction law, coefficient and slip bound of each\n";
 
 #include <petscdmda.h>
 #include <petscsnes.h>
@@ -223,10 +224,52 @@ static PetscErrorCode Report(Vec u, Vec r, IS dofs, Vec normals, Vec gaps)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteContactNodes(const char file[], Vec u, Vec r, IS dofs, Vec normals, Vec gaps, Vec coords)
+/* The friction law, coefficient and slip bound the solver used at each node: /contact/friction_law (0 none, 1 tresca,
+   2 coulomb), /contact/friction, /contact/slip_bound (tests/check_solution.py reads them) */
+static PetscErrorCode WriteFriction(PetscViewer viewer, SNES snes, Vec gaps)
+{
+  PetscInt           n;
+  SSStarFrictionLaw *laws;
+  PetscInt          *codes;
+  PetscReal         *phi, *bound;
+  PetscScalar       *pa, *ba;
+  Vec                vphi, vbound;
+  IS                 is;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(gaps, &n));
+  PetscCall(PetscMalloc4(n, &laws, n, &codes, n, &phi, n, &bound));
+  PetscCall(SNESSSStarGetNodeFriction(snes, n, laws, phi, bound));
+  PetscCall(VecDuplicate(gaps, &vphi));
+  PetscCall(VecDuplicate(gaps, &vbound));
+  PetscCall(VecGetArrayWrite(vphi, &pa));
+  PetscCall(VecGetArrayWrite(vbound, &ba));
+  for (PetscInt i = 0; i < n; i++) {
+    codes[i] = (PetscInt)laws[i];
+    pa[i]    = laws[i] == SSSTAR_FRICTION_COULOMB ? phi[i] : 0.0;
+    ba[i]    = laws[i] == SSSTAR_FRICTION_TRESCA ? bound[i] : 0.0;
+  }
+  PetscCall(VecRestoreArrayWrite(vbound, &ba));
+  PetscCall(VecRestoreArrayWrite(vphi, &pa));
+  PetscCall(PetscObjectSetName((PetscObject)vphi, "friction"));
+  PetscCall(PetscObjectSetName((PetscObject)vbound, "slip_bound"));
+  PetscCall(VecView(vphi, viewer));
+  PetscCall(VecView(vbound, viewer));
+  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)gaps), n, codes, PETSC_USE_POINTER, &is));
+  PetscCall(PetscObjectSetName((PetscObject)is, "friction_law"));
+  PetscCall(ISView(is, viewer));
+  PetscCall(ISDestroy(&is));
+  PetscCall(VecDestroy(&vphi));
+  PetscCall(VecDestroy(&vbound));
+  PetscCall(PetscFree4(laws, codes, phi, bound));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteContactNodes(const char file[], SNES snes, Vec u, Vec r, IS dofs, Vec normals, Vec gaps, Vec coords)
 {
   PetscViewer viewer;
   Vec         uC, rC;
+  PetscBool   isssstar;
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, file, FILE_MODE_WRITE, &viewer));
@@ -247,6 +290,8 @@ static PetscErrorCode WriteContactNodes(const char file[], Vec u, Vec r, IS dofs
   PetscCall(VecView(coords, viewer));
   PetscCall(VecRestoreSubVector(r, dofs, &rC));
   PetscCall(VecRestoreSubVector(u, dofs, &uC));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (isssstar) PetscCall(WriteFriction(viewer, snes, gaps));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
@@ -303,7 +348,7 @@ int main(int argc, char **argv)
   PetscCall(FormFunction(snes, u, r, &body));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s after %" PetscInt_FMT " iterations\n", SNESConvergedReasons[reason], its));
   PetscCall(Report(u, r, dofs, normals, gaps));
-  if (hasOut) PetscCall(WriteContactNodes(out, u, r, dofs, normals, gaps, coords));
+  if (hasOut) PetscCall(WriteContactNodes(out, snes, u, r, dofs, normals, gaps, coords));
 
   PetscCall(VecDestroy(&r));
   PetscCall(VecDestroy(&u));

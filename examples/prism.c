@@ -227,7 +227,7 @@ int main(int argc, char **argv)
                         hasMesh ? -1 : level, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
                         SNESConvergedReasons[reason]));
 
-  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, out, u, r, states, NULL, NULL));
+  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, NULL, NULL));
   if (hasReduced && isssstar) PetscCall(SaveReduced(reduced, scene, snes, u));
 
   PetscCall(SNESDestroy(&snes));

@@ -12,7 +12,7 @@
    Reduced: without SNESSSStarSetContactNodes() every dof is a contact dof, the SNES function is
    c(u) = P u - f (or P u with SNESSolve(snes, f, u)) and the Jacobian P, on 3-blocks (u_t1, u_t2, u_n).
    In both, 0 in c(u) + Q(u) with non-penetration u_n + gap >= 0 and Q the friction law
-   (DERIVATION.md section 0).
+   (docs/derivation.md section 0).
 */
 #include <petscsnes.h>
 #include <ssstarreduction.h>
@@ -27,7 +27,7 @@
 #define SSSTAR_VERSION_MINOR 3
 #define SSSTAR_VERSION_SUBMINOR 0
 
-/* The contact states of Table 1 (DERIVATION.md section 2); values are written to output files. */
+/* The contact states of Table 1 (docs/derivation.md section 2); values are written to output files. */
 typedef enum {
   SSSTAR_STATE_L   = 0, /* no contact                                             */
   SSSTAR_STATE_M1  = 1, /* strong contact, sliding                                */
@@ -85,6 +85,7 @@ PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
 
 /* The contact problem: the whole body (K u - b with contact nodes) or the reduced one (P u - f) */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetContactNodes(SNES, PetscInt *, IS *, Vec *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactOperator(SNES, IS, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
@@ -100,6 +101,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetFriction(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetSlipBounds(SNES, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES, PetscInt, const SSStarFrictionLaw[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNodeFriction(SNES, PetscInt, SSStarFrictionLaw[], PetscReal[], PetscReal[]);
 
 /* The method */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetScaling(SNES, PetscReal);
@@ -115,6 +117,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, Pets
 PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);
@@ -130,7 +133,7 @@ typedef struct {
   PetscReal         bound; /* Tresca slip bound, in the units of the kernels' c (scaled by gamma) */
 } SSStarFriction;
 
-/* Approximation step (11)-(12), DERIVATION.md section 1: from the iterate u and c = P u - f. */
+/* Approximation step (11)-(12), docs/derivation.md section 1: from the iterate u and c = P u - f. */
 PETSC_EXTERN void SSStarApproximationStep(const SSStarFriction *, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3]);
 /* Table 1 for (d, b) in gph Q, section 2. */
 PETSC_EXTERN SSStarState SSStarClassify(const SSStarFriction *, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b);

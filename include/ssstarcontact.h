@@ -43,11 +43,12 @@ PETSC_EXTERN PetscErrorCode SSStarSceneGetContactResult(SSStarScene, PetscInt, V
 PETSC_EXTERN PetscErrorCode SSStarSceneContactView(SSStarScene, Vec, const SSStarState[], PetscViewer);
 
 /*
-   Output: HDF5 + XDMF, written to temporary names and renamed on success, so that a failed run leaves no file
-   behind. extra, if not NULL, adds the caller's datasets to the open file.
+   Output: HDF5 + XDMF, the same file on any number of ranks (the mesh file's node order), with what was solved and how
+   the solve went; written to temporary names and renamed on success, so that a failed run leaves no file behind.
+   extra, if not NULL, adds the caller's datasets to the open file.
 */
 PETSC_EXTERN PetscErrorCode SSStarCheckOutputFile(MPI_Comm, const char[]);
-PETSC_EXTERN PetscErrorCode SSStarSceneWriteSolution(SSStarScene, const char[], Vec, Vec, const SSStarState[], PetscErrorCode (*)(PetscViewer, void *), void *);
+PETSC_EXTERN PetscErrorCode SSStarSceneWriteSolution(SSStarScene, SNES, const char[], Vec, PetscErrorCode (*)(PetscViewer, void *), void *);
 
 /* The pieces a scene is made of, for programs of their own */
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);

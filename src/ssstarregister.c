@@ -13,6 +13,12 @@ static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 
 /*@C
    SSStarFinalizePackage - called by PetscFinalize(): the next SSStarInitializePackage() registers again
+
+   Not Collective
+
+   Level: developer
+
+.seealso: `SSStarInitializePackage()`
 @*/
 PetscErrorCode SSStarFinalizePackage(void)
 {
@@ -22,7 +28,17 @@ PetscErrorCode SSStarFinalizePackage(void)
 }
 
 /*@C
-   SSStarInitializePackage - registers the SNES type "ssstar" and the log events of ssstar
+   SSStarInitializePackage - registers the SNES type "ssstar" (SNESSSSTAR) and the log events of ssstar
+
+   Not Collective
+
+   Notes:
+   A program linked with libssstar calls it after PetscInitialize(); with -dll_append /path/libssstar.so PETSc calls
+   it (through PetscDLLibraryRegister_ssstar()). Calling it again does nothing; PetscFinalize() undoes it.
+
+   Level: beginner
+
+.seealso: `SSStarFinalizePackage()`, `SNESSetType()`
 @*/
 PetscErrorCode SSStarInitializePackage(void)
 {

@@ -1,11 +1,14 @@
 #!/usr/bin/python3
 """Independent checks of an ssstar solution file (HDF5 written by examples/prism -o).
 
-  check_solution.py coulomb FILE.h5 [--phi 0.3] [--tol 1e-8]
-      the Coulomb law at every contact node, relative to max|u| and max|r|, in the node's frame built from
+  check_solution.py coulomb FILE.h5 [--phi PHI] [--tol 1e-8]
+      the friction law of every contact node, relative to max|u| and max|r|, in the node's frame built from
       /contact/normal (default (0, 0, 1)) with the initial gap /contact/gap (default 0): u_n = u.n + gap >= 0,
-      r_n = r.n >= 0, u_n r_n = 0, |r_t| <= phi r_n, r_t = -phi r_n u_t/|u_t| where u_t != 0; no NaN or Inf;
-      and, for a file with a mesh, the XDMF file beside it names datasets of the right shapes
+      r_n = r.n >= 0, u_n r_n = 0, |r_t| <= bound, r_t = -bound u_t/|u_t| where u_t != 0, with bound = phi r_n
+      (Coulomb), s (Tresca) or 0 (frictionless); no NaN or Inf. The law, phi and s of each node are read from the
+      file (/contact/friction_law, /contact/friction, /contact/slip_bound, written by the scenes and by
+      examples/generic); --phi gives a Coulomb coefficient for every node of a file without them.
+      For a file with a mesh, the XDMF file beside it names datasets of the right shapes.
   check_solution.py compare A.h5 B.h5 [--tol 1e-10]
       the contact displacement and reaction, and the displacement on the whole mesh, of two runs agree
       (relative to their max norms), and so do the contact states
@@ -41,6 +44,9 @@ def coulomb(args):
     if not np.isfinite(u).all() or not np.isfinite(r).all():
         print("NaN or Inf in the solution")
         return False
+    law, phi, bound = friction(c, p, args.phi)
+    if law is None:
+        return False
     # the law in each node's frame, built here from the normal alone: u_n = u.n + gap, u_t = u - (u.n) n
     un, rn = np.einsum("ij,ij->i", u, normal) + gap, np.einsum("ij,ij->i", r, normal)
     ut = u - (un - gap)[:, None] * normal
@@ -50,12 +56,14 @@ def coulomb(args):
     sliding = utn > args.tol * umax
     unit = np.zeros_like(ut)
     unit[sliding] = ut[sliding] / utn[sliding, None]
+    # the largest tangential force of each node: phi r_n (Coulomb), s (Tresca), 0 (frictionless)
+    limit = np.where(law == COULOMB, phi * rn, np.where(law == TRESCA, bound, 0.0))
     violations = {
         "u_n + gap >= 0": np.max(-un) / umax,
         "r_n >= 0": np.max(-rn) / rmax,
         "(u_n + gap) r_n = 0": np.max(np.abs(un * rn)) / (umax * rmax),
-        "|r_t| <= phi r_n": np.max(rtn - args.phi * rn) / rmax,
-        "r_t = -phi r_n u_t/|u_t|": np.max(np.abs(rt[sliding] + args.phi * rn[sliding, None] * unit[sliding])) / rmax if sliding.any() else 0.0,
+        "|r_t| <= bound": np.max(rtn - limit) / rmax,
+        "r_t = -bound u_t/|u_t|": np.max(np.abs(rt[sliding] + limit[sliding, None] * unit[sliding])) / rmax if sliding.any() else 0.0,
     }
     ok = True
     for name, v in violations.items():
@@ -69,6 +77,36 @@ def coulomb(args):
     if "geometry" in f:
         ok &= check_xdmf(args.file, f)
     return ok
+
+
+NONE, TRESCA, COULOMB = 0, 1, 2
+
+
+def friction(c, p, phi):
+    """The law, Coulomb coefficient and Tresca bound of each node: from the file, else Coulomb with --phi."""
+    if "friction_law" in c and "friction" in c:
+        law, coefficient = c["friction_law"][:].ravel(), c["friction"][:].ravel()  # (p, 1) when written by ISView
+        bound = c["slip_bound"][:].ravel() if "slip_bound" in c else np.zeros(p)
+        if law.shape != (p,) or coefficient.shape != (p,) or bound.shape != (p,):
+            print("/contact/friction_law, friction or slip_bound do not have one entry per contact node")
+            return None, None, None
+        if phi is not None and np.any((law == COULOMB) & (coefficient != phi)):
+            print("--phi %g differs from the file's coefficients %s" % (phi, np.unique(coefficient[law == COULOMB])))
+            return None, None, None
+        print("laws (file): %d frictionless, %d Tresca (s %s), %d Coulomb (phi %s)" % (
+            (law == NONE).sum(), (law == TRESCA).sum(), describe(bound[law == TRESCA]), (law == COULOMB).sum(),
+            describe(coefficient[law == COULOMB])))
+        return law, coefficient, bound
+    if phi is None:
+        print("the file has no /contact/friction_law and /contact/friction: give --phi")
+        return None, None, None
+    print("laws (--phi): %d Coulomb (phi %g)" % (p, phi))
+    return np.full(p, COULOMB), np.full(p, phi), np.zeros(p)
+
+
+def describe(values):
+    u = np.unique(values)
+    return "-" if not len(u) else ("%g" % u[0] if len(u) == 1 else "%g..%g" % (u.min(), u.max()))
 
 
 def check_xdmf(h5name, f):
@@ -121,7 +159,7 @@ def main():
     sub = parser.add_subparsers(dest="cmd", required=True)
     c = sub.add_parser("coulomb")
     c.add_argument("file")
-    c.add_argument("--phi", type=float, default=0.3)
+    c.add_argument("--phi", type=float, default=None, help="Coulomb coefficient of every node, for files without /contact/friction")
     c.add_argument("--tol", type=float, default=1e-8)
     m = sub.add_parser("compare")
     m.add_argument("a")

@@ -10,7 +10,7 @@ LIB = os.path.join(ROOT, "lib", "libssstar.so")
 PYTHON = "/usr/bin/python3"  # Debian's, with h5py
 PRISM = os.path.join(ROOT, "examples", "prism")
 CHECK = [PYTHON, os.path.join(ROOT, "tests", "check_solution.py")]
-# iterations from u = 0 and separated/sliding/sticking counts of an independent implementation (DERIVATION.md section 8)
+# iterations from u = 0 and separated/sliding/sticking counts of an independent implementation (docs/derivation.md section 8)
 REFERENCE_ITERATIONS = {3: 7, 4: 7, 5: 8, 6: 9, 7: 9, 8: 10, 9: 9, 10: 10}
 REFERENCE_STATES = {3: "14/55/15", 4: "26/89/29", 6: "51/182/79"}
 

@@ -41,7 +41,7 @@ def generic_ssstar_contact():
     out, distance, force = generic(1, "-snes_type", "ssstar", "-snes_converged_reason", h5="generic_flat.h5")
     expect("CONVERGED_FNORM_RELATIVE" in out, "not converged", out)
     expect(distance >= -1e-12 and force > 1e3, "penetration %g or no contact force %g" % (distance, force), out)
-    law = run(CHECK + ["coulomb", os.path.join(OUT, "generic_flat.h5"), "--phi", "0.3"])
+    law = run(CHECK + ["coulomb", os.path.join(OUT, "generic_flat.h5")])
     expect("VIOLATED" not in law, "law violated", law)
 
 
@@ -51,7 +51,7 @@ def generic_tilted_gaps_ranks():
     for ranks in (1, 2, 3):
         out, distance, force = generic(ranks, "-snes_type", "ssstar", "-snes_converged_reason", *TILTED, h5="generic_tilted%d.h5" % ranks)
         expect("CONVERGED_FNORM_RELATIVE" in out and distance >= -1e-11, "%d ranks: %s, distance %g" % (ranks, "not converged" if "CONVERGED" not in out else "converged", distance), out)
-        law = run(CHECK + ["coulomb", os.path.join(OUT, "generic_tilted%d.h5" % ranks), "--phi", "0.3"])
+        law = run(CHECK + ["coulomb", os.path.join(OUT, "generic_tilted%d.h5" % ranks)])
         expect("VIOLATED" not in law, "%d ranks: law violated" % ranks, law)
         counts = re.search(r"separated (\d+), sliding (\d+), sticking (\d+)", law)
         expect(counts is not None and all(int(c) > 0 for c in counts.groups()), "%d ranks: not every kind of node: %s" % (ranks, law), law)

@@ -37,24 +37,24 @@ def remedies(out):
     return dict(zip(("damped", "full", "rescale", "regularized", "fixed_point", "cycles"), (int(g) for g in m.groups())))
 
 
-def law(tag, phi=0.3):
+def law(tag):
     """The Coulomb law at every node of the solution file, to 1e-6 of the largest displacement and contact force:
     with rtol 1e-10 on ||z|| (a displacement) the forces of an ill-conditioned (nu -> 1/2) or lightly pressed
     (grazing) scene are good to ~1e-8 of the largest contact force only, and the slip direction of a node that
     barely slides to less"""
-    run(CHECK + ["coulomb", h5(tag), "--phi", str(phi), "--tol", "1e-6"])
+    run(CHECK + ["coulomb", h5(tag), "--tol", "1e-6"])
 
 
-def converged(tag, level, options, phi=0.3, max_iters=20, ranks=1):
+def converged(tag, level, options, max_iters=20, ranks=1):
     """Solves; asserts convergence within max_iters, the Coulomb law (independent check of the HDF5 file, law()) and
     the distance to a tight reference solve (rtol 1e-14, where the law holds to 1e-8) below 1e-8 relative; returns
     (summary, output, error)."""
     out, s = prism(level, ranks, extra=list(options) + ["-snes_view", "-snes_ssstar_monitor_states"], h5=tag + ".h5")
     expect(s["reason"] == "CONVERGED_FNORM_RELATIVE", "%s: %s" % (tag, s["reason"]), out)
     expect(s["iters"] <= max_iters, "%s: %d iterations > %d" % (tag, s["iters"], max_iters), out)
-    law(tag, phi)
+    law(tag)
     prism(level, ranks, extra=list(options) + TIGHT, h5=tag + "_ref.h5")
-    run(CHECK + ["coulomb", h5(tag + "_ref"), "--phi", str(phi), "--tol", "1e-8"])
+    run(CHECK + ["coulomb", h5(tag + "_ref"), "--tol", "1e-8"])
     error = relative_difference(contact(tag)["contact/displacement"], contact(tag + "_ref")["contact/displacement"])
     expect(error <= 1e-8, "%s: contact displacement %.1e relative from the tight reference" % (tag, error), out)
     return s, out, error
@@ -64,7 +64,7 @@ def converged(tag, level, options, phi=0.3, max_iters=20, ranks=1):
 def hard_friction():
     for name, scene in (("default", []), ("tangential", TANGENTIAL)):
         for phi in (0.6, 1, 2, 3, 5):
-            converged("friction_%s_%g" % (name, phi), 4, scene + ["-friction", str(phi)], phi=phi)
+            converged("friction_%s_%g" % (name, phi), 4, scene + ["-friction", str(phi)])
 
 
 @test("frictionless contact (phi = 0) converges in at most 6 iterations on levels 3-8, with r_t = 0")
@@ -72,7 +72,7 @@ def hard_frictionless():
     for level in range(3, 9):
         out, s = prism(level, extra=["-friction", "0"], h5="frictionless_L%d.h5" % level)
         expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] <= 6, "level %d: %s after %d iterations" % (level, s["reason"], s["iters"]), out)
-        law("frictionless_L%d" % level, 0)
+        law("frictionless_L%d" % level)
 
 
 def superlinear_end(tag, out):
@@ -163,7 +163,7 @@ def hard_degenerate():
     expect(not np.any(contact("zero_load")["fields/displacement"]), "zero load: u is not 0")
     out, s = prism(3, extra=["-traction_top", "0,0,500"])
     expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] <= 2 and s["sep_sl_st"] == "%d/0/0" % s["contact"], "lift-off: %s, %s" % (s["reason"], s["sep_sl_st"]), out)
-    s, out, _ = converged("sliding_everywhere", 3, ["-friction", "0.1", "-traction_top", "0,0,-500", "-traction_right", "-2000,0,0"], phi=0.1, max_iters=8)
+    s, out, _ = converged("sliding_everywhere", 3, ["-friction", "0.1", "-traction_top", "0,0,-500", "-traction_right", "-2000,0,0"], max_iters=8)
     expect(s["sep_sl_st"] == "0/%d/0" % s["contact"], "not every node slides: %s" % s["sep_sl_st"], out)
 
 

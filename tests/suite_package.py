@@ -2,6 +2,7 @@
 import glob
 import os
 import re
+import shlex
 import shutil
 import subprocess
 
@@ -84,3 +85,46 @@ def petsc4py_reduced_prism():
         expect(m.group(1) == "CONVERGED_FNORM_RELATIVE" and int(m.group(2)) == its and int(m.group(3)) == 144,
                "%d ranks: %s after %s iterations (prism: %d)" % (ranks, m.group(1), m.group(2), its), py)
         expect(float(m.group(4)) <= 1e-7 and float(m.group(5)) <= 1e-8, "%d ranks: law %s, difference %s" % (ranks, m.group(4), m.group(5)), py)
+
+
+SYNOPSIS = re.compile(r"^### (\w+)\n\nSynopsis:\n\n```c\n#include <(\w+\.h)>\n([^\n]*);\n```", re.M)
+
+
+def compile_synopses(synopses, name):
+    """Compiles a C file that assigns each public function to a pointer of its manual's synopsis type, with the
+    project's compiler and flags and -Werror (an incompatible pointer is an error); returns (ok, compiler output)"""
+    source = os.path.join(OUT, name + ".c")
+    lines = ["#include <ssstar.h>", "#include <ssstarreduction.h>", "#include <ssstarcontact.h>", ""]
+    for k, (function, header, signature) in enumerate(synopses):
+        lines.append("%s = %s;" % (signature.replace(" %s(" % function, " (*manual_%d)(" % k, 1), function))
+    open(source, "w").write("\n".join(lines) + "\n")
+    flags = shlex.split(run(["make", "-s", "print-cflags"]).strip())
+    p = subprocess.run(flags + ["-Werror", "-c", source, "-o", os.path.join(OUT, name + ".o")], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    return p.returncode == 0, p.stdout
+
+
+@test("the manual's synopses are the C signatures: docs/manual.md has one synopsis per public function of include/*.h, each compiles as the type of a pointer assigned from the real function (the project's mpicc and flags, -Werror), and a synopsis whose parameter type drifts (SNES -> Mat) does not compile")
+def manual_synopses_compile():
+    synopses = SYNOPSIS.findall(open(os.path.join(ROOT, "docs", "manual.md")).read())
+    public = set()
+    for header in glob.glob(os.path.join(ROOT, "include", "*.h")):
+        public |= set(re.findall(r"PETSC_EXTERN\s+[\w ]+?\s\**(\w+)\s*\(", open(header).read()))
+    expect({s[0] for s in synopses} == public, "synopses for %s, public functions %s" % (sorted({s[0] for s in synopses} ^ public), "differ"))
+    ok, out = compile_synopses(synopses, "manual_synopses")
+    expect(ok, "the manual's synopses do not compile against the headers", out)
+    drifted = [(f, h, s.replace("(SNES snes", "(Mat snes", 1)) for f, h, s in synopses]
+    expect(any(d != s for d, s in zip(drifted, synopses)), "no SNES parameter to alter")
+    ok, out = compile_synopses(drifted, "manual_synopses_drifted")
+    expect(not ok and "incompatible" in out, "a drifted synopsis compiles", out)
+
+
+@test("the derivation lives in the project (docs/derivation.md, cited by README and the code) and its checks hold: tests/derivation_check.py on a random 16-node problem gives (d, b) in gph Q, the 6p and 3p Newton steps equal to 1e-12, T G = S H, quadratic convergence with omega = +d_t/|d_t| and at least twice the iterations with the slides' sign, and the library's kernels equal to the page's blocks")
+def derivation_checks():
+    page = open(os.path.join(ROOT, "docs", "derivation.md")).read()
+    for equation in ("(1.1)", "(3.2)", "(4.1)", "(5.1)", "(5.2)", "(6.1)"):
+        expect(equation in page, "docs/derivation.md has no equation %s" % equation)
+    expect("docs/derivation.md" in open(os.path.join(ROOT, "README.md")).read() and "DERIVATION.md" not in open(os.path.join(ROOT, "README.md")).read(), "README does not cite docs/derivation.md")
+    cited = [p for p in glob.glob(os.path.join(ROOT, "src", "**", "*.[ch]"), recursive=True) if "docs/derivation.md" in open(p).read()]
+    expect(len(cited) >= 5, "the code cites docs/derivation.md in %d files" % len(cited))
+    out = run([PYTHON, os.path.join(ROOT, "tests", "derivation_check.py")])
+    expect("FAILED" not in out and "quadratic" in out, "derivation checks", out)

@@ -29,7 +29,7 @@ for _L in sorted(REFERENCE_ITERATIONS):
 @test("the prism solution (level 4) satisfies the Coulomb law at every contact node to 1e-7 relative, checked from the HDF5 file; the XDMF file matches it; plot_contact.py draws it")
 def prism_coulomb_law():
     prism(4, h5="coulomb_L4.h5")
-    out = run(CHECK + ["coulomb", os.path.join(OUT, "coulomb_L4.h5"), "--phi", "0.3", "--tol", "1e-7"])
+    out = run(CHECK + ["coulomb", os.path.join(OUT, "coulomb_L4.h5"), "--tol", "1e-7"])
     expect("VIOLATED" not in out, "law violated", out)
     png = os.path.join(OUT, "coulomb_L4.png")
     if os.path.exists(png):
@@ -41,7 +41,7 @@ def prism_coulomb_law():
 @test("a non-default friction (-friction 0.5) reaches the solver and the law holds with it")
 def prism_friction_option():
     prism(3, extra=["-friction", "0.5"], h5="friction05_L3.h5")
-    run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5"), "--phi", "0.5"])
+    run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5")])
 
 
 @test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 1e-10 relative")

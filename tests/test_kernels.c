@@ -1,6 +1,6 @@
 static const char help[] = "Per-node kernels of ssstar against hand-computed cases of every contact state.\n";
 
-/* Requirement: the approximation step, the classification and the G/H and S/T blocks of DERIVATION.md
+/* Requirement: the approximation step, the classification and the G/H and S/T blocks of docs/derivation.md
    sections 1-5 give the hand-computed values for the states L, M1, M2, M3+, M3-, M4 and for phi = 0, for the
    Tresca law (L, LS, M1: no normal-tangential coupling) and without friction; (d, b) is always in gph Q, and
    T G = S H for every state and law; the node frame of (0, 0, 1) is the identity and every frame is a right-handed
@@ -47,7 +47,7 @@ typedef struct {
 } Case;
 
 /*
-   (d, b) in gph Q (DERIVATION.md section 0): d3 >= 0, b3 <= 0, d3 b3 = 0, |b12| <= s, b12 = s d12/|d12| if d12 != 0,
+   (d, b) in gph Q (docs/derivation.md section 0): d3 >= 0, b3 <= 0, d3 b3 = 0, |b12| <= s, b12 = s d12/|d12| if d12 != 0,
    with the threshold s = -phi b3 (Coulomb), the bound (Tresca) or 0 (none)
 */
 static PetscBool InGraphQ(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3])

@@ -1,4 +1,4 @@
-static const char help[] = "ssstar Newton steps against the 6p system D [dv; eta] = [z; z] of DERIVATION.md section 4, in the nodes' frames.\n\
+static const char help[] = "ssstar Newton steps against the 6p system D [dv; eta] = [z; z] of docs/derivation.md section 4, in the nodes' frames.\n\
   -trials <24>   random problems\n\
   -sparse        K as AIJ: the generic path (MatMatMult, LU through the KSP) instead of the eliminated dense one\n";
 

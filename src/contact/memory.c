@@ -57,15 +57,24 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
 /*@C
    SSStarCheckMemory - refuses, before the work, a problem whose estimated memory exceeds what the machine has
 
+   Collective
+
    Input Parameters:
 +  comm    - the ranks that will share the work
 .  nodes   - mesh nodes (estimated or counted)
 -  what    - what the count comes from, for the message (e.g. "-level 400 of meshes/prism.geo")
 
+   Options Database Key:
+.  -snes_ssstar_memory_limit <0> - GB per rank instead of MemAvailable
+
    Notes:
    The limit is MemAvailable of /proc/meminfo (summed over the machines of comm) or -snes_ssstar_memory_limit <GB per rank>
    times the ranks of comm. The estimate covers the mesh and the assembly, which every path needs; the factorization of K
    and the dense P are checked later, by the reduction.
+
+   Level: intermediate
+
+.seealso: `SSStarMeshGenerate()`, `SNESSSStarSetMemoryLimit()`
 @*/
 PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what[])
 {

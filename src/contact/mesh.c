@@ -18,12 +18,23 @@ static void GmshOpen(const char geo[], PetscInt level, int *ierr)
 }
 
 /*@C
-   SSStarMeshGenerate - meshes geo (a .geo file read with the number L set to level, such as meshes/prism.geo) with the
-   gmsh C API on rank 0 and writes msh (format 4.1)
+   SSStarMeshGenerate - meshes a .geo file at a level with the gmsh C API on rank 0 and writes the mesh file
+
+   Collective
+
+   Input Parameters:
++  comm  - the ranks
+.  geo   - the geometry, read with the number L set to level (such as meshes/prism.geo)
+.  level - the level, >= 1
+-  msh   - the mesh file to write (format 4.1; written to a temporary name and renamed)
 
    Notes:
    A .geo may declare the node count of a level with SetNumber("ssstar/nodes", <formula of L>); the level is then
    refused before meshing when the memory it would need exceeds the machine's (SSStarCheckMemory()).
+
+   Level: intermediate
+
+.seealso: `SSStarMeshFileNodes()`, `SSStarSceneSetUp()`
 @*/
 PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt level, const char msh[])
 {
@@ -195,6 +206,19 @@ static MeshFileStatus ReadNodeCount(const char file[], double *version, PetscInt
    SSStarMeshFileNodes - the number of nodes of a gmsh mesh file from its header, with an error naming the file when
    it is missing, empty, not a gmsh mesh, without nodes, or an msh 2.2 file whose elementary tags PETSc would take for
    physical groups
+
+   Collective
+
+   Input Parameters:
++  comm - the ranks (rank 0 reads the file)
+-  file - the gmsh mesh (format 2.2 or 4.x)
+
+   Output Parameter:
+.  nodes - its node count, on every rank
+
+   Level: intermediate
+
+.seealso: `SSStarMeshGenerate()`, `SSStarCheckMemory()`
 @*/
 PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *nodes)
 {

@@ -9,6 +9,18 @@
 
 /*@C
    SSStarSceneCreate - an empty scene; SSStarSceneSetFromOptions() describes it, SSStarSceneSetUp() builds it
+
+   Collective
+
+   Input Parameter:
+.  comm - the ranks that share the scene
+
+   Output Parameter:
+.  scene - the scene
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetFromOptions()`, `SSStarSceneSetUp()`, `SSStarSceneDestroy()`
 @*/
 PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
 {
@@ -22,6 +34,15 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
 
 /*@C
    SSStarSceneDestroy - frees the scene, its mesh and contact nodes
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene (set to NULL)
+
+   Level: beginner
+
+.seealso: `SSStarSceneCreate()`
 @*/
 PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
 {
@@ -257,6 +278,34 @@ static const char SceneGroupHelp[] = "\
 /*@C
    SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
    option for unknown, contradictory or incomplete entries
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene
+
+   Options Database Keys:
++  -mesh <file.msh> - the body, a gmsh mesh
+.  -geo <file.geo> - or a geometry meshed at -level
+.  -level <L> - the level of -geo
+.  -mesh_scale <1> - multiply the coordinates by this
+.  -E <E> - Young's modulus of the cells without -material_<G>
+.  -nu <nu> - Poisson's ratio of those cells
+.  -material_<G> <E,nu> - the material of volume group G
+.  -dirichlet <G1,G2> - groups held fixed
+.  -traction_<G> <x,y,z> - traction on surface group G
+.  -spring_<G> <k> - soft support of surface group G
+.  -gravity <gx,gy,gz> - gravity, with -density
+.  -density <rho> - the mass density
+.  -contact <G1,G2> - the contact groups
+.  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid plane of G
+.  -friction_law_<G> <coulomb> - none, tresca or coulomb
+.  -friction_<G> <phi> - the Coulomb coefficient of G
+-  -slip_bound_<G> <s> - the Tresca bound of G
+
+   Level: beginner
+
+.seealso: `SSStarSceneCreate()`, `SSStarSceneSetUp()`, `SSStarSceneView()`
 @*/
 PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 {
@@ -546,8 +595,19 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
 
 /*@C
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
-   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups) and finds the contact nodes; refuses, before
-   each costly step, a problem too large for the machine's memory
+   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups) and finds the contact nodes
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetFromOptions()
+
+   Notes:
+   Refuses, before each costly step, a problem too large for the machine's memory (SSStarCheckMemory()).
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetFromOptions()`, `SSStarSceneAssemble()`, `SSStarSceneSetContact()`
 @*/
 PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
 {
@@ -587,7 +647,19 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
 }
 
 /*@C
-   SSStarSceneGetDM - the distributed mesh of the scene, with its displacement section; owned by the scene
+   SSStarSceneGetDM - the distributed mesh of the scene, with its displacement section
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameter:
+.  dm - the DMPlex (owned by the scene); DMCreateGlobalVector() gives the displacement vectors
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetUp()`, `SSStarSceneAssemble()`
 @*/
 PetscErrorCode SSStarSceneGetDM(SSStarScene scene, DM *dm)
 {
@@ -598,6 +670,19 @@ PetscErrorCode SSStarSceneGetDM(SSStarScene scene, DM *dm)
 
 /*@C
    SSStarSceneGetSizes - the number of mesh nodes and of contact nodes (global)
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameters:
++  nodes   - the mesh nodes, or pass NULL
+-  contact - the contact nodes, or pass NULL
+
+   Level: beginner
+
+.seealso: `SSStarSceneGetContactNodes()`
 @*/
 PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt *contact)
 {
@@ -609,6 +694,19 @@ PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt 
 
 /*@C
    SSStarSceneAssemble - the stiffness K (SPD, with the springs) and the load b (tractions, gravity) of the scene
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameters:
++  K - the stiffness (the caller destroys it); the rigid-body modes are its near-null space
+-  b - the load (the caller destroys it)
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetContact()`, `SSStarSceneGetDM()`
 @*/
 PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
 {
@@ -618,7 +716,20 @@ PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
 }
 
 /*@C
-   SSStarSceneHasContact - whether the scene names contact groups (-contact); without, one linear solve is all there is to do
+   SSStarSceneHasContact - whether the scene names contact groups (-contact); without, one linear solve is all there is
+   to do
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene
+
+   Output Parameter:
+.  has - PETSC_TRUE with contact groups
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetContact()`
 @*/
 PetscErrorCode SSStarSceneHasContact(SSStarScene scene, PetscBool *has)
 {
@@ -628,8 +739,19 @@ PetscErrorCode SSStarSceneHasContact(SSStarScene scene, PetscBool *has)
 }
 
 /*@C
-   SSStarSceneGetContactDofs - the global x, y, z dofs of the owned contact nodes (3 per node, in the order of the
-   states SNESSSStarGetStates() returns for this scene)
+   SSStarSceneGetContactDofs - the global x, y, z dofs of the owned contact nodes
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameter:
+.  dofs - 3 per node, in the order of the states SNESSSStarGetStates() returns for this scene (owned by the scene)
+
+   Level: intermediate
+
+.seealso: `SSStarSceneGetContactNodes()`, `SSStarSceneSetContact()`
 @*/
 PetscErrorCode SSStarSceneGetContactDofs(SSStarScene scene, IS *dofs)
 {
@@ -639,9 +761,26 @@ PetscErrorCode SSStarSceneGetContactDofs(SSStarScene scene, IS *dofs)
 }
 
 /*@C
-   SSStarSceneGetContactNodes - the owned contact nodes (in the order of SSStarSceneGetContactDofs()): their number,
-   coordinates and plane normals (3 per node), initial gaps and tributary areas (1 per node); NULL for what is not wanted.
+   SSStarSceneGetContactNodes - the owned contact nodes, in the order of SSStarSceneGetContactDofs()
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameters:
++  n       - their number, or pass NULL
+.  coords  - their coordinates, 3 per node, or pass NULL
+.  normals - the normals of their planes (into the body), 3 per node, or pass NULL
+.  gaps    - their initial gaps, 1 per node, or pass NULL
+-  areas   - their tributary areas (a third of their adjacent contact faces), 1 per node, or pass NULL
+
+   Notes:
    The arrays belong to the scene.
+
+   Level: intermediate
+
+.seealso: `SSStarSceneGetContactDofs()`, `SSStarSceneGetContactResult()`
 @*/
 PetscErrorCode SSStarSceneGetContactNodes(SSStarScene scene, PetscInt *n, const PetscReal *coords[], const PetscReal *normals[], const PetscReal *gaps[], const PetscReal *areas[])
 {
@@ -668,13 +807,23 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 }
 
 /*@C
-   SSStarSceneSetContact - declares the contact nodes of the scene to an "ssstar" SNES: their dofs, the normals of their
-   planes, their initial gaps, and the friction laws of their groups
+   SSStarSceneSetContact - declares the contact nodes of the scene to an "ssstar" SNES: their dofs, the normals of
+   their planes, their initial gaps, and the friction laws of their groups
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetUp(), with contact groups
+-  snes  - an SNES of type ssstar
 
    Notes:
    A group's -friction_<G> gives its nodes their own coefficient; the nodes of Coulomb groups without one keep the
    solver's (SNESSSStarSetFriction(), -snes_ssstar_friction). One law for all groups is set with
    SNESSSStarSetFrictionLaw(), several with SNESSSStarSetNodeFrictionLaws().
+
+   Level: beginner
+
+.seealso: `SNESSSStarSetContactNodes()`, `SSStarSceneWriteSolution()`
 @*/
 PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
 {
@@ -727,8 +876,18 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
 }
 
 /*@C
-   SSStarSceneView - what the scene simulates: the body, its material, supports and loads, its contact groups, and the
-   line "active effects"
+   SSStarSceneView - what the scene simulates: the body, its material, supports and loads, its contact groups, and
+   the line "active effects"
+
+   Collective
+
+   Input Parameters:
++  scene  - the scene
+-  viewer - an ASCII viewer
+
+   Level: beginner
+
+.seealso: `SSStarSceneContactView()`, `SSStarSceneSetFromOptions()`
 @*/
 PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 {
@@ -771,14 +930,23 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 }
 
 /*@C
-   SSStarSceneGetContactResult - counts, contact area and forces of the contact nodes of group g (-1: of all groups) at
-   a solution
+   SSStarSceneGetContactResult - counts, contact area and forces of the contact nodes of group g (-1: of all groups)
+   at a solution
+
+   Collective
 
    Input Parameters:
 +  scene  - the scene
 .  g      - the contact group (in the order of -contact), or -1
 .  r      - K u - b, whose contact entries are the contact forces (SNESGetFunction() after the solve)
 -  states - the states of the owned contact nodes (SNESSSStarGetStates())
+
+   Output Parameter:
+.  res - the nodes per kind of state, the area of the nodes in contact, the normal force and the force
+
+   Level: intermediate
+
+.seealso: `SSStarSceneContactView()`, `SNESSSStarGetStates()`
 @*/
 PetscErrorCode SSStarSceneGetContactResult(SSStarScene scene, PetscInt g, Vec r, const SSStarState states[], SSStarContactResult *res)
 {
@@ -822,6 +990,18 @@ PetscErrorCode SSStarSceneGetContactResult(SSStarScene scene, PetscInt g, Vec r,
 
 /*@C
    SSStarSceneContactView - one line per contact group: states, contact area, forces
+
+   Collective
+
+   Input Parameters:
++  scene  - the scene
+.  r      - K u - b (SNESGetFunction() after the solve)
+.  states - the states of the owned contact nodes (SNESSSStarGetStates())
+-  viewer - an ASCII viewer
+
+   Level: beginner
+
+.seealso: `SSStarSceneGetContactResult()`, `SSStarSceneView()`
 @*/
 PetscErrorCode SSStarSceneContactView(SSStarScene scene, Vec r, const SSStarState states[], PetscViewer viewer)
 {

@@ -1,5 +1,5 @@
 /*
-   The direct reduction (DERIVATION.md section 0): one MUMPS Cholesky factorization of the whole K (SYM = 1) through
+   The direct reduction (docs/derivation.md section 0): one MUMPS Cholesky factorization of the whole K (SYM = 1) through
    MUMPS's C API, with the contact dofs C as its Schur block.
 
    - Ordering: METIS nested dissection of the node graph of K_II, the contact dofs after it (ICNTL(7) = 1, PERM_IN):

@@ -1,5 +1,5 @@
 /*
-   Reduction of K u = F to the contact dofs C (DERIVATION.md section 0):
+   Reduction of K u = F to the contact dofs C (docs/derivation.md section 0):
    P = K_CC - K_CI K_II^-1 K_IC,  f = F_C - K_CI K_II^-1 F_I,  and the recovery u_I = K_II^-1 (F_I - K_IC u_C),
    or no reduction at all (none: the contact problem stays on the whole body, P is never formed).
 

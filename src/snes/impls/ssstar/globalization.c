@@ -1,5 +1,5 @@
 /*
-   The globalization of ssstar: the plain iteration of DERIVATION.md section 7 converges from a good starting point
+   The globalization of ssstar: the plain iteration of docs/derivation.md section 7 converges from a good starting point
    only, and may cycle or stall far from the solution (README, "When it does not converge"). Here:
 
    - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the

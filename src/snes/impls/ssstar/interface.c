@@ -22,8 +22,12 @@
    problem in each node's frame (t1, t2, n) with non-penetration u.n + gap >= 0, and returns the whole u;
    SNESGetFunction() then holds K u - b, whose contact entries are the contact forces (global axes).
    K must be SPD: Dirichlet dofs eliminated or given identity rows. The SNES keeps references to the arguments.
+   On a SNES of another type the call does nothing, so a program may declare its nodes and run -snes_type ksponly.
 
-.seealso: `SNESSSStarSetContactProblem()`, `SNESSSStarSetFrictionCoefficients()`
+   Level: beginner
+
+.seealso: `SNESSSStarGetContactNodes()`, `SNESSSStarSetContactOperator()`, `SNESSSStarSetContactProblem()`,
+          `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarGetStates()`
 @*/
 PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec gaps)
 {
@@ -33,6 +37,41 @@ PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec ga
   if (normals) PetscValidHeaderSpecific(normals, VEC_CLASSID, 3);
   if (gaps) PetscValidHeaderSpecific(gaps, VEC_CLASSID, 4);
   PetscTryMethod(snes, "SNESSSStarSetContactNodes_C", (SNES, IS, Vec, Vec), (snes, dofs, normals, gaps));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetContactNodes - the number of contact nodes of this rank and what SNESSSStarSetContactNodes() declared
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  n       - the contact nodes of this rank: 1/3 of the declared dofs; in the reduced use 1/3 of the local size of
+             the SNES function vector once it exists (SNESSetFunction() with a vector, SNESSSStarSetContactProblem(),
+             SNESSetUp()), -1 before
+.  dofs    - the declared IS of contact dofs, or NULL (reduced use)
+.  normals - the declared normals, or NULL
+-  gaps    - the declared gaps, or NULL
+
+   Notes:
+   Any output may be NULL. The objects belong to the SNES. On a SNES of another type n is -1 and the rest NULL.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetStates()`, `SNESSSStarGetNodeFriction()`
+@*/
+PetscErrorCode SNESSSStarGetContactNodes(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  if (n) *n = -1;
+  if (dofs) *dofs = NULL;
+  if (normals) *normals = NULL;
+  if (gaps) *gaps = NULL;
+  PetscTryMethod(snes, "SNESSSStarGetContactNodes_C", (SNES, PetscInt *, IS *, Vec *, Vec *), (snes, n, dofs, normals, gaps));
   PetscFunctionReturn(0);
 }
 
@@ -79,11 +118,22 @@ PetscErrorCode SNESSSStarSetContactOperator(SNES snes, IS dofs, Mat B, Vec gaps)
 /*@
    SNESSSStarSetFrictionLaw - sets the friction law of every contact node without a law of its own (default coulomb)
 
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  law  - SSSTAR_FRICTION_NONE, SSSTAR_FRICTION_TRESCA or SSSTAR_FRICTION_COULOMB
+
    Options Database Key:
-.  -snes_ssstar_friction_law <none,tresca,coulomb> - the law
+.  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 
    Notes:
    tresca needs SNESSSStarSetSlipBounds(). SNESSSStarSetNodeFrictionLaws() sets one law per node.
+
+   Level: beginner
+
+.seealso: `SNESSSStarGetFrictionLaw()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarSetFriction()`,
+          `SNESSSStarSetSlipBounds()`
 @*/
 PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, SSStarFrictionLaw law)
 {
@@ -95,6 +145,18 @@ PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, SSStarFrictionLaw law)
 
 /*@
    SNESSSStarGetFrictionLaw - the friction law of the nodes without a law of their own
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  law - the law
+
+   Level: beginner
+
+.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarGetNodeFriction()`
 @*/
 PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, SSStarFrictionLaw *law)
 {
@@ -107,8 +169,18 @@ PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, SSStarFrictionLaw *law)
 /*@
    SNESSSStarSetFriction - sets the Coulomb friction coefficient phi of every node without one of its own (default 0.3)
 
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  phi  - the coefficient, >= 0
+
    Options Database Key:
-.  -snes_ssstar_friction <phi> - the coefficient
+.  -snes_ssstar_friction <0.3> - the coefficient
+
+   Level: beginner
+
+.seealso: `SNESSSStarGetFriction()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetFrictionLaw()`
 @*/
 PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal phi)
 {
@@ -120,6 +192,18 @@ PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal phi)
 
 /*@
    SNESSSStarGetFriction - the Coulomb coefficient of the nodes without a coefficient of their own
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  phi - the coefficient
+
+   Level: beginner
+
+.seealso: `SNESSSStarSetFriction()`, `SNESSSStarGetNodeFriction()`
 @*/
 PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
 {
@@ -130,8 +214,21 @@ PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
 }
 
 /*@
-   SNESSSStarSetFrictionCoefficients - one Coulomb coefficient per contact node (1 entry per owned node, in the order
-   of the contact nodes; NULL: back to the scalar of SNESSSStarSetFriction())
+   SNESSSStarSetFrictionCoefficients - one Coulomb coefficient per contact node
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+-  phi  - 1 entry (>= 0) per contact node owned by the rank, in the order of the contact nodes; NULL: back to the
+          scalar of SNESSSStarSetFriction()
+
+   Notes:
+   The SNES keeps a reference to phi. The coefficient applies to the nodes whose law is coulomb.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetFriction()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarGetNodeFriction()`
 @*/
 PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES snes, Vec phi)
 {
@@ -143,8 +240,21 @@ PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES snes, Vec phi)
 }
 
 /*@
-   SNESSSStarSetSlipBounds - the Tresca slip bound s of each contact node (a force, in the units of F; 1 entry per
-   owned node): |r_t| <= s, and r_t = -s u_t/|u_t| where the node slips
+   SNESSSStarSetSlipBounds - the Tresca slip bound s of each contact node: |r_t| <= s, and r_t = -s u_t/|u_t| where
+   the node slips
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+-  s    - 1 entry (>= 0, a force in the units of F) per contact node owned by the rank, in node order
+
+   Notes:
+   The bound applies to the nodes whose law is tresca (SNESSSStarSetFrictionLaw(), SNESSSStarSetNodeFrictionLaws()).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarGetNodeFriction()`
 @*/
 PetscErrorCode SNESSSStarSetSlipBounds(SNES snes, Vec s)
 {
@@ -156,8 +266,19 @@ PetscErrorCode SNESSSStarSetSlipBounds(SNES snes, Vec s)
 }
 
 /*@
-   SNESSSStarSetNodeFrictionLaws - one friction law per owned contact node (n of them, in node order; NULL: every node
-   has the law of SNESSSStarSetFrictionLaw())
+   SNESSSStarSetNodeFrictionLaws - one friction law per contact node owned by the rank
+
+   Not Collective
+
+   Input Parameters:
++  snes - the SNES
+.  n    - the number of contact nodes of this rank
+-  laws - the law of each, in node order (copied); NULL: every node has the law of SNESSSStarSetFrictionLaw()
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetSlipBounds()`,
+          `SNESSSStarGetNodeFriction()`
 @*/
 PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStarFrictionLaw laws[])
 {
@@ -170,8 +291,20 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStar
 /*@
    SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use
 
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  type - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS, SSSTAR_REDUCTION_EXPLICIT, SSSTAR_REDUCTION_NONE (no
+          reduction: the Newton steps on the whole body) or SSSTAR_REDUCTION_AUTO (the default: direct or none, by
+          size and memory)
+
    Options Database Key:
-.  -snes_ssstar_reduction <direct,mumps,explicit> - the Schur complement
+.  -snes_ssstar_reduction <auto> - direct, mumps, explicit, none or auto
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetReductionType()`, `SSStarReductionCreate()`, `SNESSSStarSetMemoryLimit()`
 @*/
 PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
 {
@@ -259,11 +392,21 @@ PetscErrorCode SNESSSStarSetKSPRtolMax(SNES snes, PetscReal rtol)
 }
 
 /*@
-   SNESSSStarSetMemoryLimit - the memory (GB = 1e9 bytes per rank) the reduction of K may plan for; it refuses before
-   factorizing K when its estimate exceeds it. 0 (the default): MemAvailable of each node split over its ranks
+   SNESSSStarSetMemoryLimit - the memory the reduction of K may plan for; it refuses before factorizing K when its
+   estimate exceeds it
+
+   Logically Collective
+
+   Input Parameters:
++  snes      - the SNES
+-  gigabytes - GB (1e9 bytes) per rank; 0 (the default): MemAvailable of each node split over its ranks
 
    Options Database Key:
-.  -snes_ssstar_memory_limit <GB> - the limit
+.  -snes_ssstar_memory_limit <0> - the limit
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetReductionType()`, `SSStarCheckMemory()`
 @*/
 PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
 {
@@ -274,11 +417,23 @@ PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
 }
 
 /*@
-   SNESSSStarSetScaling - sets gamma, the scaling of the approximation step (DERIVATION.md section 6);
-   0 (the default) means gamma = 1/mean(diag P)
+   SNESSSStarSetScaling - sets gamma, the scaling of the approximation step (docs/derivation.md section 6)
+
+   Logically Collective
+
+   Input Parameters:
++  snes  - the SNES
+-  gamma - > 0, or 0 (the default): gamma = 1/mean(diag P), the contact block of K on the whole body
 
    Options Database Key:
-.  -snes_ssstar_scaling <gamma> - the scaling
+.  -snes_ssstar_scaling <0> - the scaling
+
+   Notes:
+   gamma does not change the solutions, only the path to them and the units of ||z|| (a displacement for the default).
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetScaling()`, `SNESConvergedSSStar()`
 @*/
 PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
 {
@@ -290,6 +445,18 @@ PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
 
 /*@
    SNESSSStarGetScaling - gamma: the one set by the user, else 1/mean(diag P) of the last solve (0 before it)
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  gamma - the scaling
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetScaling()`
 @*/
 PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
 {
@@ -300,10 +467,21 @@ PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
 }
 
 /*@
-   SNESSSStarSetStateTolerance - sets tau of the contact-state classification (default 1e-13)
+   SNESSSStarSetStateTolerance - sets tau, the relative tolerance of the contact-state classification (default 1e-13;
+   docs/derivation.md section 2)
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  tau  - >= 0; 0 classifies by exact zeros
 
    Options Database Key:
-.  -snes_ssstar_state_tol <tau> - the tolerance
+.  -snes_ssstar_state_tol <1e-13> - the tolerance
+
+   Level: advanced
+
+.seealso: `SSStarClassify()`, `SNESSSStarGetStates()`
 @*/
 PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
 {
@@ -316,16 +494,26 @@ PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
 /*@
    SNESSSStarSetMethod - chooses the iteration: the semismooth* Newton method (SSSTAR_METHOD_NEWTON, the default) or
    the first-order baseline SSSTAR_METHOD_FIXEDPOINT, u <- u + R^T z with the approximation step z alone
-   (DERIVATION.md section 1), for comparisons (bench/accuracy.py)
+   (docs/derivation.md section 1), for comparisons (bench/accuracy.py)
+
+   Logically Collective
+
+   Input Parameters:
++  snes   - the SNES
+-  method - SSSTAR_METHOD_NEWTON or SSSTAR_METHOD_FIXEDPOINT
 
    Options Database Key:
-.  -snes_ssstar_method <newton|fixedpoint> - the iteration
+.  -snes_ssstar_method <newton> - newton or fixedpoint
 
    Notes:
    The fixed-point iteration is a projected (with friction, proximal) gradient method: its gamma is 1/||P||_inf
    unless -snes_ssstar_scaling sets it, small enough for it to converge on frictionless and Tresca problems, at a
    linear rate 1 - lambda_min(P)/||P||_inf; with Coulomb friction it is not guaranteed to converge. It has no Newton
    step, hence no globalization; the stopping rule is the same.
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetMethod()`, `SNESSSStarSetScaling()`
 @*/
 PetscErrorCode SNESSSStarSetMethod(SNES snes, SSStarMethod method)
 {
@@ -337,6 +525,18 @@ PetscErrorCode SNESSSStarSetMethod(SNES snes, SSStarMethod method)
 
 /*@
    SNESSSStarGetMethod - the iteration chosen by SNESSSStarSetMethod()
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  method - SSSTAR_METHOD_NEWTON or SSSTAR_METHOD_FIXEDPOINT
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetMethod()`
 @*/
 PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
 {
@@ -352,8 +552,18 @@ PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
    (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge
    (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). 0 gives a fresh LU at every step. Default 0.05.
 
+   Logically Collective
+
+   Input Parameters:
++  snes     - the SNES
+-  fraction - the fraction of the contact nodes
+
    Options Database Key:
 .  -snes_ssstar_lu_reuse <fraction> - the fraction, in [0, 1]
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetNewtonStepCounts()`, `SNESSSStarSetLUThreads()`
 @*/
 PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
 {
@@ -369,8 +579,18 @@ PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
    on (start with mpiexec --bind-to none), at most the ranks of its node. Default 1: the BLAS is left as it is (as on one
    rank, where OPENBLAS_NUM_THREADS decides). Takes effect at the next SNESSolve() with a new P.
 
+   Logically Collective
+
+   Input Parameters:
++  snes    - the SNES
+-  threads - the BLAS threads of rank 0, >= 0
+
    Options Database Key:
 .  -snes_ssstar_lu_threads <n> - the threads
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetLUReuse()`
 @*/
 PetscErrorCode SNESSSStarSetLUThreads(SNES snes, PetscInt threads)
 {
@@ -381,9 +601,21 @@ PetscErrorCode SNESSSStarSetLUThreads(SNES snes, PetscInt threads)
 }
 
 /*@
-   SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve were solved: LU factorizations, steps
-   solved on an older LU (by GMRES, SNESSSStarSetLUReuse()) and their Krylov iterations (also in
-   SNESGetLinearSolveIterations())
+   SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve() were solved
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  factorizations - LU factorizations of the Newton matrix (dense P), or pass NULL
+.  reused         - steps solved on an older LU (by GMRES, SNESSSStarSetLUReuse()), or pass NULL
+-  krylov         - their Krylov iterations (also in SNESGetLinearSolveIterations()), or pass NULL
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetLUReuse()`, `SNESSSStarGetConditionEstimate()`
 @*/
 PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
 {
@@ -394,8 +626,20 @@ PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations
 }
 
 /*@
-   SNESSSStarGetConditionEstimate - LAPACK's estimate of 1/cond_1 of the last LU-factored Newton matrix (dense P: the
-   system of the unknown dofs, A_RR), or -1 when none is known (sparse P, no factorization yet, a singular matrix)
+   SNESSSStarGetConditionEstimate - LAPACK's estimate of 1/cond_1 of the last LU-factored Newton matrix
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  rcond - the estimate for a dense P (the system of the unknown dofs, A_RR), or -1 when none is known (sparse P,
+           no factorization yet, a singular matrix)
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetNewtonStepCounts()`
 @*/
 PetscErrorCode SNESSSStarGetConditionEstimate(SNES snes, PetscReal *rcond)
 {
@@ -406,8 +650,24 @@ PetscErrorCode SNESSSStarGetConditionEstimate(SNES snes, PetscReal *rcond)
 }
 
 /*@C
-   SNESSSStarGetStates - the state of each owned contact node at the last iterate (in node order), and the global
-   counts per state
+   SNESSSStarGetStates - the state of each owned contact node at the last iterate, and the global counts per state
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES, after SNESSolve()
+
+   Output Parameters:
++  states - the states of the contact nodes of this rank, in the order they were declared (owned by the SNES), or
+            pass NULL
+-  counts - the number of nodes in each state over all ranks (SSSTAR_NUM_STATES entries), or pass NULL
+
+   Notes:
+   The states are those of Table 1 (SSStarState, docs/derivation.md section 2); SSStarStateNames[] names them.
+
+   Level: beginner
+
+.seealso: `SNESSSStarGetReason()`, `SNESSSStarMonitorStates()`, `SSStarClassify()`
 @*/
 PetscErrorCode SNESSSStarGetStates(SNES snes, const SSStarState *states[], PetscInt counts[SSSTAR_NUM_STATES])
 {
@@ -419,12 +679,84 @@ PetscErrorCode SNESSSStarGetStates(SNES snes, const SSStarState *states[], Petsc
 
 /*@
    SNESSSStarGetReason - why the last solve stopped, finer than SNESGetConvergedReason()
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  reason - the sub-reason (SSStarReason; SSStarReasons[] names it)
+
+   Notes:
+   -snes_converged_reason prints it on the line "ssstar: ..."; README "When it does not converge" maps each onto the
+   SNESConvergedReason.
+
+   Level: beginner
+
+.seealso: `SNESGetConvergedReason()`, `SNESSSStarGetTolerance()`, `SNESSSStarGetRemedyCounts()`
 @*/
 PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
   PetscUseMethod(snes, "SNESSSStarGetReason_C", (SNES, SSStarReason *), (snes, reason));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetTolerance - the threshold the last solve's stopping rule compared ||z|| with
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  tol - max(atol, rtol max(||u||, ||gamma f||)) at the last iterate (SNESConvergedSSStar())
+
+   Level: intermediate
+
+.seealso: `SNESConvergedSSStar()`, `SNESGetFunctionNorm()`, `SNESSSStarGetReason()`
+@*/
+PetscErrorCode SNESSSStarGetTolerance(SNES snes, PetscReal *tol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidRealPointer(tol, 2);
+  PetscUseMethod(snes, "SNESSSStarGetTolerance_C", (SNES, PetscReal *), (snes, tol));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetNodeFriction - the friction law, Coulomb coefficient and Tresca slip bound the solver uses at each
+   contact node of this rank, in the order the nodes were declared
+
+   Not Collective
+
+   Input Parameters:
++  snes - the SNES, after SNESSetUp() or SNESSolve()
+-  n    - the number of contact nodes of this rank (the length of each array)
+
+   Output Parameters:
++  laws   - the law of each node, or NULL
+.  phi    - the Coulomb coefficient of each node (meaningful where the law is coulomb), or NULL
+-  bounds - the Tresca slip bound of each node (a force; meaningful where the law is tresca), or NULL
+
+   Notes:
+   What SNESSSStarSetFrictionLaw(), SNESSSStarSetFriction(), SNESSSStarSetFrictionCoefficients(),
+   SNESSSStarSetSlipBounds() and SNESSSStarSetNodeFrictionLaws() together gave each node; the output files of the
+   scenes record it (/contact/friction_law, /contact/friction, /contact/slip_bound).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetSlipBounds()`
+@*/
+PetscErrorCode SNESSSStarGetNodeFriction(SNES snes, PetscInt n, SSStarFrictionLaw laws[], PetscReal phi[], PetscReal bounds[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetNodeFriction_C", (SNES, PetscInt, SSStarFrictionLaw[], PetscReal[], PetscReal[]), (snes, n, laws, phi, bounds));
   PetscFunctionReturn(0);
 }
 
@@ -450,6 +782,10 @@ PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
    Notes:
    Cycles and stagnation are detected in both cases; without globalization they end the solve. README, "When it does
    not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetRemedyCounts()`, `SNESSSStarGetReason()`
 @*/
 PetscErrorCode SNESSSStarSetGlobalization(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
 {
@@ -463,7 +799,19 @@ PetscErrorCode SNESSSStarSetGlobalization(SNES snes, PetscBool on, PetscReal dam
 }
 
 /*@
-   SNESSSStarGetRemedyCounts - how often the last solve used each remedy of the globalization (SSStarRemedy order)
+   SNESSSStarGetRemedyCounts - how often the last solve used each remedy of the globalization
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  counts - SSSTAR_NUM_REMEDIES counts, in SSStarRemedy order (SSStarRemedies[] names them)
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetGlobalization()`, `SNESSSStarGetReason()`
 @*/
 PetscErrorCode SNESSSStarGetRemedyCounts(SNES snes, PetscInt counts[SSSTAR_NUM_REMEDIES])
 {
@@ -475,7 +823,23 @@ PetscErrorCode SNESSSStarGetRemedyCounts(SNES snes, PetscInt counts[SSSTAR_NUM_R
 
 /*@
    SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
-   order of the contact nodes sorted by their first dof); owned by the SNES
+   order of the contact nodes sorted by their first dof)
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES, after SNESSolve()
+
+   Output Parameters:
++  P - the reduced operator (owned by the SNES), or pass NULL
+-  f - the reduced load (owned by the SNES), or pass NULL
+
+   Notes:
+   An error before the first solve, and after a solve on the whole body (reduction none), which never forms P.
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetContactProblem()`, `SNESSSStarSetReductionType()`
 @*/
 PetscErrorCode SNESSSStarGetReducedProblem(SNES snes, Mat *P, Vec *f)
 {
@@ -521,9 +885,20 @@ static PetscErrorCode ContactProblemDestroy(void *ctx)
    SNESSSStarSetContactProblem - sets the SNES function c(u) = P u - f and the Jacobian P of a reduced contact problem
    0 in P u - f + Q(u), for a program that has P (dense or sparse, 3 dofs per contact node) and f
 
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+.  P    - the reduced stiffness, 3 rows per contact node (u_t1, u_t2, u_n), SPD
+-  f    - the reduced load, laid out like P's rows
+
    Notes:
    Works with any SNES type; the SNES keeps references to P and f. After SNESSolve(), SNESGetFunction()
    gives the reaction r = P u - f at the solution.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`
 @*/
 PetscErrorCode SNESSSStarSetContactProblem(SNES snes, Mat P, Vec f)
 {

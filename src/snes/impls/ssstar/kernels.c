@@ -1,6 +1,6 @@
 /*
    Per-node contact kernels of the semismooth* Newton method: pure functions on 3-vectors
-   (u_t1, u_t2, u_n) in the node's frame. Section numbers refer to DERIVATION.md.
+   (u_t1, u_t2, u_n) in the node's frame. Section and equation numbers refer to docs/derivation.md.
 
    The friction law of a node is one of
      coulomb: Q(u) = { (-phi lam d|u12|, lam) : lam in N_R+(u3) }          (section 0)
@@ -20,7 +20,9 @@ static PetscReal Norm2(const PetscReal v[2])
 }
 
 /*@C
-   SSStarApproximationStep - the approximation step (11)-(12) at one node (DERIVATION.md section 1)
+   SSStarApproximationStep - the approximation step (11)-(12) at one node (docs/derivation.md section 1, (1.1)-(1.4))
+
+   Not Collective
 
    Input Parameters:
 +  fr - the node's friction law (a Tresca bound in the units of c)
@@ -34,19 +36,24 @@ static PetscReal Norm2(const PetscReal v[2])
 
    Notes:
    A pure function; d[2], b[2] and d12 come out as exact zeros where the projection is active.
+
+   Level: developer
+
+.seealso: `SSStarClassify()`, `SSStarTangentBlocks()`, `SSStarReducedBlocks()`
 @*/
 void SSStarApproximationStep(const SSStarFriction *fr, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3])
 {
   const PetscReal v[2] = {u[0] - c[0], u[1] - c[1]};
 
-  z[2] = PetscMax(-c[2], -u[2]); /* (11) */
+  z[2] = PetscMax(-c[2], -u[2]); /* (1.1), the slides' (11) */
   d[2] = PetscMax(u[2] - c[2], 0.0);
   b[2] = -PetscMax(0.0, c[2] - u[2]);
   if (fr->law == SSSTAR_FRICTION_NONE) {
     d[0] = v[0];
     d[1] = v[1];
   } else {
-    /* (12): block soft-thresholding with the threshold s; the "if" keeps d12 an exact zero when |v| <= s */
+    /* (1.2)-(1.3), the slides' (12): block soft-thresholding with the threshold s; the "if" keeps d12 an exact zero
+       when |v| <= s */
     const PetscReal s  = fr->law == SSSTAR_FRICTION_COULOMB ? fr->phi * PetscMax(0.0, c[2] - u[2]) : fr->bound;
     const PetscReal nv = Norm2(v);
 
@@ -77,8 +84,23 @@ static SSStarState ClassifyTresca(PetscReal bound, const PetscReal d[3], const P
 }
 
 /*@C
-   SSStarClassify - the state of Table 1 of a point (d, b) of gph Q (DERIVATION.md section 2), with the tolerances
-   tol_d (displacements) and tol_b (forces, scaled); Tresca nodes may also be SSSTAR_STATE_LS
+   SSStarClassify - the state of Table 1 of a point (d, b) of gph Q (docs/derivation.md section 2)
+
+   Not Collective
+
+   Input Parameters:
++  fr    - the node's friction law
+.  d     - the projected point of the approximation step, in the node's frame
+.  b     - its partner in gph Q
+.  tol_d - the tolerance of the zero tests on displacements
+-  tol_b - the tolerance of the zero tests on (scaled) forces
+
+   Notes:
+   Returns the state; Tresca nodes may also be SSSTAR_STATE_LS (separated, tangentially stuck).
+
+   Level: developer
+
+.seealso: `SSStarApproximationStep()`, `SNESSSStarSetStateTolerance()`
 @*/
 SSStarState SSStarClassify(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
 {
@@ -103,9 +125,10 @@ static PetscBool IsSliding(SSStarState state)
 }
 
 /*
-   The tangential slip of a node at (d, b): om = d12/|d12|, W = s/|d12| (I - om om^T) with s the threshold of the
-   approximation step at (d, b) (Coulomb: -phi b3), and kappa, the coefficient of the normal force in the sliding law
-   (Coulomb: phi; section 3). All vanish without friction.
+   The tangential slip of a node at (d, b): om = +d12/|d12| ((3.2): the slides' omega has the other sign, which breaks
+   the quadratic convergence), W = s/|d12| (I - om om^T) (3.1) with s the threshold of the approximation step at (d, b)
+   (Coulomb: -phi b3), and kappa, the coefficient of the normal force in the sliding law (Coulomb: phi; section 3).
+   All vanish without friction.
 */
 static void SlidingDirection(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal om[2], PetscReal W[4], PetscReal *kappa)
 {
@@ -176,8 +199,24 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
 }
 
 /*@C
-   SSStarTangentBlocks - G and H (3x3, row-major) with range [G; H] the tangent space of gph Q at (d, b) for a node in
-   the given state (DERIVATION.md section 3, with its corrected sign of omega)
+   SSStarTangentBlocks - G and H with range [G; H] the tangent space of gph Q at (d, b) for a node in the given state
+   (docs/derivation.md section 3, with the corrected sign of omega, (3.2))
+
+   Not Collective
+
+   Input Parameters:
++  state - the node's state (SSStarClassify())
+.  fr    - the node's friction law
+.  d     - the projected point
+-  b     - its partner in gph Q
+
+   Output Parameters:
++  G - 3x3, row-major
+-  H - 3x3, row-major
+
+   Level: developer
+
+.seealso: `SSStarReducedBlocks()`, `SSStarClassify()`
 @*/
 void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal G[9], PetscReal H[9])
 {
@@ -204,8 +243,24 @@ void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const Pets
 }
 
 /*@C
-   SSStarReducedBlocks - S and T (3x3, row-major) of the node's rows of the reduced Newton system
-   (S P + T) du = (S + T) z (DERIVATION.md section 5): T G = S H, [S T] of rank 3
+   SSStarReducedBlocks - S and T of the node's rows of the reduced Newton system (S P + T) du = (S + T) z
+   (docs/derivation.md section 5, (5.1)-(5.2)): T G = S H, [S T] of rank 3
+
+   Not Collective
+
+   Input Parameters:
++  state - the node's state (SSStarClassify())
+.  fr    - the node's friction law
+.  d     - the projected point
+-  b     - its partner in gph Q
+
+   Output Parameters:
++  S - 3x3, row-major
+-  T - 3x3, row-major
+
+   Level: developer
+
+.seealso: `SSStarTangentBlocks()`, `SSStarClassify()`
 @*/
 void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal S[9], PetscReal T[9])
 {
@@ -232,8 +287,19 @@ void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const Pets
 }
 
 /*@C
-   SSStarNodeFrame - the frame of a contact node from the obstacle's normal n: R (3x3, row-major) has the rows t1, t2,
-   n (normalized), right-handed; for n = (0, 0, 1) it is the identity
+   SSStarNodeFrame - the frame of a contact node from the obstacle's normal
+
+   Not Collective
+
+   Input Parameter:
+.  n - the unit normal of the node's plane, into the body
+
+   Output Parameter:
+.  R - 3x3, row-major, with the rows t1, t2, n (normalized), right-handed; the identity for n = (0, 0, 1)
+
+   Level: developer
+
+.seealso: `SNESSSStarSetContactNodes()`
 @*/
 void SSStarNodeFrame(const PetscReal n[3], PetscReal R[9])
 {

@@ -8,7 +8,7 @@
    i.e. M = Shat K' + That / gamma with Shat = blockdiag(S_i, 1), That = blockdiag(T_i, 0). The rows with S row = 0 and
    T row = e_r (sticking nodes, the normal of a node in contact) say dv = y: they are eliminated symmetrically
    (MatZeroRowsColumns, unit rows scaled by 1/gamma). Interior and separated rows are K's; a sliding node's tangential
-   rows add phi om times its normal row of K' and W/gamma (DERIVATION.md section 5): the only unsymmetric part. The
+   rows add phi om times its normal row of K' and W/gamma (docs/derivation.md section 5): the only unsymmetric part. The
    system is solved by the SNES's KSP: CG where it is symmetric, GMRES (right preconditioned) where it is not, both
    preconditioned by algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes, rotated like K'),
    to the tolerances the iteration sets (inexact Newton). The multigrid of an earlier step is kept while few nodes

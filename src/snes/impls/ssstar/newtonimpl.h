@@ -2,7 +2,7 @@
 #define SSSTARNEWTONIMPL_H
 
 /*
-   The Newton step of ssstar (DERIVATION.md section 5) behind an ops table, one implementation per file:
+   The Newton step of ssstar (docs/derivation.md section 5) behind an ops table, one implementation per file:
 
      newton_dense.c   P dense (a Schur complement): the known dofs eliminated, LU of the rest (denselu.c), GMRES on an
                       older LU while few nodes changed

@@ -1,5 +1,5 @@
 /*
-   The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (DERIVATION.md section 7), on the contact
+   The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (docs/derivation.md section 7), on the contact
    dofs of a reduced problem or on the whole body (contact.c says which: the layout of the operator's vectors).
 */
 #include "ssstarimpl.h"
@@ -501,6 +501,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     if (k == 0) z0 = znorm;
     PetscCall(SNESLogConvergenceHistory(snes, znorm, snes->linear_its));
     PetscCall(SNESMonitor(snes, k, znorm));
+    ss->tolerance = PetscMax(snes->abstol, snes->rtol * PetscMax(unorm, ss->scale));
     PetscUseTypeMethod(snes, converged, k, PetscMax(unorm, ss->scale), dunorm, znorm, &snes->reason, snes->cnvP);
     if (snes->reason) {
       ss->reason = SubReason(snes);
@@ -582,18 +583,33 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 /*@C
    SNESConvergedSSStar - the default convergence test of ssstar: converged when ||z|| <= atol (CONVERGED_FNORM_ABS)
    or ||z|| <= rtol max(||u||, ||gamma f||) (CONVERGED_FNORM_RELATIVE), with z the approximation step, gamma f the
-   reduced load in displacement units (section 6) and atol, rtol from SNESSetTolerances() (-snes_atol, -snes_rtol)
+   reduced load in displacement units (docs/derivation.md section 6) and atol, rtol from SNESSetTolerances()
+
+   Collective
 
    Input Parameters:
 +  snes  - the SNES
 .  it    - iteration
 .  xnorm - max(||u||, ||gamma f||): the displacement scale of the problem
 .  snorm - ||du|| of the last Newton step
--  fnorm - ||z||
+.  fnorm - ||z||
+-  ctx   - unused
+
+   Output Parameter:
+.  reason - SNES_CONVERGED_FNORM_ABS, SNES_CONVERGED_FNORM_RELATIVE, SNES_DIVERGED_FNORM_NAN or
+            SNES_CONVERGED_ITERATING
+
+   Options Database Keys:
++  -snes_rtol <1e-10> - rtol
+-  -snes_atol <1e-50> - atol
 
    Notes:
    Both norms are in the units of u, so the rule does not depend on the units of the problem (nor on the size of
    the loads). SNESSetConvergenceTest() replaces it, as for every SNES.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetTolerance()`, `SNESSetTolerances()`, `SNESSetConvergenceTest()`
 @*/
 PetscErrorCode SNESConvergedSSStar(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
 {
@@ -623,7 +639,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 }
 
 #define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetContactOperator), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(GetReductionType), SSSTAR_COMPOSED(SetPCReuse), SSSTAR_COMPOSED(SetKSPRtolMax), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts), SSSTAR_COMPOSED(SetMethod), SSSTAR_COMPOSED(GetMethod)};
+static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetContactOperator), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(GetReductionType), SSSTAR_COMPOSED(SetPCReuse), SSSTAR_COMPOSED(SetKSPRtolMax), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetTolerance), SSSTAR_COMPOSED(GetContactNodes), SSSTAR_COMPOSED(GetNodeFriction), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts), SSSTAR_COMPOSED(SetMethod), SSSTAR_COMPOSED(GetMethod)};
 
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
@@ -752,10 +768,23 @@ static PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
 }
 
 /*@C
-   SNESSSStarMonitorStates - prints, at every iteration, how many contact nodes are in each state of Table 1
+   SNESSSStarMonitorStates - prints, at every iteration, how many contact nodes are in each state of Table 1, with
+   the remedies that led to the iterate
+
+   Collective
+
+   Input Parameters:
++  snes  - the SNES
+.  its   - the iteration
+.  znorm - ||z||
+-  vf    - the viewer and its format
 
    Options Database Key:
 .  -snes_ssstar_monitor_states - activates it
+
+   Level: intermediate
+
+.seealso: `SNESMonitorSet()`, `SNESSSStarGetStates()`
 @*/
 PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm, PetscViewerAndFormat *vf)
 {
@@ -945,6 +974,53 @@ static PetscErrorCode SNESSSStarGetReason_SSStar(SNES snes, SSStarReason *reason
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarGetContactNodes_SSStar(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt       size;
+
+  PetscFunctionBegin;
+  if (n) {
+    if (ct->dofs) {
+      PetscCall(ISGetLocalSize(ct->dofs, &size));
+      *n = size / 3;
+    } else if (snes->vec_func) {
+      PetscCall(VecGetLocalSize(snes->vec_func, &size));
+      *n = size / 3;
+    }
+  }
+  if (dofs) *dofs = ct->dofs;
+  if (normals) *normals = ct->normals;
+  if (gaps) *gaps = ct->gaps;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetTolerance_SSStar(SNES snes, PetscReal *tol)
+{
+  PetscFunctionBegin;
+  *tol = ((SNES_SSStar *)snes->data)->tolerance;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetNodeFriction_SSStar(SNES snes, PetscInt n, SSStarFrictionLaw laws[], PetscReal phi[], PetscReal bounds[])
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  PetscCheck(snes->vec_func, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetNodeFriction: call SNESSetUp() or SNESSolve() first");
+  PetscCall(SSStarContactSetUp(snes, ct));
+  PetscCheck(n == ct->nnodes, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarGetNodeFriction: arrays of %" PetscInt_FMT " entries for the %" PetscInt_FMT " contact nodes of this rank", n, ct->nnodes);
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const PetscInt        j  = ct->order[i]; /* the user's node */
+    const SSStarFriction *fr = &ct->nodeFriction[i];
+
+    if (laws) laws[j] = fr->law;
+    if (phi) phi[j] = fr->phi;
+    if (bounds) bounds[j] = fr->bound;
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarSetGlobalization_SSStar(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
 {
   SSStarGlobalization *glob = &((SNES_SSStar *)snes->data)->glob;
@@ -1076,6 +1152,9 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetMethod), SNESSSStarGetMethod_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetStates), SNESSSStarGetStates_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReason), SNESSSStarGetReason_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetTolerance), SNESSSStarGetTolerance_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetContactNodes), SNESSSStarGetContactNodes_SSStar));
+  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetNodeFriction), SNESSSStarGetNodeFriction_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetGlobalization), SNESSSStarSetGlobalization_SSStar));
   PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetRemedyCounts), SNESSSStarGetRemedyCounts_SSStar));

@@ -11,7 +11,7 @@ PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_Ne
 
 /*
    The Newton step (newton.c and one file per implementation, newtonimpl.h): for the per-node blocks S, T of
-   DERIVATION.md section 5 it solves the Newton system on the operator A of the solve (P, or K on the whole body)
+   docs/derivation.md section 5 it solves the Newton system on the operator A of the solve (P, or K on the whole body)
    and returns du in the global frame. Created with the SNES (it keeps the settings); each SNESSolve gives it the
    operator, the implementation that fits it and the contact nodes' layout. Counts are of the current SNESSolve.
 */
@@ -136,7 +136,7 @@ typedef enum {
 
 typedef struct {
   /* settings */
-  PetscBool on;            /* damped steps and remedies; off: the plain iteration of DERIVATION.md section 7   */
+  PetscBool on;            /* damped steps and remedies; off: the plain iteration of docs/derivation.md section 7   */
   PetscReal dampingMin;    /* smallest damping factor alpha of the line search                                 */
   PetscInt  stagnationIts; /* iterations without a new smallest ||z|| before the solve stops                   */
 
@@ -174,6 +174,7 @@ typedef struct {
   PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
   PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
   SSStarReason reason;
+  PetscReal    tolerance;    /* the threshold of the last convergence test: max(atol, rtol max(||u||, ||gamma f||)) */
 
   /* the iteration, per local node in the solver's order */
   SSStarState *states;                     /* at the last iterate                                   */

@@ -1,0 +1,379 @@
+"""ssstar from Python: the SNES type "ssstar" (semismooth* Newton for 3D contact with friction) over petsc4py.
+
+Importing the module loads libssstar.so (ctypes) and registers the type; the functions take petsc4py objects and call
+the C API of include/ssstar.h with their handles (README "Python", docs/manual.md for each C function):
+
+    from petsc4py import PETSc
+    import ssstar
+
+    snes = PETSc.SNES().create()
+    snes.setType(ssstar.SNESSSSTAR)
+    snes.setFunction(form_function, r)           # F(u) = K u - b
+    snes.setJacobian(form_jacobian, K)           # K, SPD
+    ssstar.set_contact_nodes(snes, dofs, normals, gaps)
+    ssstar.set_friction_coefficients(snes, phi)  # or set_friction(snes, 0.3), set_node_friction_laws(...)
+    snes.setFromOptions()
+    snes.solve(None, u)
+    states, counts = ssstar.get_states(snes)     # per local contact node, codes into ssstar.STATE_NAMES
+    forces = ssstar.get_contact_forces(snes)     # K u - b at each local contact node (global axes), n x 3
+
+Arguments that are arrays per local contact node (dofs, normals, gaps, coefficients, bounds) may be given as
+numpy arrays (or sequences): the module makes the IS or Vec on the SNES's communicator. A PETSc error raises
+petsc4py.PETSc.Error with PETSc's error code; PETSc prints its message on stderr.
+
+The library is found, in this order, at $SSSTAR_LIB, where `make install` put it (_config.py), or in the source tree
+(lib/libssstar.so beside this python/ folder).
+"""
+import ctypes
+import os
+
+import numpy as np
+from petsc4py import PETSc
+
+__all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
+           "set_contact_nodes", "get_contact_nodes", "set_contact_operator", "set_contact_problem",
+           "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
+           "set_friction", "get_friction", "set_friction_coefficients", "set_slip_bounds", "set_node_friction_laws",
+           "get_node_friction", "set_scaling", "get_scaling", "set_state_tolerance", "set_method", "get_method",
+           "set_lu_reuse", "set_globalization", "get_states", "get_reason", "get_tolerance", "get_remedy_counts",
+           "get_newton_step_counts", "get_condition_estimate", "get_contact_forces"]
+
+SNESSSSTAR = "ssstar"
+
+
+def _find_library():
+    if os.environ.get("SSSTAR_LIB"):
+        return os.environ["SSSTAR_LIB"]
+    try:
+        from . import _config  # written by make install
+        return _config.LIBRARY
+    except ImportError:
+        pass
+    here = os.path.dirname(os.path.abspath(__file__))
+    return os.path.join(os.path.dirname(os.path.dirname(here)), "lib", "libssstar.so")
+
+
+library = _find_library()
+if not os.path.exists(library):
+    raise ImportError("ssstar: cannot find libssstar.so at %s (build it with make, or set SSSTAR_LIB)" % library)
+_lib = ctypes.CDLL(library, mode=ctypes.RTLD_GLOBAL)
+
+# PETSc's scalar types of this build (Debian's PETSc 3.18: 32-bit PetscInt, double PetscReal)
+_Int = {4: ctypes.c_int32, 8: ctypes.c_int64}[PETSc.IntType(0).itemsize]
+_Real = {4: ctypes.c_float, 8: ctypes.c_double}[PETSc.RealType(0).itemsize]
+_Handle = ctypes.c_void_p
+_Enum = ctypes.c_int
+
+
+def _names(symbol, count):
+    """The first count names of one of ssstar's name tables (const char *const[])"""
+    table = (ctypes.c_char_p * count).in_dll(_lib, symbol)
+    return [table[i].decode() for i in range(count)]
+
+
+def _declare(name, *argtypes):
+    f = getattr(_lib, name)
+    f.argtypes = list(argtypes)
+    f.restype = ctypes.c_int
+    return f
+
+
+def _call(f, *args):
+    ierr = f(*args)
+    if ierr:
+        raise PETSc.Error(ierr)
+
+
+_call(_declare("SSStarInitializePackage"))  # registers the SNES type "ssstar"
+
+STATE_NAMES = _names("SSStarStateNames", 7)  # L, M1, M2, M3+, M3-, M4, LS: the codes of get_states()
+FRICTION_LAWS = _names("SSStarFrictionLaws", 3)  # none, tresca, coulomb
+REASONS = _names("SSStarReasons", 9)
+REDUCTION_TYPES = _names("SSStarReductionTypes", 5)
+METHODS = _names("SSStarMethods", 2)
+REMEDIES = _names("SSStarRemedies", 5)
+_NUM_STATES, _NUM_REMEDIES = len(STATE_NAMES), len(REMEDIES)
+
+_C = {name: _declare(name, *args) for name, args in {
+    "SNESSSStarSetContactNodes": (_Handle, _Handle, _Handle, _Handle),
+    "SNESSSStarGetContactNodes": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Handle), ctypes.POINTER(_Handle), ctypes.POINTER(_Handle)),
+    "SNESSSStarSetContactOperator": (_Handle, _Handle, _Handle, _Handle),
+    "SNESSSStarSetContactProblem": (_Handle, _Handle, _Handle),
+    "SNESSSStarSetReductionType": (_Handle, _Enum),
+    "SNESSSStarGetReductionType": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarSetMemoryLimit": (_Handle, _Real),
+    "SNESSSStarSetFrictionLaw": (_Handle, _Enum),
+    "SNESSSStarGetFrictionLaw": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarSetFriction": (_Handle, _Real),
+    "SNESSSStarGetFriction": (_Handle, ctypes.POINTER(_Real)),
+    "SNESSSStarSetFrictionCoefficients": (_Handle, _Handle),
+    "SNESSSStarSetSlipBounds": (_Handle, _Handle),
+    "SNESSSStarSetNodeFrictionLaws": (_Handle, _Int, ctypes.POINTER(_Enum)),
+    "SNESSSStarGetNodeFriction": (_Handle, _Int, ctypes.POINTER(_Enum), ctypes.POINTER(_Real), ctypes.POINTER(_Real)),
+    "SNESSSStarSetScaling": (_Handle, _Real),
+    "SNESSSStarGetScaling": (_Handle, ctypes.POINTER(_Real)),
+    "SNESSSStarSetStateTolerance": (_Handle, _Real),
+    "SNESSSStarSetMethod": (_Handle, _Enum),
+    "SNESSSStarGetMethod": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarSetLUReuse": (_Handle, _Real),
+    "SNESSSStarSetGlobalization": (_Handle, _Int, _Real, _Int),
+    "SNESSSStarGetStates": (_Handle, ctypes.POINTER(ctypes.POINTER(_Enum)), ctypes.POINTER(_Int)),
+    "SNESSSStarGetReason": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarGetTolerance": (_Handle, ctypes.POINTER(_Real)),
+    "SNESSSStarGetRemedyCounts": (_Handle, ctypes.POINTER(_Int)),
+    "SNESSSStarGetNewtonStepCounts": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Int), ctypes.POINTER(_Int)),
+    "SNESSSStarGetConditionEstimate": (_Handle, ctypes.POINTER(_Real)),
+}.items()}
+
+
+def _h(obj):
+    """The C handle of a petsc4py object, or NULL for None"""
+    return _Handle(obj.handle) if obj is not None else _Handle(None)
+
+
+def _choice(value, names, what):
+    if isinstance(value, str):
+        if value.lower() not in names:
+            raise ValueError("%s %r: one of %s" % (what, value, ", ".join(names)))
+        return names.index(value.lower())
+    if not 0 <= int(value) < len(names):
+        raise ValueError("%s %r: a code 0..%d" % (what, value, len(names) - 1))
+    return int(value)
+
+
+def _node_vec(snes, values, per, what):
+    """A Vec of per entries for each local contact node from a petsc4py Vec (kept), an array, or None"""
+    if values is None or isinstance(values, PETSc.Vec):
+        return values
+    a = np.ascontiguousarray(np.asarray(values, dtype=PETSc.ScalarType).reshape(-1))
+    if a.size % per:
+        raise ValueError("%s: %d values, not %d per contact node" % (what, a.size, per))
+    v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=per if per > 1 else None, comm=snes.getComm())
+    v.setArray(a)
+    return v
+
+
+def _dofs_is(snes, dofs):
+    if isinstance(dofs, PETSc.IS):
+        return dofs
+    a = np.asarray(dofs, dtype=PETSc.IntType).reshape(-1)
+    if a.size % 3:
+        raise ValueError("dofs: %d indices, not 3 per contact node" % a.size)
+    return PETSc.IS().createGeneral(a, comm=snes.getComm())
+
+
+def set_contact_nodes(snes, dofs, normals=None, gaps=None):
+    """SNESSSStarSetContactNodes(): the contact nodes of a whole-body problem F(u) = K u - b. dofs: the global x, y, z
+    dofs of each contact node owned by this rank (IS or array, 3 per node); normals: the unit normal of each node's
+    plane into the body (Vec or array, 3 per node; None: (0, 0, 1)); gaps: the initial distance (1 per node; None: 0)"""
+    is_ = _dofs_is(snes, dofs)
+    _call(_C["SNESSSStarSetContactNodes"], _h(snes), _h(is_), _h(_node_vec(snes, normals, 3, "normals")), _h(_node_vec(snes, gaps, 1, "gaps")))
+
+
+def get_contact_nodes(snes):
+    """SNESSSStarGetContactNodes(): (n, dofs, normals, gaps): the number of contact nodes of this rank and what
+    set_contact_nodes() declared as numpy arrays (None where not declared; n = -1 for a reduced problem whose function
+    vector does not exist yet)"""
+    n, handles = _Int(), [_Handle() for _ in range(3)]
+    _call(_C["SNESSSStarGetContactNodes"], _h(snes), ctypes.byref(n), *(ctypes.byref(h) for h in handles))
+    out = []
+    for h, kind in zip(handles, (PETSc.IS, PETSc.Vec, PETSc.Vec)):
+        out.append(None if not h.value else _borrowed_array(h.value, kind))
+    return (n.value, *out)
+
+
+def _borrowed_array(handle, kind):
+    """The local entries of a C IS or Vec the SNES owns (copied)"""
+    if kind is PETSc.IS:
+        get = _declare("ISGetLocalSize", _Handle, ctypes.POINTER(_Int))
+        idx = _declare("ISGetIndices", _Handle, ctypes.POINTER(ctypes.POINTER(_Int)))
+        restore = _declare("ISRestoreIndices", _Handle, ctypes.POINTER(ctypes.POINTER(_Int)))
+        ctype, dtype = _Int, PETSc.IntType
+    else:
+        get = _declare("VecGetLocalSize", _Handle, ctypes.POINTER(_Int))
+        idx = _declare("VecGetArrayRead", _Handle, ctypes.POINTER(ctypes.POINTER(_Real)))
+        restore = _declare("VecRestoreArrayRead", _Handle, ctypes.POINTER(ctypes.POINTER(_Real)))
+        ctype, dtype = _Real, PETSc.RealType
+    n, p = _Int(), ctypes.POINTER(ctype)()
+    _call(get, _Handle(handle), ctypes.byref(n))
+    _call(idx, _Handle(handle), ctypes.byref(p))
+    a = np.array(np.ctypeslib.as_array(p, shape=(n.value,)) if n.value else [], dtype=dtype)
+    _call(restore, _Handle(handle), ctypes.byref(p))
+    return a
+
+
+def set_contact_operator(snes, dofs, B, gaps=None):
+    """SNESSSStarSetContactOperator(): contact points by an operator B (a petsc4py Mat, 3 rows per point)"""
+    is_ = _dofs_is(snes, dofs)
+    _call(_C["SNESSSStarSetContactOperator"], _h(snes), _h(is_), _h(B), _h(_node_vec(snes, gaps, 1, "gaps")))
+
+
+def set_contact_problem(snes, P, f):
+    """SNESSSStarSetContactProblem(): the reduced problem c(u) = P u - f with Jacobian P"""
+    _call(_C["SNESSSStarSetContactProblem"], _h(snes), _h(P), _h(f))
+
+
+def set_reduction_type(snes, kind):
+    """SNESSSStarSetReductionType(): 'direct', 'mumps', 'explicit', 'none' or 'auto'"""
+    _call(_C["SNESSSStarSetReductionType"], _h(snes), _choice(kind, REDUCTION_TYPES, "reduction"))
+
+
+def get_reduction_type(snes):
+    v = _Enum()
+    _call(_C["SNESSSStarGetReductionType"], _h(snes), ctypes.byref(v))
+    return REDUCTION_TYPES[v.value]
+
+
+def set_memory_limit(snes, gigabytes):
+    """SNESSSStarSetMemoryLimit(): GB per rank the reduction may plan for (0: MemAvailable)"""
+    _call(_C["SNESSSStarSetMemoryLimit"], _h(snes), float(gigabytes))
+
+
+def set_friction_law(snes, law):
+    """SNESSSStarSetFrictionLaw(): 'none', 'tresca' or 'coulomb' for the nodes without a law of their own"""
+    _call(_C["SNESSSStarSetFrictionLaw"], _h(snes), _choice(law, FRICTION_LAWS, "friction law"))
+
+
+def get_friction_law(snes):
+    v = _Enum()
+    _call(_C["SNESSSStarGetFrictionLaw"], _h(snes), ctypes.byref(v))
+    return FRICTION_LAWS[v.value]
+
+
+def set_friction(snes, phi):
+    """SNESSSStarSetFriction(): the Coulomb coefficient of the nodes without one of their own"""
+    _call(_C["SNESSSStarSetFriction"], _h(snes), float(phi))
+
+
+def get_friction(snes):
+    v = _Real()
+    _call(_C["SNESSSStarGetFriction"], _h(snes), ctypes.byref(v))
+    return v.value
+
+
+def set_friction_coefficients(snes, phi):
+    """SNESSSStarSetFrictionCoefficients(): one Coulomb coefficient per local contact node (Vec or array; None: back
+    to set_friction()'s)"""
+    _call(_C["SNESSSStarSetFrictionCoefficients"], _h(snes), _h(_node_vec(snes, phi, 1, "coefficients")))
+
+
+def set_slip_bounds(snes, bounds):
+    """SNESSSStarSetSlipBounds(): the Tresca bound of each local contact node (a force; Vec or array)"""
+    _call(_C["SNESSSStarSetSlipBounds"], _h(snes), _h(_node_vec(snes, bounds, 1, "slip bounds")))
+
+
+def set_node_friction_laws(snes, laws):
+    """SNESSSStarSetNodeFrictionLaws(): one law per local contact node ('none', 'tresca', 'coulomb' or their codes;
+    None: every node has set_friction_law()'s)"""
+    if laws is None:
+        _call(_C["SNESSSStarSetNodeFrictionLaws"], _h(snes), 0, None)
+        return
+    codes = (_Enum * len(laws))(*[_choice(law, FRICTION_LAWS, "friction law") for law in laws])
+    _call(_C["SNESSSStarSetNodeFrictionLaws"], _h(snes), len(laws), codes)
+
+
+def get_node_friction(snes):
+    """SNESSSStarGetNodeFriction() after the set-up or the solve: (laws, phi, bounds) of each local contact node in
+    the declared order; laws are codes into FRICTION_LAWS"""
+    n = get_contact_nodes(snes)[0]
+    if n < 0:
+        raise RuntimeError("get_node_friction: the contact nodes are not known before SNESSetUp()")
+    laws, phi, bounds = (_Enum * max(n, 1))(), (_Real * max(n, 1))(), (_Real * max(n, 1))()
+    _call(_C["SNESSSStarGetNodeFriction"], _h(snes), n, laws, phi, bounds)
+    return (np.array(laws[:n], dtype=np.int32), np.array(phi[:n], dtype=PETSc.RealType), np.array(bounds[:n], dtype=PETSc.RealType))
+
+
+def set_scaling(snes, gamma):
+    """SNESSSStarSetScaling(): gamma of the approximation step (0: 1/mean diag)"""
+    _call(_C["SNESSSStarSetScaling"], _h(snes), float(gamma))
+
+
+def get_scaling(snes):
+    v = _Real()
+    _call(_C["SNESSSStarGetScaling"], _h(snes), ctypes.byref(v))
+    return v.value
+
+
+def set_state_tolerance(snes, tau):
+    """SNESSSStarSetStateTolerance(): the relative tolerance of the state classification"""
+    _call(_C["SNESSSStarSetStateTolerance"], _h(snes), float(tau))
+
+
+def set_method(snes, method):
+    """SNESSSStarSetMethod(): 'newton' or 'fixedpoint'"""
+    _call(_C["SNESSSStarSetMethod"], _h(snes), _choice(method, METHODS, "method"))
+
+
+def get_method(snes):
+    v = _Enum()
+    _call(_C["SNESSSStarGetMethod"], _h(snes), ctypes.byref(v))
+    return METHODS[v.value]
+
+
+def set_lu_reuse(snes, fraction):
+    """SNESSSStarSetLUReuse()"""
+    _call(_C["SNESSSStarSetLUReuse"], _h(snes), float(fraction))
+
+
+def set_globalization(snes, on=True, damping_min=None, stagnation_its=None):
+    """SNESSSStarSetGlobalization(): on/off, the smallest damping factor, the iterations without progress before
+    the solve stops (None: keep the default)"""
+    _call(_C["SNESSSStarSetGlobalization"], _h(snes), 1 if on else 0, PETSc.DEFAULT if damping_min is None else float(damping_min),
+          PETSc.DEFAULT if stagnation_its is None else int(stagnation_its))
+
+
+def get_states(snes):
+    """SNESSSStarGetStates() after the solve: (states, counts): the state code of each local contact node (declared
+    order; names in STATE_NAMES) and the global count of each state"""
+    n = get_contact_nodes(snes)[0]
+    p, counts = ctypes.POINTER(_Enum)(), (_Int * _NUM_STATES)()
+    _call(_C["SNESSSStarGetStates"], _h(snes), ctypes.byref(p), counts)
+    states = np.array(np.ctypeslib.as_array(p, shape=(n,)) if n > 0 and p else [], dtype=np.int32)
+    return states, np.array(counts[:], dtype=np.int64)
+
+
+def get_reason(snes):
+    """SNESSSStarGetReason(): why the last solve stopped, finer than snes.getConvergedReason() (a name of REASONS)"""
+    v = _Enum()
+    _call(_C["SNESSSStarGetReason"], _h(snes), ctypes.byref(v))
+    return REASONS[v.value]
+
+
+def get_tolerance(snes):
+    """SNESSSStarGetTolerance(): the threshold the last stopping test compared ||z|| with"""
+    v = _Real()
+    _call(_C["SNESSSStarGetTolerance"], _h(snes), ctypes.byref(v))
+    return v.value
+
+
+def get_remedy_counts(snes):
+    """SNESSSStarGetRemedyCounts(): {remedy name: count} of the last solve"""
+    counts = (_Int * _NUM_REMEDIES)()
+    _call(_C["SNESSSStarGetRemedyCounts"], _h(snes), counts)
+    return dict(zip(REMEDIES, counts[:]))
+
+
+def get_newton_step_counts(snes):
+    """SNESSSStarGetNewtonStepCounts(): (LU factorizations, steps on an older LU, Krylov iterations)"""
+    a, b, c = _Int(), _Int(), _Int()
+    _call(_C["SNESSSStarGetNewtonStepCounts"], _h(snes), ctypes.byref(a), ctypes.byref(b), ctypes.byref(c))
+    return a.value, b.value, c.value
+
+
+def get_condition_estimate(snes):
+    """SNESSSStarGetConditionEstimate(): 1/cond of the last LU-factored Newton matrix, or -1"""
+    v = _Real()
+    _call(_C["SNESSSStarGetConditionEstimate"], _h(snes), ctypes.byref(v))
+    return v.value
+
+
+def get_contact_forces(snes):
+    """The contact force on the body at each local contact node after the solve, n x 3 in global axes: the entries
+    of snes.getFunction() (K u - b; P u - f in the reduced use) at the declared dofs"""
+    r = snes.getFunction()[0]
+    n, dofs = get_contact_nodes(snes)[:2]
+    a = r.getArray(readonly=True)
+    if dofs is None:
+        return np.array(a, dtype=PETSc.RealType).reshape(-1, 3)
+    start = r.getOwnershipRange()[0]
+    return np.array(a[dofs - start], dtype=PETSc.RealType).reshape(n, 3)

@@ -7,7 +7,9 @@
 */
 #include <petscksp.h>
 
-/* auto takes the direct reduction up to this many dofs of K (the crossover measured on the prism), none above */
+/* auto takes the direct reduction up to this many dofs of K, none above: the crossover measured on the prism
+   (bench/table2.py, medians of 3, this 2-core machine): level 8 (28 611 dofs) whole run dense 5.6 s / whole body
+   7.4 s on 1 rank, 7.9 / 7.8 s on 2; level 10 (54 243 dofs) 16.8 / 16.2 s and 12.4 / 11.1 s */
 #define SSSTAR_AUTO_DENSE_MAX_DOFS 30000
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;

@@ -1,7 +1,7 @@
 /*
    A scene from the options: the body (gmsh mesh), its material, supports and loads, and its contact groups, each with
-   a rigid plane and a friction law. Only what the options name is built: no contact group, no contact nodes; no
-   -gravity, no body force.
+   a rigid obstacle (a plane, ball, cylinder or triangle mesh: obstacle.c) and a friction law. Only what the options
+   name is built: no contact group, no contact nodes; no -gravity, no body force.
 */
 #include "sceneimpl.h"
 
@@ -294,7 +294,7 @@ static const char SceneGroupHelp[] = "\
 .  -gravity <gx,gy,gz> - gravity, with -density
 .  -density <rho> - the mass density
 .  -contact <G1,G2> - the contact groups
-.  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid plane of G
+.  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
 .  -friction_law_<G> <coulomb> - none, tresca or coulomb
 .  -friction_<G> <phi> - the Coulomb coefficient of G
 -  -slip_bound_<G> <s> - the Tresca bound of G
@@ -494,7 +494,7 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
 
   PetscFunctionBegin;
   PetscCall(DMGetBoundingBox(dm, gmin, gmax));
-  /* "inside the obstacle by more than round-off": relative to the size of the body and the distance to the planes */
+  /* "inside the obstacle by more than round-off": relative to the size of the body and the distance to the obstacles */
   tol = 0;
   for (PetscInt k = 0; k < 3; k++) tol += PetscSqr(gmax[k] - gmin[k]);
   tol = 1e-10 * PetscSqrtReal(tol);
@@ -554,7 +554,7 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
       inside.gap   = scene->gap[n];
       PetscCall(PetscArraycpy(inside.x, x, 3));
     }
-    if (PetscAbsReal(scene->gap[n]) <= tol) scene->gap[n] = 0.0; /* on the plane up to round-off: touching */
+    if (PetscAbsReal(scene->gap[n]) <= tol) scene->gap[n] = 0.0; /* on the obstacle up to round-off: touching */
     for (PetscInt k = 0; k < 3; k++) {
       scene->coords[3 * n + k] = x[k];
       scene->normal[3 * n + k] = normal[k];
@@ -772,7 +772,7 @@ PetscErrorCode SSStarSceneGetContactDofs(SSStarScene scene, IS *dofs)
    Output Parameters:
 +  n       - their number, or pass NULL
 .  coords  - their coordinates, 3 per node, or pass NULL
-.  normals - the normals of their planes (into the body), 3 per node, or pass NULL
+.  normals - the normals of their obstacles at them (out of the obstacle, into the body), 3 per node, or pass NULL
 .  gaps    - their initial gaps, 1 per node, or pass NULL
 -  areas   - their tributary areas (a third of their adjacent contact faces), 1 per node, or pass NULL
 
@@ -809,7 +809,7 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 
 /*@C
    SSStarSceneSetContact - declares the contact nodes of the scene to an "ssstar" SNES: their dofs, the normals of
-   their planes, their initial gaps, and the friction laws of their groups
+   their obstacles at them, their initial gaps, and the friction laws of their groups
 
    Collective
 

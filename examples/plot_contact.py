@@ -4,9 +4,9 @@
   examples/plot_contact.py file.h5 [-o file.png]
 
 One row per contact group, drawn in the coordinates (t1, t2) of its plane (the frame the solver uses, so any plane
-works). Left: the contact nodes by state (separated, sliding, sticking), with the tangential displacement u_t of the nodes in
-contact as arrows (the slip).
-Right: the contact pressure r_n / area (the normal force of the plane over the node's tributary area). With
+works; for a curved obstacle, the plane of the group's mean normal). Left: the contact nodes by state (separated,
+sliding, sticking), with the tangential displacement u_t of the nodes in contact (in each node's own frame) as arrows
+(the slip). Right: the contact pressure r_n / area (each node's normal force over its tributary area). With
 -load_steps, a last panel shows the contact area against the load factor."""
 import argparse
 
@@ -55,8 +55,12 @@ def main():
     fig, axes = plt.subplots(len(groups), ncols, figsize=(6.5 * ncols, 4.4 * len(groups)), squeeze=False)
     for row, g in zip(axes, groups):
         on = d["group"] == g
-        R = frame(d["normal"][on][0])
-        x, u, r = d["coordinates"][on] @ R.T, d["displacement"][on] @ R.T, d["reaction"][on] @ R.T
+        n = d["normal"][on]
+        mean = n.sum(axis=0)
+        R = frame(mean / np.linalg.norm(mean) if np.linalg.norm(mean) > 1e-12 else n[0])
+        un = (d["displacement"][on] * n).sum(axis=1)
+        x, u = d["coordinates"][on] @ R.T, (d["displacement"][on] - un[:, None] * n) @ R.T
+        rn = (d["reaction"][on] * n).sum(axis=1)
         state = d["state"][on]
         name = d["names"][g] if g < len(d["names"]) else str(g)
         for s, (label, color) in STATES.items():
@@ -67,7 +71,7 @@ def main():
         row[0].quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", color="k", width=0.002, zorder=3)
         row[0].set_title("%s: contact states and slip u_t" % name)
         row[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-        pressure = r[:, 2] / d["area"][on] if d["area"] is not None else r[:, 2]
+        pressure = rn / d["area"][on] if d["area"] is not None else rn
         sc = row[1].scatter(x[:, 0], x[:, 1], c=pressure, s=18, cmap="viridis")
         fig.colorbar(sc, ax=row[1], label="contact pressure r_n / area" if d["area"] is not None else "normal reaction r_n")
         lifted = ~touching

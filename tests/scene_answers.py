@@ -2,10 +2,18 @@
 """Known answers of the shipped scenes, measured from a solution file of examples/contact (-o file.h5).
 
   scene_answers.py hertz FILE.h5 [--E 2.1e5 --nu 0.3 --R 10]
-      contact radius a and peak pressure p0 against Hertz's sphere on a rigid plane, with the normal force F the
-      plane carries: a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2), E* = E / (1 - nu^2). Measured: the pressure
-      r_n / area of the nodes in contact well inside the contact zone (r < 0.8 a) fitted by p^2 = p0^2 (1 - r^2/a^2);
-      and the bracket [outermost node in contact, innermost node out of contact]
+      contact radius a and peak pressure p0 against Hertz's sphere on a rigid plane (the hertz scene) or a rigid ball
+      on a block (the ball scene), the contact centred on the z axis, with the force F the obstacle carries (the
+      length of the resultant of the contact reactions): a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2),
+      E* = E / (1 - nu^2). Measured: the pressure r_n / area of the nodes in contact well inside the contact zone
+      (r < 0.8 a) fitted by p^2 = p0^2 (1 - r^2/a^2); and the bracket [outermost node in contact, innermost node out
+      of contact]
+  scene_answers.py line FILE.h5 [--E 2.1e5 --nu 0.3 --R 10]
+      half-width b and peak pressure p0 against Hertz's line contact of a rigid cylinder along y touching the block
+      on the line x = z = 0 (the roller scene: a mesh extruded along y in layers), in the section y = 0, with its
+      force per unit length F' = (sum of r_n over the nodes of the section) / (layer thickness): b = sqrt(4 F' R /
+      (pi E*)), p0 = 2 F' / (pi b). Measured: p^2 = p0^2 (1 - x^2/b^2) fitted to the section's nodes in contact
+      with |x| < 0.8 b, and the bracket
   scene_answers.py friction FILE.h5
       the contact force of the plane(s): normal N, tangential |F_t|, their ratio, and the states
   scene_answers.py slide FILE.h5 tx,ty,tz
@@ -34,7 +42,7 @@ def contact(name):
 
 def hertz(name, E=2.1e5, nu=0.3, R=10.0):
     d = contact(name)
-    F = d["rn"].sum()
+    F = np.linalg.norm(d["reaction"].sum(axis=0))
     Es = E / (1 - nu ** 2)
     a = (3 * F * R / (4 * Es)) ** (1 / 3)
     p0 = 3 * F / (2 * np.pi * a ** 2)
@@ -47,6 +55,26 @@ def hertz(name, E=2.1e5, nu=0.3, R=10.0):
     p0_fit, a_fit = np.sqrt(A), np.sqrt(A / B)
     return {"force": F, "a_hertz": a, "p0_hertz": p0, "a_fit": a_fit, "p0_fit": p0_fit,
             "a_error": a_fit / a - 1, "p0_error": p0_fit / p0 - 1, "a_inside": inside, "a_outside": outside,
+            "nodes_in_contact": int(t.sum())}
+
+
+def line(name, E=2.1e5, nu=0.3, R=10.0):
+    d = contact(name)
+    x, y = d["coordinates"][:, 0], d["coordinates"][:, 1]
+    hy = np.abs(y)[np.abs(y) > 1e-9].min()
+    section = np.abs(y) <= 1e-9
+    F = d["rn"][section].sum() / hy
+    Es = E / (1 - nu ** 2)
+    b = np.sqrt(4 * F * R / (np.pi * Es))
+    p0 = 2 * F / (np.pi * b)
+    t = d["touching"] & section
+    inside, outside = np.abs(x[t]).max(), np.abs(x[section & ~d["touching"]]).min()
+    p = d["rn"] / d["area"]
+    fit = t & (np.abs(x) < 0.8 * inside)
+    A, B = np.linalg.lstsq(np.c_[np.ones(fit.sum()), -x[fit] ** 2], p[fit] ** 2, rcond=None)[0]
+    p0_fit, b_fit = np.sqrt(A), np.sqrt(A / B)
+    return {"force_per_length": F, "layer": hy, "b_hertz": b, "p0_hertz": p0, "b_fit": b_fit, "p0_fit": p0_fit,
+            "b_error": b_fit / b - 1, "p0_error": p0_fit / p0 - 1, "b_inside": inside, "b_outside": outside,
             "nodes_in_contact": int(t.sum())}
 
 
@@ -85,6 +113,11 @@ def main():
     h.add_argument("--E", type=float, default=2.1e5)
     h.add_argument("--nu", type=float, default=0.3)
     h.add_argument("--R", type=float, default=10.0)
+    li = sub.add_parser("line")
+    li.add_argument("file")
+    li.add_argument("--E", type=float, default=2.1e5)
+    li.add_argument("--nu", type=float, default=0.3)
+    li.add_argument("--R", type=float, default=10.0)
     fr = sub.add_parser("friction")
     fr.add_argument("file")
     sl = sub.add_parser("slide")
@@ -96,6 +129,8 @@ def main():
     args = parser.parse_args()
     if args.cmd == "hertz":
         result = hertz(args.file, args.E, args.nu, args.R)
+    elif args.cmd == "line":
+        result = line(args.file, args.E, args.nu, args.R)
     elif args.cmd == "friction":
         result = friction(args.file)
     elif args.cmd == "slide":

@@ -718,12 +718,11 @@ static PetscErrorCode WriteContactFaces(SSStarScene scene, hid_t file, Vec u, Ve
       }
       c++;
     } else { /* held fixed (Dirichlet) */
-      const SSStarContactGroup *cg = &scene->contact[g];
-      const PetscReal           d[3] = {xv[0] - cg->point[0], xv[1] - cg->point[1], xv[2] - cg->point[2]};
+      PetscReal n[3];
 
       st[nq] = -1;
       pr[nq] = 0;
-      gp[nq] = Dot3(d, cg->normal);
+      PetscCall(SSStarObstacleGap(&scene->contact[g].obstacle, xv, 0, &gp[nq], n));
       for (PetscInt k = 0; k < 3; k++) du[3 * nq + k] = tt[3 * nq + k] = sl[3 * nq + k] = 0;
     }
     nq++;
@@ -761,7 +760,14 @@ static PetscErrorCode WriteContactFaces(SSStarScene scene, hid_t file, Vec u, Ve
     nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
     nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
     nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    if (Dot3(nrm, scene->contact[g].normal) > 0) { /* the plane's normal points into the body; the face's out of it */
+    {
+      PetscReal centre[3], gap, n[3];
+
+      for (PetscInt k = 0; k < 3; k++) centre[k] = (xv[0][k] + xv[1][k] + xv[2][k]) / 3;
+      PetscCall(SSStarObstacleGap(&scene->contact[g].obstacle, centre, 0, &gap, n));
+      for (PetscInt k = 0; k < 3; k++) e1[k] = n[k];
+    }
+    if (Dot3(nrm, e1) > 0) { /* the obstacle's normal (at the face's centre) points into the body; the face's out of it */
       const PetscInt t = verts[1];
 
       verts[1] = verts[2];
@@ -909,8 +915,20 @@ static PetscErrorCode WriteScene(SSStarScene scene, hid_t file, const NodeFricti
     PetscCall(AttrString(sub, "law", law >= 0 ? SSStarFrictionLaws[law] : "mixed"));
     if (nf->known && laws[SSSTAR_FRICTION_COULOMB] && range[0] == -range[1]) PetscCall(AttrReal(sub, "friction", range[0]));
     if (nf->known && laws[SSSTAR_FRICTION_TRESCA] && range[2] == -range[3]) PetscCall(AttrReal(sub, "slip_bound", range[2]));
-    PetscCall(AttrReals(sub, "point", 3, cg->point));
-    PetscCall(AttrReals(sub, "normal", 3, cg->normal));
+    {
+      const SSStarObstacle *ob = &cg->obstacle;
+      char                  text[PETSC_MAX_PATH_LEN + 128];
+
+      PetscCall(SSStarObstacleDescribe(ob, text, sizeof(text)));
+      PetscCall(AttrString(sub, "obstacle", text));
+      if (ob->type == SSSTAR_OBSTACLE_PLANE || ob->type == SSSTAR_OBSTACLE_CYLINDER) PetscCall(AttrReals(sub, "point", 3, ob->point));
+      if (ob->type == SSSTAR_OBSTACLE_PLANE) PetscCall(AttrReals(sub, "normal", 3, ob->dir));
+      if (ob->type == SSSTAR_OBSTACLE_CYLINDER) PetscCall(AttrReals(sub, "axis", 3, ob->dir));
+      if (ob->type == SSSTAR_OBSTACLE_SPHERE) PetscCall(AttrReals(sub, "centre", 3, ob->point));
+      if (ob->type == SSSTAR_OBSTACLE_SPHERE || ob->type == SSSTAR_OBSTACLE_CYLINDER) PetscCall(AttrReal(sub, "radius", ob->radius));
+      if (ob->type == SSSTAR_OBSTACLE_MESH) PetscCall(AttrString(sub, "file", ob->file));
+      if (ob->type == SSSTAR_OBSTACLE_MESH) PetscCall(AttrInt(sub, "triangles", ob->nt));
+    }
     PetscCall(AttrInt(sub, "nodes", cg->nodes));
     PetscCall(AttrReal(sub, "gap_min", cg->gapMin));
     PetscCall(AttrReal(sub, "gap_max", cg->gapMax));

@@ -1,7 +1,7 @@
 /*
    A scene from the options: the body (gmsh mesh), its material, supports and loads, and its contact groups, each with
-   a rigid plane and a friction law. Only what the options name is built: no contact group, no contact nodes; no
-   -gravity, no body force.
+   a rigid obstacle (a plane, ball, cylinder or triangle mesh: obstacle.c) and a friction law. Only what the options
+   name is built: no contact group, no contact nodes; no -gravity, no body force.
 */
 #include "sceneimpl.h"
 
@@ -53,6 +53,7 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   for (PetscInt g = 0; g < s->nDirichlet; g++) PetscCall(PetscFree(s->dirichlet[g]));
   PetscCall(PetscFree(s->dirichlet));
   PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
+  for (PetscInt g = 0; g < s->nContact; g++) PetscCall(SSStarObstacleReset(&s->contact[g].obstacle));
   PetscCall(PetscFree(s->contact));
   PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
   PetscCall(PetscFree2(s->gap, s->area));
@@ -188,7 +189,6 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
 {
   SSStarContactGroup *cg;
   SSStarGroupValues  *gv;
-  PetscReal           v[6];
   PetscBool           set;
   PetscEnum           law;
 
@@ -202,19 +202,13 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCall(GetFiniteArray(scene->comm, option, kind == OPT_MATERIAL ? 2 : kind == OPT_TRACTION ? 3 : 1, kind == OPT_MATERIAL ? "E,nu" : kind == OPT_TRACTION ? "x,y,z" : "k", gv->value, &set));
     PetscCheck(kind != OPT_SPRING || gv->value[0] > 0, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the spring stiffness must be positive", option, (double)gv->value[0]);
     break;
-  case OPT_OBSTACLE:
-    PetscCall(ContactGroup(scene, group, option, &cg));
-    PetscCall(GetFiniteArray(scene->comm, option, 6, "px,py,pz,nx,ny,nz", v, &set));
-    {
-      const PetscReal len = PetscSqrtReal(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+  case OPT_OBSTACLE: {
+    char spec[PETSC_MAX_PATH_LEN + 8] = "";
 
-      PetscCheck(len > 0, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s: the normal (%g, %g, %g) is zero", option, (double)v[3], (double)v[4], (double)v[5]);
-      for (PetscInt k = 0; k < 3; k++) {
-        cg->point[k]  = v[k];
-        cg->normal[k] = v[3 + k] / len;
-      }
-    }
-    break;
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, spec, sizeof(spec), &set));
+    PetscCall(SSStarObstacleSetFromString(scene->comm, option, spec, &cg->obstacle)); /* obstacle.c */
+  } break;
   case OPT_FRICTION_LAW:
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(PetscOptionsGetEnum(NULL, NULL, option, SSStarFrictionLaws, &law, &set));
@@ -270,7 +264,9 @@ static const char SceneGroupHelp[] = "\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
   -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
   -contact <G1,G2,...>: the contact groups (none: no contact at all)\n\
-  -obstacle_<G> <0,0,0,0,0,1>: the rigid plane of G: a point px,py,pz and the normal nx,ny,nz into the body\n\
+  -obstacle_<G> <0,0,0,0,0,1>: the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers: a point and\n\
+      the normal into the body), sphere:cx,cy,cz,R (a ball touched from outside), cylinder:px,py,pz,ax,ay,az,R\n\
+      (infinite, axis through p along a) or mesh:FILE.msh (a rigid body bounded by gmsh triangles, normals out of it)\n\
   -friction_law_<G> <coulomb>: none, tresca or coulomb\n\
   -friction_<G> <phi>: Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
   -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n";
@@ -298,7 +294,7 @@ static const char SceneGroupHelp[] = "\
 .  -gravity <gx,gy,gz> - gravity, with -density
 .  -density <rho> - the mass density
 .  -contact <G1,G2> - the contact groups
-.  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid plane of G
+.  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
 .  -friction_law_<G> <coulomb> - none, tresca or coulomb
 .  -friction_<G> <phi> - the Coulomb coefficient of G
 -  -slip_bound_<G> <s> - the Tresca bound of G
@@ -345,7 +341,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 
     PetscCall(PetscStrncpy(cg->name, contact[g], sizeof(cg->name)));
     PetscCall(PetscFree(contact[g]));
-    cg->normal[2] = 1.0;
+    PetscCall(SSStarObstacleReset(&cg->obstacle)); /* the default: the plane z = 0 */
     cg->law       = SSSTAR_FRICTION_COULOMB;
     PetscCall(CheckNotHeld(scene, cg->name, "-contact"));
   }
@@ -433,17 +429,16 @@ static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
   PetscFunctionReturn(0);
 }
 
-/* The signed distance of x to the plane of a contact group (positive on the side of its normal) */
-static PetscReal PlaneDistance(const SSStarContactGroup *cg, const PetscReal x[3])
+/* Whether the obstacles of two contact groups give the node at x the same gap and normal */
+static PetscErrorCode SameObstacleAt(const SSStarContactGroup *a, const SSStarContactGroup *b, const PetscReal x[3], PetscReal tol, PetscBool *same)
 {
-  return (x[0] - cg->point[0]) * cg->normal[0] + (x[1] - cg->point[1]) * cg->normal[1] + (x[2] - cg->point[2]) * cg->normal[2];
-}
+  PetscReal ga, gb, na[3], nb[3];
 
-static PetscBool SamePlane(const SSStarContactGroup *a, const SSStarContactGroup *b, PetscReal tol)
-{
-  const PetscReal dn = PetscAbsReal(a->normal[0] - b->normal[0]) + PetscAbsReal(a->normal[1] - b->normal[1]) + PetscAbsReal(a->normal[2] - b->normal[2]);
-
-  return (PetscBool)(dn <= 1e-12 && PetscAbsReal(PlaneDistance(a, b->point)) <= tol);
+  PetscFunctionBegin;
+  PetscCall(SSStarObstacleGap(&a->obstacle, x, tol, &ga, na));
+  PetscCall(SSStarObstacleGap(&b->obstacle, x, tol, &gb, nb));
+  *same = (PetscBool)(PetscAbsReal(na[0] - nb[0]) + PetscAbsReal(na[1] - nb[1]) + PetscAbsReal(na[2] - nb[2]) <= 1e-12 && PetscAbsReal(ga - gb) <= tol);
+  PetscFunctionReturn(0);
 }
 
 /* A node an error is about: the owner's data reach every rank (the lowest file index wins) */
@@ -481,8 +476,9 @@ static PetscErrorCode ShareBadNode(MPI_Comm comm, BadNode *bad, PetscBool *found
 }
 
 /*
-   The owned contact nodes: vertices of the contact groups that are not held fixed, each with the plane of its group
-   (the first listed in -contact when it is in two groups with the same plane), its initial gap and tributary area.
+   The owned contact nodes: vertices of the contact groups that are not held fixed, each with the obstacle of its group
+   (the first listed in -contact when it is in two groups whose obstacles agree at the node), its normal and initial
+   gap there (SSStarObstacleGap, obstacle.c) and its tributary area.
 */
 static PetscErrorCode CreateContactNodes(SSStarScene scene)
 {
@@ -498,7 +494,7 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
 
   PetscFunctionBegin;
   PetscCall(DMGetBoundingBox(dm, gmin, gmax));
-  /* "inside the obstacle by more than round-off": relative to the size of the body and the distance to the planes */
+  /* "inside the obstacle by more than round-off": relative to the size of the body and the distance to the obstacles */
   tol = 0;
   for (PetscInt k = 0; k < 3; k++) tol += PetscSqr(gmax[k] - gmin[k]);
   tol = 1e-10 * PetscSqrtReal(tol);
@@ -522,7 +518,8 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
   /* vertices in point order have increasing global offsets, so the dofs are sorted */
   for (PetscInt v = vStart; v < vEnd; v++) {
     PetscInt  off, ncon, coff, group = -1;
-    PetscReal x[3];
+    PetscReal x[3], normal[3];
+    PetscBool same;
 
     PetscCall(PetscSectionGetOffset(gsec, v, &off));
     PetscCall(PetscSectionGetConstraintDof(sec, v, &ncon));
@@ -534,8 +531,12 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
 
       PetscCall(DMLabelGetValue(labels[g], v, &value));
       if (value < 0) continue;
-      if (group < 0) group = g;
-      else if (!SamePlane(&scene->contact[group], &scene->contact[g], tol) && twice.tag < 0) {
+      if (group < 0) {
+        group = g;
+        continue;
+      }
+      PetscCall(SameObstacleAt(&scene->contact[group], &scene->contact[g], x, tol, &same));
+      if (!same && twice.tag < 0) {
         twice.tag   = (PetscInt)PetscRealPart(ta[v - vStart]);
         twice.group = group;
         twice.other = g;
@@ -545,7 +546,7 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
     if (group < 0) continue;
     scene->tag[n]   = (PetscInt)PetscRealPart(ta[v - vStart]);
     scene->group[n] = group;
-    scene->gap[n]   = PlaneDistance(&scene->contact[group], x);
+    PetscCall(SSStarObstacleGap(&scene->contact[group].obstacle, x, tol, &scene->gap[n], normal));
     scene->area[n]  = PetscRealPart(aa[off - rstart]); /* in the x-dof */
     if (scene->gap[n] < -tol && inside.tag < 0) {
       inside.tag   = scene->tag[n];
@@ -553,10 +554,10 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
       inside.gap   = scene->gap[n];
       PetscCall(PetscArraycpy(inside.x, x, 3));
     }
-    if (PetscAbsReal(scene->gap[n]) <= tol) scene->gap[n] = 0.0; /* on the plane up to round-off: touching */
+    if (PetscAbsReal(scene->gap[n]) <= tol) scene->gap[n] = 0.0; /* on the obstacle up to round-off: touching */
     for (PetscInt k = 0; k < 3; k++) {
       scene->coords[3 * n + k] = x[k];
-      scene->normal[3 * n + k] = scene->contact[group].normal[k];
+      scene->normal[3 * n + k] = normal[k];
       dofs[3 * n + k]          = off + k;
     }
     scene->contact[group].nodes++;
@@ -571,9 +572,9 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
   PetscCall(ISCreateGeneral(scene->comm, 3 * n, dofs, PETSC_OWN_POINTER, &scene->isC));
 
   PetscCall(ShareBadNode(scene->comm, &twice, &found));
-  PetscCheck(!found, scene->comm, PETSC_ERR_ARG_WRONG, "Mesh node %" PetscInt_FMT " (0-based, file order) at (%g, %g, %g) is in the contact groups \"%s\" and \"%s\" whose planes (-obstacle_%s, -obstacle_%s) differ: a node touches one plane", twice.tag, (double)twice.x[0], (double)twice.x[1], (double)twice.x[2], scene->contact[twice.group].name, scene->contact[twice.other].name, scene->contact[twice.group].name, scene->contact[twice.other].name);
+  PetscCheck(!found, scene->comm, PETSC_ERR_ARG_WRONG, "Mesh node %" PetscInt_FMT " (0-based, file order) at (%g, %g, %g) is in the contact groups \"%s\" and \"%s\" whose obstacles (-obstacle_%s, -obstacle_%s) differ at this node: a node touches one obstacle", twice.tag, (double)twice.x[0], (double)twice.x[1], (double)twice.x[2], scene->contact[twice.group].name, scene->contact[twice.other].name, scene->contact[twice.group].name, scene->contact[twice.other].name);
   PetscCall(ShareBadNode(scene->comm, &inside, &found));
-  PetscCheck(!found, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Mesh node %" PetscInt_FMT " (0-based, file order) of contact group \"%s\" at (%g, %g, %g) starts %g inside the obstacle of -obstacle_%s (does the normal point into the body?)", inside.tag, scene->contact[inside.group].name, (double)inside.x[0], (double)inside.x[1], (double)inside.x[2], (double)-inside.gap, scene->contact[inside.group].name);
+  PetscCheck(!found, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Mesh node %" PetscInt_FMT " (0-based, file order) of contact group \"%s\" at (%g, %g, %g) starts %g inside the obstacle of -obstacle_%s (%s)", inside.tag, scene->contact[inside.group].name, (double)inside.x[0], (double)inside.x[1], (double)inside.x[2], (double)-inside.gap, scene->contact[inside.group].name, SSStarObstacleInsideHint(&scene->contact[inside.group].obstacle));
   for (PetscInt g = 0; g < scene->nContact; g++) {
     SSStarContactGroup *cg = &scene->contact[g];
     PetscReal           range[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL};
@@ -771,7 +772,7 @@ PetscErrorCode SSStarSceneGetContactDofs(SSStarScene scene, IS *dofs)
    Output Parameters:
 +  n       - their number, or pass NULL
 .  coords  - their coordinates, 3 per node, or pass NULL
-.  normals - the normals of their planes (into the body), 3 per node, or pass NULL
+.  normals - the normals of their obstacles at them (out of the obstacle, into the body), 3 per node, or pass NULL
 .  gaps    - their initial gaps, 1 per node, or pass NULL
 -  areas   - their tributary areas (a third of their adjacent contact faces), 1 per node, or pass NULL
 
@@ -808,7 +809,7 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 
 /*@C
    SSStarSceneSetContact - declares the contact nodes of the scene to an "ssstar" SNES: their dofs, the normals of
-   their planes, their initial gaps, and the friction laws of their groups
+   their obstacles at them, their initial gaps, and the friction laws of their groups
 
    Collective
 
@@ -904,8 +905,10 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->hasGravity) PetscCall(PetscViewerASCIIPrintf(viewer, "gravity: (%g, %g, %g), density %g\n", (double)scene->gravity[0], (double)scene->gravity[1], (double)scene->gravity[2], (double)scene->density));
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
+    char                      obstacle[PETSC_MAX_PATH_LEN + 128];
 
-    PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, plane through (%g, %g, %g) with normal (%g, %g, %g), initial gaps %g .. %g, friction %s", cg->name, cg->nodes, (double)cg->point[0], (double)cg->point[1], (double)cg->point[2], (double)cg->normal[0], (double)cg->normal[1], (double)cg->normal[2], (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    PetscCall(SSStarObstacleDescribe(&cg->obstacle, obstacle, sizeof(obstacle)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
     if (cg->law == SSSTAR_FRICTION_COULOMB && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
     if (cg->law == SSSTAR_FRICTION_COULOMB && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));

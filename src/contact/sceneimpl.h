@@ -2,6 +2,7 @@
 #define SSSTARSCENEIMPL_H
 
 #include <ssstarcontact.h>
+#include "obstacle.h"
 
 #define SSSTAR_GROUP_NAME_LEN 128
 
@@ -25,10 +26,10 @@ typedef struct {
   PetscReal value[3];
 } SSStarGroupValues;
 
-/* A contact group: its rigid plane and its friction law */
+/* A contact group: its rigid obstacle and its friction law */
 typedef struct {
   char              name[SSSTAR_GROUP_NAME_LEN];
-  PetscReal         point[3], normal[3]; /* normal: unit, into the body                          */
+  SSStarObstacle    obstacle;           /* -obstacle_<G>: a plane, ball, cylinder or mesh (obstacle.c) */
   SSStarFrictionLaw law;
   PetscBool         lawSet, phiSet, boundSet; /* -friction_law_<G>, -friction_<G>, -slip_bound_<G> given */
   PetscReal         phi, bound;         /* Coulomb coefficient, Tresca slip bound (a force)      */

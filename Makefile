@@ -17,7 +17,7 @@ LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/s
             src/snes/impls/ssstar/newton_full.c src/snes/impls/ssstar/denselu.c src/snes/impls/ssstar/operator.c \
             src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
             src/reduction/reduction.c src/reduction/direct.c src/reduction/mumps.c src/reduction/explicit.c src/reduction/none.c src/contact/mesh.c src/contact/meshcache.c src/contact/elasticity.c src/contact/output.c \
-            src/contact/memory.c src/contact/scene.c src/contact/obstacle.c
+            src/contact/memory.c src/contact/scene.c src/contact/obstacle.c src/contact/pairs.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator

@@ -621,8 +621,23 @@ static PetscErrorCode WriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, 
   for (PetscInt g = 0; g < scene->nContact; g++) {
     if (g) PetscCall(PetscStrlcat(names, ",", sizeof(names)));
     PetscCall(PetscStrlcat(names, scene->contact[g].name, sizeof(names)));
+    if (scene->contact[g].master[0]) { /* a pair: slave->master */
+      PetscCall(PetscStrlcat(names, "->", sizeof(names)));
+      PetscCall(PetscStrlcat(names, scene->contact[g].master, sizeof(names)));
+    }
   }
   PetscCall(ObjectAttrString(file, "/contact/group", "names", names));
+  { /* at the solution: the gap, pressure, tangential traction and slip (against the plane or the master surface) */
+    PetscReal *kin[4];
+
+    PetscCall(PetscMalloc4(n + 1, &kin[0], n + 1, &kin[1], 3 * n + 1, &kin[2], 3 * n + 1, &kin[3]));
+    PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3]));
+    PetscCall(WriteNodeField(comm, file, "/contact/final_gap", p, n, pos, 1, kin[0], PETSC_FALSE));
+    PetscCall(WriteNodeField(comm, file, "/contact/pressure", p, n, pos, 1, kin[1], PETSC_FALSE));
+    PetscCall(WriteNodeField(comm, file, "/contact/traction", p, n, pos, 3, kin[2], PETSC_FALSE));
+    PetscCall(WriteNodeField(comm, file, "/contact/slip", p, n, pos, 3, kin[3], PETSC_FALSE));
+    PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
+  }
   PetscCall(WriteNodeField(comm, file, "/contact/friction_law", p, n, pos, 1, ll, PETSC_TRUE));
   PetscCall(JoinNames(3, SSStarFrictionLaws, names, sizeof(names)));
   PetscCall(ObjectAttrString(file, "/contact/friction_law", "names", names));

@@ -58,6 +58,9 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
   PetscCall(PetscFree2(s->gap, s->area));
   PetscCall(ISDestroy(&s->isC));
+  PetscCall(PetscFree(s->body));
+  PetscCall(PetscFree2(s->frame, s->weight));
+  PetscCall(MatDestroy(&s->B));
   PetscCall(VecDestroy(&s->tags));
   PetscCall(DMDestroy(&s->dm));
   PetscCall(PetscFree(*scene));
@@ -127,10 +130,11 @@ typedef enum {
   OPT_FRICTION_LAW,
   OPT_FRICTION,
   OPT_SLIP_BOUND,
+  OPT_CONTACT_PAIR,
   OPT_COUNT
 } GroupOption;
 /* friction_law_ before friction_: the longer prefix is tried first */
-static const char *const GroupOptionPrefix[OPT_COUNT] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-friction_", "-slip_bound_"};
+static const char *const GroupOptionPrefix[OPT_COUNT] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-friction_", "-slip_bound_", "-contact_pair_"};
 
 /* Calls found(scene, kind, group, option) for every option of the database with a group prefix */
 static PetscErrorCode ForEachGroupOption(SSStarScene scene, PetscErrorCode (*found)(SSStarScene, GroupOption, const char[], const char[]))
@@ -227,6 +231,10 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCheck(cg->bound >= 0 && !PetscIsInfOrNanReal(cg->bound), scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the slip bound must be a number >= 0 (a force per contact node)", option, (double)cg->bound);
     cg->boundSet = PETSC_TRUE;
     break;
+  case OPT_CONTACT_PAIR:
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(SSStarPairsReadOption(scene, cg, option));
+    break;
   default:
     break;
   }
@@ -269,7 +277,8 @@ static const char SceneGroupHelp[] = "\
       (infinite, axis through p along a) or mesh:FILE.msh (a rigid body bounded by gmsh triangles, normals out of it)\n\
   -friction_law_<G> <coulomb>: none, tresca or coulomb\n\
   -friction_<G> <phi>: Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
-  -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n";
+  -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n\
+  -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body, node-to-surface\n";
 
 /*@C
    SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
@@ -352,8 +361,9 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(ForEachGroupOption(scene, CountGroupOption));
   PetscCall(PetscFree3(scene->materials, scene->tractions, scene->springs));
   PetscCall(PetscCalloc3(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs));
-  scene->nMaterials = scene->nTractions = scene->nSprings = 0;
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = 0;
   PetscCall(ForEachGroupOption(scene, ReadGroupOption));
+  PetscCall(SSStarPairsCheckOptions(scene));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
@@ -365,7 +375,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 /* Every group an option names, with the kind of group the option needs */
 static PetscErrorCode GroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
 {
-  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings, k = 0;
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs, k = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(total, uses));
@@ -379,6 +389,15 @@ static PetscErrorCode GroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse *
     (*uses)[k].group = scene->contact[g].name;
     (*uses)[k].kind  = SSSTAR_GROUP_SURFACE;
     PetscCall(PetscStrallocpy("-contact", &(*options)[k]));
+  }
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    char option[SSSTAR_GROUP_NAME_LEN + 16];
+
+    if (!scene->contact[g].master[0]) continue;
+    (*uses)[k].group = scene->contact[g].master;
+    (*uses)[k].kind  = SSSTAR_GROUP_SURFACE;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-contact_pair_%s", scene->contact[g].name));
+    PetscCall(PetscStrallocpy(option, &(*options)[k++]));
   }
   {
     const SSStarGroupValues *lists[3] = {scene->materials, scene->tractions, scene->springs};
@@ -546,7 +565,11 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
     if (group < 0) continue;
     scene->tag[n]   = (PetscInt)PetscRealPart(ta[v - vStart]);
     scene->group[n] = group;
-    PetscCall(SSStarObstacleGap(&scene->contact[group].obstacle, x, tol, &scene->gap[n], normal));
+    if (scene->contact[group].master[0]) { /* a pair's gap and normal: SSStarPairsSetUp() */
+      scene->gap[n] = 0.0;
+      normal[0] = normal[1] = 0.0;
+      normal[2] = 1.0;
+    } else PetscCall(SSStarObstacleGap(&scene->contact[group].obstacle, x, tol, &scene->gap[n], normal));
     scene->area[n]  = PetscRealPart(aa[off - rstart]); /* in the x-dof */
     if (scene->gap[n] < -tol && inside.tag < 0) {
       inside.tag   = scene->tag[n];
@@ -642,7 +665,9 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
+  PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(CreateContactNodes(scene));
+  PetscCall(SSStarPairsSetUp(scene));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -845,7 +870,8 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   }
   PetscCall(NodeVec(scene, 3, scene->normal, &normals));
   if (anyGap) PetscCall(NodeVec(scene, 1, scene->gap, &gaps));
-  PetscCall(SNESSSStarSetContactNodes(snes, scene->isC, normals, gaps));
+  if (scene->B) PetscCall(SNESSSStarSetContactOperator(snes, scene->isC, scene->B, gaps)); /* contact pairs */
+  else PetscCall(SNESSSStarSetContactNodes(snes, scene->isC, normals, gaps));
   PetscCall(VecDestroy(&normals));
   PetscCall(VecDestroy(&gaps));
 
@@ -907,8 +933,11 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      obstacle[PETSC_MAX_PATH_LEN + 128];
 
-    PetscCall(SSStarObstacleDescribe(&cg->obstacle, obstacle, sizeof(obstacle)));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (node-to-surface), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    else {
+      PetscCall(SSStarObstacleDescribe(&cg->obstacle, obstacle, sizeof(obstacle)));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    }
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
     if (cg->law == SSSTAR_FRICTION_COULOMB && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
     if (cg->law == SSSTAR_FRICTION_COULOMB && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
@@ -916,6 +945,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
   }
+  if (scene->nBodies > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "bodies: %" PetscInt_FMT " (connected parts of the mesh)\n", scene->nBodies));
   if (scene->nSprings) PetscCall(PetscStrlcat(effects, ", springs", sizeof(effects)));
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
@@ -924,6 +954,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 
     for (PetscInt g = 0; g < scene->nContact; g++) laws[scene->contact[g].law] = PETSC_TRUE;
     PetscCall(PetscStrlcat(effects, ", contact (non-penetration)", sizeof(effects)));
+    if (scene->nPairs) PetscCall(PetscStrlcat(effects, ", contact pairs (node-to-surface)", sizeof(effects)));
     if (laws[SSSTAR_FRICTION_TRESCA]) PetscCall(PetscStrlcat(effects, ", Tresca friction", sizeof(effects)));
     if (laws[SSSTAR_FRICTION_COULOMB]) PetscCall(PetscStrlcat(effects, ", Coulomb friction", sizeof(effects)));
   } else PetscCall(PetscStrlcat(effects, "; no contact: one linear solve", sizeof(effects)));

@@ -35,6 +35,7 @@ typedef struct {
   PetscReal         phi, bound;         /* Coulomb coefficient, Tresca slip bound (a force)      */
   PetscInt          nodes;              /* contact nodes of the group (global)                  */
   PetscReal         gapMin, gapMax;     /* initial gaps of its nodes                            */
+  char              master[SSSTAR_GROUP_NAME_LEN]; /* -contact_pair_<G> H: the master surface (empty: an obstacle) */
 } SSStarContactGroup;
 
 struct _n_SSStarScene {
@@ -68,6 +69,14 @@ struct _n_SSStarScene {
   PetscReal *gap;         /* initial distance to its plane                                        */
   PetscReal *area;        /* tributary area (a third of the adjacent faces of its group)         */
   IS         isC;         /* the 3 global dofs of each node                                       */
+
+  /* bodies and contact pairs (pairs.c) */
+  PetscInt   nPairs;      /* contact groups with -contact_pair_<G>                                */
+  PetscInt   nBodies;     /* connected components of the mesh                                     */
+  PetscInt  *body;        /* per local vertex: its body (the smallest file index of its nodes)    */
+  Mat        B;           /* with pairs: the contact operator, 3 rows (t1, t2, n) per contact node */
+  PetscReal *frame;       /* with pairs: the frame of each contact node (9, rows t1, t2, n)       */
+  PetscReal *weight;      /* with pairs: per node the master dofs (3, -1: none) and weights (3)   */
 };
 
 PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
@@ -76,5 +85,11 @@ PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[])
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
+
+PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
+PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarPairsSetUp(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSceneContactKinematics(SSStarScene, Vec, Vec, PetscReal[], PetscReal[], PetscReal[], PetscReal[]);
 
 #endif

@@ -3,10 +3,12 @@
 
   examples/plot_contact.py file.h5 [-o file.png]
 
-One row per contact group, drawn in the coordinates (t1, t2) of its plane (the frame the solver uses, so any plane
-works; for a curved obstacle, the plane of the group's mean normal). Left: the contact nodes by state (separated,
-sliding, sticking), with the tangential displacement u_t of the nodes in contact (in each node's own frame) as arrows
-(the slip). Right: the contact pressure r_n / area (each node's normal force over its tributary area). With
+One row per contact group or pair (a pair, named slave->master, is drawn on its slave face), drawn in the
+coordinates (t1, t2) of its plane (the frame the solver uses, so any plane works; for a curved obstacle or a pair, the
+plane of the group's mean normal). Left: the contact nodes by state (separated, sliding, sticking), with the slip of
+the nodes in contact as arrows (/contact/slip: the tangential displacement relative to the obstacle or to the master
+surface; files without it: u_t in each node's own frame). Right: the contact pressure r_n / area (each node's normal
+force over its tributary area). With
 -load_steps, a last panel shows the contact area against the load factor."""
 import argparse
 
@@ -40,6 +42,7 @@ def read(name):
     data["group"] = c["group"][:] if "group" in c else np.zeros(p, int)
     names = c["group"].attrs.get("names", b"contact") if "group" in c else b"contact"
     data["names"] = (names.decode() if isinstance(names, bytes) else str(names)).split(",")
+    data["slip"] = c["slip"][:] if "slip" in c else None
     data["steps"] = {k: f["load_steps"][k][:] for k in f["load_steps"]} if "load_steps" in f else None
     return data
 
@@ -61,6 +64,8 @@ def main():
         un = (d["displacement"][on] * n).sum(axis=1)
         x, u = d["coordinates"][on] @ R.T, (d["displacement"][on] - un[:, None] * n) @ R.T
         rn = (d["reaction"][on] * n).sum(axis=1)
+        if d["slip"] is not None:
+            u = d["slip"][on] @ R.T
         state = d["state"][on]
         name = d["names"][g] if g < len(d["names"]) else str(g)
         for s, (label, color) in STATES.items():
@@ -69,7 +74,8 @@ def main():
                 row[0].scatter(x[here, 0], x[here, 1], s=14, color=color, label="%s: %d" % (label, here.sum()), zorder=2)
         touching = ~np.isin(state, (0, 6))
         row[0].quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", color="k", width=0.002, zorder=3)
-        row[0].set_title("%s: contact states and slip u_t" % name)
+        row[0].set_title("%s: contact states and slip" % name)
+        print("drew %s: %d contact nodes" % (name, on.sum()))
         row[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
         pressure = rn / d["area"][on] if d["area"] is not None else rn
         sc = row[1].scatter(x[:, 0], x[:, 1], c=pressure, s=18, cmap="viridis")

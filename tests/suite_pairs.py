@@ -1,0 +1,119 @@
+"""Two deformable bodies (-contact_pair_<G> H, node-to-surface through the contact operator B): the contact patch
+test, a block sliding on a block, the output per pair, bad input refused naming the option, a body held only by
+contact refused naming the body; both paths (-snes_ssstar_reduction direct and none), 1 and 2 ranks."""
+import os
+import re
+
+import h5py
+import numpy as np
+
+from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+
+CONTACT = os.path.join(ROOT, "examples", "contact")
+PLOT = [PYTHON, os.path.join(ROOT, "examples", "plot_contact.py")]
+SUMMARY = re.compile(r"summary: nodes (\d+) contact (\d+) .* iterations (\d+) states L/M1/M2/M3\+/M3-/M4/LS ([\d/]+) (\S+)")
+PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
+
+
+def scene(name):
+    return ["-options_file", os.path.join(ROOT, "scenes", name + ".opts")]
+
+
+def contact(args, h5, ranks=1):
+    out = run(mpiexec(ranks, CONTACT, *args, "-o", os.path.join(OUT, h5)))
+    m = SUMMARY.search(out)
+    expect(m is not None and m.group(5).startswith("CONVERGED"), "no converged summary", out)
+    return out, [int(s) for s in m.group(4).split("/")], h5py.File(os.path.join(OUT, h5), "r")["contact"]
+
+
+def forces(c):
+    """normal force sum r.n, tangential force sum (global axes) of the slave nodes"""
+    r, n = c["reaction"][:], c["normal"][:]
+    rn = (r * n).sum(1)
+    return rn, r - rn[:, None] * n
+
+
+# The contact patch test at level 2: the lid (h = 0.175) on the base (h = 0.125), nu = 0, pressure 1, a spring of
+# 0.01 on the lid's top: the exact interface pressure is uniform, 1/1.01. Node-to-surface transmits the slave's forces
+# to the master nodes by the projection weights, not by the master's own consistent loads: the pressure at the slave
+# nodes deviates from uniform by 11.7 % (measured); the displacement jump (w = 0) is exact, the total force to 9e-7.
+PATCH_DEVIATION = 0.12
+
+
+@test("contact patch test (scenes/patch.opts, two stacked blocks, non-matching meshes, node-to-surface): total normal force 1/1.01 to 1e-5 (measured 9e-7: the spring sees the inexact lid top), every slave node sticking with final gap 0 and no slip, the pressure uniform within 12 % (measured 11.7 %), the same pressures on direct and none, 1 and 2 ranks, to 1e-8")
+def pairs_patch_test():
+    ref = None
+    for red, ranks in PATHS:
+        out, states, c = contact(scene("patch") + ["-snes_ssstar_reduction", red], "pairs_patch_%s_%d.h5" % (red, ranks), ranks)
+        rn, rt = forces(c)
+        expect(abs(rn.sum() - 1 / 1.01) <= 1e-5, "%s %d: normal force %.12g, not 1/1.01" % (red, ranks, rn.sum()), out)
+        expect(states[3] == len(rn), "%s %d: not every slave node sticks: %s" % (red, ranks, states), out)
+        expect(np.abs(c["final_gap"][:]).max() <= 1e-10 and np.abs(c["slip"][:]).max() <= 1e-10, "%s %d: gap or slip at the interface" % (red, ranks))
+        p = c["pressure"][:]
+        dev = np.abs(p / (1 / 1.01) - 1).max()
+        expect(0.01 < dev <= PATCH_DEVIATION, "%s %d: pressure deviates by %.4f from uniform (node-to-surface: 0.117)" % (red, ranks, dev))
+        expect(abs((p * c["area"][:]).sum() - rn.sum()) <= 1e-12, "%s %d: pressure times area does not sum to the load" % (red, ranks))
+        if ref is None:
+            ref = p
+        expect(np.abs(p - ref).max() <= 1e-8, "%s %d: pressures differ from direct on 1 rank by %.1e" % (red, ranks, np.abs(p - ref).max()))
+        expect(c["group"].attrs["names"] in (b"lid_bottom->base_top", "lid_bottom->base_top"), "the pair is not named in /contact/group: %s" % c["group"].attrs["names"])
+
+
+@test("a block sliding on a block (scenes/slider.opts, phi = 0.5, the push along x larger than phi times the pressure): every touching slave node slides, the tangential force of the contact equals phi times its normal force to 1e-4 (measured 8e-6), opposite to the slip; direct and none, 1 and 2 ranks agree to 1e-7")
+def pairs_sliding_block():
+    ref = None
+    for red, ranks in PATHS:
+        out, states, c = contact(scene("slider") + ["-snes_ssstar_reduction", red], "pairs_slider_%s_%d.h5" % (red, ranks), ranks)
+        rn, rt = forces(c)
+        expect(states[3] + states[4] + states[5] == 0 and states[1] > 0, "%s %d: states %s, expected every touching node sliding" % (red, ranks, states), out)
+        ratio = np.linalg.norm(rt.sum(0)) / rn.sum()
+        expect(abs(ratio - 0.5) <= 1e-4 * 0.5, "%s %d: tangential / normal force %.8f, not phi = 0.5" % (red, ranks, ratio), out)
+        slip = c["slip"][:]
+        touching = ~np.isin(c["state"][:], (0, 6))
+        expect((slip[touching, 0] > 0).all() and (rt[touching, 0] < 0).all(), "%s %d: friction not against the slip along +x" % (red, ranks))
+        expect(np.abs(c["final_gap"][:][touching]).max() <= 1e-9, "%s %d: touching nodes with a gap" % (red, ranks))
+        if ref is None:
+            ref = rn
+        expect(np.abs(rn - ref).max() <= 1e-7 * np.abs(ref).max(), "%s %d: normal forces differ from direct on 1 rank" % (red, ranks))
+
+
+@test("examples/plot_contact.py draws each pair's slave face (titled slave->master) from the HDF5 of a pair scene")
+def pairs_plot():
+    h5 = os.path.join(OUT, "pairs_slider_direct_1.h5")
+    if not os.path.exists(h5):
+        contact(scene("slider"), "pairs_slider_direct_1.h5")
+    png = os.path.join(OUT, "pairs_slider.png")
+    if os.path.exists(png):
+        os.remove(png)
+    out = run(PLOT + [h5, "-o", png])
+    expect(os.path.getsize(png) > 10000, "no picture", out)
+    expect("slider_bottom->base_top" in out, "the pair is not named", out)
+
+
+SLIDER = ["-geo", "meshes/slider.geo", "-level", "1", "-E", "1", "-nu", "0.3", "-dirichlet", "bottom", "-traction_slider_top", "0.008,0,-0.01",
+          "-contact", "slider_bottom", "-friction_slider_bottom", "0.5"]
+HELD = ["-spring_slider_top", "0.01"]
+REFUSED = [
+    ("same body", HELD + ["-contact_pair_slider_bottom", "slider_top"],
+     'Option -contact_pair_slider_bottom slider_top: the groups "slider_bottom" and "slider_top" are on the same body'),
+    ("master not a surface", HELD + ["-contact_pair_slider_bottom", "slider"],
+     'Physical group "slider" of mesh meshes/slider_L1.msh is not a surface group, as option -contact_pair_slider_bottom needs'),
+    ("unknown master", HELD + ["-contact_pair_slider_bottom", "nothing"],
+     'Mesh meshes/slider_L1.msh has no physical group named "nothing" (option -contact_pair_slider_bottom)'),
+    ("slave not a contact group", HELD + ["-contact_pair_base_top", "slider_bottom"],
+     'Option -contact_pair_base_top: "base_top" is not a contact group (not in -contact)'),
+    ("no master", HELD + ["-contact_pair_slider_bottom"], "Option -contact_pair_slider_bottom needs the name of the master surface group H"),
+    ("obstacle and master", HELD + ["-contact_pair_slider_bottom", "base_top", "-obstacle_slider_bottom", "0,0,0,0,0,1"],
+     "Options -contact_pair_slider_bottom and -obstacle_slider_bottom contradict each other"),
+    ("master held fixed", HELD + ["-contact_pair_slider_bottom", "bottom"], 'the master "bottom" is held fixed'),
+    ("body held by contact only", ["-contact_pair_slider_bottom", "base_top"],
+     'The body of volume group "slider" (the mesh nodes connected to node 8, 0-based file order; one of 2 bodies) is held only by contact'),
+]
+
+
+@test("bad pairs refused naming the option (groups of one body, a master that is a volume or unknown or held fixed, a slave not in -contact, no master, an obstacle too) and a body held only by contact refused naming it (volume group \"slider\"), on 1 and 2 ranks")
+def pairs_refused():
+    for what, extra, message in REFUSED:
+        for ranks in (1, 2):
+            out = run(mpiexec(ranks, CONTACT, *SLIDER, *extra), expect_rc=1)
+            expect(message in out, "%s (%d ranks): not refused with '%s'" % (what, ranks, message), out)

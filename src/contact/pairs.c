@@ -13,7 +13,9 @@
 #include "sceneimpl.h"
 #include <petscsf.h>
 
-#define SSSTAR_MAX_VOLUME_GROUPS 62 /* bits of the body's volume-group mask */
+#define SSSTAR_MAX_VOLUME_GROUPS 62
+
+const char *const SSStarPairDiscretizations[] = {"node_to_surface", "dual_mortar"}; /* bits of the body's volume-group mask */
 
 /* -contact_pair_<G> H: the master surface of the contact group G */
 PetscErrorCode SSStarPairsReadOption(SSStarScene scene, SSStarContactGroup *cg, const char option[])
@@ -33,7 +35,12 @@ PetscErrorCode SSStarPairsReadOption(SSStarScene scene, SSStarContactGroup *cg, 
 /* Contradictions of the pairs, once every option is read: an obstacle and a master for one group, a master that is a slave */
 PetscErrorCode SSStarPairsCheckOptions(SSStarScene scene)
 {
+  PetscInt  method = SSSTAR_PAIR_NODE_TO_SURFACE;
+  PetscBool set;
+
   PetscFunctionBegin;
+  PetscCall(PetscOptionsGetEList(NULL, NULL, "-pair_discretization", SSStarPairDiscretizations, 2, &method, &set));
+  scene->pairMethod = (SSStarPairDiscretization)method;
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      option[SSSTAR_GROUP_NAME_LEN + 16];
@@ -465,6 +472,247 @@ static PetscBool TriangleBefore(const Triangle *s, const Triangle *t)
   return PETSC_FALSE;
 }
 
+
+/* The 2D barycentric coordinates of p in the triangle a, b, c (any orientation) */
+static void Barycentric2(const PetscReal a[2], const PetscReal b[2], const PetscReal c[2], const PetscReal p[2], PetscReal l[3])
+{
+  const PetscReal det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+
+  l[1] = ((p[0] - a[0]) * (c[1] - a[1]) - (p[1] - a[1]) * (c[0] - a[0])) / det;
+  l[2] = ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / det;
+  l[0] = 1 - l[1] - l[2];
+}
+
+/* Sutherland-Hodgman: the polygon P (n vertices, 2D) clipped by the counterclockwise triangle T; at most 9 vertices */
+static PetscInt ClipByTriangle(PetscInt n, PetscReal P[][2], const PetscReal T[3][2])
+{
+  PetscReal Q[12][2];
+
+  for (PetscInt e = 0; e < 3 && n > 0; e++) {
+    const PetscReal *A = T[e], *B = T[(e + 1) % 3];
+    PetscInt         m = 0;
+
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscReal *S = P[(k + n - 1) % n], *E = P[k];
+      const PetscReal  dS = (B[0] - A[0]) * (S[1] - A[1]) - (B[1] - A[1]) * (S[0] - A[0]);
+      const PetscReal  dE = (B[0] - A[0]) * (E[1] - A[1]) - (B[1] - A[1]) * (E[0] - A[0]);
+
+      if ((dE >= 0) != (dS >= 0) && m < 12) { /* the edge S E crosses the line A B */
+        const PetscReal t = dS / (dS - dE);
+
+        Q[m][0]   = S[0] + t * (E[0] - S[0]);
+        Q[m++][1] = S[1] + t * (E[1] - S[1]);
+      }
+      if (dE >= 0 && m < 12) {
+        Q[m][0]   = E[0];
+        Q[m++][1] = E[1];
+      }
+    }
+    for (PetscInt k = 0; k < m; k++) P[k][0] = Q[k][0], P[k][1] = Q[k][1];
+    n = m;
+  }
+  return n;
+}
+
+/*
+   Dual mortar (Wohlmuth): per slave node i, D_i = int N_i over the slave faces, and per master node j
+   M_ij = int_overlap psi_i N_j, psi_i = 4 lambda_i - 1 the dual basis of the slave triangle (int psi_i N_k = delta_ik
+   int N_k), the integrals on the slave triangle's plane, the master triangle projected onto it along the slave normal
+   (the overlap polygon by clipping, split in triangles, the three edge midpoints: exact for the quadratic psi_i N_j).
+   Rows of Mm at the slave x-dofs, columns at the master x-dofs (held masters have none); in DC the slave's x-dof gets
+   D_i, its y-dof sum_j M_ij (= D_i where the master covers the slave), in G sum_j M_ij x_j (3), in N the
+   area-weighted outward normal of the slave faces (3).
+*/
+static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt ntri, const Triangle tris[], Mat *Mm, Vec *DC, Vec *G, Vec *N)
+{
+  DM                 dm = scene->dm, cdm;
+  PetscSection       gsec, csec;
+  PetscSF            sf;
+  PetscInt           fStart, fEnd, vStart, vEnd, nleaves, m, xstart, *dnz;
+  const PetscInt    *ilocal, *own;
+  PetscBool         *leaf;
+  Vec                coordinates;
+  const PetscScalar *xa;
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetGlobalSection(dm, &gsec));
+  PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscCalloc1(fEnd, &leaf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &ilocal, NULL));
+  for (PetscInt l = 0; l < nleaves; l++) {
+    const PetscInt p = ilocal ? ilocal[l] : l;
+
+    if (p < fEnd) leaf[p] = PETSC_TRUE;
+  }
+  PetscCall(DMCreateGlobalVector(dm, DC));
+  PetscCall(VecZeroEntries(*DC));
+  PetscCall(VecDuplicate(*DC, G));
+  PetscCall(VecDuplicate(*DC, N));
+  PetscCall(VecZeroEntries(*G));
+  PetscCall(VecZeroEntries(*N));
+  PetscCall(VecGetLocalSize(*DC, &m));
+  PetscCall(VecGetOwnershipRange(*DC, &xstart, NULL));
+  /* room at the x-dofs of this rank's contact nodes */
+  PetscCall(PetscCalloc1(m + 1, &dnz));
+  PetscCall(ISGetIndices(scene->isC, &own));
+  for (PetscInt i = 0; i < scene->n; i++)
+    if (scene->contact[scene->group[i]].master[0]) dnz[own[3 * i] - xstart] = 64;
+  PetscCall(ISRestoreIndices(scene->isC, &own));
+  PetscCall(MatCreate(scene->comm, Mm));
+  PetscCall(MatSetSizes(*Mm, m, m, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(*Mm, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocation(*Mm, 0, dnz));
+  PetscCall(MatMPIAIJSetPreallocation(*Mm, 0, dnz, 0, dnz));
+  PetscCall(MatSetOption(*Mm, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PetscCall(PetscFree(dnz));
+  PetscCall(VecGetArrayRead(coordinates, &xa));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    DMLabel label;
+
+    if (!scene->contact[g].master[0]) continue;
+    PetscCall(DMGetLabel(dm, scene->contact[g].name, &label));
+    for (PetscInt f = fStart; f < fEnd; f++) {
+      PetscInt        value, *closure = NULL, nc, nv = 0, vert[3], dof[3];
+      const PetscInt *support;
+      PetscReal       x[9], n[3], e1[3], e2[3], cc[3] = {0, 0, 0}, len, side = 0, area, S[3][2], T[3][2];
+
+      PetscCall(DMLabelGetValue(label, f, &value));
+      if (value < 0 || leaf[f]) continue;
+      PetscCall(DMPlexGetTransitiveClosure(dm, f, PETSC_TRUE, &nc, &closure));
+      for (PetscInt k = 0; k < nc; k++)
+        if (closure[2 * k] >= vStart && closure[2 * k] < vEnd && nv < 3) vert[nv++] = closure[2 * k];
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &nc, &closure));
+      for (PetscInt k = 0; k < 3; k++) {
+        PetscInt off, d, coff;
+
+        PetscCall(PetscSectionGetOffset(csec, vert[k], &coff));
+        for (PetscInt c = 0; c < 3; c++) x[3 * k + c] = PetscRealPart(xa[coff + c]);
+        PetscCall(PetscSectionGetDof(gsec, vert[k], &d));
+        PetscCall(PetscSectionGetOffset(gsec, vert[k], &off));
+        if (d < 0) d = -(d + 1);
+        if (off < 0) off = -(off + 1);
+        dof[k] = d == 3 ? off : -1;
+      }
+      PetscCall(DMPlexGetSupport(dm, f, &support));
+      PetscCall(DMPlexGetTransitiveClosure(dm, support[0], PETSC_TRUE, &nc, &closure));
+      for (PetscInt k = 0; k < nc; k++)
+        if (closure[2 * k] >= vStart && closure[2 * k] < vEnd) {
+          PetscInt coff;
+
+          PetscCall(PetscSectionGetOffset(csec, closure[2 * k], &coff));
+          for (PetscInt c = 0; c < 3; c++) cc[c] += PetscRealPart(xa[coff + c]) / 4;
+        }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, support[0], PETSC_TRUE, &nc, &closure));
+      for (PetscInt c = 0; c < 3; c++) {
+        e1[c] = x[3 + c] - x[c];
+        e2[c] = x[6 + c] - x[c];
+      }
+      n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      len  = PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      area = len / 2;
+      for (PetscInt c = 0; c < 3; c++) side += n[c] * ((x[c] + x[3 + c] + x[6 + c]) / 3 - cc[c]);
+      for (PetscInt c = 0; c < 3; c++) n[c] /= side < 0 ? -len : len; /* out of the slave body */
+      /* the slave triangle's plane: origin x0, axes e1, e2 = n x e1 */
+      len = PetscSqrtReal(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+      for (PetscInt c = 0; c < 3; c++) e1[c] /= len;
+      e2[0] = n[1] * e1[2] - n[2] * e1[1];
+      e2[1] = n[2] * e1[0] - n[0] * e1[2];
+      e2[2] = n[0] * e1[1] - n[1] * e1[0];
+      for (PetscInt k = 0; k < 3; k++) {
+        S[k][0] = S[k][1] = 0;
+        for (PetscInt c = 0; c < 3; c++) {
+          S[k][0] += (x[3 * k + c] - x[c]) * e1[c];
+          S[k][1] += (x[3 * k + c] - x[c]) * e2[c];
+        }
+      }
+      for (PetscInt k = 0; k < 3; k++) { /* (T: S counterclockwise) */
+        const PetscInt kk = ((S[1][0] - S[0][0]) * (S[2][1] - S[0][1]) - (S[1][1] - S[0][1]) * (S[2][0] - S[0][0])) > 0 ? k : 2 - k;
+
+        T[k][0] = S[kk][0], T[k][1] = S[kk][1];
+      }
+      for (PetscInt k = 0; k < 3; k++) {
+        if (dof[k] < 0) continue;
+        PetscCall(VecSetValue(*DC, dof[k], area / 3, ADD_VALUES));
+        for (PetscInt c = 0; c < 3; c++) PetscCall(VecSetValue(*N, dof[k] + c, area * n[c], ADD_VALUES));
+      }
+      for (PetscInt t = 0; t < ntri; t++) {
+        const Triangle *tm = &tris[t];
+        PetscReal       Mp[3][2], P[12][2], mij[3][3], dot = 0;
+        PetscInt        np;
+
+        if (tm->pair != g) continue;
+        for (PetscInt c = 0; c < 3; c++) dot += tm->n[c] * n[c];
+        if (dot > -0.3) continue; /* not facing the slave face */
+        for (PetscInt k = 0; k < 3; k++) {
+          Mp[k][0] = Mp[k][1] = 0;
+          for (PetscInt c = 0; c < 3; c++) {
+            Mp[k][0] += (tm->x[3 * k + c] - x[c]) * e1[c];
+            Mp[k][1] += (tm->x[3 * k + c] - x[c]) * e2[c];
+          }
+        }
+        {
+          PetscReal lo[2], hi[2], slo[2], shi[2];
+
+          for (PetscInt c = 0; c < 2; c++) {
+            lo[c] = PetscMin(Mp[0][c], PetscMin(Mp[1][c], Mp[2][c]));
+            hi[c] = PetscMax(Mp[0][c], PetscMax(Mp[1][c], Mp[2][c]));
+            slo[c] = PetscMin(S[0][c], PetscMin(S[1][c], S[2][c]));
+            shi[c] = PetscMax(S[0][c], PetscMax(S[1][c], S[2][c]));
+          }
+          if (lo[0] > shi[0] || hi[0] < slo[0] || lo[1] > shi[1] || hi[1] < slo[1]) continue;
+        }
+        for (PetscInt k = 0; k < 3; k++) P[k][0] = Mp[k][0], P[k][1] = Mp[k][1];
+        np = ClipByTriangle(3, P, T);
+        if (np < 3) continue;
+        for (PetscInt i = 0; i < 3; i++)
+          for (PetscInt j = 0; j < 3; j++) mij[i][j] = 0;
+        for (PetscInt k = 1; k + 1 < np; k++) {
+          const PetscReal *a = P[0], *b = P[k], *c = P[k + 1];
+          const PetscReal  sub = PetscAbsReal((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2;
+
+          for (PetscInt q = 0; q < 3; q++) { /* the edge midpoints, weight sub/3 each */
+            const PetscReal *p0 = q == 0 ? a : q == 1 ? b : c, *p1 = q == 0 ? b : q == 1 ? c : a;
+            PetscReal        pq[2] = {(p0[0] + p1[0]) / 2, (p0[1] + p1[1]) / 2}, ls[3], lm[3];
+
+            Barycentric2(S[0], S[1], S[2], pq, ls);
+            Barycentric2(Mp[0], Mp[1], Mp[2], pq, lm);
+            for (PetscInt i = 0; i < 3; i++)
+              for (PetscInt j = 0; j < 3; j++) mij[i][j] += sub / 3 * (4 * ls[i] - 1) * lm[j];
+          }
+        }
+        for (PetscInt i = 0; i < 3; i++) {
+          PetscReal sum = 0, gx[3] = {0, 0, 0};
+
+          if (dof[i] < 0) continue;
+          for (PetscInt j = 0; j < 3; j++) {
+            sum += mij[i][j];
+            for (PetscInt c = 0; c < 3; c++) gx[c] += mij[i][j] * tm->x[3 * j + c];
+            if (tm->dof[j] >= 0 && mij[i][j] != 0) PetscCall(MatSetValue(*Mm, dof[i], tm->dof[j], mij[i][j], ADD_VALUES));
+          }
+          PetscCall(VecSetValue(*DC, dof[i] + 1, sum, ADD_VALUES));
+          for (PetscInt c = 0; c < 3; c++) PetscCall(VecSetValue(*G, dof[i] + c, gx[c], ADD_VALUES));
+        }
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(coordinates, &xa));
+  PetscCall(PetscFree(leaf));
+  PetscCall(MatAssemblyBegin(*Mm, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*Mm, MAT_FINAL_ASSEMBLY));
+  for (Vec *v = DC; v; v = v == DC ? G : v == G ? N : NULL) {
+    PetscCall(VecAssemblyBegin(*v));
+    PetscCall(VecAssemblyEnd(*v));
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
    The pairs' contact points: each owned slave node's closest master triangle gives its normal (the triangle's,
    outward from the master body; where the node lies beyond the master's rim, the direction from the closest point),
@@ -477,6 +725,9 @@ PetscErrorCode SSStarPairsSetUp(SSStarScene scene)
   PetscInt           ntri = 0, m, rstart, nbad[2] = {-1, -1}, vStart, vEnd, *vtag, *vidx, *slaveBody;
   Triangle          *tris;
   const PetscScalar *ta;
+  PetscBool         *mortar = NULL;
+  Mat                Mm     = NULL;
+  Vec                DC = NULL, G = NULL, N = NULL;
   PetscReal          gmin[3], gmax[3], tol;
   const PetscInt    *own;
   Vec                x;
@@ -584,10 +835,57 @@ PetscErrorCode SSStarPairsSetUp(SSStarScene scene)
       SSStarNodeFrame(n, R);
     }
   }
-  PetscCall(PetscFree(tris));
   PetscCall(PetscFree(slaveBody));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbad[0], 1, MPIU_INT, MPI_MAX, scene->comm));
   PetscCheck(nbad[0] < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Option -contact_pair_%s %s: the groups \"%s\" and \"%s\" are on the same body (a contact pair is between two bodies: meshes that do not share nodes)", scene->contact[nbad[0]].name, scene->contact[nbad[0]].master, scene->contact[nbad[0]].name, scene->contact[nbad[0]].master);
+
+  /* dual mortar: the rows of the slave nodes the master covers (the others keep node-to-surface) */
+  scene->pairFallback = 0;
+  if (scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) {
+    const PetscScalar *dca, *ga, *na;
+    PetscInt           xstart;
+
+    PetscCall(MortarIntegrals(scene, ntri, tris, &Mm, &DC, &G, &N));
+    PetscCall(PetscCalloc1(scene->n + 1, &mortar));
+    PetscCall(VecGetOwnershipRange(DC, &xstart, NULL));
+    PetscCall(VecGetArrayRead(DC, &dca));
+    PetscCall(VecGetArrayRead(G, &ga));
+    PetscCall(VecGetArrayRead(N, &na));
+    for (PetscInt i = 0; i < scene->n; i++) {
+      const PetscInt   xd = own[3 * i] - xstart;
+      const PetscReal  D = PetscRealPart(dca[xd]), C = PetscRealPart(dca[xd + 1]);
+      PetscReal        n[3], len = 0, gap = 0;
+
+      if (!scene->contact[scene->group[i]].master[0]) continue;
+      if (D <= 0 || PetscAbsReal(C / D - 1) > 1e-6) {
+        scene->pairFallback++;
+        continue;
+      }
+      for (PetscInt k = 0; k < 3; k++) {
+        n[k] = -PetscRealPart(na[xd + k]);
+        len += n[k] * n[k];
+      }
+      len = PetscSqrtReal(len);
+      for (PetscInt k = 0; k < 3; k++) {
+        n[k] /= len;
+        gap += n[k] * (scene->coords[3 * i + k] - PetscRealPart(ga[xd + k]) / D);
+      }
+      if (PetscAbsReal(gap) <= tol) gap = 0;
+      scene->gap[i] = gap;
+      for (PetscInt k = 0; k < 3; k++) scene->normal[3 * i + k] = n[k];
+      SSStarNodeFrame(n, &scene->frame[9 * i]);
+      scene->weight[6 * i + 3] = D; /* the mortar row: Mm's row / D */
+      mortar[i] = PETSC_TRUE;
+    }
+    PetscCall(VecRestoreArrayRead(N, &na));
+    PetscCall(VecRestoreArrayRead(G, &ga));
+    PetscCall(VecRestoreArrayRead(DC, &dca));
+    PetscCall(VecDestroy(&DC));
+    PetscCall(VecDestroy(&G));
+    PetscCall(VecDestroy(&N));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &scene->pairFallback, 1, MPIU_INT, MPI_SUM, scene->comm));
+  }
+  PetscCall(PetscFree(tris));
 
   /* the gap range of each pair */
   for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -613,8 +911,8 @@ PetscErrorCode SSStarPairsSetUp(SSStarScene scene)
   PetscCall(MatCreate(scene->comm, &scene->B));
   PetscCall(MatSetSizes(scene->B, 3 * scene->n, m, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetType(scene->B, MATAIJ));
-  PetscCall(MatSeqAIJSetPreallocation(scene->B, 12, NULL));
-  PetscCall(MatMPIAIJSetPreallocation(scene->B, 12, NULL, 9, NULL));
+  PetscCall(MatSeqAIJSetPreallocation(scene->B, mortar ? 3 + 3 * 24 : 12, NULL));
+  PetscCall(MatMPIAIJSetPreallocation(scene->B, mortar ? 3 + 3 * 24 : 12, NULL, mortar ? 3 * 24 : 9, NULL));
   PetscCall(MatSetOption(scene->B, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   PetscCall(MatGetOwnershipRange(scene->B, &rstart, NULL));
   for (PetscInt i = 0; i < scene->n; i++) {
@@ -624,6 +922,18 @@ PetscErrorCode SSStarPairsSetUp(SSStarScene scene)
       const PetscInt row = rstart + 3 * i + c;
 
       for (PetscInt k = 0; k < 3; k++) PetscCall(MatSetValue(scene->B, row, own[3 * i + k], R[3 * c + k], ADD_VALUES));
+      if (mortar && mortar[i]) {
+        PetscInt           nc;
+        const PetscInt    *mc;
+        const PetscScalar *mv;
+
+        PetscCall(MatGetRow(Mm, own[3 * i], &nc, &mc, &mv));
+        for (PetscInt e = 0; e < nc; e++)
+          for (PetscInt k = 0; k < 3; k++)
+            if (R[3 * c + k] != 0) PetscCall(MatSetValue(scene->B, row, mc[e] + k, -PetscRealPart(mv[e]) / wt[3] * R[3 * c + k], ADD_VALUES));
+        PetscCall(MatRestoreRow(Mm, own[3 * i], &nc, &mc, &mv));
+        continue;
+      }
       for (PetscInt j = 0; j < 3; j++) {
         if (wt[j] < 0 || wt[3 + j] == 0) continue;
         for (PetscInt k = 0; k < 3; k++)
@@ -634,6 +944,8 @@ PetscErrorCode SSStarPairsSetUp(SSStarScene scene)
   PetscCall(ISRestoreIndices(scene->isC, &own));
   PetscCall(MatAssemblyBegin(scene->B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(scene->B, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatDestroy(&Mm));
+  PetscCall(PetscFree(mortar));
   PetscFunctionReturn(0);
 }
 

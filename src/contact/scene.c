@@ -278,7 +278,8 @@ static const char SceneGroupHelp[] = "\
   -friction_law_<G> <coulomb>: none, tresca or coulomb\n\
   -friction_<G> <phi>: Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
   -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n\
-  -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body, node-to-surface\n";
+  -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
+  -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
 
 /*@C
    SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
@@ -933,7 +934,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      obstacle[PETSC_MAX_PATH_LEN + 128];
 
-    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (node-to-surface), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
     else {
       PetscCall(SSStarObstacleDescribe(&cg->obstacle, obstacle, sizeof(obstacle)));
       PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
@@ -946,6 +947,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
   }
   if (scene->nBodies > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "bodies: %" PetscInt_FMT " (connected parts of the mesh)\n", scene->nBodies));
+  if (scene->nPairs && scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(PetscViewerASCIIPrintf(viewer, "dual mortar: %" PetscInt_FMT " slave nodes not covered by their master surface keep node-to-surface\n", scene->pairFallback));
   if (scene->nSprings) PetscCall(PetscStrlcat(effects, ", springs", sizeof(effects)));
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
@@ -954,7 +956,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 
     for (PetscInt g = 0; g < scene->nContact; g++) laws[scene->contact[g].law] = PETSC_TRUE;
     PetscCall(PetscStrlcat(effects, ", contact (non-penetration)", sizeof(effects)));
-    if (scene->nPairs) PetscCall(PetscStrlcat(effects, ", contact pairs (node-to-surface)", sizeof(effects)));
+    if (scene->nPairs) PetscCall(PetscStrlcat(effects, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? ", contact pairs (dual mortar)" : ", contact pairs (node-to-surface)", sizeof(effects)));
     if (laws[SSSTAR_FRICTION_TRESCA]) PetscCall(PetscStrlcat(effects, ", Tresca friction", sizeof(effects)));
     if (laws[SSSTAR_FRICTION_COULOMB]) PetscCall(PetscStrlcat(effects, ", Coulomb friction", sizeof(effects)));
   } else PetscCall(PetscStrlcat(effects, "; no contact: one linear solve", sizeof(effects)));

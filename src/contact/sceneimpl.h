@@ -38,6 +38,13 @@ typedef struct {
   char              master[SSSTAR_GROUP_NAME_LEN]; /* -contact_pair_<G> H: the master surface (empty: an obstacle) */
 } SSStarContactGroup;
 
+/* How a pair's slave nodes are compared with the master surface (-pair_discretization) */
+typedef enum {
+  SSSTAR_PAIR_NODE_TO_SURFACE,
+  SSSTAR_PAIR_DUAL_MORTAR
+} SSStarPairDiscretization;
+PETSC_INTERN const char *const SSStarPairDiscretizations[];
+
 struct _n_SSStarScene {
   MPI_Comm comm;
 
@@ -72,6 +79,8 @@ struct _n_SSStarScene {
 
   /* bodies and contact pairs (pairs.c) */
   PetscInt   nPairs;      /* contact groups with -contact_pair_<G>                                */
+  SSStarPairDiscretization pairMethod; /* -pair_discretization                                      */
+  PetscInt   pairFallback; /* dual mortar: slave nodes the master does not cover (node-to-surface)  */
   PetscInt   nBodies;     /* connected components of the mesh                                     */
   PetscInt  *body;        /* per local vertex: its body (the smallest file index of its nodes)    */
   Mat        B;           /* with pairs: the contact operator, 3 rows (t1, t2, n) per contact node */

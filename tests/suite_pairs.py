@@ -129,3 +129,15 @@ def pairs_refused():
         for ranks in (1, 2):
             out = run(mpiexec(ranks, CONTACT, *SLIDER, *extra), expect_rc=1)
             expect(message in out, "%s (%d ranks): not refused with '%s'" % (what, ranks, message), out)
+
+
+@test("Hertz between two elastic bodies (scenes/hertz2.opts, level 1: a half ball R = 10 on a block of the same material, frictionless, E* = E / (2 (1 - nu^2))): the fitted contact radius and peak pressure within 3 % of Hertz's (measured node-to-surface +1.8 %, +1.8 % on both paths; dual mortar +1.3 %, +2.5 %; level 2 node-to-surface +0.8 %, +0.3 %)")
+def pairs_hertz():
+    import scene_answers
+    for extra, ranks, h5 in ((["-snes_ssstar_reduction", "direct"], 1, "pairs_hertz2_direct.h5"),
+                             (["-snes_ssstar_reduction", "none"], 2, "pairs_hertz2_none.h5"),
+                             (["-pair_discretization", "dual_mortar"], 1, "pairs_hertz2_mortar.h5")):
+        out, states, c = contact(scene("hertz2") + extra, h5, ranks)
+        h = scene_answers.hertz(os.path.join(OUT, h5), E=1.05e5)
+        expect(abs(h["a_error"]) <= 0.03 and abs(h["p0_error"]) <= 0.03, "%s: a %+.3f, p0 %+.3f against Hertz" % (" ".join(extra), h["a_error"], h["p0_error"]), out)
+        expect(abs(h["force"] / 31415.9 - 1) <= 0.02, "%s: contact force %g, not the load" % (" ".join(extra), h["force"]), out)

@@ -244,6 +244,8 @@ PetscErrorCode SSStarSceneFindBodies(SSStarScene scene)
         all[3 * e + 1] |= all[3 * f + 1];
         all[3 * e + 2] |= all[3 * f + 2];
       }
+    for (PetscMPIInt f = e + 1; f < total / 3; f++) /* the merged verdict in every entry of the body */
+      if (all[3 * f] == all[3 * e]) all[3 * f + 1] = all[3 * e + 1];
     scene->nBodies++;
   }
   for (PetscMPIInt e = 0; e < total / 3; e++) {

@@ -15,7 +15,8 @@ PETSC_EXTERN PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output;
 /*
    A scene: the body, its material, supports and loads, and its contact groups, read from the options
    (README "Scenes": -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -traction_<G>, -spring_<G>, -gravity,
-   -density, -contact, -obstacle_<G>, -friction_law_<G>, -friction_<G>, -slip_bound_<G>, -mesh_scale).
+   -density, -contact, -obstacle_<G>, -friction_law_<G>, -friction_<G>, -slip_bound_<G>, -mesh_scale; two bodies:
+   -contact_pair_<G> H, -pair_discretization).
 */
 typedef struct _n_SSStarScene *SSStarScene;
 

@@ -1208,7 +1208,8 @@ static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], 
    The file is the same on any number of ranks: the vertices in the mesh file's node order (/geometry/vertices,
    /fields/displacement with the held nodes), the tetrahedra by their vertices' numbers in a canonical order
    (/viz/topology/cells), the contact nodes in file order (/contact: coordinates, displacement, reaction K u - b,
-   normal, gap, area, friction_law, friction, slip_bound, state, group), the contact faces with their point fields
+   normal, gap, area, friction_law, friction, slip_bound, state, group (a contact pair named slave->master), and at the
+   solution final_gap, pressure, traction, slip against the plane or the master surface), the contact faces with their point fields
    (/contact_faces: vertices, triangles, state, pressure, tangential_traction, slip, gap, displacement), the scene
    (/scene: mesh, material, loads, contact groups with their laws) and, as attributes of /, the run: ssstar_version,
    petsc_version, command_line, ranks, snes_type, converged_reason, converged_reason_code, iterations, residual_norm

@@ -620,7 +620,9 @@ static PetscErrorCode CreateContactNodes(SSStarScene scene)
 
 /*@C
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
-   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups) and finds the contact nodes
+   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups), finds the bodies (connected parts of the
+   mesh; one that no -dirichlet or -spring_<G> group holds is refused, named by its volume groups), the contact nodes
+   and the contact pairs' operator (-contact_pair_<G>)
 
    Collective
 
@@ -835,7 +837,9 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 
 /*@C
    SSStarSceneSetContact - declares the contact nodes of the scene to an "ssstar" SNES: their dofs, the normals of
-   their obstacles at them, their initial gaps, and the friction laws of their groups
+   their obstacles at them, their initial gaps, and the friction laws of their groups; with contact pairs
+   (-contact_pair_<G>), the contact operator B of every contact node instead (SNESSSStarSetContactOperator(): a pair's
+   slave node against the master surface, node-to-surface or dual mortar, -pair_discretization)
 
    Collective
 

@@ -522,8 +522,9 @@ static PetscInt ClipByTriangle(PetscInt n, PetscReal P[][2], const PetscReal T[3
    int N_k), the integrals on the slave triangle's plane, the master triangle projected onto it along the slave normal
    (the overlap polygon by clipping, split in triangles, the three edge midpoints: exact for the quadratic psi_i N_j).
    Rows of Mm at the slave x-dofs, columns at the master x-dofs (held masters have none); in DC the slave's x-dof gets
-   D_i, its y-dof sum_j M_ij (= D_i where the master covers the slave), in G sum_j M_ij x_j (3), in N the
-   area-weighted outward normal of the slave faces (3).
+   D_i, its y-dof sum_j M_ij (= D_i where the master covers the slave), in G sum_j M_ij x_j (3), in N the master
+   normals weighted like the master nodes, sum over the master triangles of (int psi_i) n_m (3): the node's normal
+   is the master's (as node-to-surface, and as the small-deformation Hertz theory has it), not the curved slave's.
 */
 static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt ntri, const Triangle tris[], Mat *Mm, Vec *DC, Vec *G, Vec *N)
 {
@@ -642,7 +643,6 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt ntri, const Tr
       for (PetscInt k = 0; k < 3; k++) {
         if (dof[k] < 0) continue;
         PetscCall(VecSetValue(*DC, dof[k], area / 3, ADD_VALUES));
-        for (PetscInt c = 0; c < 3; c++) PetscCall(VecSetValue(*N, dof[k] + c, area * n[c], ADD_VALUES));
       }
       for (PetscInt t = 0; t < ntri; t++) {
         const Triangle *tm = &tris[t];
@@ -699,7 +699,10 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt ntri, const Tr
             if (tm->dof[j] >= 0 && mij[i][j] != 0) PetscCall(MatSetValue(*Mm, dof[i], tm->dof[j], mij[i][j], ADD_VALUES));
           }
           PetscCall(VecSetValue(*DC, dof[i] + 1, sum, ADD_VALUES));
-          for (PetscInt c = 0; c < 3; c++) PetscCall(VecSetValue(*G, dof[i] + c, gx[c], ADD_VALUES));
+          for (PetscInt c = 0; c < 3; c++) {
+            PetscCall(VecSetValue(*G, dof[i] + c, gx[c], ADD_VALUES));
+            PetscCall(VecSetValue(*N, dof[i] + c, sum * tm->n[c], ADD_VALUES));
+          }
         }
       }
     }
@@ -864,7 +867,7 @@ PetscErrorCode SSStarPairsSetUp(SSStarScene scene)
         continue;
       }
       for (PetscInt k = 0; k < 3; k++) {
-        n[k] = -PetscRealPart(na[xd + k]);
+        n[k] = PetscRealPart(na[xd + k]);
         len += n[k] * n[k];
       }
       len = PetscSqrtReal(len);

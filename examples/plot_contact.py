@@ -73,7 +73,8 @@ def main():
             if here.any():
                 row[0].scatter(x[here, 0], x[here, 1], s=14, color=color, label="%s: %d" % (label, here.sum()), zorder=2)
         touching = ~np.isin(state, (0, 6))
-        row[0].quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", color="k", width=0.002, zorder=3)
+        if touching.any() and np.abs(u[touching, :2]).max() > 0:  # (no arrows where nothing slips: a patch test)
+            row[0].quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", color="k", width=0.002, zorder=3)
         row[0].set_title("%s: contact states and slip" % name)
         print("drew %s: %d contact nodes" % (name, on.sum()))
         row[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))

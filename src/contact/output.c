@@ -679,7 +679,7 @@ static PetscErrorCode WriteContactFaces(SSStarScene scene, hid_t file, Vec u, Ve
   Vec                coordinates, uC, rC;
   PetscBool         *ghost;
   PetscInt           pStart, vStart, vEnd, fStart, fEnd, nq = 0, q, *tag, *pos, *all, ntri = 0, *tri, c = 0;
-  PetscReal         *x, *du, *st, *pr, *tt, *sl, *gp;
+  PetscReal         *x, *du, *st, *pr, *tt, *sl, *gp, *kin[4];
   const PetscScalar *ta, *xa, *ua, *ra;
   PetscMPIInt        rank, size;
   hid_t              group;
@@ -707,6 +707,8 @@ static PetscErrorCode WriteContactFaces(SSStarScene scene, hid_t file, Vec u, Ve
   PetscCall(PetscMalloc2(vEnd - vStart + 1, &tag, vEnd - vStart + 1, &pos));
   PetscCall(PetscMalloc5(3 * (vEnd - vStart) + 1, &x, 3 * (vEnd - vStart) + 1, &du, vEnd - vStart + 1, &st, vEnd - vStart + 1, &pr, 3 * (vEnd - vStart) + 1, &tt));
   PetscCall(PetscMalloc2(3 * (vEnd - vStart) + 1, &sl, vEnd - vStart + 1, &gp));
+  PetscCall(PetscMalloc4(scene->n + 1, &kin[0], scene->n + 1, &kin[1], 3 * scene->n + 1, &kin[2], 3 * scene->n + 1, &kin[3]));
+  PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3])); /* gap and slip: against a plane or a master surface */
   for (PetscInt v = vStart; v < vEnd; v++) {
     PetscInt  g, off;
     PetscReal xv[3];
@@ -721,15 +723,15 @@ static PetscErrorCode WriteContactFaces(SSStarScene scene, hid_t file, Vec u, Ve
     if (c < scene->n && scene->tag[c] == tag[nq]) { /* contact node c */
       const PetscReal *n = &scene->normal[3 * c], ui[3] = {PetscRealPart(ua[3 * c]), PetscRealPart(ua[3 * c + 1]), PetscRealPart(ua[3 * c + 2])};
       const PetscReal  ri[3] = {PetscRealPart(ra[3 * c]), PetscRealPart(ra[3 * c + 1]), PetscRealPart(ra[3 * c + 2])};
-      const PetscReal  un = Dot3(ui, n), rn = Dot3(ri, n), area = scene->area[c] > 0 ? scene->area[c] : 1;
+      const PetscReal  rn = Dot3(ri, n), area = scene->area[c] > 0 ? scene->area[c] : 1;
 
       st[nq] = states ? (PetscReal)states[c] : -1;
       pr[nq] = rn / area;
-      gp[nq] = scene->gap[c] + un;
+      gp[nq] = kin[0][c]; /* for a plane, gap + u.n */
       for (PetscInt k = 0; k < 3; k++) {
         du[3 * nq + k] = ui[k];
         tt[3 * nq + k] = (ri[k] - rn * n[k]) / area;
-        sl[3 * nq + k] = ui[k] - un * n[k];
+        sl[3 * nq + k] = kin[3][3 * c + k]; /* for a plane, u - (u.n) n */
       }
       c++;
     } else { /* held fixed (Dirichlet) */
@@ -743,6 +745,7 @@ static PetscErrorCode WriteContactFaces(SSStarScene scene, hid_t file, Vec u, Ve
     nq++;
   }
   PetscCheck(c == scene->n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " of the %" PetscInt_FMT " contact nodes found on the contact faces", c, scene->n);
+  PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
   PetscCall(FileOrder(comm, nq, tag, &q, &all, pos));
 
   /* the owned contact faces, as rows of 3 positions among the face vertices, their normal out of the body */

@@ -933,7 +933,10 @@ static PetscErrorCode WriteScene(SSStarScene scene, hid_t file, const NodeFricti
     PetscCall(AttrString(sub, "law", law >= 0 ? SSStarFrictionLaws[law] : "mixed"));
     if (nf->known && laws[SSSTAR_FRICTION_COULOMB] && range[0] == -range[1]) PetscCall(AttrReal(sub, "friction", range[0]));
     if (nf->known && laws[SSSTAR_FRICTION_TRESCA] && range[2] == -range[3]) PetscCall(AttrReal(sub, "slip_bound", range[2]));
-    {
+    if (cg->master[0]) { /* a contact pair: its master surface and discretization, no obstacle */
+      PetscCall(AttrString(sub, "master", cg->master));
+      PetscCall(AttrString(sub, "discretization", SSStarPairDiscretizations[scene->pairMethod]));
+    } else {
       const SSStarObstacle *ob = &cg->obstacle;
       char                  text[PETSC_MAX_PATH_LEN + 128];
 

@@ -12,7 +12,7 @@ PREFIX   ?= /usr/local
 # where make install puts the Python module ssstar (Debian's python3 searches /usr/local/lib/python3/dist-packages)
 PYTHON_DIR ?= $(PREFIX)/lib/python3/dist-packages
 LIB      := lib/lib$(LIBNAME).so
-LIB_SRC  := src/ssstarregister.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
+LIB_SRC  := src/ssstarregister.c src/options.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
             src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/newton_dense.c src/snes/impls/ssstar/newton_sparse.c \
             src/snes/impls/ssstar/newton_full.c src/snes/impls/ssstar/denselu.c src/snes/impls/ssstar/operator.c \
             src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \

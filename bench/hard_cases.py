@@ -27,11 +27,11 @@ def cases(level):
     loads = lambda s: ["-traction_top", "0,0,%g" % (-500 * s), "-traction_right", "%g,%g,%g" % (-200 * s, 30 * s, 200 * s)]
     yield "default scene", level, []
     for phi in (0.6, 1, 2, 3, 5):
-        yield "phi = %g" % phi, level, ["-friction", str(phi)]
+        yield "phi = %g" % phi, level, ["-snes_ssstar_friction", str(phi)]
     for phi in (0.6, 1, 2, 3, 5):
-        yield "tangential load, phi = %g" % phi, level, TANGENTIAL + ["-friction", str(phi)]
+        yield "tangential load, phi = %g" % phi, level, TANGENTIAL + ["-snes_ssstar_friction", str(phi)]
     for L in range(3, 9):
-        yield "frictionless", L, ["-friction", "0"]
+        yield "frictionless", L, ["-snes_ssstar_friction", "0"]
     yield "weak contact (nu = 0, sliding load)", level, ["-nu", "0", "-traction_top", "0,0,0", "-traction_right", "-200,0,0"]
     yield "near-grazing load", level, ["-traction_top", "0,0,-0.01", "-traction_right", "-200,30,0"]
     for L in (4, 6, 8):
@@ -44,7 +44,7 @@ def cases(level):
     yield "start: random, 100x the solution", level, ["-initial_guess", "random", "-initial_guess_scale", "0.1"]
     yield "zero load", 3, ["-traction_top", "0,0,0", "-traction_right", "0,0,0"]
     yield "lift-off", 3, ["-traction_top", "0,0,500"]
-    yield "sliding everywhere (phi = 0.1)", 3, ["-friction", "0.1", "-traction_top", "0,0,-500", "-traction_right", "-2000,0,0"]
+    yield "sliding everywhere (phi = 0.1)", 3, ["-snes_ssstar_friction", "0.1", "-traction_top", "0,0,-500", "-traction_right", "-2000,0,0"]
 
 
 def solve(level, options, h5):

@@ -42,7 +42,7 @@ def data(level):
     path = os.path.join(OUT, "data", "P_L%d.bin" % level)
     if not os.path.exists(path):
         print("computing P, f of level %d into %s" % (level, path), flush=True)
-        run(["mpiexec", "-n", "1", os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_max_it", "0", "-save_reduced", path])
+        run(["mpiexec", "-n", "1", os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-save_reduced", path])
     return path
 
 

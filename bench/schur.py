@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The Schur reduction of the prism, its three paths side by side: examples/prism with -reduction direct, mumps and
+"""The Schur reduction of the prism, its three paths side by side: examples/prism with -snes_ssstar_reduction direct, mumps and
 explicit at levels L on 1 and 2 ranks, medians of several runs, beside the yardstick of issue 7: one plain MUMPS
 Cholesky factorization of the whole K at the same level and ranks (bench/yardstick -yardstick cholesky).
 
@@ -43,7 +43,7 @@ def mpiexec(ranks, threads):
 
 
 def run_prism(level, ranks, path, threads):
-    cmd = mpiexec(ranks, threads) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-reduction", path,
+    cmd = mpiexec(ranks, threads) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", path,
                                      "-summary_header", "0", "-log_view", "-memory_view", "-info", ":mat"]
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     m = SUMMARY.search(p.stdout)

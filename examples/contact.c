@@ -4,7 +4,10 @@ A scene is an options file: examples/contact -options_file scenes/hertz.opts (RE
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
   -load_steps <1>                 solve at the loads k/N of the given ones, k = 1..N (the last is written)\n\
-  -o <file.h5>                    write the solution (HDF5 + XDMF)\n";
+  -o <file.h5>                    write the solution (HDF5 + XDMF)\n\
+The solver's options (-snes_ssstar_*) apply. An option nothing reads is refused before any work. Exit status 0 when every\n\
+solve converged, 2 when one did not (the load steps stop there; the -o file holds that step's iterate and says so:\n\
+attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
 
 #include <ssstar.h>
 #include <ssstarcontact.h>
@@ -87,38 +90,29 @@ int main(int argc, char **argv)
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
   PetscBool           hasOut, hasContact;
   char                out[PETSC_MAX_PATH_LEN] = "";
-  SNESConvergedReason reason;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   const SSStarState  *states = NULL;
   LoadSteps           steps;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
+  PetscCall(SSStarPushErrorHandler());
   PetscCall(PetscLogDefaultBegin()); /* the phases of the summary are read from the log events */
+
+  /* every option, before any work: the program's, the scene's, the solver's */
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Contact driver", "ssstar");
   PetscCall(PetscOptionsInt("-load_steps", "Solve at the loads k/N of the given ones, k = 1..N", NULL, nsteps, &nsteps, NULL));
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
   PetscOptionsEnd();
   PetscCheck(nsteps >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-load_steps %" PetscInt_FMT ": needs at least one step", nsteps);
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
-
-  /* the scene: mesh, groups, contact nodes, K and b */
-  PetscCall(PetscTime(&t0));
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetFromOptions(scene));
-  PetscCall(SSStarSceneSetUp(scene));
-  PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
-  PetscCall(PetscTimeSubtract(&t0));
-  t_assembly = -t0;
-  PetscCall(SSStarSceneView(scene, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(SSStarSceneHasContact(scene, &hasContact));
-  PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
-
   /* contact: ssstar on the whole body; no contact: one linear solve */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
-  if (hasContact) {
-    PetscCall(SNESSetType(snes, SNESSSSTAR));
-    PetscCall(SSStarSceneSetContact(scene, snes));
-  } else {
+  if (hasContact) PetscCall(SNESSetType(snes, SNESSSSTAR));
+  else {
     KSP ksp;
     PC  pc;
 
@@ -129,9 +123,21 @@ int main(int argc, char **argv)
     PetscCall(PCSetType(pc, PCCHOLESKY));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(SSStarSceneCheckOptionsUsed(scene, help, snes));
+
+  /* the scene: mesh, groups, contact nodes, K and b */
+  PetscCall(PetscTime(&t0));
+  PetscCall(SSStarSceneSetUp(scene));
+  PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
+  PetscCall(PetscTimeSubtract(&t0));
+  t_assembly = -t0;
+  PetscCall(SSStarSceneView(scene, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
+
   PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
   PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
-  PetscCall(SNESSetFromOptions(snes));
+  if (hasContact) PetscCall(SSStarSceneSetContact(scene, snes));
   {
     DM dm;
 
@@ -140,7 +146,7 @@ int main(int argc, char **argv)
   }
   PetscCall(VecZeroEntries(u));
 
-  steps.n = nsteps;
+  steps.n = 0;
   PetscCall(PetscMalloc4(nsteps, &steps.factor, nsteps, &steps.area, nsteps, &steps.normal_force, nsteps, &steps.iterations));
   PetscCall(PetscTime(&t0));
   for (PetscInt k = 1; k <= nsteps; k++) {
@@ -150,7 +156,6 @@ int main(int argc, char **argv)
     body.load = (PetscReal)k / nsteps;
     PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
     PetscCall(SNESGetConvergedReason(snes, &reason));
-    PetscCheck(reason > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The solve of load step %" PetscInt_FMT " did not converge: %s", k, SNESConvergedReasons[reason]);
     PetscCall(SNESGetIterationNumber(snes, &stepIts));
     its += hasContact ? stepIts : 0;
     if (hasContact) {
@@ -162,21 +167,24 @@ int main(int argc, char **argv)
     steps.area[k - 1]         = res.area;
     steps.normal_force[k - 1] = res.normal_force;
     steps.iterations[k - 1]   = hasContact ? stepIts : 0;
+    steps.n                   = k;
     if (nsteps > 1)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g\n", k, nsteps, (double)body.load, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
-                            (double)res.normal_force));
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)body.load, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
+                            (double)res.normal_force, reason > 0 ? "" : ", not converged: ", reason > 0 ? "" : SNESConvergedReasons[reason]));
+    if (reason <= 0) break; /* the next steps would start from a point that is no solution */
   }
   PetscCall(PetscTimeSubtract(&t0));
   if (hasContact) {
     PetscCall(EventTime(SSSTAR_Schur, &t_schur));
     PetscCall(EventTime(SSSTAR_Recovery, &t_recovery));
   }
-  t_solve = -t0 - t_schur - t_recovery;
+  t_solve = -t0 - t_schur - t_recovery; /* the contact iterations: the SNESSolve()s less the reduction and the recovery */
 
   if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s\n", nodes, ncontact, (double)t_assembly,
                         (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)"));
   if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nsteps > 1 ? WriteLoadSteps : NULL, &steps));
+  if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
   PetscCall(SNESDestroy(&snes));
@@ -185,5 +193,5 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&body.b));
   PetscCall(SSStarSceneDestroy(&scene));
   PetscCall(PetscFinalize());
-  return 0;
+  return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;
 }

@@ -6,7 +6,9 @@ Usage: examples/fclib FILE.hdf5 [-o solution.h5] [options]\n\
   -o <solution.h5>           write the problem and FCLib's group /solution (r, u, and v for a global problem; normal first)\n\
   -summary_header <true>     print the header line of the summary\n\
 The summary gives the FCLib error (natural map with De Saxce's modified velocity, relative to ||q||), the solver's\n\
-||z|| relative to its displacement scale and the worst Coulomb-law violation. Exit status 1 if the solve diverged.\n";
+||z|| relative to its displacement scale and the worst Coulomb-law violation. An option nothing reads is refused before\n\
+any work. Exit status 0 when the solve converged, 2 when it did not (the -o file says so: attributes converged_reason,\n\
+residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input.\n";
 
 /*
    FCLib problem files (format of FrictionalContactLibrary/fclib, src/fclib.h): per contact a 3-block with the normal
@@ -561,8 +563,37 @@ static PetscErrorCode WriteDataset(const char out[], hid_t group, const char nam
   PetscFunctionReturn(0);
 }
 
-/* out: a copy of the problem group and FCLib's /solution (r, u, and v if v), normal first (rank 0 only) */
-static PetscErrorCode WriteSolution(const char out[], const FCLibProblem *pb, Vec r, Vec u, Vec v)
+/* How the solve ended, as attributes of "/" (those of SSStarWriteOutcome()) */
+static PetscErrorCode WriteOutcome(const char out[], hid_t fout, const char reason[], PetscReal znorm, PetscInt its)
+{
+  const double norm = (double)znorm;
+  const int    iterations = (int)its;
+  hid_t        space, type, attr;
+  herr_t       status;
+
+  PetscFunctionBeginUser;
+  space  = H5Screate(H5S_SCALAR);
+  type   = H5Tcopy(H5T_C_S1);
+  status = H5Tset_size(type, strlen(reason) + 1);
+  attr   = H5Acreate2(fout, "converged_reason", type, space, H5P_DEFAULT, H5P_DEFAULT);
+  status = attr < 0 || status < 0 ? -1 : H5Awrite(attr, type, reason);
+  if (attr >= 0) H5Aclose(attr);
+  H5Tclose(type);
+  PetscCheck(status >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the attribute converged_reason of %s", out);
+  attr   = H5Acreate2(fout, "residual_norm", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+  status = attr < 0 ? -1 : H5Awrite(attr, H5T_NATIVE_DOUBLE, &norm);
+  if (attr >= 0) H5Aclose(attr);
+  PetscCheck(status >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the attribute residual_norm of %s", out);
+  attr   = H5Acreate2(fout, "iterations", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT);
+  status = attr < 0 ? -1 : H5Awrite(attr, H5T_NATIVE_INT, &iterations);
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  PetscCheck(status >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the attribute iterations of %s", out);
+  PetscFunctionReturn(0);
+}
+
+/* out: a copy of the problem group and FCLib's /solution (r, u, and v if v), normal first, and how the solve ended (rank 0 only) */
+static PetscErrorCode WriteSolution(const char out[], const FCLibProblem *pb, Vec r, Vec u, Vec v, const char reason[], PetscReal znorm, PetscInt its)
 {
   const char *group = pb->global ? "/fclib_global" : "/fclib_local";
   hid_t       fin, fout, sol;
@@ -582,6 +613,7 @@ static PetscErrorCode WriteSolution(const char out[], const FCLibProblem *pb, Ve
   PetscCall(WriteDataset(out, sol, "u", u));
   if (v) PetscCall(WriteDataset(out, sol, "v", v));
   H5Gclose(sol);
+  PetscCall(WriteOutcome(out, fout, reason, znorm, its));
   PetscCheck(H5Fclose(fout) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot close %s", out);
   PetscFunctionReturn(0);
 }
@@ -616,6 +648,7 @@ int main(int argc, char **argv)
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
+  PetscCall(SSStarPushErrorHandler());
   comm = PETSC_COMM_WORLD;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported by PETSc, naming the file and dataset */
@@ -632,6 +665,12 @@ int main(int argc, char **argv)
   if (hasOut) PetscCall(CheckOutputIsNotInput(comm, file, out));
   PetscCall(PetscLogStageRegister("FCLib set-up", &stageSetUp));
   PetscCall(PetscLogStageRegister("FCLib solve", &stageSolve));
+  PetscCall(SNESCreate(comm, &snes));
+  PetscCall(SNESSetType(snes, SNESSSSTAR));
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  PetscCheck(isssstar, comm, PETSC_ERR_ARG_WRONG, "examples/fclib reports the stopping quantity of ssstar: run it with -snes_type ssstar");
+  PetscCall(SSStarCheckOptionsUsed(comm, (const char *const[]){help, NULL}, snes)); /* every option read, before any work */
 
   /* the problem in ssstar's form */
   PetscCall(PetscTime(&t0));
@@ -642,13 +681,8 @@ int main(int argc, char **argv)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
 
-  PetscCall(SNESCreate(comm, &snes));
-  PetscCall(SNESSetType(snes, SNESSSSTAR));
   PetscCall(SNESSSStarSetContactProblem(snes, P, f));
   PetscCall(SNESSSStarSetFrictionCoefficients(snes, mu));
-  PetscCall(SNESSetFromOptions(snes));
-  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
-  PetscCheck(isssstar, comm, PETSC_ERR_ARG_WRONG, "examples/fclib reports the stopping quantity of ssstar: run it with -snes_type ssstar");
   PetscCall(VecDuplicate(f, &u));
   PetscCall(VecZeroEntries(u));
   PetscCall(PetscLogStagePush(stageSolve));
@@ -685,7 +719,7 @@ int main(int argc, char **argv)
       PetscCall(MatSolve(pb.Mlu, Hr, v));
       PetscCall(VecDestroy(&Hr));
     }
-    if (rank == 0) PetscCall(WriteSolution(out, &pb, rfc, ufc, v));
+    if (rank == 0) PetscCall(WriteSolution(out, &pb, rfc, ufc, v, SNESConvergedReasons[reason], znorm, its));
     PetscCall(VecDestroy(&v));
   }
 
@@ -699,5 +733,5 @@ int main(int argc, char **argv)
   PetscCall(MatDestroy(&Pfc));
   PetscCall(FCLibDestroy(&pb));
   PetscCall(PetscFinalize());
-  return reason > 0 ? 0 : 1;
+  return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;
 }

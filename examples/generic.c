@@ -11,7 +11,9 @@ Options:\n\
   -obstacle_point <0,0,-0.002>    a point of the rigid plane\n\
   -obstacle_normal <0,0,1>        its normal, pointing into the body (normalized here)\n\
   -o <file.h5>                    write the contact nodes' coordinates, displacement, reaction (K u - b), normal, gap\n\
-                                  and, for ssstar, the friction law, coefficient and slip bound of each\n";
+                                  and, for ssstar, the friction law, coefficient and slip bound of each\n\
+An option nothing reads is refused before any work. Exit status 0 when the solve converged, 2 when it did not (the -o\n\
+file says so: attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
 
 #include <petscdmda.h>
 #include <petscsnes.h>
@@ -293,6 +295,7 @@ static PetscErrorCode WriteContactNodes(const char file[], SNES snes, Vec u, Vec
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   if (isssstar) PetscCall(WriteFriction(viewer, snes, gaps));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscCall(SSStarWriteOutcome(snes, viewer)); /* how the solve ended */
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);
 }
@@ -312,6 +315,8 @@ int main(int argc, char **argv)
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
+  PetscCall(SSStarPushErrorHandler());
+  /* every option, before any work */
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "A block pushed onto a plane", NULL);
   PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, E, &E, NULL));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio", NULL, nu, &nu, NULL));
@@ -325,19 +330,20 @@ int main(int argc, char **argv)
   len = PetscSqrtReal(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
   PetscCheck(len > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-obstacle_normal is zero");
   for (PetscInt k = 0; k < 3; k++) normal[k] /= len;
-
   PetscCall(DMDACreate3d(PETSC_COMM_WORLD, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_BOX, 9, 9, 5, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 3, 1, NULL, NULL, NULL, &da));
   PetscCall(DMSetFromOptions(da));
+  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(SSStarCheckOptionsUsed(PETSC_COMM_WORLD, (const char *const[]){help, NULL}, snes));
+
   PetscCall(DMSetUp(da));
   PetscCall(AssembleStiffness(da, size, E, nu, &body.K));
   PetscCall(DMCreateGlobalVector(da, &body.b));
   PetscCall(ImposeTopDisplacement(da, push, body.K, body.b));
   PetscCall(DeclareBottom(da, size, point, normal, &dofs, &normals, &gaps, &coords));
 
-  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
   PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
-  PetscCall(SNESSetFromOptions(snes));
   PetscCall(SNESSSStarSetContactNodes(snes, dofs, normals, gaps)); /* ignored by other SNES types */
   PetscCall(DMCreateGlobalVector(da, &u));
   PetscCall(VecZeroEntries(u));
@@ -349,6 +355,7 @@ int main(int argc, char **argv)
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s after %" PetscInt_FMT " iterations\n", SNESConvergedReasons[reason], its));
   PetscCall(Report(u, r, dofs, normals, gaps));
   if (hasOut) PetscCall(WriteContactNodes(out, snes, u, r, dofs, normals, gaps, coords));
+  if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(VecDestroy(&r));
   PetscCall(VecDestroy(&u));
@@ -361,5 +368,5 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&body.b));
   PetscCall(DMDestroy(&da));
   PetscCall(PetscFinalize());
-  return 0;
+  return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;
 }

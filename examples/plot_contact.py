@@ -7,9 +7,13 @@ One row per contact group or pair (a pair, named slave->master, is drawn on its 
 coordinates (t1, t2) of its plane (the frame the solver uses, so any plane works; for a curved obstacle or a pair, the
 plane of the group's mean normal). Left: the contact nodes by state (separated, sliding, sticking), with the slip of
 the nodes in contact as arrows (/contact/slip: the tangential displacement relative to the obstacle or to the master
-surface; files without it: u_t in each node's own frame). Right: the contact pressure r_n / area (each node's normal
-force over its tributary area). With
--load_steps, a last panel shows the contact area against the load factor."""
+surface; files without it: u_t in each node's own frame), all on one scale: the key arrow in the legend gives a round
+length in the units of the mesh, and the title the largest slip (a micro-slip of 1e-6 is drawn as long as the key
+says, not as a slide); no arrows where nothing slips. Right: the contact pressure r_n / area (each node's normal force
+over its tributary area). With -load_steps, a last panel shows the contact area against the load factor. Legends sit
+below their panels.
+
+As a module: draw(read(file)) returns the matplotlib figure."""
 import argparse
 
 import h5py
@@ -47,20 +51,69 @@ def read(name):
     return data
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("file")
-    parser.add_argument("-o", "--output", help="PNG file (default: FILE with .png)")
-    args = parser.parse_args()
-    d = read(args.file)
+def group_frame(n):
+    """The frame of a group's plane: that of its mean normal (of the first node's when they cancel)"""
+    mean = n.sum(axis=0)
+    return frame(mean / np.linalg.norm(mean) if np.linalg.norm(mean) > 1e-12 else n[0])
+
+
+def nice_length(x):
+    """1, 2 or 5 times a power of ten, at most x (x > 0): the length of the key arrow"""
+    e = np.floor(np.log10(x))
+    for m in (5, 2, 1):
+        if m * 10 ** e <= x:
+            return m * 10 ** e
+    return 10 ** e
+
+
+def slip_arrows(ax, x, u, touching):
+    """The slip u_t of the touching nodes as arrows on one scale (the largest about a tenth of the panel's width);
+    returns the quiver (None without slip), the largest slip and the length of the key arrow, a round number"""
+    slip = np.linalg.norm(u[touching, :2], axis=1)
+    largest = slip.max() if touching.any() else 0.0
+    if largest <= 0:
+        return None, 0.0, 0.0
+    extent = max(np.ptp(x[:, 0]), np.ptp(x[:, 1]))
+    scale = largest / (0.1 * extent)  # slip per unit of length on the panel
+    q = ax.quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", scale_units="xy", scale=scale,
+                  color="k", width=0.003, zorder=3)
+    return q, largest, nice_length(largest)
+
+
+KEY_HANDLE = 5.0  # length of the legend's handles, in font sizes: the key arrow is drawn in its handle
+
+
+def place_key(fig, ax, legend, q, key, scale):
+    """Draws the key arrow, a slip of key on the arrows' scale, in the handle of the legend's last entry (kept free
+    for it); a shorter round key when that one does not fit. Called once the layout has placed the legend."""
+    renderer = fig.canvas.get_renderer()
+    per_data = ax.transData.transform((1, 0))[0] - ax.transData.transform((0, 0))[0]  # pixels per unit of t1
+    fontsize = legend.prop.get_size_in_points() * fig.dpi / 72
+    room = 0.9 * KEY_HANDLE * fontsize
+    while key / scale * per_data > room:
+        key = nice_length(0.99 * key)
+    text = legend.get_texts()[-1]
+    box = text.get_window_extent(renderer)
+    tip = (box.x0 - legend.handletextpad * fontsize - 0.05 * KEY_HANDLE * fontsize, 0.5 * (box.y0 + box.y1))
+    X, Y = ax.transAxes.inverted().transform(tip)
+    text.set_text("key: a slip of %.0e (mesh units)" % key)
+    ax.quiverkey(q, X, Y, key, "", labelpos="E", coordinates="axes", color="k").set_zorder(legend.get_zorder() + 1)  # over the legend
+    return key
+
+
+def draw(d):
+    """The figure of the solution d (read()): per contact group its states with the slip and its contact pressure"""
     groups = sorted(set(d["group"].tolist()))
     ncols = 3 if d["steps"] is not None else 2
-    fig, axes = plt.subplots(len(groups), ncols, figsize=(6.5 * ncols, 4.4 * len(groups)), squeeze=False)
+    aspect = max(np.ptp(c[:, 1]) / max(np.ptp(c[:, 0]), 1e-300) for c in
+                 (d["coordinates"][d["group"] == g] @ group_frame(d["normal"][d["group"] == g]).T for g in groups))
+    height = float(np.clip(5.5 * aspect + 2.5, 3.5, 9.0))
+    fig, axes = plt.subplots(len(groups), ncols, figsize=(6.5 * ncols, height * len(groups)), squeeze=False, layout="constrained")
+    keys = []
     for row, g in zip(axes, groups):
         on = d["group"] == g
         n = d["normal"][on]
-        mean = n.sum(axis=0)
-        R = frame(mean / np.linalg.norm(mean) if np.linalg.norm(mean) > 1e-12 else n[0])
+        R = group_frame(n)
         un = (d["displacement"][on] * n).sum(axis=1)
         x, u = d["coordinates"][on] @ R.T, (d["displacement"][on] - un[:, None] * n) @ R.T
         rn = (d["reaction"][on] * n).sum(axis=1)
@@ -73,18 +126,22 @@ def main():
             if here.any():
                 row[0].scatter(x[here, 0], x[here, 1], s=14, color=color, label="%s: %d" % (label, here.sum()), zorder=2)
         touching = ~np.isin(state, (0, 6))
-        if touching.any() and np.abs(u[touching, :2]).max() > 0:  # (no arrows where nothing slips: a patch test)
-            row[0].quiver(x[touching, 0], x[touching, 1], u[touching, 0], u[touching, 1], angles="xy", color="k", width=0.002, zorder=3)
-        row[0].set_title("%s: contact states and slip" % name)
+        q, largest, key = slip_arrows(row[0], x, u, touching)
+        if q is not None:  # the legend's last entry, its handle left free: the key arrow goes there
+            row[0].plot([], [], linestyle="none", label="key: a slip of %.0e (mesh units)" % key)
+        row[0].set_title("%s: contact states; slip u_t (largest %.2g)" % (name, largest))
         print("drew %s: %d contact nodes" % (name, on.sum()))
-        row[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+        # below the tick labels and the axis label (about 36 points): an offset in font sizes, whatever the panel's height
+        legend = row[0].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, 0.0), borderaxespad=5, ncol=2, handlelength=KEY_HANDLE)
+        if q is not None:
+            keys.append((row[0], legend, q, key))
         pressure = rn / d["area"][on] if d["area"] is not None else rn
         sc = row[1].scatter(x[:, 0], x[:, 1], c=pressure, s=18, cmap="viridis")
         fig.colorbar(sc, ax=row[1], label="contact pressure r_n / area" if d["area"] is not None else "normal reaction r_n")
         lifted = ~touching
         if lifted.any():
             row[1].scatter(x[lifted, 0], x[lifted, 1], s=40, facecolors="none", edgecolors="0.4", label="separated")
-            row[1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15))
+            row[1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, 0.0), borderaxespad=5)
         row[1].set_title("%s: contact pressure" % name)
         for ax in row[:2]:
             ax.set_aspect("equal")
@@ -97,9 +154,21 @@ def main():
             row[2].set_ylabel("contact area (all groups)")
             row[2].set_title("contact area against load")
             row[2].grid(True)
-    fig.tight_layout()
+    # the layout places everything (the legends with the key's entry), then stays: the key arrows need its scale
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+    fig.keys = [place_key(fig, ax, legend, q, key, q.scale) for ax, legend, q, key in keys]
+    return fig
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("file")
+    parser.add_argument("-o", "--output", help="PNG file (default: FILE with .png)")
+    args = parser.parse_args()
+    fig = draw(read(args.file))
     out = args.output or args.file.rsplit(".", 1)[0] + ".png"
-    fig.savefig(out, dpi=110)
+    fig.savefig(out, dpi=110, bbox_inches="tight")
     print("wrote " + out)
 
 

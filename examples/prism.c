@@ -5,17 +5,19 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -geo <file.geo>            the geometry meshed for -level (default: meshes/prism.geo of the source tree)\n\
   -mesh_scale <1>            multiply the mesh coordinates by this (a change of length unit, e.g. 1e-3 for mm -> m)\n\
   -E <2.1e5> -nu <0.3>       Young's modulus and Poisson ratio\n\
-  -friction <0.3>            Coulomb friction coefficient (same as -snes_ssstar_friction)\n\
   -traction_top <0,0,-500>   traction on the group top\n\
   -traction_right <-200,30,200> traction on the group right\n\
-  -reduction <direct>        Schur complement: direct (MUMPS + METIS, every rank), mumps (PETSc's MUMPS Schur, on\n\
-                             rank 0) or explicit (MATSCHURCOMPLEMENT)\n\
   -initial_guess <zero>      the solver's starting point: zero, elastic (K u = b, no contact) or random\n\
   -initial_guess_scale <1>   random: entries uniform in [-scale, scale]\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
   -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary)\n\
   -summary_header <true>     print the header line of the summary table\n\
-Every option of examples/contact applies too (README \"Scenes\"): the prism is the scene scenes/prism.opts.\n";
+The solver's options (-snes_ssstar_*, README \"The solver\") apply; the prism sets -snes_ssstar_reduction direct unless\n\
+given (the Schur complement: direct, mumps or explicit; none solves on the whole body), and the friction coefficient is\n\
+-snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
+the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
+solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
+no -save_reduced file), PETSc's error code for bad input.\n";
 
 #include <ssstar.h>
 #include <ssstarcontact.h>
@@ -24,10 +26,10 @@ Every option of examples/contact applies too (README \"Scenes\"): the prism is t
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-/* The prism scene (README "The prism") unless the options say otherwise; -mesh replaces -geo and -level */
+/* The prism scene (README "The prism") and its Schur reduction unless the options say otherwise; -mesh replaces -geo and -level */
 static PetscErrorCode SetPrismDefaults(void)
 {
-  const char *defaults[][2] = {{"-dirichlet", "dirichlet"}, {"-contact", "contact"}, {"-traction_top", "0,0,-500"}, {"-traction_right", "-200,30,200"}, {"-E", "2.1e5"}, {"-nu", "0.3"}, {"-geo", SSSTAR_MESH_DIR "/prism.geo"}, {"-level", "6"}};
+  const char *defaults[][2] = {{"-snes_ssstar_reduction", "direct"}, {"-dirichlet", "dirichlet"}, {"-contact", "contact"}, {"-traction_top", "0,0,-500"}, {"-traction_right", "-200,30,200"}, {"-E", "2.1e5"}, {"-nu", "0.3"}, {"-geo", SSSTAR_MESH_DIR "/prism.geo"}, {"-level", "6"}};
   PetscBool   hasMesh, set;
 
   PetscFunctionBeginUser;
@@ -66,48 +68,62 @@ typedef enum {
   INITIAL_GUESS_ZERO,
   INITIAL_GUESS_ELASTIC,
   INITIAL_GUESS_RANDOM
+} InitialGuessType;
+static const char *const InitialGuessTypes[] = {"zero", "elastic", "random", "InitialGuess", "INITIAL_GUESS_", NULL};
+
+typedef struct {
+  InitialGuessType type;
+  PetscReal        scale; /* random: entries uniform in [-scale, scale] */
+  KSP              ksp;   /* elastic: solves K u = b                    */
 } InitialGuess;
-static const char *const InitialGuesses[] = {"zero", "elastic", "random", "InitialGuess", "INITIAL_GUESS_", NULL};
 
-static PetscErrorCode SetInitialGuess(const Body *body, Vec u)
+/* Reads the options of the starting point (and of its solver) before any work */
+static PetscErrorCode InitialGuessSetFromOptions(InitialGuess *guess)
 {
-  InitialGuess guess = INITIAL_GUESS_ZERO;
-  PetscReal    scale = 1;
-
   PetscFunctionBeginUser;
+  guess->type  = INITIAL_GUESS_ZERO;
+  guess->scale = 1;
+  guess->ksp   = NULL;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Initial guess", "prism");
-  PetscCall(PetscOptionsEnum("-initial_guess", "Starting point: zero, elastic (K u = b) or random", NULL, InitialGuesses, (PetscEnum)guess, (PetscEnum *)&guess, NULL));
-  PetscCall(PetscOptionsReal("-initial_guess_scale", "Random starting point: entries uniform in [-scale, scale]", NULL, scale, &scale, NULL));
+  PetscCall(PetscOptionsEnum("-initial_guess", "Starting point: zero, elastic (K u = b) or random", NULL, InitialGuessTypes, (PetscEnum)guess->type, (PetscEnum *)&guess->type, NULL));
+  PetscCall(PetscOptionsReal("-initial_guess_scale", "Random starting point: entries uniform in [-scale, scale]", NULL, guess->scale, &guess->scale, NULL));
   PetscOptionsEnd();
-  switch (guess) {
+  PetscCheck(guess->type != INITIAL_GUESS_RANDOM || (guess->scale > 0 && !PetscIsInfOrNanReal(guess->scale)), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-initial_guess_scale %g: must be a number > 0", (double)guess->scale);
+  if (guess->type == INITIAL_GUESS_ELASTIC) {
+    PC pc;
+
+    PetscCall(KSPCreate(PETSC_COMM_WORLD, &guess->ksp));
+    PetscCall(KSPSetOptionsPrefix(guess->ksp, "initial_"));
+    PetscCall(KSPSetType(guess->ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(guess->ksp, &pc));
+    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(KSPSetFromOptions(guess->ksp));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode InitialGuessCompute(InitialGuess *guess, const Body *body, Vec u)
+{
+  PetscFunctionBeginUser;
+  switch (guess->type) {
   case INITIAL_GUESS_ZERO:
     PetscCall(VecZeroEntries(u));
     break;
-  case INITIAL_GUESS_ELASTIC: {
-    KSP ksp;
-    PC  pc;
-
-    PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
-    PetscCall(KSPSetOptionsPrefix(ksp, "initial_"));
-    PetscCall(KSPSetOperators(ksp, body->K, body->K));
-    PetscCall(KSPSetType(ksp, KSPPREONLY));
-    PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCSetType(pc, PCCHOLESKY));
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    PetscCall(KSPSetFromOptions(ksp));
-    PetscCall(KSPSolve(ksp, body->b, u));
-    PetscCall(KSPDestroy(&ksp));
-  } break;
+  case INITIAL_GUESS_ELASTIC:
+    PetscCall(KSPSetOperators(guess->ksp, body->K, body->K));
+    PetscCall(KSPSolve(guess->ksp, body->b, u));
+    break;
   case INITIAL_GUESS_RANDOM: {
     PetscRandom rnd;
 
-    PetscCheck(scale > 0 && !PetscIsInfOrNanReal(scale), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-initial_guess_scale %g: must be a number > 0", (double)scale);
     PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
-    PetscCall(PetscRandomSetInterval(rnd, -scale, scale));
+    PetscCall(PetscRandomSetInterval(rnd, -guess->scale, guess->scale));
     PetscCall(VecSetRandom(u, rnd));
     PetscCall(PetscRandomDestroy(&rnd));
   } break;
   }
+  PetscCall(KSPDestroy(&guess->ksp));
   PetscFunctionReturn(0);
 }
 
@@ -156,39 +172,45 @@ int main(int argc, char **argv)
 {
   SSStarScene         scene;
   PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
-  PetscReal           friction = 0.3, t_assembly, t_schur, t_solve, t_recovery, t0;
+  PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
   char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar;
-  SSStarReductionType rtype = SSSTAR_REDUCTION_DIRECT;
   DM                  dm;
   Vec                 u, r;
   Body                body;
   SNES                snes;
   SNESConvergedReason reason;
   PetscMPIInt         size;
+  InitialGuess        guess;
   const SSStarState  *states = NULL;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
+  PetscCall(SSStarPushErrorHandler());
   PetscCall(PetscLogDefaultBegin()); /* the phases of the summary row are read from the log events */
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+
+  /* every option, before any work: the program's, the scene's (SetPrismDefaults), the solver's */
   PetscCall(SetPrismDefaults());
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &hasMesh));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-level", &level, NULL));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Prism contact problem", "ssstar");
-  PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient", NULL, friction, &friction, NULL));
-  PetscCall(PetscOptionsEnum("-reduction", "Schur complement", NULL, SSStarReductionTypes, (PetscEnum)rtype, (PetscEnum *)&rtype, NULL));
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
   PetscCall(PetscOptionsString("-save_reduced", "Write P, f, u_C and the contact coordinates to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary table", NULL, header, &header, NULL));
   PetscOptionsEnd();
+  PetscCall(InitialGuessSetFromOptions(&guess));
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
   if (hasReduced) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, reduced));
-
-  /* mesh, FEM: the scene of the options (SetPrismDefaults) */
-  PetscCall(PetscTime(&t0));
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetFromOptions(scene));
+  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+  PetscCall(SNESSetType(snes, SNESSSSTAR));
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(SSStarSceneCheckOptionsUsed(scene, help, snes));
+
+  /* mesh, FEM: the scene of the options */
+  PetscCall(PetscTime(&t0));
   PetscCall(SSStarSceneSetUp(scene));
   PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
   PetscCall(SSStarSceneGetDM(scene, &dm));
@@ -196,23 +218,18 @@ int main(int argc, char **argv)
   t_assembly = -t0;
 
   /* the whole body with its contact nodes: SNESSolve reduces K to them, solves, recovers u */
-  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
-  PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSSStarSetFriction(snes, friction));
-  PetscCall(SNESSSStarSetReductionType(snes, rtype));
   PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
   PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
   PetscCall(SSStarSceneSetContact(scene, snes));
-  PetscCall(SNESSetFromOptions(snes));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
-  PetscCall(SetInitialGuess(&body, u));
+  PetscCall(InitialGuessCompute(&guess, &body, u));
   PetscCall(PetscTime(&t0));
   PetscCall(SNESSolve(snes, NULL, u));
   PetscCall(PetscTimeSubtract(&t0));
   PetscCall(EventTime(SSSTAR_Schur, &t_schur));
   PetscCall(EventTime(SSSTAR_Recovery, &t_recovery));
-  t_solve = -t0 - t_schur - t_recovery;
+  t_solve = -t0 - t_schur - t_recovery; /* the contact iterations: SNESSolve less the reduction and the recovery */
   PetscCall(SNESGetIterationNumber(snes, &its));
   PetscCall(SNESGetConvergedReason(snes, &reason));
   PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
@@ -227,8 +244,10 @@ int main(int argc, char **argv)
                         hasMesh ? -1 : level, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
                         SNESConvergedReasons[reason]));
 
+  /* the solution file says how the solve ended; the reduced problem's u_C is written only as a solution */
   if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, NULL, NULL));
-  if (hasReduced && isssstar) PetscCall(SaveReduced(reduced, scene, snes, u));
+  if (hasReduced && isssstar && reason > 0) PetscCall(SaveReduced(reduced, scene, snes, u));
+  if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d%s\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED, hasReduced ? ", no -save_reduced file" : ""));
 
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&u));
@@ -236,5 +255,5 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&body.b));
   PetscCall(SSStarSceneDestroy(&scene));
   PetscCall(PetscFinalize());
-  return 0;
+  return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;
 }

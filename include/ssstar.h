@@ -83,6 +83,12 @@ PETSC_EXTERN const char *const SSStarMethods[];
 PETSC_EXTERN PetscErrorCode SSStarInitializePackage(void);
 PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
 
+/* What ssstar's programs promise a scripted user: unknown options refused, a failed solve said by the exit status and the file */
+#define SSSTAR_EXIT_NOT_CONVERGED 2 /* the exit status of a program whose solve did not converge (bad input: PETSc's error code) */
+PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm, const char *const[], SNES);
+PETSC_EXTERN PetscErrorCode SSStarWriteOutcome(SNES, PetscViewer);
+PETSC_EXTERN PetscErrorCode SSStarPushErrorHandler(void);
+
 /* The contact problem: the whole body (K u - b with contact nodes) or the reduced one (P u - f) */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetContactNodes(SNES, PetscInt *, IS *, Vec *, Vec *);

@@ -85,10 +85,10 @@ def file_metadata():
     expect("VIOLATED" not in law and "Tresca (s 0.5)" in law and "Coulomb (phi 0.45)" in law, "check_solution.py with the file's laws", law)
 
 
-@test("tests/check_solution.py needs no --phi: it reads each node's coefficient from the file (prism -friction 0.45 passes; the same file with /contact/friction set to 0.1 fails, and so does --phi 0.3 against it); a run that stops early (-snes_max_it 2) writes a file that says so: DIVERGED_MAX_IT, MAX_IT, 2 iterations, ||z|| above the tolerance")
+@test("tests/check_solution.py needs no --phi: it reads each node's coefficient from the file (prism -snes_ssstar_friction 0.45 passes; the same file with /contact/friction set to 0.1 fails, and so does --phi 0.3 against it); a run that stops early (-snes_max_it 2) writes a file that says so: DIVERGED_MAX_IT, MAX_IT, 2 iterations, ||z|| above the tolerance")
 def file_friction_and_reason():
     h5 = os.path.join(OUT, "files_phi045.h5")
-    prism(3, extra=["-friction", "0.45"], h5="files_phi045.h5")
+    prism(3, extra=["-snes_ssstar_friction", "0.45"], h5="files_phi045.h5")
     law = run(CHECK + ["coulomb", h5])
     expect("VIOLATED" not in law and "phi 0.45" in law, "the law with the file's phi", law)
     run(CHECK + ["coulomb", h5, "--phi", "0.3"], expect_rc=1)
@@ -102,7 +102,7 @@ def file_friction_and_reason():
     stopped = os.path.join(OUT, "files_max_it.h5")
     if os.path.exists(stopped):
         os.remove(stopped)
-    run(mpiexec(1, PRISM, "-level", "4", "-snes_max_it", "2", "-o", stopped), expect_rc=None)
+    run(mpiexec(1, PRISM, "-level", "4", "-snes_max_it", "2", "-o", stopped), expect_rc=NOT_CONVERGED)
     expect(os.path.exists(stopped), "no file from the run stopped by -snes_max_it")
     with h5py.File(stopped, "r") as f:
         a = f.attrs

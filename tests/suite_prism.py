@@ -38,9 +38,9 @@ def prism_coulomb_law():
     expect(os.path.getsize(png) > 10000, "examples/plot_contact.py wrote no picture")
 
 
-@test("a non-default friction (-friction 0.5) reaches the solver and the law holds with it")
+@test("a non-default friction (-snes_ssstar_friction 0.5) reaches the solver and the law holds with it")
 def prism_friction_option():
-    prism(3, extra=["-friction", "0.5"], h5="friction05_L3.h5")
+    prism(3, extra=["-snes_ssstar_friction", "0.5"], h5="friction05_L3.h5")
     run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5")])
 
 
@@ -58,9 +58,9 @@ def prism_ranks_agree():
 
 @test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 1e-10, on 1 and 2 ranks")
 def prism_schur_paths_agree():
-    prism(4, 1, extra=["-reduction", "mumps"], h5="mumps_L4.h5")
-    prism(4, 1, extra=["-reduction", "explicit"], h5="explicit_L4.h5")
-    prism(4, 2, extra=["-reduction", "explicit"], h5="explicit2_L4.h5")
+    prism(4, 1, extra=["-snes_ssstar_reduction", "mumps"], h5="mumps_L4.h5")
+    prism(4, 1, extra=["-snes_ssstar_reduction", "explicit"], h5="explicit_L4.h5")
+    prism(4, 2, extra=["-snes_ssstar_reduction", "explicit"], h5="explicit2_L4.h5")
     run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit_L4.h5"), "--tol", "1e-10"])
     run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit2_L4.h5"), "--tol", "1e-10"])
 

@@ -33,7 +33,7 @@ def schur_paths_agree_lattice():
 def schur_paths_agree_prism():
     cases = [("direct", 1), ("direct", 2), ("direct", 3), ("mumps", 1), ("explicit", 2)]
     for path, ranks in cases:
-        out, s = prism(4, ranks, extra=["-reduction", path], h5="schur_%s%d_L4.h5" % (path, ranks))
+        out, s = prism(4, ranks, extra=["-snes_ssstar_reduction", path], h5="schur_%s%d_L4.h5" % (path, ranks))
         expect(s["iters"] == REFERENCE_ITERATIONS[4] and s["sep_sl_st"] == REFERENCE_STATES[4],
                "%s on %d ranks: %d iterations, states %s" % (path, ranks, s["iters"], s["sep_sl_st"]), out)
     for path, ranks in cases[1:]:
@@ -73,7 +73,7 @@ def schur_singular_k():
 @test("MUMPS running out of memory is reported as memory, with the amount MUMPS missed and its INFOG, for each path (here: its working memory capped by ICNTL(23) = 1 MB)")
 def schur_mumps_out_of_memory():
     for path, option in (("direct", "-schur_direct_mumps_icntl_23"), ("mumps", "-schur_mat_mumps_icntl_23"), ("explicit", "-interior_mat_mumps_icntl_23")):
-        out = run(mpiexec(2, PRISM, "-level", "4", "-reduction", path, option, "1"), expect_rc=1)
+        out = run(mpiexec(2, PRISM, "-level", "4", "-snes_ssstar_reduction", path, option, "1"), expect_rc=1)
         msg = error_text(out)
         expect(re.search(r"Out of memory in .*MUMPS needed [\d.e+-]+ GB more than the working memory it was allowed \(%s\) \(INFOG\(1\) = -19" % option, msg) is not None,
                "%s: no memory message with the amount" % path, out)

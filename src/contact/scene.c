@@ -271,7 +271,7 @@ static const char SceneGroupHelp[] = "\
   -traction_<G> <x,y,z>: constant traction on surface group G (global axes)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
   -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
-  -contact <G1,G2,...>: the contact groups (none: no contact at all)\n\
+  -contact <G1,G2,...>: the contact groups (without -contact: no contact at all)\n\
   -obstacle_<G> <0,0,0,0,0,1>: the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers: a point and\n\
       the normal into the body), sphere:cx,cy,cz,R (a ball touched from outside), cylinder:px,py,pz,ax,ay,az,R\n\
       (infinite, axis through p along a) or mesh:FILE.msh (a rigid body bounded by gmsh triangles, normals out of it)\n\
@@ -280,6 +280,34 @@ static const char SceneGroupHelp[] = "\
   -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n\
   -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
   -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
+
+/* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density";
+
+/*@C
+   SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
+   solver has read (SSStarCheckOptionsUsed()), naming the nearest option among the program's (its help text), the
+   scene's and the solver's
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetFromOptions()
+.  help  - the program's help text (its options as "-name"), or NULL
+-  snes  - the program's SNES after SNESSetFromOptions(), or NULL
+
+   Level: intermediate
+
+.seealso: `SSStarCheckOptionsUsed()`, `SSStarSceneSetFromOptions()`
+@*/
+PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[], SNES snes)
+{
+  const char *known[4] = {help ? help : "", SceneOptionNames, SceneGroupHelp, NULL};
+
+  PetscFunctionBegin;
+  PetscCall(SSStarCheckOptionsUsed(scene->comm, known, snes));
+  PetscFunctionReturn(0);
+}
 
 /*@C
    SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
@@ -849,7 +877,8 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 
    Notes:
    A group's -friction_<G> gives its nodes their own coefficient; the nodes of Coulomb groups without one keep the
-   solver's (SNESSSStarSetFriction(), -snes_ssstar_friction). One law for all groups is set with
+   solver's (SNESSSStarSetFriction(), -snes_ssstar_friction), whether it is set before or after this call (their
+   entries are PETSC_DEFAULT in SNESSSStarSetFrictionCoefficients()). One law for all groups is set with
    SNESSSStarSetFrictionLaw(), several with SNESSSStarSetNodeFrictionLaws().
 
    Level: beginner
@@ -860,7 +889,7 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
 {
   Vec       normals, gaps = NULL, v;
   PetscBool anyGap = PETSC_FALSE, anyPhi = PETSC_FALSE, anyBound = PETSC_FALSE, anyLaw = PETSC_FALSE, oneLaw = PETSC_TRUE;
-  PetscReal phi, *values;
+  PetscReal *values;
 
   PetscFunctionBegin;
   PetscCheck(scene->nContact > 0, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The scene has no contact group (-contact): solve K u = b without ssstar");
@@ -890,9 +919,8 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
     PetscCall(PetscFree(laws));
   }
   PetscCall(PetscMalloc1(scene->n, &values));
-  if (anyPhi) {
-    PetscCall(SNESSSStarGetFriction(snes, &phi));
-    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].phiSet ? scene->contact[scene->group[i]].phi : phi;
+  if (anyPhi) { /* the groups without -friction_<G> keep the solver's coefficient, whenever it is set */
+    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].phiSet ? scene->contact[scene->group[i]].phi : (PetscReal)PETSC_DEFAULT;
     PetscCall(NodeVec(scene, 1, values, &v));
     PetscCall(SNESSSStarSetFrictionCoefficients(snes, v));
     PetscCall(VecDestroy(&v));

@@ -215,8 +215,11 @@ static PetscErrorCode BuildFrames(MPI_Comm comm, SSStarContact *ct)
   PetscFunctionReturn(0);
 }
 
-/* A per-node value of the user's vector v (NULL: fallback), checked to be finite and >= 0 unless negative is allowed */
-static PetscErrorCode NodeValues(SSStarContact *ct, Vec v, PetscReal fallback, PetscBool allowNegative, const char what[], PetscReal out[])
+/*
+   A per-node value of the user's vector v (NULL: fallback), checked to be finite and >= 0 unless negative is allowed;
+   with allowDefault an entry PETSC_DEFAULT takes the fallback too
+*/
+static PetscErrorCode NodeValues(SSStarContact *ct, Vec v, PetscReal fallback, PetscBool allowNegative, PetscBool allowDefault, const char what[], PetscReal out[])
 {
   const PetscScalar *a;
 
@@ -228,6 +231,7 @@ static PetscErrorCode NodeValues(SSStarContact *ct, Vec v, PetscReal fallback, P
   PetscCall(VecGetArrayRead(v, &a));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     out[i] = PetscRealPart(a[ct->order[i]]);
+    if (allowDefault && out[i] == (PetscReal)PETSC_DEFAULT) out[i] = fallback;
     PetscCheck(!PetscIsInfOrNanReal(out[i]) && (allowNegative || out[i] >= 0), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%s of contact node %" PetscInt_FMT " is %g", what, ct->order[i], (double)out[i]);
   }
   PetscCall(VecRestoreArrayRead(v, &a));
@@ -244,8 +248,8 @@ static PetscErrorCode BuildFriction(MPI_Comm comm, SSStarContact *ct)
   PetscCheck(!ct->nodeLaws || ct->nNodeLaws == ct->nnodes, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetNodeFrictionLaws: %" PetscInt_FMT " laws for %" PetscInt_FMT " contact nodes", ct->nNodeLaws, ct->nnodes);
   PetscCall(PetscMalloc1(ct->nnodes, &ct->nodeFriction));
   PetscCall(PetscMalloc2(ct->nnodes, &phi, ct->nnodes, &bound));
-  PetscCall(NodeValues(ct, ct->coefficients, ct->friction, PETSC_FALSE, "The friction coefficient (SNESSSStarSetFrictionCoefficients)", phi));
-  PetscCall(NodeValues(ct, ct->bounds, 0.0, PETSC_FALSE, "The slip bound (SNESSSStarSetSlipBounds)", bound));
+  PetscCall(NodeValues(ct, ct->coefficients, ct->friction, PETSC_FALSE, PETSC_TRUE, "The friction coefficient (SNESSSStarSetFrictionCoefficients)", phi));
+  PetscCall(NodeValues(ct, ct->bounds, 0.0, PETSC_FALSE, PETSC_FALSE, "The slip bound (SNESSSStarSetSlipBounds)", bound));
   PetscCall(PetscArrayzero(ct->lawCounts, 3));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     SSStarFriction *fr = &ct->nodeFriction[i];
@@ -261,7 +265,7 @@ static PetscErrorCode BuildFriction(MPI_Comm comm, SSStarContact *ct)
   ct->hasFriction = (PetscBool)(ct->lawCounts[SSSTAR_FRICTION_TRESCA] + ct->lawCounts[SSSTAR_FRICTION_COULOMB] > 0);
   if (ct->gaps) {
     PetscCall(PetscMalloc1(ct->nnodes, &ct->gap));
-    PetscCall(NodeValues(ct, ct->gaps, 0.0, PETSC_TRUE, "The gap (SNESSSStarSetContactNodes)", ct->gap));
+    PetscCall(NodeValues(ct, ct->gaps, 0.0, PETSC_TRUE, PETSC_FALSE, "The gap (SNESSSStarSetContactNodes)", ct->gap));
   }
   PetscFunctionReturn(0);
 }

@@ -220,11 +220,14 @@ PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
 
    Input Parameters:
 +  snes - the SNES
--  phi  - 1 entry (>= 0) per contact node owned by the rank, in the order of the contact nodes; NULL: back to the
+-  phi  - 1 entry (>= 0, or PETSC_DEFAULT) per contact node owned by the rank, in the order of the contact nodes; NULL: back to the
           scalar of SNESSSStarSetFriction()
 
    Notes:
-   The SNES keeps a reference to phi. The coefficient applies to the nodes whose law is coulomb.
+   The SNES keeps a reference to phi. The coefficient applies to the nodes whose law is coulomb. An entry PETSC_DEFAULT
+   gives its node the coefficient of SNESSSStarSetFriction() (-snes_ssstar_friction) as it is at SNESSolve(): a scene
+   hands over the coefficients of its groups without fixing the solver's default (SSStarSceneSetContact()). Any other
+   entry must be a number >= 0.
 
    Level: intermediate
 
@@ -289,7 +292,9 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStar
 }
 
 /*@
-   SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use
+   SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use: a Schur complement P
+   (direct, mumps, explicit), none (the Newton steps on the whole body, P never formed) or auto (direct where the dense
+   P is the faster route and fits the memory, else none); default auto
 
    Logically Collective
 
@@ -550,7 +555,8 @@ PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
    SNESSSStarSetLUReuse - with a dense P, keep the LU factors of the Newton matrix and solve the next steps by GMRES
    preconditioned with them while at most this fraction of the contact nodes changed which of their rows are known
    (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge
-   (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). 0 gives a fresh LU at every step. Default 0.05.
+   (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). Default 0: the old LU only while no node changed;
+   a negative fraction gives a fresh LU at every step.
 
    Logically Collective
 
@@ -559,7 +565,7 @@ PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
 -  fraction - the fraction of the contact nodes
 
    Options Database Key:
-.  -snes_ssstar_lu_reuse <fraction> - the fraction, in [0, 1]
+.  -snes_ssstar_lu_reuse <fraction> - the fraction, at most 1 (negative: a fresh LU at every step)
 
    Level: advanced
 

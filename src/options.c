@@ -1,0 +1,447 @@
+/*
+   What ssstar's programs promise a scripted user (README, "What a scripted user can rely on"): an option that nobody
+   read is refused before any work, naming it and the nearest option the program knows; a solve that did not converge
+   ends with the exit status SSSTAR_EXIT_NOT_CONVERGED, and the file it writes says so.
+*/
+#include <ctype.h>
+#include <strings.h>
+#include <petsc/private/petscimpl.h>
+#include <ssstar.h>
+#include <petscviewerhdf5.h>
+
+/*
+   Options PETSc reads only while the work runs (objects created then: the reduction's MUMPS, the mesh, the viewers,
+   the Newton step's GMRES, the factorizations), after the solve (views, reasons) or at PetscFinalize(). Prefixes,
+   without the dash; none of them is checked before the work.
+*/
+static const char *const LateOptions[] = {"snes_view", "snes_converged_reason", "ksp_view", "ksp_converged_reason", "pc_view", "mat_", "vec_view", "dm_", "petscpartitioner_", "viewer_", "log", "options_left", "options_view", "memory_view", "malloc_", "objects_dump", "snes_ssstar_newton_ksp_", "schur_", "interior_", "initial_mat_", "pc_factor_", "pc_mg_", "mg_"};
+
+/* The prefix of the scratch SNES whose -help text lists the options of a SNES of the same types */
+#define SSSTAR_KNOWN_PREFIX "ssstar_known_"
+
+static PetscBool IsLate(const char name[])
+{
+  for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(LateOptions); k++)
+    if (!strncasecmp(name, LateOptions[k], strlen(LateOptions[k]))) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* A growing list of option names (without the dash); "<G>" at the end marks a name followed by a group name */
+typedef struct {
+  PetscInt n, max;
+  char   **names;
+} NameList;
+
+static PetscErrorCode NameListAdd(NameList *list, const char name[], size_t len)
+{
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < list->n; i++)
+    if (strlen(list->names[i]) == len && !strncasecmp(list->names[i], name, len)) PetscFunctionReturn(0);
+  if (list->n == list->max) {
+    list->max = PetscMax(64, 2 * list->max);
+    PetscCall(PetscRealloc(list->max * sizeof(char *), &list->names));
+  }
+  PetscCall(PetscMalloc1(len + 1, &list->names[list->n]));
+  PetscCall(PetscStrncpy(list->names[list->n], name, len + 1));
+  list->n++;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode NameListDestroy(NameList *list)
+{
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < list->n; i++) PetscCall(PetscFree(list->names[i]));
+  PetscCall(PetscFree(list->names));
+  PetscFunctionReturn(0);
+}
+
+static PetscBool IsNameChar(char c)
+{
+  return (PetscBool)(isalnum((unsigned char)c) || c == '_');
+}
+
+/* Every option named in text: "-name", "-name_<G>" (a template); with prefix, "-<prefix>name" counts as "-name" */
+static PetscErrorCode AddNamesOfText(NameList *list, const char text[], const char prefix[])
+{
+  const size_t plen = prefix ? strlen(prefix) : 0;
+
+  PetscFunctionBegin;
+  for (const char *s = text; s && *s; s++) {
+    const char *start;
+    size_t      len;
+
+    if (*s != '-' || (s > text && (IsNameChar(s[-1]) || s[-1] == '-')) || !isalpha((unsigned char)s[1])) continue;
+    start = s + 1;
+    if (plen && !strncmp(start, prefix, plen)) start += plen;
+    for (s = start; IsNameChar(*s); s++) {}
+    len = (size_t)(s - start);
+    if (!strncmp(s, "<G>", 3) && len && start[len - 1] == '_') len += 3; /* -friction_<G> */
+    else if (len && start[len - 1] == '_') {                             /* -snes_ssstar_*: no name */
+      s--;
+      continue;
+    }
+    if (len) PetscCall(NameListAdd(list, start, len));
+    s--;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The options of the database that were read */
+static PetscErrorCode AddUsedNames(NameList *list)
+{
+  char *all, *token, *save = NULL;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  for (token = strtok_r(all, " ", &save); token; token = strtok_r(NULL, " ", &save)) {
+    PetscBool used;
+
+    if (token[0] != '-' || !isalpha((unsigned char)token[1])) continue;
+    PetscCall(PetscOptionsUsed(NULL, token + 1, &used));
+    if (used) PetscCall(NameListAdd(list, token + 1, strlen(token + 1)));
+  }
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+/* The -help text a SNES of the types of snes (and of its KSP and PC) prints, collected instead of printed */
+static char  *helpText    = NULL;
+static size_t helpTextLen = 0, helpTextMax = 0;
+static PetscErrorCode (*vfprintfSaved)(FILE *, const char[], va_list);
+
+static PetscErrorCode CollectText(const char format[], va_list args)
+{
+  char   line[4096];
+  size_t len;
+
+  PetscFunctionBegin;
+  PetscCall(PetscVSNPrintf(line, sizeof(line), format, &len, args));
+  len = strlen(line);
+  if (helpTextLen + len + 1 > helpTextMax) {
+    helpTextMax = PetscMax(2 * helpTextMax, helpTextLen + len + 1 + 65536);
+    PetscCall(PetscRealloc(helpTextMax, &helpText));
+  }
+  PetscCall(PetscMemcpy(helpText + helpTextLen, line, len + 1));
+  helpTextLen += len;
+  PetscFunctionReturn(0);
+}
+
+/* PetscHelpPrintf() while collecting */
+static PetscErrorCode CollectHelp(MPI_Comm comm, const char format[], ...)
+{
+  va_list args;
+
+  PetscFunctionBegin;
+  va_start(args, format);
+  PetscCall(CollectText(format, args));
+  va_end(args);
+  PetscFunctionReturn(0);
+}
+
+/* PetscVFPrintf() while collecting: the lists of types go to stdout directly */
+static PetscErrorCode CollectStdout(FILE *fd, const char format[], va_list args)
+{
+  PetscFunctionBegin;
+  if (fd == PETSC_STDOUT || fd == stdout) PetscCall(CollectText(format, args));
+  else PetscCall((*vfprintfSaved)(fd, format, args));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AddNamesOfSNES(NameList *list, SNES snes)
+{
+  SNES      scratch;
+  KSP       ksp, kspScratch;
+  PC        pc, pcScratch;
+  SNESType  stype;
+  KSPType   ktype;
+  PCType    ptype;
+  PetscBool hadHelp;
+  PetscErrorCode (*print)(MPI_Comm, const char[], ...) = PetscHelpPrintf;
+
+  PetscFunctionBegin;
+  PetscCall(SNESGetType(snes, &stype));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetType(ksp, &ktype));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetType(pc, &ptype));
+  PetscCall(SNESCreate(PetscObjectComm((PetscObject)snes), &scratch));
+  PetscCall(SNESSetOptionsPrefix(scratch, SSSTAR_KNOWN_PREFIX));
+  if (stype) PetscCall(SNESSetType(scratch, stype));
+  PetscCall(SNESGetKSP(scratch, &kspScratch));
+  if (ktype) PetscCall(KSPSetType(kspScratch, ktype));
+  PetscCall(KSPGetPC(kspScratch, &pcScratch));
+  if (ptype) PetscCall(PCSetType(pcScratch, ptype));
+  PetscCall(PetscOptionsHasHelp(NULL, &hadHelp));
+  if (!hadHelp) PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
+  helpTextLen     = 0;
+  vfprintfSaved   = PetscVFPrintf;
+  PetscHelpPrintf = CollectHelp;
+  PetscVFPrintf   = CollectStdout;
+  PetscCall(SNESSetFromOptions(scratch));
+  PetscHelpPrintf = print;
+  PetscVFPrintf   = vfprintfSaved;
+  if (!hadHelp) PetscCall(PetscOptionsClearValue(NULL, "-help"));
+  PetscCall(SNESDestroy(&scratch));
+  if (helpText) PetscCall(AddNamesOfText(list, helpText, SSSTAR_KNOWN_PREFIX));
+  PetscCall(PetscFree(helpText));
+  helpTextLen = helpTextMax = 0;
+  PetscFunctionReturn(0);
+}
+
+/* The optimal string alignment distance (Levenshtein with transpositions), case-insensitive */
+static PetscInt Distance(const char a[], size_t la, const char b[], size_t lb)
+{
+  PetscInt d[3][257]; /* rows i-2, i-1, i; option names are shorter */
+
+  if (la > 256 || lb > 256) return PETSC_MAX_INT;
+  for (size_t j = 0; j <= lb; j++) d[1][j] = (PetscInt)j;
+  for (size_t i = 1; i <= la; i++) {
+    PetscInt *cur = d[(i + 1) % 3], *prev = d[i % 3], *prev2 = d[(i + 2) % 3];
+
+    cur[0] = (PetscInt)i;
+    for (size_t j = 1; j <= lb; j++) {
+      const PetscInt cost = tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]);
+
+      cur[j] = PetscMin(PetscMin(prev[j] + 1, cur[j - 1] + 1), prev[j - 1] + cost);
+      if (i > 1 && j > 1 && tolower((unsigned char)a[i - 1]) == tolower((unsigned char)b[j - 2]) && tolower((unsigned char)a[i - 2]) == tolower((unsigned char)b[j - 1])) cur[j] = PetscMin(cur[j], prev2[j - 2] + 1);
+    }
+  }
+  return d[(la + 1) % 3][lb];
+}
+
+/*
+   The known option nearest to name: by edit distance (a template -x_<G> matches -x_ followed by any group name: the
+   name's own, after one of its underscores); else a known option that ends with _name (-friction:
+   -snes_ssstar_friction). Empty when none is near.
+*/
+static PetscErrorCode Nearest(const NameList *known, const char name[], char nearest[], size_t size)
+{
+  const size_t len = strlen(name);
+  PetscInt     best = PETSC_MAX_INT;
+  size_t       bestSuffix = 0;
+
+  PetscFunctionBegin;
+  nearest[0] = 0;
+  for (PetscInt i = 0; i < known->n; i++) {
+    const char  *k    = known->names[i];
+    const size_t klen = strlen(k);
+
+    if (klen > 3 && !strcmp(k + klen - 3, "<G>")) {
+      for (size_t split = 1; split < len; split++) {
+        PetscInt d;
+
+        if (name[split - 1] != '_') continue; /* the group name follows an underscore */
+        d = Distance(name, split, k, klen - 3);
+        if (d < best) {
+          best = d;
+          PetscCall(PetscSNPrintf(nearest, size, "-%.*s%s", (int)(klen - 3), k, name + split));
+        }
+      }
+    } else {
+      const PetscInt d = Distance(name, len, k, klen);
+
+      if (d < best) {
+        best = d;
+        PetscCall(PetscSNPrintf(nearest, size, "-%s", k));
+      }
+    }
+  }
+  if (best <= PetscMax(2, (PetscInt)len / 4)) PetscFunctionReturn(0);
+  nearest[0] = 0;
+  for (PetscInt i = 0; i < known->n; i++) {
+    const char  *k    = known->names[i];
+    const size_t klen = strlen(k);
+
+    if (klen > len && k[klen - len - 1] == '_' && !strcasecmp(k + klen - len, name) && (!bestSuffix || klen < bestSuffix)) {
+      bestSuffix = klen;
+      PetscCall(PetscSNPrintf(nearest, size, "-%s", k));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The options no rank read: rank 0's unread options that are unread on every rank too */
+static PetscErrorCode UnreadOptions(MPI_Comm comm, NameList *unread)
+{
+  PetscMPIInt rank;
+  PetscInt    len = 0;
+  char       *list = NULL, *token, *save = NULL;
+  PetscBool  *left;
+  NameList    all = {0, 0, NULL};
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    PetscInt nleft;
+    char   **names, **values;
+
+    PetscCall(PetscOptionsLeftGet(NULL, &nleft, &names, &values));
+    for (PetscInt i = 0; i < nleft; i++) len += (PetscInt)strlen(names[i]) + 1;
+    PetscCall(PetscCalloc1(len + 1, &list));
+    len = 0;
+    for (PetscInt i = 0; i < nleft; i++)
+      if (!IsLate(names[i])) {
+        const size_t l = strlen(names[i]);
+
+        PetscCall(PetscMemcpy(list + len, names[i], l));
+        list[len + l] = ' ';
+        len += (PetscInt)l + 1;
+      }
+    PetscCall(PetscOptionsLeftRestore(NULL, &nleft, &names, &values));
+  }
+  PetscCallMPI(MPI_Bcast(&len, 1, MPIU_INT, 0, comm));
+  if (rank) PetscCall(PetscCalloc1(len + 1, &list));
+  PetscCallMPI(MPI_Bcast(list, (PetscMPIInt)len + 1, MPI_CHAR, 0, comm));
+  for (token = strtok_r(list, " ", &save); token; token = strtok_r(NULL, " ", &save)) PetscCall(NameListAdd(&all, token, strlen(token)));
+  PetscCall(PetscFree(list));
+  PetscCall(PetscMalloc1(all.n, &left));
+  for (PetscInt i = 0; i < all.n; i++) {
+    PetscBool used;
+
+    PetscCall(PetscOptionsUsed(NULL, all.names[i], &used));
+    left[i] = (PetscBool)!used;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, left, all.n, MPIU_BOOL, MPI_LAND, comm));
+  for (PetscInt i = 0; i < all.n; i++)
+    if (left[i]) PetscCall(NameListAdd(unread, all.names[i], strlen(all.names[i])));
+  PetscCall(PetscFree(left));
+  PetscCall(NameListDestroy(&all));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarCheckOptionsUsed - refuses the options of the database that nothing has read, naming each with the nearest
+   option the program knows; for a program that has read all its options and set up its solver from them, before
+   its work (the check of ssstar's example programs)
+
+   Collective
+
+   Input Parameters:
++  comm  - the communicator of the program
+.  known - NULL, or a NULL-terminated list of texts that name the program's options as "-name" (its help text);
+           "-name_<G>" names the options -name_ followed by any group name
+-  snes  - NULL, or the program's SNES after SNESSetFromOptions(): the options of a SNES, KSP and PC of its types
+           count as known too
+
+   Notes:
+   An option that PETSc reads only during the work, after the solve or at PetscFinalize() is not refused here:
+   -snes_view*, -snes_converged_reason, -ksp_view, -ksp_converged_reason, -pc_view, -vec_view, -log*, -options_left,
+   -options_view, -memory_view, -malloc_*, -objects_dump, and the prefixes -mat_, -dm_, -petscpartitioner_, -viewer_,
+   -pc_factor_, -pc_mg_, -mg_, -schur_, -interior_, -initial_mat_, -snes_ssstar_newton_ksp_. PETSc's -options_left
+   lists at PetscFinalize() those left unread.
+
+   The error (PETSC_ERR_USER_INPUT) reads "Unknown option -levle (nearest known option: -level): nothing was done;
+   -help lists the options". The options read by every rank count as read.
+
+   Level: intermediate
+
+.seealso: `PetscOptionsLeftGet()`, `PetscOptionsUsed()`
+@*/
+PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm comm, const char *const known[], SNES snes)
+{
+  NameList unread = {0, 0, NULL}, names = {0, 0, NULL};
+  char     message[4096] = "", nearest[PETSC_MAX_PATH_LEN];
+  PetscInt n;
+
+  PetscFunctionBegin;
+  if (snes) PetscValidHeaderSpecific(snes, SNES_CLASSID, 3);
+  PetscCall(UnreadOptions(comm, &unread));
+  if (!unread.n) {
+    PetscCall(NameListDestroy(&unread));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt k = 0; known && known[k]; k++) PetscCall(AddNamesOfText(&names, known[k], NULL));
+  PetscCall(AddUsedNames(&names));
+  if (snes) PetscCall(AddNamesOfSNES(&names, snes));
+  for (PetscInt i = 0; i < unread.n; i++) {
+    char one[2 * PETSC_MAX_PATH_LEN];
+
+    PetscCall(Nearest(&names, unread.names[i], nearest, sizeof(nearest)));
+    if (nearest[0]) PetscCall(PetscSNPrintf(one, sizeof(one), "%s-%s (nearest known option: %s)", i ? ", " : "", unread.names[i], nearest));
+    else PetscCall(PetscSNPrintf(one, sizeof(one), "%s-%s (no known option is near it)", i ? ", " : "", unread.names[i]));
+    if (strlen(message) + strlen(one) < sizeof(message)) PetscCall(PetscMemcpy(message + strlen(message), one, strlen(one) + 1));
+  }
+  n = unread.n;
+  PetscCall(NameListDestroy(&names));
+  PetscCall(NameListDestroy(&unread));
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "Unknown option%s %s: nothing was done; -help lists the options", n > 1 ? "s" : "", message);
+}
+
+/*@C
+   SSStarWriteOutcome - writes how the last SNESSolve() of snes ended as attributes of the root group "/" of an HDF5
+   file: converged_reason (a string, SNESConvergedReasons[], e.g. CONVERGED_FNORM_RELATIVE or DIVERGED_MAX_IT),
+   residual_norm (the last function norm: ||z|| for ssstar) and iterations
+
+   Collective
+
+   Input Parameters:
++  snes   - the SNES after SNESSolve()
+-  viewer - an HDF5 viewer open for writing
+
+   Notes:
+   ssstar's programs write these into every solution file, so that a file written by a solve that did not converge
+   says so; such a solve ends the program with the exit status SSSTAR_EXIT_NOT_CONVERGED.
+
+   Level: intermediate
+
+.seealso: `SNESGetConvergedReason()`, `SNESGetFunctionNorm()`, `SSStarSceneWriteSolution()`
+@*/
+PetscErrorCode SSStarWriteOutcome(SNES snes, PetscViewer viewer)
+{
+  SNESConvergedReason reason;
+  PetscReal           norm;
+  PetscInt            its;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetFunctionNorm(snes, &norm));
+  PetscCall(SNESGetIterationNumber(snes, &its));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "converged_reason", PETSC_STRING, SNESConvergedReasons[reason]));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "residual_norm", PETSC_REAL, &norm));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "iterations", PETSC_INT, &its));
+  PetscFunctionReturn(0);
+}
+
+/* ssstar's line first: the program's name and the message, then PETSc's report (version, configuration, traceback) */
+static PetscErrorCode SSStarErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  if (p == PETSC_ERROR_INITIAL && mess && mess[0]) {
+    PetscMPIInt rank = 0, size = 1, world;
+    char        name[PETSC_MAX_PATH_LEN] = "";
+
+    if (comm != MPI_COMM_NULL) {
+      MPI_Comm_rank(comm, &rank);
+      MPI_Comm_size(comm, &size);
+    }
+    MPI_Comm_rank(MPI_COMM_WORLD, &world);
+    (void)PetscGetProgramName(name, sizeof(name));
+    if (size == 1 && comm != PETSC_COMM_WORLD) fprintf(stderr, "%s, rank %d: %s\n", name, (int)world, mess); /* a rank's own error */
+    else if (!rank) fprintf(stderr, "%s: %s\n", name, mess);
+    fflush(stderr);
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+/*@C
+   SSStarPushErrorHandler - makes an error print the program's name and the message on a line of its own before
+   PETSc's report of it (PetscTraceBackErrorHandler(): the message again, the versions, the configuration, the calls)
+
+   Not Collective
+
+   Notes:
+   ssstar's programs call it after PetscInitialize(); PetscFinalize() (or PetscPopErrorHandler()) restores the handler
+   before it.
+
+   Level: intermediate
+
+.seealso: `PetscPushErrorHandler()`, `PetscTraceBackErrorHandler()`
+@*/
+PetscErrorCode SSStarPushErrorHandler(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscPushErrorHandler(SSStarErrorHandler, NULL));
+  PetscCall(PetscRegisterFinalize(PetscPopErrorHandler));
+  PetscFunctionReturn(0);
+}

@@ -10,7 +10,7 @@ solve converged, 2 when one did not (the load steps stop there; the -o file hold
 attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 #include <petscviewerhdf5.h>
 
 /* The elastic body at a fraction of its load: F(u) = K u - load b, Jacobian K */

@@ -18,7 +18,7 @@ residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input.\n
    whole contacts on each rank. Starting point u = 0 (docs/derivation.md section 7); /guesses in a file are not used.
 */
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 #include <petscblaslapack.h>
 #include <petsctime.h>
 #include <hdf5.h>

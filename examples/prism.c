@@ -20,7 +20,7 @@ solve converged, 2 when it did not (the -o file says so: attributes converged_re
 no -save_reduced file), PETSc's error code for bad input.\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 
 #ifndef SSSTAR_MESH_DIR
   #define SSSTAR_MESH_DIR "meshes"

@@ -1,6 +1,6 @@
 /* Package registration: linked use (SSStarInitializePackage) and -dll_append (PetscDLLibraryRegister_ssstar). */
 #include "snes/impls/ssstar/ssstarimpl.h"
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 
 PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 

@@ -7,7 +7,7 @@ static const char help[] = "The reductions of a scene checked against other solv
 The scene comes from the options, as for examples/contact.\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 
 typedef struct {
   Mat K;

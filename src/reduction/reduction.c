@@ -7,26 +7,11 @@
    words, the singular-K check. The implementations are direct.c, mumps.c, explicit.c and none.c (reductionimpl.h).
 */
 #include "reductionimpl.h"
+#include "../sys/meminfo.h"
 #include <petscmat.h>
 #include <stdio.h>
 
 const char *const SSStarReductionTypes[] = {"direct", "mumps", "explicit", "none", "auto", "SSStarReductionType", "SSSTAR_REDUCTION_", NULL};
-
-/* MemAvailable of this node (bytes) from /proc/meminfo; 0 when unknown */
-static PetscErrorCode GetMemAvailable(PetscLogDouble *bytes)
-{
-  FILE *file = fopen("/proc/meminfo", "r");
-  char  line[256];
-  long  kb;
-
-  PetscFunctionBegin;
-  *bytes = 0;
-  if (!file) PetscFunctionReturn(0);
-  while (fgets(line, sizeof(line), file))
-    if (sscanf(line, "MemAvailable: %ld kB", &kb) == 1) *bytes = 1024.0 * (PetscLogDouble)kb;
-  fclose(file);
-  PetscFunctionReturn(0);
-}
 
 /*
    Whether the estimate (sparse factors + dense matrices, bytes per rank) fits, the same answer on every rank: each
@@ -49,7 +34,7 @@ static PetscErrorCode CompareMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDo
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
   PetscCallMPI(MPI_Comm_size(node, &nodeSize));
   if (limitGB <= 0) {
-    PetscCall(GetMemAvailable(&available));
+    PetscCall(SSStarMemAvailable(&available));
     PetscCallMPI(MPI_Allreduce(&need, &nodeNeed, 1, MPI_DOUBLE, MPI_SUM, node));
   }
   PetscCallMPI(MPI_Comm_free(&node));

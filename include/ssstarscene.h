@@ -1,5 +1,5 @@
-#ifndef SSSTARCONTACT_H
-#define SSSTARCONTACT_H
+#ifndef SSSTARSCENE_H
+#define SSSTARSCENE_H
 
 /*
    Scenes: elastic bodies (gmsh meshes on DMPlex, P1 linear elasticity) with the effects a scene names -- Dirichlet

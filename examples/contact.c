@@ -88,7 +88,7 @@ int main(int argc, char **argv)
   Vec                 u, r = NULL;
   PetscInt            nsteps = 1, nodes, ncontact, its = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
-  PetscBool           hasOut, hasContact;
+  PetscBool           hasOut, hasContact, hasHelp;
   char                out[PETSC_MAX_PATH_LEN] = "";
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   const SSStarState  *states = NULL;
@@ -109,9 +109,10 @@ int main(int argc, char **argv)
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetFromOptions(scene));
   PetscCall(SSStarSceneHasContact(scene, &hasContact));
-  /* contact: ssstar on the whole body; no contact: one linear solve */
+  PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
-  if (hasContact) PetscCall(SNESSetType(snes, SNESSSSTAR));
+  if (hasContact || hasHelp) PetscCall(SNESSetType(snes, SNESSSSTAR));
   else {
     KSP ksp;
     PC  pc;
@@ -124,6 +125,12 @@ int main(int argc, char **argv)
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
   PetscCall(SNESSetFromOptions(snes));
+  if (hasHelp) { /* the options are listed: no mesh, no solve, no file */
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(SSStarSceneDestroy(&scene));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(SSStarSceneCheckOptionsUsed(scene, help, snes));
 
   /* the scene: mesh, groups, contact nodes, K and b */

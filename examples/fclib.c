@@ -657,7 +657,11 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary", NULL, header, &header, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
-  if (!file && hasHelp) {
+  PetscCall(SNESCreate(comm, &snes));
+  PetscCall(SNESSetType(snes, SNESSSSTAR));
+  PetscCall(SNESSetFromOptions(snes));
+  if (hasHelp) { /* the options are listed, with or without a file: no solve, no file */
+    PetscCall(SNESDestroy(&snes));
     PetscCall(PetscFinalize());
     return 0;
   }
@@ -665,9 +669,6 @@ int main(int argc, char **argv)
   if (hasOut) PetscCall(CheckOutputIsNotInput(comm, file, out));
   PetscCall(PetscLogStageRegister("FCLib set-up", &stageSetUp));
   PetscCall(PetscLogStageRegister("FCLib solve", &stageSolve));
-  PetscCall(SNESCreate(comm, &snes));
-  PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSetFromOptions(snes));
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   PetscCheck(isssstar, comm, PETSC_ERR_ARG_WRONG, "examples/fclib reports the stopping quantity of ssstar: run it with -snes_type ssstar");
   PetscCall(SSStarCheckOptionsUsed(comm, (const char *const[]){help, NULL}, snes)); /* every option read, before any work */

@@ -304,7 +304,7 @@ int main(int argc, char **argv)
 {
   PetscReal           size[3] = {1, 1, 0.5}, push[3] = {0.005, 0, -0.01}, point[3] = {0, 0, -0.002}, normal[3] = {0, 0, 1}, E = 2.1e5, nu = 0.3, len;
   char                out[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasOut;
+  PetscBool           hasOut, hasHelp, hasType;
   DM                  da;
   Body                body;
   SNES                snes;
@@ -333,7 +333,16 @@ int main(int argc, char **argv)
   PetscCall(DMDACreate3d(PETSC_COMM_WORLD, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_BOX, 9, 9, 5, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 3, 1, NULL, NULL, NULL, &da));
   PetscCall(DMSetFromOptions(da));
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+  PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-snes_type", &hasType));
+  if (hasHelp && !hasType) PetscCall(SNESSetType(snes, SNESSSSTAR)); /* -help lists the options of ssstar */
   PetscCall(SNESSetFromOptions(snes));
+  if (hasHelp) { /* the options are listed: no assembly, no solve, no file */
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(DMDestroy(&da));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(SSStarCheckOptionsUsed(PETSC_COMM_WORLD, (const char *const[]){help, NULL}, snes));
 
   PetscCall(DMSetUp(da));

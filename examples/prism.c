@@ -174,7 +174,7 @@ int main(int argc, char **argv)
   PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
   char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar;
+  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar, hasHelp;
   DM                  dm;
   Vec                 u, r;
   Body                body;
@@ -207,6 +207,14 @@ int main(int argc, char **argv)
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
   PetscCall(SNESSetFromOptions(snes));
+  PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  if (hasHelp) { /* the options are listed: no mesh, no solve, no file */
+    PetscCall(KSPDestroy(&guess.ksp));
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(SSStarSceneDestroy(&scene));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(SSStarSceneCheckOptionsUsed(scene, help, snes));
 
   /* mesh, FEM: the scene of the options */

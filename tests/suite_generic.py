@@ -71,3 +71,26 @@ def generic_reductions_agree():
     for name in ("displacement", "reaction"):
         d = np.abs(a[name] - b[name]).max() / np.abs(a[name]).max()
         expect(d <= 1e-9, "%s differs by %.1e relative" % (name, d))
+
+
+@test("tests/check_solution.py compares files without a mesh (/contact alone, as examples/generic writes them): the "
+      "dense route against the whole body agree to 1e-8; a copy with one reaction changed by 1 % differs")
+def generic_compare_without_mesh():
+    import shutil
+    names = {"direct": "generic_cmp_direct.h5", "none": "generic_cmp_none.h5"}
+    for path, h5 in names.items():
+        generic(1, "-snes_type", "ssstar", "-snes_ssstar_reduction", path, *TILTED, h5=h5)
+    a, b = os.path.join(OUT, names["direct"]), os.path.join(OUT, names["none"])
+    with h5py.File(a, "r") as f:
+        expect("geometry" not in f and "contact" in f, "examples/generic wrote a mesh")
+    out = run(CHECK + ["compare", a, b, "--tol", "1e-8"])
+    expect("reaction" in out and "DIFFERENT" not in out, "the two routes differ", out)
+    bad = os.path.join(OUT, "generic_cmp_changed.h5")
+    shutil.copy(b, bad)
+    with h5py.File(bad, "r+") as f:
+        r = f["contact/reaction"][:]
+        k = np.argmax(np.abs(r).max(axis=1))
+        r[k] *= 1.01
+        f["contact/reaction"][...] = r
+    out = run(CHECK + ["compare", a, bad, "--tol", "1e-8"], expect_rc=1)
+    expect(re.search(r"reaction\s+max difference\s+\S+ relative DIFFERENT", out) is not None, "a changed reaction passes", out)

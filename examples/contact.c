@@ -1,5 +1,6 @@
-static const char help[] = "Contact of an elastic body with rigid planes: solves the scene the options describe, and only what\n\
-they name (no contact group: one linear solve; frictionless groups: no friction work; no -gravity: no body force).\n\
+static const char help[] = "Contact of elastic bodies with rigid obstacles and with each other: solves the scene the options\n\
+describe, and only what they name (no contact group: one linear solve; frictionless groups: no friction work; no\n\
+-gravity: no body force).\n\
 A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
@@ -7,7 +8,8 @@ A scene is an options file: examples/contact -options_file scenes/hertz.opts (RE
   -o <file.h5>                    write the solution (HDF5 + XDMF)\n\
 The solver's options (-snes_ssstar_*) apply. An option nothing reads is refused before any work. Exit status 0 when every\n\
 solve converged, 2 when one did not (the load steps stop there; the -o file holds that step's iterate and says so:\n\
-attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
+attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 #include <ssstar.h>
 #include <ssstarscene.h>

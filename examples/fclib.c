@@ -8,7 +8,8 @@ Usage: examples/fclib FILE.hdf5 [-o solution.h5] [options]\n\
 The summary gives the FCLib error (natural map with De Saxce's modified velocity, relative to ||q||), the solver's\n\
 ||z|| relative to its displacement scale and the worst Coulomb-law violation. An option nothing reads is refused before\n\
 any work. Exit status 0 when the solve converged, 2 when it did not (the -o file says so: attributes converged_reason,\n\
-residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input.\n";
+residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 /*
    FCLib problem files (format of FrictionalContactLibrary/fclib, src/fclib.h): per contact a 3-block with the normal

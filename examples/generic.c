@@ -13,7 +13,8 @@ Options:\n\
   -o <file.h5>                    write the contact nodes' coordinates, displacement, reaction (K u - b), normal, gap\n\
                                   and, for ssstar, the friction law, coefficient and slip bound of each\n\
 An option nothing reads is refused before any work. Exit status 0 when the solve converged, 2 when it did not (the -o\n\
-file says so: attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
+file says so: attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 #include <petscdmda.h>
 #include <petscsnes.h>

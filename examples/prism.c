@@ -17,7 +17,8 @@ given (the Schur complement: direct, mumps or explicit; none solves on the whole
 -snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
-no -save_reduced file), PETSc's error code for bad input.\n";
+no -save_reduced file), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 #include <ssstar.h>
 #include <ssstarscene.h>

@@ -20,7 +20,7 @@ def install_and_build_downstream():
     shutil.rmtree(build, ignore_errors=True)
     os.makedirs(build)
     run(["make", "-s", "install", "PREFIX=" + prefix])
-    for path in ("lib/libssstar.so", "lib/pkgconfig/ssstar.pc", "include/ssstar.h", "include/ssstarreduction.h", "include/ssstarscene.h"):
+    for path in ("lib/libssstar.so", "lib/pkgconfig/ssstar.pc", "include/ssstar.h", "include/ssstarreduction.h", "include/ssstarscene.h", "include/ssstargeometry.h"):
         expect(os.path.exists(os.path.join(prefix, path)), "make install did not install " + path)
     shutil.copy(os.path.join(ROOT, "examples", "generic.c"), build)
     env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(prefix, "lib", "pkgconfig"))
@@ -94,7 +94,7 @@ def compile_synopses(synopses, name):
     """Compiles a C file that assigns each public function to a pointer of its manual's synopsis type, with the
     project's compiler and flags and -Werror (an incompatible pointer is an error); returns (ok, compiler output)"""
     source = os.path.join(OUT, name + ".c")
-    lines = ["#include <ssstar.h>", "#include <ssstarreduction.h>", "#include <ssstarscene.h>", ""]
+    lines = ["#include <ssstar.h>", "#include <ssstarreduction.h>", "#include <ssstarscene.h>", "#include <ssstargeometry.h>", ""]
     for k, (function, header, signature) in enumerate(synopses):
         lines.append("%s = %s;" % (signature.replace(" %s(" % function, " (*manual_%d)(" % k, 1), function))
     open(source, "w").write("\n".join(lines) + "\n")

@@ -84,7 +84,7 @@ static PetscErrorCode MeshFileOfLevel(SSStarScene scene)
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
    distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups), finds the bodies (connected parts of the
    mesh; one that no -dirichlet or -spring_<G> group holds is refused, named by its volume groups), the contact nodes
-   and the contact pairs' operator (-contact_pair_<G>)
+   and the contact operator B (each node's rows from its group's rigid obstacle or contact pair)
 
    Collective
 

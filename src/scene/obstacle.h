@@ -2,9 +2,9 @@
 #define SSSTAROBSTACLE_H
 
 /*
-   The rigid obstacle of a contact group (-obstacle_<G>): a shape registered by name (obstacle.c; one file per shape in
-   obstacles/), made from the option's value, which gives each contact node its initial gap and the unit normal of its
-   frame, and says what it is.
+   The rigid obstacle of a contact group (-obstacle_<G>): a shape registered by name (obstacles/register.c; one file per
+   shape in obstacles/), made from the option's value, which gives each contact node its initial gap and the unit
+   normal of its frame, and says what it is (obstacle.c).
 */
 #include <petscsys.h>
 
@@ -18,8 +18,6 @@ typedef struct {
   PetscErrorCode (*string)(void *, const char[], const char[]);
 } SSStarAttributeWriter;
 
-PETSC_INTERN PetscErrorCode SSStarObstacleRegisterAll(void);
-PETSC_INTERN PetscErrorCode SSStarObstacleRegister(const char[], const char[], PetscErrorCode (*)(SSStarObstacle));
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateFromString(MPI_Comm, const char[], const char[], SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateDefault(SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleDestroy(SSStarObstacle *);

@@ -1,7 +1,8 @@
 #ifndef SSSTAROBSTACLEIMPL_H
 #define SSSTAROBSTACLEIMPL_H
 
-/* What a shape of rigid obstacle implements (obstacles/<shape>.c), and the helpers the shapes share (obstacle.c) */
+/* What a shape of rigid obstacle implements (obstacles/<shape>.c), the registry (obstacles/register.c) and the
+   helpers the shapes share (obstacles/numbers.c) */
 #include "obstacle.h"
 #include <ssstargeometry.h>
 
@@ -22,12 +23,10 @@ struct _n_SSStarObstacle {
   void             *data;
 };
 
+PETSC_INTERN PetscErrorCode SSStarObstacleRegister(const char[], const char[], PetscErrorCode (*)(SSStarObstacle));
+PETSC_INTERN PetscErrorCode SSStarObstacleFind(const char[], PetscErrorCode (**)(SSStarObstacle));
+PETSC_INTERN PetscErrorCode SSStarObstacleForms(const char **, const char **);
 PETSC_INTERN PetscErrorCode SSStarObstacleParseNumbers(MPI_Comm, const char[], const char[], const char[], PetscInt, const char[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarObstacleUnitVector(MPI_Comm, const char[], const char[], const char[], const PetscReal[3], PetscReal[3]);
-
-PETSC_INTERN PetscErrorCode SSStarObstacleCreate_Plane(SSStarObstacle);
-PETSC_INTERN PetscErrorCode SSStarObstacleCreate_Sphere(SSStarObstacle);
-PETSC_INTERN PetscErrorCode SSStarObstacleCreate_Cylinder(SSStarObstacle);
-PETSC_INTERN PetscErrorCode SSStarObstacleCreate_Mesh(SSStarObstacle);
 
 #endif

@@ -11,22 +11,6 @@
 */
 #include "sceneimpl.h"
 
-PetscErrorCode SSStarMastersAdd(SSStarMasters *m, PetscInt node, PetscInt dof, PetscReal weight)
-{
-  PetscFunctionBegin;
-  if (m->n == m->max) {
-    m->max = PetscMax(64, 2 * m->max);
-    PetscCall(PetscRealloc(m->max * sizeof(PetscInt), &m->node));
-    PetscCall(PetscRealloc(m->max * sizeof(PetscInt), &m->dof));
-    PetscCall(PetscRealloc(m->max * sizeof(PetscReal), &m->weight));
-  }
-  m->node[m->n]   = node;
-  m->dof[m->n]    = dof;
-  m->weight[m->n] = weight;
-  m->n++;
-  PetscFunctionReturn(0);
-}
-
 /* The rows of the nodes of rigid obstacles: gap and normal from the shape; refuses a node that starts inside it */
 static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
 {
@@ -149,9 +133,7 @@ PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene)
   for (PetscInt g = 0; g < scene->nContact; g++)
     if (scene->contact[g].master[0]) PetscCall(SSStarPairRows(scene, g, &masters));
   PetscCall(CompressMasters(scene, &masters));
-  PetscCall(PetscFree(masters.node));
-  PetscCall(PetscFree(masters.dof));
-  PetscCall(PetscFree(masters.weight));
+  PetscCall(SSStarMastersDestroy(&masters));
   PetscCall(PetscFree(scene->frame));
   PetscCall(PetscMalloc1(9 * scene->n + 1, &scene->frame));
   for (PetscInt i = 0; i < scene->n; i++) SSStarNodeFrame(&scene->normal[3 * i], &scene->frame[9 * i]);

@@ -107,6 +107,7 @@ typedef struct {
   PetscReal *weight;
 } SSStarMasters;
 PETSC_INTERN PetscErrorCode SSStarMastersAdd(SSStarMasters *, PetscInt, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarMastersDestroy(SSStarMasters *);
 
 /* The boundary faces as triangles (faces.c) */
 typedef struct {

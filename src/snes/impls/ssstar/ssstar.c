@@ -654,6 +654,23 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
   PetscFunctionReturn(0);
 }
 
+/* -help: the options of the Newton step's GMRES (-snes_ssstar_newton_ksp_*), which the set-up creates */
+static PetscErrorCode HelpNewtonKSP(SNES snes)
+{
+  KSP         ksp;
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)snes), &ksp));
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(KSPSetOptionsPrefix(ksp, prefix));
+  PetscCall(KSPAppendOptionsPrefix(ksp, "snes_ssstar_newton_"));
+  PetscCall(KSPSetType(ksp, KSPGMRES));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(KSPDestroy(&ksp));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptionsObject)
 {
   SNES_SSStar        *ss = (SNES_SSStar *)snes->data;
@@ -703,6 +720,7 @@ static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *Pet
   }
   PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state, and the remedies", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
   PetscOptionsHeadEnd();
+  if (PetscOptionsObject->printhelp) PetscCall(HelpNewtonKSP(snes));
   PetscFunctionReturn(0);
 }
 

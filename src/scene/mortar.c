@@ -6,7 +6,6 @@
 */
 #include "pairs.h"
 
-
 /* The 2D barycentric coordinates of p in the triangle a, b, c (any orientation) */
 static void Barycentric2(const PetscReal a[2], const PetscReal b[2], const PetscReal c[2], const PetscReal p[2], PetscReal l[3])
 {
@@ -47,7 +46,6 @@ static PetscInt ClipByTriangle(PetscInt n, PetscReal P[][2], const PetscReal T[3
   }
   return n;
 }
-
 
 /*
    Dual mortar (Wohlmuth): per slave node i, D_i = int N_i over the slave faces, and per master node j

@@ -91,7 +91,6 @@ PetscErrorCode SSStarSceneContactView(SSStarScene scene, Vec r, const SSStarStat
   PetscFunctionReturn(0);
 }
 
-
 /*
    The contact kinematics and tractions of every contact node at the solution u (r = K u - b), for /contact: gap (the
    normal gap w_n at the solution), pressure (r.n / area), traction (the tangential traction, global axes, 3 per node)

@@ -235,9 +235,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec
       e1[k] = xv[1][k] - xv[0][k];
       e2[k] = xv[2][k] - xv[0][k];
     }
-    nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    SSStarCross3(e1, e2, nrm);
     {
       PetscReal centre[3], gap, n[3];
 

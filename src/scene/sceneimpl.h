@@ -27,7 +27,7 @@ typedef struct {
   PetscReal value[3];
 } SSStarGroupValues;
 
-/* A contact group: its rigid obstacle and its friction law */
+/* A contact group: its contact source (a rigid obstacle, or the master surface of a pair) and its friction law */
 typedef struct {
   char              name[SSSTAR_GROUP_NAME_LEN];
   SSStarObstacle    obstacle;           /* -obstacle_<G>: a registered shape (obstacle.c, obstacles/)   */

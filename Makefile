@@ -12,11 +12,17 @@ PREFIX   ?= /usr/local
 # where make install puts the Python module ssstar (Debian's python3 searches /usr/local/lib/python3/dist-packages)
 PYTHON_DIR ?= $(PREFIX)/lib/python3/dist-packages
 LIB      := lib/lib$(LIBNAME).so
-LIB_SRC  := src/ssstarregister.c src/options.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
-            src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/newton_dense.c src/snes/impls/ssstar/newton_sparse.c \
+LIB_SRC  := src/ssstarregister.c src/options.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/nodesteps.c \
+            src/snes/impls/ssstar/accessors.c src/snes/impls/ssstar/view.c src/snes/impls/ssstar/interface.c \
+            src/snes/impls/ssstar/methodinterface.c src/snes/impls/ssstar/contact.c src/snes/impls/ssstar/problem.c \
+            src/snes/impls/ssstar/collective.c src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/newtonregall.c \
+            src/snes/impls/ssstar/newton_dense.c src/snes/impls/ssstar/newton_sparse.c \
             src/snes/impls/ssstar/newton_full.c src/snes/impls/ssstar/denselu.c src/snes/impls/ssstar/operator.c \
             src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
-            src/reduction/reduction.c src/reduction/direct.c src/reduction/mumps.c src/reduction/explicit.c src/reduction/none.c src/contact/mesh.c src/contact/meshcache.c src/contact/elasticity.c src/contact/output.c \
+            src/snes/impls/ssstar/laws/law.c src/snes/impls/ssstar/laws/lawregall.c src/snes/impls/ssstar/laws/none.c \
+            src/snes/impls/ssstar/laws/tresca.c src/snes/impls/ssstar/laws/coulomb.c src/snes/impls/ssstar/laws/orthotropic.c \
+            src/reduction/reduction.c src/reduction/regall.c src/reduction/direct.c src/reduction/mumps.c \
+            src/reduction/explicit.c src/reduction/none.c src/contact/mesh.c src/contact/meshcache.c src/contact/elasticity.c src/contact/output.c \
             src/contact/memory.c src/contact/scene.c src/contact/obstacle.c src/contact/pairs.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
@@ -46,7 +52,7 @@ all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h src/reduction/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/snes/impls/ssstar/laws/*.h src/contact/*.h src/reduction/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(SAY) "  CC      $<"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@

@@ -535,9 +535,9 @@ static PetscErrorCode WriteNodeField(MPI_Comm comm, hid_t file, const char path[
 
 /* What the solver used at each contact node: law, coefficient, bound (from the SNES when it is an ssstar) */
 typedef struct {
-  PetscBool          known; /* the SNES is an ssstar: the laws below are the solver's */
-  SSStarFrictionLaw *law;
-  PetscReal         *phi, *bound;
+  PetscBool  known; /* the SNES is an ssstar: the laws below are the solver's */
+  PetscInt  *law;   /* indices of the table of laws */
+  PetscReal *phi, *bound;
 } NodeFriction;
 
 static PetscErrorCode NodeFrictionGet(SSStarScene scene, SNES snes, NodeFriction *nf)
@@ -545,8 +545,11 @@ static PetscErrorCode NodeFrictionGet(SSStarScene scene, SNES snes, NodeFriction
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &nf->known));
   PetscCall(PetscMalloc3(scene->n + 1, &nf->law, scene->n + 1, &nf->phi, scene->n + 1, &nf->bound));
-  if (nf->known) PetscCall(SNESSSStarGetNodeFriction(snes, scene->n, nf->law, nf->phi, nf->bound));
-  else
+  if (nf->known) {
+    PetscCall(SNESSSStarGetNodeFrictionLaws(snes, scene->n, nf->law));
+    PetscCall(SNESSSStarGetNodeLawParameter(snes, "friction", scene->n, nf->phi));
+    PetscCall(SNESSSStarGetNodeLawParameter(snes, "slip_bound", scene->n, nf->bound));
+  } else
     for (PetscInt i = 0; i < scene->n; i++) { /* the scene's own description */
       const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
 
@@ -555,8 +558,12 @@ static PetscErrorCode NodeFrictionGet(SSStarScene scene, SNES snes, NodeFriction
       nf->bound[i] = cg->bound;
     }
   for (PetscInt i = 0; i < scene->n; i++) {
-    if (nf->law[i] != SSSTAR_FRICTION_COULOMB) nf->phi[i] = 0;
-    if (nf->law[i] != SSSTAR_FRICTION_TRESCA) nf->bound[i] = 0;
+    PetscBool friction, bound;
+
+    PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
+    PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
+    if (!friction) nf->phi[i] = 0;
+    if (!bound) nf->bound[i] = 0;
   }
   PetscFunctionReturn(0);
 }
@@ -639,7 +646,13 @@ static PetscErrorCode WriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, 
     PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
   }
   PetscCall(WriteNodeField(comm, file, "/contact/friction_law", p, n, pos, 1, ll, PETSC_TRUE));
-  PetscCall(JoinNames(3, SSStarFrictionLaws, names, sizeof(names)));
+  {
+    PetscInt           nlaws;
+    const char *const *laws;
+
+    PetscCall(SSStarLawGetNames(&nlaws, &laws));
+    PetscCall(JoinNames(nlaws, laws, names, sizeof(names)));
+  }
   PetscCall(ObjectAttrString(file, "/contact/friction_law", "names", names));
   PetscCall(PetscFree5(pos, ul, rl, sl, gl));
   PetscCall(PetscFree(ll));
@@ -909,30 +922,42 @@ static PetscErrorCode WriteScene(SSStarScene scene, hid_t file, const NodeFricti
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
-    PetscInt                  laws[3] = {0, 0, 0}, law = -1;
+    PetscInt                 *laws, nlaws, law = -1, with[2] = {0, 0}; /* nodes per law; nodes with a friction, a slip bound */
     PetscReal                 range[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* min phi, -max phi, min s, -max s */
+    const char               *name = "mixed";
 
+    PetscCall(SSStarLawGetNames(&nlaws, NULL));
+    PetscCall(PetscCalloc1(nlaws, &laws));
     for (PetscInt i = 0; i < scene->n; i++) {
+      PetscBool friction, bound;
+
       if (scene->group[i] != g) continue;
       laws[nf->law[i]]++;
-      if (nf->law[i] == SSSTAR_FRICTION_COULOMB) {
+      PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
+      PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
+      if (friction) {
+        with[0]++;
         range[0] = PetscMin(range[0], nf->phi[i]);
         range[1] = PetscMin(range[1], -nf->phi[i]);
       }
-      if (nf->law[i] == SSSTAR_FRICTION_TRESCA) {
+      if (bound) {
+        with[1]++;
         range[2] = PetscMin(range[2], nf->bound[i]);
         range[3] = PetscMin(range[3], -nf->bound[i]);
       }
     }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, laws, 3, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, laws, nlaws, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, with, 2, MPIU_INT, MPI_SUM, scene->comm));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 4, MPIU_REAL, MPIU_MIN, scene->comm));
-    for (PetscInt k = 0; k < 3; k++)
+    for (PetscInt k = 0; k < nlaws; k++)
       if (laws[k] == cg->nodes) law = k;
+    PetscCall(PetscFree(laws));
+    if (law >= 0) PetscCall(SSStarLawGetInfo(law, &name, NULL, NULL, NULL));
     PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/contact/%s", cg->name));
     PetscCall(GroupOpen(file, path, &sub));
-    PetscCall(AttrString(sub, "law", law >= 0 ? SSStarFrictionLaws[law] : "mixed"));
-    if (nf->known && laws[SSSTAR_FRICTION_COULOMB] && range[0] == -range[1]) PetscCall(AttrReal(sub, "friction", range[0]));
-    if (nf->known && laws[SSSTAR_FRICTION_TRESCA] && range[2] == -range[3]) PetscCall(AttrReal(sub, "slip_bound", range[2]));
+    PetscCall(AttrString(sub, "law", name));
+    if (nf->known && with[0] && range[0] == -range[1]) PetscCall(AttrReal(sub, "friction", range[0]));
+    if (nf->known && with[1] && range[2] == -range[3]) PetscCall(AttrReal(sub, "slip_bound", range[2]));
     if (cg->master[0]) { /* a contact pair: its master surface and discretization, no obstacle */
       PetscCall(AttrString(sub, "master", cg->master));
       PetscCall(AttrString(sub, "discretization", SSStarPairDiscretizations[scene->pairMethod]));
@@ -1040,7 +1065,7 @@ static PetscErrorCode WriteRun(SSStarScene scene, hid_t file, SNES snes)
     PetscCall(AttrString(root, "sub_reason", SSStarReasons[sub]));
     PetscCall(AttrReal(root, "tolerance", tol));
     PetscCall(AttrReal(root, "scaling", gamma));
-    PetscCall(AttrString(root, "reduction", SSStarReductionTypes[rtype]));
+    PetscCall(AttrString(root, "reduction", rtype));
     PetscCall(AttrInts(root, "state_counts", SSSTAR_NUM_STATES, counts));
     PetscCall(JoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
     PetscCall(AttrString(root, "state_names", names));

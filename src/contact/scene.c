@@ -194,7 +194,8 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   SSStarContactGroup *cg;
   SSStarGroupValues  *gv;
   PetscBool           set;
-  PetscEnum           law;
+  PetscInt            nlaws;
+  const char *const  *laws;
 
   PetscFunctionBegin;
   switch (kind) {
@@ -215,8 +216,8 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   } break;
   case OPT_FRICTION_LAW:
     PetscCall(ContactGroup(scene, group, option, &cg));
-    PetscCall(PetscOptionsGetEnum(NULL, NULL, option, SSStarFrictionLaws, &law, &set));
-    cg->law    = (SSStarFrictionLaw)law;
+    PetscCall(SSStarLawGetNames(&nlaws, &laws));
+    PetscCall(PetscOptionsGetEList(NULL, NULL, option, laws, nlaws, &cg->law, &set));
     cg->lawSet = PETSC_TRUE;
     break;
   case OPT_FRICTION:
@@ -244,12 +245,16 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
 /* Contradictory and incomplete entries of a contact group */
 static PetscErrorCode CheckContactGroup(SSStarScene scene, const SSStarContactGroup *cg)
 {
-  const char *law = SSStarFrictionLaws[cg->law];
+  const char *law;
+  PetscBool   friction, bound;
 
   PetscFunctionBegin;
-  PetscCheck(!cg->phiSet || cg->law == SSSTAR_FRICTION_COULOMB, scene->comm, PETSC_ERR_ARG_WRONG, "Options -friction_%s and -friction_law_%s %s contradict each other: a friction coefficient is for the coulomb law", cg->name, cg->name, law);
-  PetscCheck(!cg->boundSet || cg->law == SSSTAR_FRICTION_TRESCA, scene->comm, PETSC_ERR_ARG_WRONG, "Options -slip_bound_%s and -friction_law_%s %s contradict each other: a slip bound is for the tresca law", cg->name, cg->name, law);
-  PetscCheck(cg->boundSet || cg->law != SSSTAR_FRICTION_TRESCA, scene->comm, PETSC_ERR_ARG_WRONG, "Option -friction_law_%s tresca needs -slip_bound_%s (the Tresca bound, a force per contact node)", cg->name, cg->name);
+  PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
+  PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
+  PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
+  PetscCheck(!cg->phiSet || friction, scene->comm, PETSC_ERR_ARG_WRONG, "Options -friction_%s and -friction_law_%s %s contradict each other: a friction coefficient is for the coulomb law", cg->name, cg->name, law);
+  PetscCheck(!cg->boundSet || bound, scene->comm, PETSC_ERR_ARG_WRONG, "Options -slip_bound_%s and -friction_law_%s %s contradict each other: a slip bound is for the tresca law", cg->name, cg->name, law);
+  PetscCheck(cg->boundSet || !bound, scene->comm, PETSC_ERR_ARG_WRONG, "Option -friction_law_%s tresca needs -slip_bound_%s (the Tresca bound, a force per contact node)", cg->name, cg->name);
   PetscFunctionReturn(0);
 }
 
@@ -380,7 +385,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     PetscCall(PetscStrncpy(cg->name, contact[g], sizeof(cg->name)));
     PetscCall(PetscFree(contact[g]));
     PetscCall(SSStarObstacleReset(&cg->obstacle)); /* the default: the plane z = 0 */
-    cg->law       = SSSTAR_FRICTION_COULOMB;
+    PetscCall(SSStarLawGetIndex(SSSTARLAWCOULOMB, &cg->law));
     PetscCall(CheckNotHeld(scene, cg->name, "-contact"));
   }
   PetscCall(PetscFree(contact));
@@ -878,7 +883,7 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
    Notes:
    A group's -friction_<G> gives its nodes their own coefficient; the nodes of Coulomb groups without one keep the
    solver's (SNESSSStarSetFriction(), -snes_ssstar_friction), whether it is set before or after this call (their
-   entries are PETSC_DEFAULT in SNESSSStarSetFrictionCoefficients()). One law for all groups is set with
+   entries are PETSC_DEFAULT in SNESSSStarSetNodeLawParameter()). One law for all groups is set with
    SNESSSStarSetFrictionLaw(), several with SNESSSStarSetNodeFrictionLaws().
 
    Level: beginner
@@ -887,9 +892,10 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 @*/
 PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
 {
-  Vec       normals, gaps = NULL, v;
-  PetscBool anyGap = PETSC_FALSE, anyPhi = PETSC_FALSE, anyBound = PETSC_FALSE, anyLaw = PETSC_FALSE, oneLaw = PETSC_TRUE;
-  PetscReal *values;
+  Vec         normals, gaps = NULL, v;
+  PetscBool   anyGap = PETSC_FALSE, anyPhi = PETSC_FALSE, anyBound = PETSC_FALSE, anyLaw = PETSC_FALSE, oneLaw = PETSC_TRUE, bound;
+  PetscReal  *values;
+  const char *law;
 
   PetscFunctionBegin;
   PetscCheck(scene->nContact > 0, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The scene has no contact group (-contact): solve K u = b without ssstar");
@@ -898,7 +904,8 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &anyGap, 1, MPIU_BOOL, MPI_LOR, scene->comm));
   for (PetscInt g = 0; g < scene->nContact; g++) {
     anyPhi   = (PetscBool)(anyPhi || scene->contact[g].phiSet);
-    anyBound = (PetscBool)(anyBound || scene->contact[g].law == SSSTAR_FRICTION_TRESCA);
+    PetscCall(SSStarLawHasParameter(scene->contact[g].law, "slip_bound", &bound));
+    anyBound = (PetscBool)(anyBound || bound);
     anyLaw   = (PetscBool)(anyLaw || scene->contact[g].lawSet);
     oneLaw   = (PetscBool)(oneLaw && scene->contact[g].law == scene->contact[0].law);
   }
@@ -909,9 +916,10 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   PetscCall(VecDestroy(&normals));
   PetscCall(VecDestroy(&gaps));
 
-  if (anyLaw && oneLaw) PetscCall(SNESSSStarSetFrictionLaw(snes, scene->contact[0].law));
+  PetscCall(SSStarLawGetInfo(scene->contact[0].law, &law, NULL, NULL, NULL));
+  if (anyLaw && oneLaw) PetscCall(SNESSSStarSetFrictionLaw(snes, law));
   else if (!oneLaw) {
-    SSStarFrictionLaw *laws;
+    PetscInt *laws;
 
     PetscCall(PetscMalloc1(scene->n, &laws));
     for (PetscInt i = 0; i < scene->n; i++) laws[i] = scene->contact[scene->group[i]].law;
@@ -922,13 +930,13 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   if (anyPhi) { /* the groups without -friction_<G> keep the solver's coefficient, whenever it is set */
     for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].phiSet ? scene->contact[scene->group[i]].phi : (PetscReal)PETSC_DEFAULT;
     PetscCall(NodeVec(scene, 1, values, &v));
-    PetscCall(SNESSSStarSetFrictionCoefficients(snes, v));
+    PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction", v));
     PetscCall(VecDestroy(&v));
   }
   if (anyBound) {
-    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].law == SSSTAR_FRICTION_TRESCA ? scene->contact[scene->group[i]].bound : 0.0;
+    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].boundSet ? scene->contact[scene->group[i]].bound : 0.0;
     PetscCall(NodeVec(scene, 1, values, &v));
-    PetscCall(SNESSSStarSetSlipBounds(snes, v));
+    PetscCall(SNESSSStarSetNodeLawParameter(snes, "slip_bound", v));
     PetscCall(VecDestroy(&v));
   }
   PetscCall(PetscFree(values));
@@ -965,16 +973,21 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      obstacle[PETSC_MAX_PATH_LEN + 128];
+    const char               *law;
+    PetscBool                 friction, bound;
 
-    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
+    PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
+    PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
+    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, law));
     else {
       PetscCall(SSStarObstacleDescribe(&cg->obstacle, obstacle, sizeof(obstacle)));
-      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, law));
     }
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
-    if (cg->law == SSSTAR_FRICTION_COULOMB && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
-    if (cg->law == SSSTAR_FRICTION_COULOMB && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
-    if (cg->law == SSSTAR_FRICTION_TRESCA) PetscCall(PetscViewerASCIIPrintf(viewer, ", slip bound %g per node", (double)cg->bound));
+    if (friction && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
+    if (friction && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
+    if (bound) PetscCall(PetscViewerASCIIPrintf(viewer, ", slip bound %g per node", (double)cg->bound));
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
   }
@@ -984,13 +997,22 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
   if (scene->nContact) {
-    PetscBool laws[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
+    PetscInt nlaws;
 
-    for (PetscInt g = 0; g < scene->nContact; g++) laws[scene->contact[g].law] = PETSC_TRUE;
     PetscCall(PetscStrlcat(effects, ", contact (non-penetration)", sizeof(effects)));
     if (scene->nPairs) PetscCall(PetscStrlcat(effects, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? ", contact pairs (dual mortar)" : ", contact pairs (node-to-surface)", sizeof(effects)));
-    if (laws[SSSTAR_FRICTION_TRESCA]) PetscCall(PetscStrlcat(effects, ", Tresca friction", sizeof(effects)));
-    if (laws[SSSTAR_FRICTION_COULOMB]) PetscCall(PetscStrlcat(effects, ", Coulomb friction", sizeof(effects)));
+    PetscCall(SSStarLawGetNames(&nlaws, NULL));
+    for (PetscInt l = 0; l < nlaws; l++) { /* the effects of the laws in use, in the table's order */
+      PetscBool   used = PETSC_FALSE;
+      const char *effect;
+
+      for (PetscInt g = 0; g < scene->nContact; g++) used = (PetscBool)(used || scene->contact[g].law == l);
+      PetscCall(SSStarLawGetInfo(l, NULL, &effect, NULL, NULL));
+      if (used && effect) {
+        PetscCall(PetscStrlcat(effects, ", ", sizeof(effects)));
+        PetscCall(PetscStrlcat(effects, effect, sizeof(effects)));
+      }
+    }
   } else PetscCall(PetscStrlcat(effects, "; no contact: one linear solve", sizeof(effects)));
   PetscCall(PetscViewerASCIIPrintf(viewer, "active effects: %s\n", effects));
   PetscCall(PetscViewerASCIIPopTab(viewer));

@@ -21,8 +21,9 @@ orthotropic); each has named parameters (set_law_parameter, set_node_law_paramet
 "friction_1", "friction_2", "friction_direction").
 
 Arguments that are arrays per local contact node (dofs, normals, gaps, parameter values) may be given as
-numpy arrays (or sequences): the module makes the IS or Vec on the SNES's communicator. A PETSc error raises
-petsc4py.PETSc.Error with PETSc's error code; PETSc prints its message on stderr.
+numpy arrays (or sequences): the module makes the IS or Vec on the SNES's communicator, and the library checks them
+on every rank: input wrong on one rank raises petsc4py.PETSc.Error on every rank, with PETSc's error code (PETSc prints
+the message of the rank that found it on stderr), so that no rank waits for another in a collective call.
 
 The library is found, in this order, at $SSSTAR_LIB, where `make install` put it (_config.py), or in the source tree
 (lib/libssstar.so beside this python/ folder).
@@ -159,9 +160,8 @@ def _node_vec(snes, values, per, what):
     if values is None or isinstance(values, PETSc.Vec):
         return values
     a = np.ascontiguousarray(np.asarray(values, dtype=PETSc.ScalarType).reshape(-1))
-    if a.size % per:
-        raise ValueError("%s: %d values, not %d per contact node" % (what, a.size, per))
-    v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=per if per > 1 else None, comm=snes.getComm())
+    # no local check of the size: the library checks it on every rank (a local error would leave the others waiting)
+    v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=per if per > 1 and a.size % per == 0 else None, comm=snes.getComm())
     v.setArray(a)
     return v
 
@@ -169,9 +169,7 @@ def _node_vec(snes, values, per, what):
 def _dofs_is(snes, dofs):
     if isinstance(dofs, PETSc.IS):
         return dofs
-    a = np.asarray(dofs, dtype=PETSc.IntType).reshape(-1)
-    if a.size % 3:
-        raise ValueError("dofs: %d indices, not 3 per contact node" % a.size)
+    a = np.asarray(dofs, dtype=PETSc.IntType).reshape(-1)  # 3 per node: checked by the library on every rank
     return PETSc.IS().createGeneral(a, comm=snes.getComm())
 
 

@@ -21,7 +21,7 @@ static PetscErrorCode CheckNodeVector(MPI_Comm comm, Vec v, PetscInt nnodes, Pet
 
   PetscFunctionBegin;
   if (v && nnodes >= 0) PetscCall(VecGetLocalSize(v, &n));
-  if (n != per * nnodes) PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s has %" PetscInt_FMT " local entries, expected %" PetscInt_FMT " (%" PetscInt_FMT " per contact node)", what, n, per * nnodes, per));
+  if (n != per * nnodes) PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s: %" PetscInt_FMT " local entries, expected %" PetscInt_FMT " (%" PetscInt_FMT " per contact node)", what, n, per * nnodes, per));
   PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_SIZ, msg));
   PetscFunctionReturn(0);
 }

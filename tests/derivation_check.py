@@ -45,8 +45,8 @@ def approximation_step(u, c, phi):
     return z, d, -z - c
 
 
-def classify(d, b, phi, tol_d, tol_b):
-    """Table 1 (2.1)"""
+def classify(d, b, phi, tol_d, tol_b, margin=None):
+    """Table 1 (2.1); margin: how far b_t is inside the friction set (Coulomb: phi |b_3| - |b_t|; (9.4))"""
     if d[2] > tol_d:
         return "L"
     sliding = np.linalg.norm(d[:2]) > tol_d
@@ -54,7 +54,7 @@ def classify(d, b, phi, tol_d, tol_b):
         return "M2" if sliding else "M4"
     if sliding:
         return "M1"
-    return "M3+" if -phi * b[2] - np.linalg.norm(b[:2]) > tol_b else "M3-"
+    return "M3+" if (-phi * b[2] - np.linalg.norm(b[:2]) if margin is None else margin) > tol_b else "M3-"
 
 
 def blocks(state, d, b, phi, sign=1.0):
@@ -156,14 +156,7 @@ class Orthotropic:
         return M @ dt / np.sqrt(dt @ M @ dt)
 
     def classify(self, i, d, b, tol_d, tol_b):
-        if d[2] > tol_d:
-            return "L"
-        sliding = np.linalg.norm(d[:2]) > tol_d
-        if -b[2] <= tol_b:
-            return "M2" if sliding else "M4"
-        if sliding:
-            return "M1"
-        return "M3+" if self.margin(i, b) > tol_b else "M3-"
+        return classify(d, b, None, tol_d, tol_b, self.margin(i, b))
 
     def blocks(self, i, state, d, b):
         """(9.3): W = r_n grad^2 sigma(d_t), coupling k = grad sigma(d_t)"""

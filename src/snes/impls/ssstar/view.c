@@ -37,8 +37,8 @@ static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptio
       }
       if (seen) continue;
       PetscCall(PetscSNPrintf(option, sizeof(option), "-snes_ssstar_%s", par->name));
-      PetscCall(PetscSNPrintf(text, sizeof(text), "The %s of every contact node without its own (law %s%s)", par->description, lw->name, par->kind == SSSTAR_LAW_DIRECTION ? "; x,y,z" : ""));
       PetscCall(SSStarContactGetParameter(ct, par->name, &n, value, &given));
+      PetscCall(PetscSNPrintf(text, sizeof(text), "The %s of every contact node without its own (law %s%s%s)", par->description, lw->name, par->kind == SSSTAR_LAW_DIRECTION ? "; x,y,z" : "", given ? "" : "; no default"));
       if (par->kind == SSSTAR_LAW_DIRECTION) PetscCall(PetscOptionsRealArray(option, text, "SNESSSStarSetLawParameter", value, &n, &set));
       else PetscCall(PetscOptionsReal(option, text, "SNESSSStarSetLawParameter", value[0], &value[0], &set));
       if (set) PetscCall(SNESSSStarSetLawParameter(snes, par->name, n, value));
@@ -58,6 +58,7 @@ static PetscErrorCode SetReductionFromOptions(SNES snes, PetscOptionItems *Petsc
 
   PetscFunctionBegin;
   PetscCall(PetscFunctionListGet(SSStarReductionList, &names, &n));
+  while (n > 0 && !names[n - 1]) n--; /* the list's own count includes its NULL end */
   PetscCall(PetscMalloc1(n + 1, &choices));
   for (int k = 0; k < n; k++) {
     PetscBool same;

@@ -28,14 +28,14 @@ static PetscBool Frictionless_None(const SSStarFriction *fr)
 PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
 {
   PetscFunctionBegin;
-  law->label             = "frictionless";
-  law->effect            = NULL;
-  law->nparams           = 0;
-  law->coupled           = PETSC_FALSE;
-  law->separate          = PETSC_FALSE;
-  law->ops.tangential    = Tangential_None;
-  law->ops.margin        = Margin_None;
-  law->ops.sliding       = Sliding_None;
-  law->ops.frictionless  = Frictionless_None;
+  law->label            = "frictionless";
+  law->effect           = NULL;
+  law->nparams          = 0;
+  law->coupled          = PETSC_FALSE;
+  law->separate         = PETSC_FALSE;
+  law->ops.tangential   = Tangential_None;
+  law->ops.margin       = Margin_None;
+  law->ops.sliding      = Sliding_None;
+  law->ops.frictionless = Frictionless_None;
   PetscFunctionReturn(0);
 }

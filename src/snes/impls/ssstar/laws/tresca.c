@@ -31,18 +31,18 @@ static PetscBool Frictionless_Tresca(const SSStarFriction *fr)
 PetscErrorCode SSStarLawCreate_Tresca(SSStarLaw law)
 {
   PetscFunctionBegin;
-  law->label                   = "Tresca";
-  law->effect                  = "Tresca friction";
-  law->nparams                 = 1;
-  law->params[0].name          = "slip_bound";
+  law->label                 = "Tresca";
+  law->effect                = "Tresca friction";
+  law->nparams               = 1;
+  law->params[0].name        = "slip_bound";
   law->params[0].description = "slip bound";
   law->params[0].symbol      = "s";
-  law->params[0].kind          = SSSTAR_LAW_FORCE;
-  law->coupled                 = PETSC_FALSE;
-  law->separate                = PETSC_TRUE;
-  law->ops.tangential          = Tangential_Tresca;
-  law->ops.margin              = Margin_Tresca;
-  law->ops.sliding             = Sliding_Tresca;
-  law->ops.frictionless        = Frictionless_Tresca;
+  law->params[0].kind        = SSSTAR_LAW_FORCE;
+  law->coupled               = PETSC_FALSE;
+  law->separate              = PETSC_TRUE;
+  law->ops.tangential        = Tangential_Tresca;
+  law->ops.margin            = Margin_Tresca;
+  law->ops.sliding           = Sliding_Tresca;
+  law->ops.frictionless      = Frictionless_Tresca;
   PetscFunctionReturn(0);
 }

@@ -196,6 +196,7 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   PetscBool           set;
   PetscInt            nlaws;
   const char *const  *laws;
+  char                name[64], known[256] = "";
 
   PetscFunctionBegin;
   switch (kind) {
@@ -216,8 +217,14 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   } break;
   case OPT_FRICTION_LAW:
     PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
+    PetscCall(SSStarLawGetIndex(name, &cg->law));
     PetscCall(SSStarLawGetNames(&nlaws, &laws));
-    PetscCall(PetscOptionsGetEList(NULL, NULL, option, laws, nlaws, &cg->law, &set));
+    for (PetscInt l = 0; l < nlaws && cg->law < 0; l++) { /* the message names the laws of the table */
+      PetscCall(PetscStrlcat(known, l ? ", " : "", sizeof(known)));
+      PetscCall(PetscStrlcat(known, laws[l], sizeof(known)));
+    }
+    PetscCheck(cg->law >= 0, scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown option %s for %s: the friction laws are %s", name, option, known);
     cg->lawSet = PETSC_TRUE;
     break;
   case OPT_FRICTION:

@@ -148,11 +148,8 @@ PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES snes, IS dofs, Mat B, Ve
 
 PetscErrorCode SSStarContactSetLaw(SSStarContact *ct, const char law[])
 {
-  PetscInt index;
-
   PetscFunctionBegin;
-  PetscCall(SSStarLawGetIndex(law, &index));
-  PetscCall(SSStarLawGet(index, &ct->law));
+  PetscCall(SSStarLawFind(law, &ct->law));
   Declared(ct);
   PetscFunctionReturn(0);
 }

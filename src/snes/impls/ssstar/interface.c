@@ -326,7 +326,7 @@ PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
 
    Notes:
    A law takes its parameters from SNESSSStarSetLawParameter() (one value for every node) and
-   SNESSSStarSetNodeLawParameter() (one per node): coulomb "friction" (default 0.3), tresca "slip_bound",
+   SNESSSStarSetNodeLawParameter() (one per node): coulomb "friction" (0.3 unless set), tresca "slip_bound",
    orthotropic "friction_1" along "friction_direction" and "friction_2" across it. SNESSSStarSetNodeFrictionLaws()
    sets one law per node.
 
@@ -382,10 +382,10 @@ PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, const char *law[])
 
    Options Database Keys:
 +  -snes_ssstar_friction <0.3> - the Coulomb coefficient
-.  -snes_ssstar_slip_bound <s> - the Tresca bound
-.  -snes_ssstar_friction_1 <phi_1> - the orthotropic coefficient along the direction
-.  -snes_ssstar_friction_2 <phi_2> - the orthotropic coefficient across it
--  -snes_ssstar_friction_direction <x,y,z> - the orthotropic direction
+.  -snes_ssstar_slip_bound <slip_bound> - the Tresca bound (no default)
+.  -snes_ssstar_friction_1 <phi_1> - the orthotropic coefficient along the direction (no default)
+.  -snes_ssstar_friction_2 <phi_2> - the orthotropic coefficient across it (no default)
+-  -snes_ssstar_friction_direction <x,y,z> - the orthotropic direction (no default)
 
    Notes:
    A parameter applies to the nodes whose law has it. An unknown name is refused with the list of the parameters.

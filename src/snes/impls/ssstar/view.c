@@ -6,6 +6,28 @@
 #include "ssstarimpl.h"
 #include "laws/lawimpl.h"
 
+/*
+   A value of a list option that is not in the list, refused here with PETSc's message: PETSc 3.18's
+   PetscOptionsEList() writes one byte past its buffer when it refuses a value and the names fill the buffer exactly
+   (as "none tresca coulomb orthotropic " and "direct mumps explicit none auto " do)
+*/
+static PetscErrorCode RefuseUnknownChoice(PetscOptionItems *PetscOptionsObject, const char opt[], const char *const list[], PetscInt n)
+{
+  char      given[256], names[512] = "";
+  PetscBool set, found = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, given, sizeof(given), &set));
+  if (!set) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < n && !found; k++) PetscCall(PetscStrcasecmp(given, list[k], &found));
+  if (found) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(PetscStrlcat(names, list[k], sizeof(names)));
+    PetscCall(PetscStrlcat(names, " ", sizeof(names)));
+  }
+  SETERRQ(PETSC_COMM_SELF, PETSC_ERR_USER, "Unknown option %s for -%s%s. Available options: %s", given, PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, names);
+}
+
 /* -snes_ssstar_friction_law and -snes_ssstar_<parameter> for every parameter of the registered laws */
 static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
 {
@@ -16,6 +38,7 @@ static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptio
 
   PetscFunctionBegin;
   PetscCall(SSStarLawGetNames(&nlaws, &names));
+  PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_friction_law", names, nlaws));
   PetscCall(PetscOptionsEList("-snes_ssstar_friction_law", "Friction law of the contact nodes (the table of laws)", "SNESSSStarSetFrictionLaw", names, nlaws, names[law], &law, &set));
   if (set) PetscCall(SNESSSStarSetFrictionLaw(snes, names[law]));
   for (PetscInt l = 0; l < nlaws; l++) {
@@ -68,6 +91,7 @@ static PetscErrorCode SetReductionFromOptions(SNES snes, PetscOptionItems *Petsc
     if (same) chosen = k;
   }
   choices[n] = SSSTARREDUCTIONAUTO;
+  PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_reduction", choices, n + 1));
   PetscCall(PetscOptionsEList("-snes_ssstar_reduction", "Whole-body use: K reduced to the contact dofs (direct, mumps, explicit), or none (the whole body, P never formed), or auto", "SNESSSStarSetReductionType", choices, n + 1, pb->reductionType, &chosen, &set));
   if (set) PetscCall(SNESSSStarSetReductionType(snes, choices[chosen]));
   PetscCall(PetscFree(choices));

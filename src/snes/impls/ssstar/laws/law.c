@@ -129,8 +129,8 @@ PetscErrorCode SSStarLawGetNames(PetscInt *n, const char *const *names[])
   PetscFunctionReturn(0);
 }
 
-/* The law of the table with this name, or an error naming the registered ones */
-static PetscErrorCode FindLaw(const char name[], SSStarLaw *law)
+/* The law of the table with this name (upper or lower case), or an error naming the registered ones */
+PetscErrorCode SSStarLawFind(const char name[], SSStarLaw *law)
 {
   char list[256] = "";
 
@@ -138,7 +138,7 @@ static PetscErrorCode FindLaw(const char name[], SSStarLaw *law)
   for (PetscInt l = 0; l < NumLaws; l++) {
     PetscBool same;
 
-    PetscCall(PetscStrcmp(name, Laws[l]->name, &same));
+    PetscCall(PetscStrcasecmp(name, Laws[l]->name, &same));
     if (same) {
       *law = Laws[l];
       PetscFunctionReturn(0);
@@ -155,10 +155,10 @@ static PetscErrorCode FindLaw(const char name[], SSStarLaw *law)
    Not Collective
 
    Input Parameter:
-.  name - the law's name
+.  name - the law's name (upper or lower case)
 
    Output Parameter:
-.  index - its place in the table (SSStarLawGetNames()); an error names the registered laws when there is none
+.  index - its place in the table (SSStarLawGetNames()), or -1 when no law has this name
 
    Level: intermediate
 
@@ -166,11 +166,14 @@ static PetscErrorCode FindLaw(const char name[], SSStarLaw *law)
 @*/
 PetscErrorCode SSStarLawGetIndex(const char name[], PetscInt *index)
 {
-  SSStarLaw law = NULL;
-
   PetscFunctionBegin;
-  PetscCall(FindLaw(name, &law));
-  *index = law->index;
+  *index = -1;
+  for (PetscInt l = 0; l < NumLaws && *index < 0; l++) {
+    PetscBool same;
+
+    PetscCall(PetscStrcasecmp(name, Laws[l]->name, &same));
+    if (same) *index = l;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -327,7 +330,7 @@ PetscErrorCode SSStarFrictionSet(SSStarFriction *fr, const char law[], PetscInt 
   const char *problem;
 
   PetscFunctionBegin;
-  PetscCall(FindLaw(law, &fr->law));
+  PetscCall(SSStarLawFind(law, &fr->law));
   PetscCheck(n == SSStarLawParameterOffset(fr->law, fr->law->nparams), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SSStarFrictionSet: the law %s takes %" PetscInt_FMT " values, not %" PetscInt_FMT, law, SSStarLawParameterOffset(fr->law, fr->law->nparams), n);
   for (PetscInt k = 0; k < SSSTAR_LAW_MAX_VALUES; k++) fr->value[k] = k < n ? values[k] : 0.0;
   problem = fr->law->ops.prepare ? fr->law->ops.prepare(fr) : NULL;

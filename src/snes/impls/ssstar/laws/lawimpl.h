@@ -67,6 +67,7 @@ PETSC_INTERN PetscInt SSStarLawParameterOffset(SSStarLaw, PetscInt);
 
 /* The table (law.c): a law by index, where a parameter name is in a law (-1: not its), what a parameter name is */
 PETSC_INTERN PetscErrorCode SSStarLawGet(PetscInt, SSStarLaw *);
+PETSC_INTERN PetscErrorCode SSStarLawFind(const char[], SSStarLaw *);
 PETSC_INTERN PetscInt       SSStarLawFindParameter(SSStarLaw, const char[]);
 PETSC_INTERN PetscErrorCode SSStarLawGetParameter(const char[], const SSStarLawParameter **);
 PETSC_INTERN PetscErrorCode SSStarLawDestroyAll(void);

@@ -15,29 +15,6 @@ line naming the option or file; -ssstar_traceback adds PETSc's report). -help li
 #include <ssstarscene.h>
 #include <petscviewerhdf5.h>
 
-/* The elastic body at a fraction of its load: F(u) = K u - load b, Jacobian K */
-typedef struct {
-  Mat       K;
-  Vec       b;
-  PetscReal load;
-} Body;
-
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -body->load, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0); /* K, assembled once */
-}
-
 /* What each load step gave, for the output file */
 typedef struct {
   PetscInt   n;
@@ -85,7 +62,9 @@ static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
 int main(int argc, char **argv)
 {
   SSStarScene         scene;
-  Body                body = {NULL, NULL, 1.0};
+  Mat                 K;
+  Vec                 b, load; /* the load b of the scene, and the one of a load step, a fraction of it */
+  PetscReal           factor = 1.0;
   SNES                snes;
   Vec                 u, r = NULL;
   PetscInt            nsteps = 1, nodes, ncontact, its = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
@@ -138,14 +117,14 @@ int main(int argc, char **argv)
   /* the scene: mesh, groups, contact nodes, K and b */
   PetscCall(PetscTime(&t0));
   PetscCall(SSStarSceneSetUp(scene));
-  PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
+  PetscCall(SSStarSceneAssemble(scene, &K, &b));
   PetscCall(PetscTimeSubtract(&t0));
   t_assembly = -t0;
   PetscCall(SSStarSceneView(scene, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
 
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(VecDuplicate(b, &load));
+  PetscCall(SNESSSStarSetLinearProblem(snes, K, load)); /* F(u) = K u - load, the load set at each step */
   if (hasContact) PetscCall(SSStarSceneSetContact(scene, snes));
   {
     DM dm;
@@ -162,7 +141,9 @@ int main(int argc, char **argv)
     PetscInt            stepIts;
     SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}};
 
-    body.load = (PetscReal)k / nsteps;
+    factor = (PetscReal)k / nsteps;
+    PetscCall(VecCopy(b, load));
+    PetscCall(VecScale(load, factor));
     PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
     PetscCall(SNESGetConvergedReason(snes, &reason));
     PetscCall(SNESGetIterationNumber(snes, &stepIts));
@@ -172,13 +153,13 @@ int main(int argc, char **argv)
       PetscCall(SNESSSStarGetStates(snes, &states, counts));
       PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
     }
-    steps.factor[k - 1]       = body.load;
+    steps.factor[k - 1]       = factor;
     steps.area[k - 1]         = res.area;
     steps.normal_force[k - 1] = res.normal_force;
     steps.iterations[k - 1]   = hasContact ? stepIts : 0;
     steps.n                   = k;
     if (nsteps > 1)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)body.load, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)factor, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
                             (double)res.normal_force, reason > 0 ? "" : ", not converged: ", reason > 0 ? "" : SNESConvergedReasons[reason]));
     if (reason <= 0) break; /* the next steps would start from a point that is no solution */
   }
@@ -198,8 +179,9 @@ int main(int argc, char **argv)
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&u));
-  PetscCall(MatDestroy(&body.K));
-  PetscCall(VecDestroy(&body.b));
+  PetscCall(MatDestroy(&K));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&load));
   PetscCall(SSStarSceneDestroy(&scene));
   PetscCall(PetscFinalize());
   return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;

@@ -683,8 +683,8 @@ int main(int argc, char **argv)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
 
-  PetscCall(SNESSSStarSetContactProblem(snes, P, f));
-  PetscCall(SNESSSStarSetFrictionCoefficients(snes, mu));
+  PetscCall(SNESSSStarSetLinearProblem(snes, P, f));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction", mu));
   PetscCall(VecDuplicate(f, &u));
   PetscCall(VecZeroEntries(u));
   PetscCall(PetscLogStagePush(stageSolve));

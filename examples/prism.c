@@ -48,22 +48,6 @@ typedef struct {
   Vec b;
 } Body;
 
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0); /* K, assembled once */
-}
-
 /* The starting point of the solve: zero, the linear-elastic solution without contact, or a random point */
 typedef enum {
   INITIAL_GUESS_ZERO,
@@ -227,8 +211,7 @@ int main(int argc, char **argv)
   t_assembly = -t0;
 
   /* the whole body with its contact nodes: SNESSolve reduces K to them, solves, recovers u */
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(SNESSSStarSetLinearProblem(snes, body.K, body.b));
   PetscCall(SSStarSceneSetContact(scene, snes));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));

@@ -182,7 +182,7 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
    Notes:
    A group's -friction_<G> gives its nodes their own coefficient; the nodes of Coulomb groups without one keep the
    solver's (SNESSSStarSetFriction(), -snes_ssstar_friction), whether it is set before or after this call (their
-   entries are PETSC_DEFAULT in SNESSSStarSetFrictionCoefficients()). One law for all groups is set with
+   entries are PETSC_DEFAULT in SNESSSStarSetNodeLawParameter()). One law for all groups is set with
    SNESSSStarSetFrictionLaw(), several with SNESSSStarSetNodeFrictionLaws().
 
    Level: beginner
@@ -192,8 +192,9 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
 {
   Vec        gaps = NULL, v;
-  PetscBool  anyGap = PETSC_FALSE, anyPhi = PETSC_FALSE, anyBound = PETSC_FALSE, anyLaw = PETSC_FALSE, oneLaw = PETSC_TRUE;
-  PetscReal *values;
+  PetscBool   anyGap = PETSC_FALSE, anyPhi = PETSC_FALSE, anyBound = PETSC_FALSE, anyLaw = PETSC_FALSE, oneLaw = PETSC_TRUE, bound;
+  PetscReal  *values;
+  const char *law;
 
   PetscFunctionBegin;
   PetscCheck(scene->nContact > 0, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The scene has no contact group (-contact): solve K u = b without ssstar");
@@ -202,7 +203,8 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &anyGap, 1, MPIU_BOOL, MPI_LOR, scene->comm));
   for (PetscInt g = 0; g < scene->nContact; g++) {
     anyPhi   = (PetscBool)(anyPhi || scene->contact[g].phiSet);
-    anyBound = (PetscBool)(anyBound || scene->contact[g].law == SSSTAR_FRICTION_TRESCA);
+    PetscCall(SSStarLawHasParameter(scene->contact[g].law, "slip_bound", &bound));
+    anyBound = (PetscBool)(anyBound || bound);
     anyLaw   = (PetscBool)(anyLaw || scene->contact[g].lawSet);
     oneLaw   = (PetscBool)(oneLaw && scene->contact[g].law == scene->contact[0].law);
   }
@@ -210,9 +212,10 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   PetscCall(SNESSSStarSetContactOperator(snes, scene->isC, scene->B, gaps));
   PetscCall(VecDestroy(&gaps));
 
-  if (anyLaw && oneLaw) PetscCall(SNESSSStarSetFrictionLaw(snes, scene->contact[0].law));
+  PetscCall(SSStarLawGetInfo(scene->contact[0].law, &law, NULL, NULL, NULL));
+  if (anyLaw && oneLaw) PetscCall(SNESSSStarSetFrictionLaw(snes, law));
   else if (!oneLaw) {
-    SSStarFrictionLaw *laws;
+    PetscInt *laws;
 
     PetscCall(PetscMalloc1(scene->n, &laws));
     for (PetscInt i = 0; i < scene->n; i++) laws[i] = scene->contact[scene->group[i]].law;
@@ -223,13 +226,13 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   if (anyPhi) { /* the groups without -friction_<G> keep the solver's coefficient, whenever it is set */
     for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].phiSet ? scene->contact[scene->group[i]].phi : (PetscReal)PETSC_DEFAULT;
     PetscCall(NodeVec(scene, 1, values, &v));
-    PetscCall(SNESSSStarSetFrictionCoefficients(snes, v));
+    PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction", v));
     PetscCall(VecDestroy(&v));
   }
   if (anyBound) {
-    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].law == SSSTAR_FRICTION_TRESCA ? scene->contact[scene->group[i]].bound : 0.0;
+    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].boundSet ? scene->contact[scene->group[i]].bound : 0.0;
     PetscCall(NodeVec(scene, 1, values, &v));
-    PetscCall(SNESSSStarSetSlipBounds(snes, v));
+    PetscCall(SNESSSStarSetNodeLawParameter(snes, "slip_bound", v));
     PetscCall(VecDestroy(&v));
   }
   PetscCall(PetscFree(values));

@@ -314,16 +314,21 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      obstacle[PETSC_MAX_PATH_LEN + 128];
+    const char               *law;
+    PetscBool                 friction, bound;
 
-    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+    PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
+    PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
+    PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
+    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, law));
     else {
       PetscCall(SSStarObstacleDescribe(cg->obstacle, obstacle, sizeof(obstacle)));
-      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, SSStarFrictionLaws[cg->law]));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, law));
     }
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
-    if (cg->law == SSSTAR_FRICTION_COULOMB && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
-    if (cg->law == SSSTAR_FRICTION_COULOMB && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
-    if (cg->law == SSSTAR_FRICTION_TRESCA) PetscCall(PetscViewerASCIIPrintf(viewer, ", slip bound %g per node", (double)cg->bound));
+    if (friction && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
+    if (friction && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
+    if (bound) PetscCall(PetscViewerASCIIPrintf(viewer, ", slip bound %g per node", (double)cg->bound));
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
   }
@@ -333,13 +338,22 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
   if (scene->nContact) {
-    PetscBool laws[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
+    PetscInt nlaws;
 
-    for (PetscInt g = 0; g < scene->nContact; g++) laws[scene->contact[g].law] = PETSC_TRUE;
     PetscCall(PetscStrlcat(effects, ", contact (non-penetration)", sizeof(effects)));
     if (scene->nPairs) PetscCall(PetscStrlcat(effects, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? ", contact pairs (dual mortar)" : ", contact pairs (node-to-surface)", sizeof(effects)));
-    if (laws[SSSTAR_FRICTION_TRESCA]) PetscCall(PetscStrlcat(effects, ", Tresca friction", sizeof(effects)));
-    if (laws[SSSTAR_FRICTION_COULOMB]) PetscCall(PetscStrlcat(effects, ", Coulomb friction", sizeof(effects)));
+    PetscCall(SSStarLawGetNames(&nlaws, NULL));
+    for (PetscInt l = 0; l < nlaws; l++) { /* the effects of the laws in use, in the table's order */
+      PetscBool   used = PETSC_FALSE;
+      const char *effect;
+
+      for (PetscInt g = 0; g < scene->nContact; g++) used = (PetscBool)(used || scene->contact[g].law == l);
+      PetscCall(SSStarLawGetInfo(l, NULL, &effect, NULL, NULL));
+      if (used && effect) {
+        PetscCall(PetscStrlcat(effects, ", ", sizeof(effects)));
+        PetscCall(PetscStrlcat(effects, effect, sizeof(effects)));
+      }
+    }
   } else PetscCall(PetscStrlcat(effects, "; no contact: one linear solve", sizeof(effects)));
   PetscCall(PetscViewerASCIIPrintf(viewer, "active effects: %s\n", effects));
   PetscCall(PetscViewerASCIIPopTab(viewer));

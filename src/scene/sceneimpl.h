@@ -31,7 +31,7 @@ typedef struct {
 typedef struct {
   char              name[SSSTAR_GROUP_NAME_LEN];
   SSStarObstacle    obstacle;           /* -obstacle_<G>: a registered shape (obstacle.c, obstacles/)   */
-  SSStarFrictionLaw law;
+  PetscInt          law;                /* its friction law: an index of the table of laws (SSStarLawGetNames()) */
   PetscBool         lawSet, phiSet, boundSet; /* -friction_law_<G>, -friction_<G>, -slip_bound_<G> given */
   PetscReal         phi, bound;         /* Coulomb coefficient, Tresca slip bound (a force)      */
   PetscInt          nodes;              /* contact nodes of the group (global)                  */

@@ -134,7 +134,9 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   SSStarContactGroup *cg;
   SSStarGroupValues  *gv;
   PetscBool           set;
-  PetscEnum           law;
+  PetscInt            nlaws;
+  const char *const  *laws;
+  char                name[64], known[256] = "";
 
   PetscFunctionBegin;
   switch (kind) {
@@ -156,8 +158,14 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   } break;
   case OPT_FRICTION_LAW:
     PetscCall(ContactGroup(scene, group, option, &cg));
-    PetscCall(PetscOptionsGetEnum(NULL, NULL, option, SSStarFrictionLaws, &law, &set));
-    cg->law    = (SSStarFrictionLaw)law;
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
+    PetscCall(SSStarLawGetIndex(name, &cg->law));
+    PetscCall(SSStarLawGetNames(&nlaws, &laws));
+    for (PetscInt l = 0; l < nlaws && cg->law < 0; l++) { /* the message names the laws of the table */
+      PetscCall(PetscStrlcat(known, l ? ", " : "", sizeof(known)));
+      PetscCall(PetscStrlcat(known, laws[l], sizeof(known)));
+    }
+    PetscCheck(cg->law >= 0, scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown option %s for %s: the friction laws are %s", name, option, known);
     cg->lawSet = PETSC_TRUE;
     break;
   case OPT_FRICTION:
@@ -185,12 +193,16 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
 /* Contradictory and incomplete entries of a contact group */
 static PetscErrorCode CheckContactGroup(SSStarScene scene, const SSStarContactGroup *cg)
 {
-  const char *law = SSStarFrictionLaws[cg->law];
+  const char *law;
+  PetscBool   friction, bound;
 
   PetscFunctionBegin;
-  PetscCheck(!cg->phiSet || cg->law == SSSTAR_FRICTION_COULOMB, scene->comm, PETSC_ERR_ARG_WRONG, "Options -friction_%s and -friction_law_%s %s contradict each other: a friction coefficient is for the coulomb law", cg->name, cg->name, law);
-  PetscCheck(!cg->boundSet || cg->law == SSSTAR_FRICTION_TRESCA, scene->comm, PETSC_ERR_ARG_WRONG, "Options -slip_bound_%s and -friction_law_%s %s contradict each other: a slip bound is for the tresca law", cg->name, cg->name, law);
-  PetscCheck(cg->boundSet || cg->law != SSSTAR_FRICTION_TRESCA, scene->comm, PETSC_ERR_ARG_WRONG, "Option -friction_law_%s tresca needs -slip_bound_%s (the Tresca bound, a force per contact node)", cg->name, cg->name);
+  PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
+  PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
+  PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
+  PetscCheck(!cg->phiSet || friction, scene->comm, PETSC_ERR_ARG_WRONG, "Options -friction_%s and -friction_law_%s %s contradict each other: a friction coefficient is for the coulomb law", cg->name, cg->name, law);
+  PetscCheck(!cg->boundSet || bound, scene->comm, PETSC_ERR_ARG_WRONG, "Options -slip_bound_%s and -friction_law_%s %s contradict each other: a slip bound is for the tresca law", cg->name, cg->name, law);
+  PetscCheck(cg->boundSet || !bound, scene->comm, PETSC_ERR_ARG_WRONG, "Option -friction_law_%s tresca needs -slip_bound_%s (the Tresca bound, a force per contact node)", cg->name, cg->name);
   PetscFunctionReturn(0);
 }
 
@@ -327,7 +339,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     PetscCall(PetscStrncpy(cg->name, contact[g], sizeof(cg->name)));
     PetscCall(PetscFree(contact[g]));
     PetscCall(SSStarObstacleCreateDefault(&cg->obstacle)); /* the plane z = 0 */
-    cg->law       = SSSTAR_FRICTION_COULOMB;
+    PetscCall(SSStarLawGetIndex(SSSTARLAWCOULOMB, &cg->law));
     PetscCall(CheckNotHeld(scene, cg->name, "-contact"));
   }
   PetscCall(PetscFree(contact));

@@ -10,8 +10,11 @@ PetscErrorCode SSStarNodeFrictionGet(SSStarScene scene, SNES snes, SSStarNodeFri
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &nf->known));
   PetscCall(PetscMalloc3(scene->n + 1, &nf->law, scene->n + 1, &nf->phi, scene->n + 1, &nf->bound));
-  if (nf->known) PetscCall(SNESSSStarGetNodeFriction(snes, scene->n, nf->law, nf->phi, nf->bound));
-  else
+  if (nf->known) {
+    PetscCall(SNESSSStarGetNodeFrictionLaws(snes, scene->n, nf->law));
+    PetscCall(SNESSSStarGetNodeLawParameter(snes, "friction", scene->n, nf->phi));
+    PetscCall(SNESSSStarGetNodeLawParameter(snes, "slip_bound", scene->n, nf->bound));
+  } else
     for (PetscInt i = 0; i < scene->n; i++) { /* the scene's own description */
       const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
 
@@ -20,8 +23,12 @@ PetscErrorCode SSStarNodeFrictionGet(SSStarScene scene, SNES snes, SSStarNodeFri
       nf->bound[i] = cg->bound;
     }
   for (PetscInt i = 0; i < scene->n; i++) {
-    if (nf->law[i] != SSSTAR_FRICTION_COULOMB) nf->phi[i] = 0;
-    if (nf->law[i] != SSSTAR_FRICTION_TRESCA) nf->bound[i] = 0;
+    PetscBool friction, bound;
+
+    PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
+    PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
+    if (!friction) nf->phi[i] = 0;
+    if (!bound) nf->bound[i] = 0;
   }
   PetscFunctionReturn(0);
 }
@@ -104,7 +111,13 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, c
     PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
   }
   PetscCall(SSStarWriteNodeField(comm, file, "/contact/friction_law", p, n, pos, 1, ll, PETSC_TRUE));
-  PetscCall(SSStarJoinNames(3, SSStarFrictionLaws, names, sizeof(names)));
+  {
+    PetscInt           nlaws;
+    const char *const *laws;
+
+    PetscCall(SSStarLawGetNames(&nlaws, &laws));
+    PetscCall(SSStarJoinNames(nlaws, laws, names, sizeof(names)));
+  }
   PetscCall(SSStarH5ObjectAttrString(file, "/contact/friction_law", "names", names));
   PetscCall(PetscFree5(pos, ul, rl, sl, gl));
   PetscCall(PetscFree(ll));

@@ -70,30 +70,42 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
-    PetscInt                  laws[3] = {0, 0, 0}, law = -1;
+    PetscInt                 *laws, nlaws, law = -1, with[2] = {0, 0}; /* nodes per law; nodes with a friction, a slip bound */
     PetscReal                 range[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* min phi, -max phi, min s, -max s */
+    const char               *name = "mixed";
 
+    PetscCall(SSStarLawGetNames(&nlaws, NULL));
+    PetscCall(PetscCalloc1(nlaws, &laws));
     for (PetscInt i = 0; i < scene->n; i++) {
+      PetscBool friction, bound;
+
       if (scene->group[i] != g) continue;
       laws[nf->law[i]]++;
-      if (nf->law[i] == SSSTAR_FRICTION_COULOMB) {
+      PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
+      PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
+      if (friction) {
+        with[0]++;
         range[0] = PetscMin(range[0], nf->phi[i]);
         range[1] = PetscMin(range[1], -nf->phi[i]);
       }
-      if (nf->law[i] == SSSTAR_FRICTION_TRESCA) {
+      if (bound) {
+        with[1]++;
         range[2] = PetscMin(range[2], nf->bound[i]);
         range[3] = PetscMin(range[3], -nf->bound[i]);
       }
     }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, laws, 3, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, laws, nlaws, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, with, 2, MPIU_INT, MPI_SUM, scene->comm));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 4, MPIU_REAL, MPIU_MIN, scene->comm));
-    for (PetscInt k = 0; k < 3; k++)
+    for (PetscInt k = 0; k < nlaws; k++)
       if (laws[k] == cg->nodes) law = k;
+    PetscCall(PetscFree(laws));
+    if (law >= 0) PetscCall(SSStarLawGetInfo(law, &name, NULL, NULL, NULL));
     PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/contact/%s", cg->name));
     PetscCall(SSStarH5GroupOpen(file, path, &sub));
-    PetscCall(SSStarH5AttrString(sub, "law", law >= 0 ? SSStarFrictionLaws[law] : "mixed"));
-    if (nf->known && laws[SSSTAR_FRICTION_COULOMB] && range[0] == -range[1]) PetscCall(SSStarH5AttrReal(sub, "friction", range[0]));
-    if (nf->known && laws[SSSTAR_FRICTION_TRESCA] && range[2] == -range[3]) PetscCall(SSStarH5AttrReal(sub, "slip_bound", range[2]));
+    PetscCall(SSStarH5AttrString(sub, "law", name));
+    if (nf->known && with[0] && range[0] == -range[1]) PetscCall(SSStarH5AttrReal(sub, "friction", range[0]));
+    if (nf->known && with[1] && range[2] == -range[3]) PetscCall(SSStarH5AttrReal(sub, "slip_bound", range[2]));
     if (cg->master[0]) { /* a contact pair: its master surface and discretization, no obstacle */
       PetscCall(SSStarH5AttrString(sub, "master", cg->master));
       PetscCall(SSStarH5AttrString(sub, "discretization", SSStarPairDiscretizations[scene->pairMethod]));
@@ -195,7 +207,7 @@ PetscErrorCode SSStarWriteRun(SSStarScene scene, hid_t file, SNES snes)
     PetscCall(SSStarH5AttrString(root, "sub_reason", SSStarReasons[sub]));
     PetscCall(SSStarH5AttrReal(root, "tolerance", tol));
     PetscCall(SSStarH5AttrReal(root, "scaling", gamma));
-    PetscCall(SSStarH5AttrString(root, "reduction", SSStarReductionTypes[rtype]));
+    PetscCall(SSStarH5AttrString(root, "reduction", rtype));
     PetscCall(SSStarH5AttrInts(root, "state_counts", SSSTAR_NUM_STATES, counts));
     PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
     PetscCall(SSStarH5AttrString(root, "state_names", names));

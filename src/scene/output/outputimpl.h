@@ -29,9 +29,9 @@ PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], 
 
 /* What the solver used at each contact node: law, coefficient, bound (from the SNES when it is an ssstar) */
 typedef struct {
-  PetscBool          known; /* the SNES is an ssstar: the laws below are the solver's */
-  SSStarFrictionLaw *law;
-  PetscReal         *phi, *bound;
+  PetscBool  known; /* the SNES is an ssstar: the laws below are the solver's */
+  PetscInt  *law;   /* indices of the table of laws */
+  PetscReal *phi, *bound;
 } SSStarNodeFriction;
 
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionGet(SSStarScene, SNES, SSStarNodeFriction *);

@@ -12,8 +12,8 @@ Each check prints one line "PASS name: figures" or "FAIL name: figures"; the exi
      equal a different algorithm -- Tresca fixed points solved by an accelerated projected gradient on the dual
      (Delassus operator), with the incremental law written on w = B u + g directly -- to 1e-10 at every step
   2. the block on a spring (10.1)-(10.2): one node, press -> shear to Q -> release -> -Q -> release, solved in fine
-     steps: u_x = (Q - phi P)/k after the release, -(Q - phi P)/k after the second one, the stick/slip phases where
-     (10.2) puts them; with Q > 2 phi P the release slides back to phi P/k
+     steps: u_x = (Q - phi P)/k after the release, -(Q - phi P)/k after the second one (10.2), the stick/slip phases
+     where (10.1) puts them; with Q > 2 phi P the release slides back to phi P/k
   3. displacement-controlled sliding (10.3): a 3x3 grid of nodes on springs, a rigid plane pushed up then moved
      sideways: the tangential force is phi times the normal force to 1e-12 once every node slides; moved back a
      little, every node sticks and the force drops by k_t times the move
@@ -21,8 +21,9 @@ Each check prints one line "PASS name: figures" or "FAIL name: figures"; the exi
      static answer (slip from the reference) to 1e-10; with gaps, a node whose slip turns makes them differ, and
      exactly where (9.7) says
   5. quadratic convergence of the shifted iteration: a step with reversal and sliding, ||z_k+1|| <= C ||z_k||^2
-  6. the Cattaneo-Mindlin / Mindlin-Deresiewicz closed forms (10.4)-(10.9): the loop's area by quadrature equals
-     (10.9), the small-amplitude limit, the branches meet at +-Q*, and the centre displacement of the Cattaneo
+  6. the Cattaneo-Mindlin / Mindlin-Deresiewicz closed forms (10.4)-(10.11): the loop's area by quadrature equals
+     (10.9), the small-amplitude limit (10.10), the branches meet at +-Q*, the opening at Q = 0 (10.11), and the
+     centre displacement of the Cattaneo
      traction by quadrature of Cerruti's solution equals pi (2 - nu) q0 a/(8 G)
 
 The functions mindlin_* and block_on_spring_* are the closed forms a scene test can import."""
@@ -375,7 +376,7 @@ def check_offsets(seed):
 # ---------------------------------------------------------------------------------------------------------------------
 
 def block_on_spring_final(Q, phi, P, k):
-    """(10.1): u_x after press -> shear to Q -> release, and after -> -Q -> release"""
+    """(10.2): u_x after press -> shear to Q -> release, and after -> -Q -> release"""
     if Q <= phi * P:
         return 0.0, 0.0
     if Q <= 2 * phi * P:
@@ -384,7 +385,7 @@ def block_on_spring_final(Q, phi, P, k):
 
 
 def block_on_spring_phase(Q_t, u_before, phi, P, k):
-    """(10.2): the state and u_x of the block at the tangential load Q_t, from u_before (stick if the spring and the
+    """(10.1): the state and u_x of the block at the tangential load Q_t, from u_before (stick if the spring and the
     load leave a force within the cone, else slide to where the force is on it)"""
     r = k * u_before - Q_t  # the friction force if it sticks
     if abs(r) <= phi * P:
@@ -418,8 +419,8 @@ def check_block_on_spring():
         after = block_on_spring_final(Q, phi, Pn, k)
         final_ok = abs(first - after[0]) <= 1e-12 and abs(u[0] - after[1]) <= 1e-12 and worst <= 1e-12 and phase_ok
         ok &= final_ok
-        lines.append("Q/(phi P) = %g: u_x %.6g after the first release, %.6g after the second (10.1: %.6g, %.6g), phases %s, "
-                     "max |u_x - (10.2)| = %.1e" % (Q / (phi * Pn), first, u[0], after[0], after[1], " ".join("%s@%.2f" % (a, b) for a, b in phases), worst))
+        lines.append("Q/(phi P) = %g: u_x %.6g after the first release, %.6g after the second (10.2: %.6g, %.6g), phases %s, "
+                     "max |u_x - (10.1)| = %.1e" % (Q / (phi * Pn), first, u[0], after[0], after[1], " ".join("%s@%.2f" % (a, b) for a, b in phases), worst))
     report("block on a spring (10.1)-(10.2)", ok, "; ".join(lines))
 
 
@@ -616,6 +617,12 @@ def mindlin_dissipation(Qstar, mu, P, a, K):
     return 9 * mu ** 2 * P ** 2 * K / (10 * a) * (1 - (1 - s) ** (5 / 3) - 5 * s / 6 * (1 + (1 - s) ** (2 / 3)))
 
 
+def mindlin_opening(Qstar, mu, P, a, K):
+    """(10.11): the loop's width at Q = 0"""
+    s = Qstar / (mu * P)
+    return 3 * mu * P * K / (8 * a) * (2 * (1 - s / 2) ** (2 / 3) - (1 - s) ** (2 / 3) - 1)
+
+
 def stick_radius_loading(Q, mu, P, a):
     """(10.4): c = a (1 - Q/(mu P))^(1/3)"""
     return a * (1 - abs(Q) / (mu * P)) ** (1 / 3)
@@ -630,7 +637,7 @@ def check_mindlin():
     mu, P, R, E, nu = 0.3, 31416.0, 10.0, 2.1e5, 0.3
     a = hertz_radius(P, R, E, nu, E, nu)
     K = mindlin_compliance(E, nu, E, nu)
-    worst, lines = 0.0, []
+    worst, worst_open, lines = 0.0, 0.0, []
     for s in (0.2, 0.5, 0.8, 1.0):
         Qs = s * mu * P
         Q = np.linspace(-Qs, Qs, 20001)
@@ -638,6 +645,8 @@ def check_mindlin():
         area = np.sum((width[1:] + width[:-1]) / 2 * np.diff(Q))
         closed = mindlin_dissipation(Qs, mu, P, a, K)
         worst = max(worst, abs(area - closed) / closed)
+        opening = mindlin_unloading(0.0, Qs, mu, P, a, K) - mindlin_reloading(0.0, Qs, mu, P, a, K)
+        worst_open = max(worst_open, abs(opening / mindlin_opening(Qs, mu, P, a, K) - 1))
         lines.append("s = %.1f: %.6g" % (s, closed))
     ends = max(abs(mindlin_unloading(Qs, Qs, mu, P, a, K) - mindlin_loading(Qs, mu, P, a, K)),
                abs(mindlin_unloading(-Qs, Qs, mu, P, a, K) + mindlin_loading(Qs, mu, P, a, K)))
@@ -649,10 +658,10 @@ def check_mindlin():
     integrand = q0 * np.sqrt(np.maximum(1 - r ** 2 / a ** 2, 0)) * (2 * np.pi * (1 - nu) + np.pi * nu) / (2 * np.pi * G)
     centre = np.sum((integrand[1:] + integrand[:-1]) / 2 * np.diff(r))
     cerruti = abs(centre / (np.pi * (2 - nu) * q0 * a / (8 * G)) - 1)
-    ok = worst <= 1e-6 and ends <= 1e-12 and limit <= 1e-2 and cerruti <= 1e-5
-    report("Mindlin-Deresiewicz closed forms (10.4)-(10.10)", ok,
-           "hertz2 data (a = %.4g, K = %.4g): loop area by quadrature = (10.9) to %.1e (dW %s); branches meet at +-Q* to %.1e; "
-           "small-amplitude limit to %.1e; Cerruti centre displacement to %.1e" % (a, K, worst, ", ".join(lines), ends, limit, cerruti))
+    ok = worst <= 1e-6 and ends <= 1e-12 and limit <= 1e-2 and cerruti <= 1e-5 and worst_open <= 1e-12
+    report("Mindlin-Deresiewicz closed forms (10.4)-(10.11)", ok,
+           "mindlin.opts data (a = %.4g, K = %.4g): loop area by quadrature = (10.9) to %.1e (dW %s); branches meet at +-Q* to %.1e; "
+           "opening (10.11) to %.1e; small-amplitude limit (10.10) to %.1e; Cerruti centre displacement to %.1e" % (a, K, worst, ", ".join(lines), ends, worst_open, limit, cerruti))
 
 
 def main():

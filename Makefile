@@ -18,9 +18,11 @@ LIB_SRC  := src/ssstarregister.c src/options.c src/snes/impls/ssstar/ssstar.c sr
             src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
             src/reduction/reduction.c src/reduction/direct.c src/reduction/mumps.c src/reduction/explicit.c src/reduction/none.c src/contact/mesh.c src/contact/meshcache.c src/contact/elasticity.c src/contact/output.c \
             src/contact/memory.c src/contact/scene.c src/contact/obstacle.c src/contact/pairs.c
+LIB_SRC  += src/history/history.c
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator
+TESTS    += tests/test_history
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -65,6 +67,10 @@ tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction test
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
 bench/%: bench/%.c $(LIB)
+	$(SAY) "  CCLD    $@"
+	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+
+tests/test_history: tests/test_history.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 

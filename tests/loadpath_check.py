@@ -32,6 +32,8 @@ import sys
 
 import numpy as np
 
+from derivation_check import problem as random_problem  # a random SPD P and a load that separates, slides, sticks
+
 STATES = ["L", "M1", "M2", "M3+", "M3-", "M4", "LS"]  # the codes of SSStarState
 RESULTS = []
 
@@ -482,17 +484,6 @@ def check_displacement_sliding():
 # 4. monotone proportional paths give the static answer (9.7)-(9.8)
 # ---------------------------------------------------------------------------------------------------------------------
 
-def random_reduced(seed, p):
-    rng = np.random.default_rng(seed)
-    A = rng.standard_normal((3 * p, 3 * p))
-    P = A @ A.T / (3 * p) + 1.0 * np.eye(3 * p)
-    f = np.zeros(3 * p)
-    for i in range(p):
-        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0, 0.7)
-        f[3 * i:3 * i + 3] = [size * np.cos(angle), size * np.sin(angle), -1.0 if i % 4 else 0.6]
-    return P, f
-
-
 def incremental_path(P, f_of, laws, gaps, lams):
     p = len(laws)
     frames = np.array([np.eye(3)] * p)
@@ -535,7 +526,7 @@ def condition_97(P, statics, gaps, lams, f_of, tol=1e-9):
 
 def check_proportional(seed):
     p, phi = 16, 0.3
-    P, f = random_reduced(seed, p)
+    P, f = random_problem(p, seed)
     laws = [("coulomb", phi)] * p
     lams = [0.2, 0.4, 0.6, 0.8, 1.0]
     f_of = lambda lam: lam * f  # noqa: E731
@@ -566,7 +557,7 @@ def check_proportional(seed):
 
 def check_quadratic(seed):
     p, phi = 16, 0.3
-    P, f = random_reduced(seed, p)
+    P, f = random_problem(p, seed)
     laws, frames = [("coulomb", phi)] * p, np.array([np.eye(3)] * p)
     o = np.zeros((p, 3))
     u1, _, _ = newton_reduced(P, f, laws, frames, o, np.zeros(3 * p))  # step 1: the static problem

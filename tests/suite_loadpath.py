@@ -12,3 +12,9 @@ def loadpath_derivation():
         expect(equation in page, "docs/derivation.md has no equation %s" % equation)
     out = run([PYTHON, os.path.join(ROOT, "tests", "loadpath_check.py")])
     expect(out.count("PASS") == 8 and "FAIL" not in out, "tests/loadpath_check.py", out)
+
+
+@test("load histories (include/ssstarhistory.h, tests/test_history): the issue's example, a plain vector, spaces, exponents, negative times, one component, a single knot and a value of 1000 knots parse to the hand-computed knots; evaluation is linear between knots, constant outside them and exact at them; the knots of several histories merge (1 and 1.0 once); -steps N gives the first knot and N equal steps ending exactly at the last, -steps t1,t2,... the times; every malformed value (empty, no time, not a number, NaN, Inf, wrong count, times not increasing, an empty knot, a count 0 or without a time span) is refused with a message naming the option and the knot or time, leaving nothing allocated (-malloc_dump)")
+def history_parser():
+    out = run([os.path.join(ROOT, "tests", "test_history")])
+    expect("OK: 0 failures" in out, "tests/test_history", out)

@@ -94,7 +94,7 @@ def compile_synopses(synopses, name):
     """Compiles a C file that assigns each public function to a pointer of its manual's synopsis type, with the
     project's compiler and flags and -Werror (an incompatible pointer is an error); returns (ok, compiler output)"""
     source = os.path.join(OUT, name + ".c")
-    lines = ["#include <ssstar.h>", "#include <ssstarreduction.h>", "#include <ssstarscene.h>", "#include <ssstargeometry.h>", ""]
+    lines = ["#include <%s>" % os.path.basename(h) for h in sorted(glob.glob(os.path.join(ROOT, "include", "*.h")))] + [""]
     for k, (function, header, signature) in enumerate(synopses):
         lines.append("%s = %s;" % (signature.replace(" %s(" % function, " (*manual_%d)(" % k, 1), function))
     open(source, "w").write("\n".join(lines) + "\n")

@@ -233,7 +233,7 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
 }
 
 /* The options -help lists for the groups (read below by name, so PetscOptions* does not list them itself); those of
-   the friction laws come from the table (SSStarGroupLawHelp()) */
+   the obstacles and the friction laws come from their registries (GroupHelp()) */
 static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G\n\
@@ -241,11 +241,22 @@ static const char SceneGroupHelp[] = "\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
   -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
   -contact <G1,G2,...>: the contact groups (without -contact: no contact at all)\n\
-  -obstacle_<G> <0,0,0,0,0,1>: the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers: a point and\n\
-      the normal into the body), sphere:cx,cy,cz,R (a ball touched from outside), cylinder:px,py,pz,ax,ay,az,R\n\
-      (infinite, axis through p along a) or mesh:FILE.msh (a rigid body bounded by gmsh triangles, normals out of it)\n\
   -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
   -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
+
+/* The group options of -help: the fixed ones, -obstacle_<G> with the registered shapes, the friction laws' */
+static PetscErrorCode GroupHelp(char text[], size_t len)
+{
+  char line[1024];
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrncpy(text, SceneGroupHelp, len));
+  PetscCall(SSStarObstacleHelp(line, sizeof(line)));
+  PetscCall(PetscStrlcat(text, line, len));
+  PetscCall(SSStarGroupLawHelp(line, sizeof(line)));
+  PetscCall(PetscStrlcat(text, line, len));
+  PetscFunctionReturn(0);
+}
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
 static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density";
@@ -268,11 +279,11 @@ static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -de
 @*/
 PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[], SNES snes)
 {
-  char        laws[4096];
-  const char *known[5] = {help ? help : "", SceneOptionNames, SceneGroupHelp, laws, NULL};
+  char        groups[8192];
+  const char *known[4] = {help ? help : "", SceneOptionNames, groups, NULL};
 
   PetscFunctionBegin;
-  PetscCall(SSStarGroupLawHelp(laws, sizeof(laws)));
+  PetscCall(GroupHelp(groups, sizeof(groups)));
   PetscCall(SSStarCheckOptionsUsed(scene->comm, known, snes));
   PetscFunctionReturn(0);
 }
@@ -338,10 +349,10 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
   if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
-    char laws[4096];
+    char groups[8192];
 
-    PetscCall(SSStarGroupLawHelp(laws, sizeof(laws)));
-    PetscCall((*PetscHelpPrintf)(comm, "%s%s", SceneGroupHelp, laws));
+    PetscCall(GroupHelp(groups, sizeof(groups)));
+    PetscCall((*PetscHelpPrintf)(comm, "%s", groups));
   }
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));

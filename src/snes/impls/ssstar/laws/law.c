@@ -71,8 +71,12 @@ static PetscErrorCode ListParameters(void)
 
    Notes:
    The law gets the next index of the table (SSStarLawGetNames()). Registering a name again replaces that law in its
-   place. A parameter name used by several laws must be of the same kind in each (it is one setting of the solver,
-   SNESSSStarSetLawParameter()). A law is one file plus one line in SSStarLawRegisterAll().
+   place. A parameter name used by several laws must be of the same kind and default in each (it is one setting of the
+   solver, SNESSSStarSetLawParameter()). A law of ssstar is one file in src/snes/impls/ssstar/laws/ plus its
+   registration in lawregall.c (its declaration and one line in SSStarLawRegisterAll()); the solver's and the scenes'
+   options (-snes_ssstar_<parameter>, -friction_law_<G>, -<parameter>_<G>), their checks, -help, the views, the output
+   (/contact/friction_law, /contact/<parameter>) and the Python module follow from the table (README "Adding a friction
+   law").
 
    Level: advanced
 

@@ -13,6 +13,9 @@
 
    Table 1's states apply to every law; a law whose tangential law holds whatever the normal contact (Tresca: its
    bound does not depend on r_n) has a tangential state of its own on separated nodes (LS).
+
+   A new law is a file here whose SSStarLawCreate_<Name>() fills a _n_SSStarLaw and its registration in lawregall.c;
+   the options, checks, views and output of the solver and the scenes read the table (README "Adding a friction law").
 */
 #include <ssstar.h>
 

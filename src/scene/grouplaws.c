@@ -17,39 +17,29 @@ static const SSStarGroupParameter *FindGiven(const SSStarContactGroup *cg, const
   return NULL;
 }
 
-/* "none, tresca, coulomb or orthotropic" */
-static PetscErrorCode LawList(const char conjunction[], char text[], size_t len)
+/* The names of the laws of the table that have the parameter (NULL: every law), joined by ", " and conjunction before
+   the last: "none, tresca, coulomb or orthotropic" */
+static PetscErrorCode JoinLaws(const char parameter[], const char conjunction[], char text[], size_t len)
 {
-  PetscInt           nlaws;
+  PetscInt           nlaws, n = 0;
   const char *const *laws;
+  const char       **chosen;
 
   PetscFunctionBegin;
   PetscCall(SSStarLawGetNames(&nlaws, &laws));
-  text[0] = 0;
+  PetscCall(PetscMalloc1(nlaws, &chosen));
   for (PetscInt l = 0; l < nlaws; l++) {
-    PetscCall(PetscStrlcat(text, l == 0 ? "" : l == nlaws - 1 ? conjunction : ", ", len));
-    PetscCall(PetscStrlcat(text, laws[l], len));
+    PetscBool has = PETSC_TRUE;
+
+    if (parameter) PetscCall(SSStarLawHasParameter(l, parameter, &has));
+    if (has) chosen[n++] = laws[l];
   }
-  PetscFunctionReturn(0);
-}
-
-/* The laws of the table that have the parameter: "coulomb", "tresca" */
-static PetscErrorCode LawsWith(const char name[], char text[], size_t len)
-{
-  PetscInt           nlaws;
-  const char *const *laws;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarLawGetNames(&nlaws, &laws));
   text[0] = 0;
-  for (PetscInt l = 0; l < nlaws; l++) {
-    PetscBool has;
-
-    PetscCall(SSStarLawHasParameter(l, name, &has));
-    if (!has) continue;
-    PetscCall(PetscStrlcat(text, text[0] ? ", " : "", len));
-    PetscCall(PetscStrlcat(text, laws[l], len));
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(PetscStrlcat(text, k == 0 ? "" : k == n - 1 ? conjunction : ", ", len));
+    PetscCall(PetscStrlcat(text, chosen[k], len));
   }
+  PetscCall(PetscFree(chosen));
   PetscFunctionReturn(0);
 }
 
@@ -62,7 +52,7 @@ PetscErrorCode SSStarGroupLawRead(SSStarScene scene, SSStarContactGroup *cg, con
   PetscFunctionBegin;
   PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
   PetscCall(SSStarLawGetIndex(name, &cg->law));
-  if (cg->law < 0) PetscCall(LawList(", ", known, sizeof(known)));
+  if (cg->law < 0) PetscCall(JoinLaws(NULL, ", ", known, sizeof(known)));
   PetscCheck(cg->law >= 0, scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown option %s for %s: the friction laws are %s", name, option, known);
   cg->lawSet = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -113,7 +103,7 @@ PetscErrorCode SSStarGroupLawCheck(SSStarScene scene, const SSStarContactGroup *
     PetscCall(SSStarLawHasParameter(cg->law, cg->params[k].name, &has));
     if (has) continue;
     PetscCall(SSStarLawGetParameterInfo(cg->params[k].name, NULL, NULL, &description, NULL, NULL, NULL));
-    PetscCall(LawsWith(cg->params[k].name, owners, sizeof(owners)));
+    PetscCall(JoinLaws(cg->params[k].name, " or ", owners, sizeof(owners)));
     SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "Options -%s_%s and -friction_law_%s %s contradict each other: the %s is a parameter of the law %s", cg->params[k].name, cg->name, cg->name, law, description, owners);
   }
   for (PetscInt p = 0; p < nparams; p++) {
@@ -142,7 +132,7 @@ PetscErrorCode SSStarGroupLawHelp(char text[], size_t len)
   char               line[512], laws[256];
 
   PetscFunctionBegin;
-  PetscCall(LawList(" or ", laws, sizeof(laws)));
+  PetscCall(JoinLaws(NULL, " or ", laws, sizeof(laws)));
   PetscCall(PetscSNPrintf(text, len, "  -friction_law_<G> <coulomb>: the friction law of G: %s\n", laws));
   PetscCall(SSStarLawGetParameterNames(&nparams, &params));
   for (PetscInt p = 0; p < nparams; p++) {
@@ -151,7 +141,7 @@ PetscErrorCode SSStarGroupLawHelp(char text[], size_t len)
     PetscBool              hasDefault;
 
     PetscCall(SSStarLawGetParameterInfo(params[p], &kind, NULL, &description, &symbol, &hasDefault, NULL));
-    PetscCall(LawsWith(params[p], laws, sizeof(laws)));
+    PetscCall(JoinLaws(params[p], " or ", laws, sizeof(laws)));
     PetscCall(PetscSNPrintf(line, sizeof(line), "  -%s_<G> <%s>: the %s of G%s (law %s; %s%s)\n", params[p], kind == SSSTAR_LAW_DIRECTION ? "x,y,z" : symbol, description, kind == SSSTAR_LAW_DIRECTION ? " in global axes" : kind == SSSTAR_LAW_FORCE ? ", a force per contact node" : "", laws, hasDefault ? "default: the solver's, -snes_ssstar_" : "required", hasDefault ? params[p] : ""));
     PetscCall(PetscStrlcat(text, line, len));
   }

@@ -7,7 +7,8 @@ static PetscErrorCode WriteGroupParameters(SSStarScene scene, PetscInt g, const 
 {
   PetscFunctionBegin;
   for (PetscInt k = 0; k < nf->nparams; k++) {
-    PetscReal range[7] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* min v_c, -max v_c; then "no node" */
+    /* range[2c], range[2c + 1]: min and -max of the component c over the nodes; range[6]: 0 once a node has it */
+    PetscReal      range[7] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL};
     const PetscInt size = nf->size[k];
 
     for (PetscInt i = 0; i < scene->n; i++) {

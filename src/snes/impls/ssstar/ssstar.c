@@ -112,7 +112,7 @@ PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
   PetscFunctionReturn(0);
 }
 
-/* ||u_C||: the norm of the contact dofs of u */
+/* ||u_C||: the norm of the contact dofs of u. The branch is the same on every rank: a rank may own no free dof */
 static PetscErrorCode ContactNorm(SNES snes, Vec u, PetscReal *norm)
 {
   SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
@@ -120,7 +120,7 @@ static PetscErrorCode ContactNorm(SNES snes, Vec u, PetscReal *norm)
   PetscReal          sum = 0;
 
   PetscFunctionBegin;
-  if (!ct->nfree) {
+  if (ct->newtonType != SSSTAR_NEWTON_FULL) {
     PetscCall(VecNorm(u, NORM_2, norm));
     PetscFunctionReturn(0);
   }

@@ -62,11 +62,14 @@ static PetscErrorCode CreateWorkVectors(SNES snes)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
   PetscInt     n = -1, m;
+  PetscBool    fits;
 
   PetscFunctionBegin;
   PetscCall(MatGetLocalSize(ss->contact.A, &m, NULL));
   if (ss->u) PetscCall(VecGetLocalSize(ss->u, &n));
-  if (n == m) PetscFunctionReturn(0);
+  fits = (PetscBool)(n == m); /* decided together: a rank may own no dof of either layout */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &fits, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)snes)));
+  if (fits) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&ss->u));
   PetscCall(MatCreateVecs(ss->contact.A, &ss->u, NULL));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) {

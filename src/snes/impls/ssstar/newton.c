@@ -96,6 +96,7 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, SSStarNewtonType type, M
   nt->nReused   = 0;
   nt->nKrylov   = 0;
   nt->nFallback = 0;
+  nt->nRefined  = 0;
   nt->layout    = *layout;
   if (A == nt->A && type == nt->type && nt->ops.setup) {
     if (nt->ops.setscaling) PetscCall((*nt->ops.setscaling)(nt)); /* gamma may have changed */
@@ -177,6 +178,20 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
   PetscFunctionBegin;
   nt->nSteps++;
   PetscCall((*nt->ops.solve)(nt, S, T, y, du, solved));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The last step's linear system (SSStarNewtonSolve) solved on from its solution to the tolerances set since, when
+   the solve stopped short of them: refined is PETSC_TRUE (on every rank) when du changed. Solves by a factorization
+   are exact already.
+*/
+PetscErrorCode SSStarNewtonRefine(SSStarNewton nt, Vec du, PetscBool *refined)
+{
+  PetscFunctionBegin;
+  *refined = PETSC_FALSE;
+  if (nt->ops.refine) PetscCall((*nt->ops.refine)(nt, du, refined));
+  if (*refined) nt->nRefined++;
   PetscFunctionReturn(0);
 }
 

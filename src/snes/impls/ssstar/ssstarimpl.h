@@ -46,6 +46,7 @@ PETSC_INTERN PetscErrorCode SSStarNewtonSetScaling(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonSetTolerances(SSStarNewton, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton, Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarNewtonRefine(SSStarNewton, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarNewtonGetSteps(SSStarNewton, PetscInt *);
@@ -193,6 +194,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarRefineNewtonStep(SNES, PetscReal, PetscBool *);
 
 /* globalization.c */
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBegin(SNES);

@@ -19,7 +19,7 @@ TIGHT = ["-snes_rtol", "1e-13"]
 REFINED = re.compile(r"(\d+) inexact steps solved on to the floor after a failed full step")
 
 
-@test("issue 18's scene, a rigid cylinder with its axis turned 30 degrees on a block held by a soft spring, sheared at 0.22 of the load either way across the axis: the whole body gives the dense route's answer to 1e-8 with the same states and iterations within one on 1, 2 and 3 ranks (3 ranks: a rank owns no dof; it stopped with MPI_ERR_TRUNCATE, and the reversed shear stagnated on 1 and 2 ranks)")
+@test("issue 18's scene, a rigid cylinder with its axis turned 30 degrees on a block held by a soft spring, sheared along x at 0.22 of the load either way: the whole body gives the dense route's answer to 1e-8 with the same states and iterations within one on 1, 2 and 3 ranks (3 ranks: a rank owns no dof; it stopped with MPI_ERR_TRUNCATE, and the reversed shear stagnated on 1 and 2 ranks)")
 def robust_issue_scene():
     for shear in ("66", "-66"):
         for ranks in (1, 2, 3):

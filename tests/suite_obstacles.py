@@ -63,8 +63,11 @@ def sphere_msh():
 
 @test("ball (level 1, frictionless, a rigid ball R = 10 on a block pushed up by a pressure): Hertz's contact radius within 5 % (measured +3.3 %) and peak pressure within 4 % (+2.2 %), the contact bracketed; every node's gap |x - c| - R and normal (x - c)/|x - c| to 1e-12; the direct reduction and the whole body agree to 1e-8; picture written")
 def obstacle_ball():
+    # frictionless, the block is held sideways by its soft spring alone (k A = 100 against E = 2.1e5): its rigid
+    # sliding is ~1e4 times less stiff than the rest, so the displacement error is ~1e4 ||z|| and both paths stop at a
+    # tighter ||z|| to compare them to 1e-8 (at the default 1e-10 they differ by 7e-7, in that rigid sliding)
     for path in PATHS:
-        out, s = contact_run(scene("ball") + ["-snes_ssstar_reduction", path, "-snes_view"], h5="ball_%s.h5" % path)
+        out, s = contact_run(scene("ball") + ["-snes_ssstar_reduction", path, "-snes_view", "-snes_rtol", "1e-12"], h5="ball_%s.h5" % path)
         expect("rigid ball of radius 10. centred at (0., 0., 10.)" in out, "the scene view does not name the ball", out)
         h = scene_answers.hertz(h5path("ball_%s.h5" % path))
         expect(abs(h["a_error"]) < 0.05 and abs(h["p0_error"]) < 0.04 and h["a_outside"] < 1.05 * h["a_hertz"] and h["a_inside"] > 0.95 * h["a_hertz"],

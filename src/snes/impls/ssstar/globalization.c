@@ -8,6 +8,10 @@
      dampingMin): ||z+|| <= (1 - sigma alpha + eta_k) ||z|| at iteration k. eta_k = 2^-(k+1) is a summable
      allowance, as in Li and Fukushima's derivative-free line search: the first steps of a healthy iteration may
      raise ||z|| a little, as they do at level 10 of the default scene, by a factor e at most in all;
+   - on the whole body a Newton step solved inexactly (a Krylov residual bounded by a fraction of ||z||) that fails
+     the test is first solved on to the floor tolerance and tried again: where the body nearly floats its error is far
+     larger than its residual, and the damping would search along a wrong direction (ssstar.c: after a remedy every
+     step is solved so);
    - when no damping decreases the merit (a local minimum of ||z||, a kink), the full step is taken anyway or the
      scaling gamma of the approximation step is doubled, in turn; gamma > 0 does not change the solutions (section 6)
      but changes the approximation step, the states and the Newton step;
@@ -179,6 +183,18 @@ static PetscErrorCode Accept(SNES_SSStar *ss, Vec v, Vec cv)
   PetscFunctionReturn(0);
 }
 
+/* The full Newton step: ut = u + dv (dv in the global frame), ct = A ut - f, and ||z|| there */
+static PetscErrorCode TryFullStep(SNES snes, PetscReal *mfull)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u));
+  PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
+  PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, mfull));
+  PetscFunctionReturn(0);
+}
+
 /*
    The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization
    the full step, unless ||z|| is NaN or Inf there (then reason NAN and u stays the last finite iterate). With it:
@@ -196,9 +212,15 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, S
   PetscFunctionBegin;
   *reason = SSSTAR_REASON_ITERATING;
   PetscCall(PetscLogEventBegin(SSSTAR_LineSearch, snes, 0, 0, 0));
-  PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u)); /* the Newton step du = ss->dv is in the global frame */
-  PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
-  PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &mfull));
+  PetscCall(TryFullStep(snes, &mfull));
+  /* an inexact step (whole body) that fails is solved on to the floor tolerance first: its error, which the linear
+     residual does not show where the body nearly floats, would mislead the damping and the remedies */
+  if (glob->on && !(mfull <= (1 - SSSTAR_SIGMA + eta) * znorm)) {
+    PetscBool refined;
+
+    PetscCall(SNESSSStarRefineNewtonStep(snes, znorm, &refined));
+    if (refined) PetscCall(TryFullStep(snes, &mfull));
+  }
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
   if (!glob->on || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm) {
     if (finite) {

@@ -33,8 +33,9 @@ PetscErrorCode SNESSSStarSetPCReuse(SNES snes, PetscReal fraction)
 
 /*@
    SNESSSStarSetKSPRtolMax - whole body (reduction none): the loosest relative tolerance of the linear solve of a
-   Newton step (inexact Newton). The tolerance of step k is min(rtol, ||z_k||/||z_0||) (rtol^2 once a remedy of
-   the globalization acted), with an absolute floor of a tenth of the stopping threshold; -ksp_rtol fixes it instead.
+   Newton step (inexact Newton). The tolerance of step k is min(rtol, ||z_k||/||z_0||) while no remedy of the
+   globalization acted, with an absolute floor of a tenth of the stopping threshold; once one did, and for a step whose
+   full step fails the line search, the floor alone; -ksp_rtol fixes it instead.
 
    Logically Collective
 

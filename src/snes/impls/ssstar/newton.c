@@ -101,6 +101,7 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   nt->nReused   = 0;
   nt->nKrylov   = 0;
   nt->nFallback = 0;
+  nt->nRefined  = 0;
   nt->layout    = *layout;
   PetscCall(PetscStrcmp(type, nt->type, &sameType));
   if (A == nt->A && sameType && nt->ops.setup) {
@@ -174,6 +175,20 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
   PetscFunctionBegin;
   nt->nSteps++;
   PetscCall((*nt->ops.solve)(nt, S, T, y, du, solved));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The last step's linear system (SSStarNewtonSolve) solved on from its solution to the tolerances set since, when
+   the solve stopped short of them: refined is PETSC_TRUE (on every rank) when du changed. Solves by a factorization
+   are exact already.
+*/
+PetscErrorCode SSStarNewtonRefine(SSStarNewton nt, Vec du, PetscBool *refined)
+{
+  PetscFunctionBegin;
+  *refined = PETSC_FALSE;
+  if (nt->ops.refine) PetscCall((*nt->ops.refine)(nt, du, refined));
+  if (*refined) nt->nRefined++;
   PetscFunctionReturn(0);
 }
 

@@ -278,11 +278,15 @@ static PetscErrorCode AssembleReducedMatrix(SSStarNewton nt)
   const Elimination *e = &dn->cur;
   PetscScalar       *aa;
   PetscInt           n = -1, N = -1;
+  PetscBool          resize;
 
   PetscFunctionBegin;
   if (dn->Arr) PetscCall(MatGetLocalSize(dn->Arr, &n, NULL));
   if (dn->Arr) PetscCall(MatGetSize(dn->Arr, &N, NULL));
-  if (n != e->n || N != e->N) {
+  /* decided together: the unknown dofs may move between ranks and leave their number N as it was */
+  resize = (PetscBool)(n != e->n || N != e->N);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &resize, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)nt->A)));
+  if (resize) {
     PetscCall(MatDestroy(&dn->Arr));
     PetscCall(VecDestroy(&dn->x));
     PetscCall(VecDestroy(&dn->rhs));

@@ -32,6 +32,7 @@ typedef struct {
   PetscInt       nknown, *known; /* global rows of the known dofs of the step                                    */
   unsigned char *mask, *pcMask; /* per local node: bits of its unknown rows, now and when the multigrid was built */
   PetscBool      pcBuilt;
+  PetscBool      refinable;     /* the KSP holds the last step's system and solution (SSStarNewtonRefine)         */
   PetscInt       nnodesGlobal;
   PetscBool      userKSPType, userTolerances, userRestart;
   PetscReal     *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
@@ -296,7 +297,8 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
   /* an iteration limit that still reduced the residual tenfold is an inexact step; a breakdown is a failure */
   PetscCall(KSPGetResidualNorm(ksp, &rnorm));
   PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
-  *solved = (PetscBool)(reason > 0 || (reason == KSP_DIVERGED_ITS && rnorm <= 0.1 * bnorm));
+  *solved       = (PetscBool)(reason > 0 || (reason == KSP_DIVERGED_ITS && rnorm <= 0.1 * bnorm));
+  nf->refinable = *solved;
   if (!*solved) {
     nf->pcBuilt = PETSC_FALSE;
     PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not solved: %s after %" PetscInt_FMT " iterations, residual %g of %g\n", KSPConvergedReasons[reason], its, (double)rnorm, (double)bnorm));
@@ -314,6 +316,45 @@ static PetscErrorCode SSStarNewtonSolveKnown_Full(SSStarNewton nt, Vec y, Vec du
 
   PetscFunctionBegin;
   PetscCall(SSStarNewtonSolve_Full(nt, nf->Sknown, nf->Tknown, y, du, solved));
+  nf->refinable = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   The last step's Krylov solve continued from its solution (same matrix, right-hand side and multigrid) to the
+   tolerances set since, unless it met them already or the user fixed the tolerances (-ksp_rtol)
+*/
+static PetscErrorCode SSStarNewtonRefine_Full(SSStarNewton nt, Vec du, PetscBool *refined)
+{
+  Newton_Full       *nf  = (Newton_Full *)nt->data;
+  KSP                ksp = nt->snes->ksp;
+  KSPConvergedReason reason;
+  PetscInt           its;
+  PetscReal          rnorm, bnorm;
+
+  PetscFunctionBegin;
+  if (!nf->refinable || nf->userTolerances) PetscFunctionReturn(0);
+  PetscCall(KSPGetResidualNorm(ksp, &rnorm));
+  PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
+  if (rnorm <= PetscMax(nt->atol, nt->rtol * bnorm)) PetscFunctionReturn(0);
+  PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE));
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
+  PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
+  PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCall(KSPGetIterationNumber(ksp, &its));
+  nt->nKrylov += its;
+  nt->snes->linear_its += its;
+  *refined = (PetscBool)(reason > 0 || reason == KSP_DIVERGED_ITS);
+  if (!*refined) {
+    nf->refinable = PETSC_FALSE;
+    PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not refined: %s after %" PetscInt_FMT " iterations\n", KSPConvergedReasons[reason], its));
+    PetscFunctionReturn(0);
+  }
+  if (nf->Qt) PetscCall(MatMult(nf->Qt, nf->dv, du));
+  else PetscCall(VecCopy(nf->dv, du));
   PetscFunctionReturn(0);
 }
 
@@ -324,7 +365,7 @@ static PetscErrorCode SSStarNewtonView_Full(SSStarNewton nt, PetscViewer viewer)
   PetscFunctionBegin;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nf->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
-  if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused));
+  if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));
   PetscFunctionReturn(0);
 }
 
@@ -359,6 +400,7 @@ PetscErrorCode SSStarNewtonCreate_Full(SSStarNewton nt)
   nt->ops.setscaling = SSStarNewtonSetScaling_Full;
   nt->ops.solve      = SSStarNewtonSolve_Full;
   nt->ops.solveknown = SSStarNewtonSolveKnown_Full;
+  nt->ops.refine     = SSStarNewtonRefine_Full;
   nt->ops.view       = SSStarNewtonView_Full;
   nt->ops.reset      = SSStarNewtonReset_Full;
   PetscFunctionReturn(0);

@@ -28,6 +28,7 @@ struct _SSStarNewtonOps {
   PetscErrorCode (*setscaling)(SSStarNewton);                                                              /* nt->gamma changed */
   PetscErrorCode (*solve)(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);       /* S, T, y, du */
   PetscErrorCode (*solveknown)(SSStarNewton, Vec, Vec, PetscBool *);                                       /* y, du; NULL: du = R^T y */
+  PetscErrorCode (*refine)(SSStarNewton, Vec, PetscBool *);                                                /* du; NULL: solves are exact */
   PetscErrorCode (*view)(SSStarNewton, PetscViewer);
   PetscErrorCode (*reset)(SSStarNewton); /* drops what was built for A */
 };
@@ -56,6 +57,7 @@ struct _n_SSStarNewton {
   PetscInt  nReused;   /* steps solved on an older factorization or multigrid                      */
   PetscInt  nKrylov;   /* Krylov iterations of all steps                                           */
   PetscInt  nFallback; /* dense: steps on an old LU that fell back to a fresh one                  */
+  PetscInt  nRefined;  /* full: steps solved on to tighter tolerances after their first solve      */
 };
 
 /* Create_<type> fills the ops and says whether the SNES's KSP is its (snes->usesksp) */

@@ -224,6 +224,22 @@ PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscReal znorm, PetscReal eta, P
 }
 
 /*
+   Whole body: the Newton step of this iteration solved on to the floor tolerance (eta = 0), when its inexact solve
+   stopped earlier: the damped steps and remedies then act on the step the dense route takes. refined: ss->dv changed.
+*/
+PetscErrorCode SNESSSStarRefineNewtonStep(SNES snes, PetscReal znorm, PetscBool *refined)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  *refined = PETSC_FALSE;
+  if (!ss->problem.wholeBody) PetscFunctionReturn(0);
+  PetscCall(SNESSSStarSetLinearTolerances(snes, znorm, 0.0));
+  PetscCall(SSStarNewtonRefine(ss->newton, ss->dv, refined));
+  PetscFunctionReturn(0);
+}
+
+/*
    The fixed-point step u <- u + R^T z of the approximation step z at u (section 1; z is ss->z), with c = A u - f
    updated; on the whole body the free dofs follow the contact dofs into equilibrium (one linear solve).
 */

@@ -1,0 +1,240 @@
+#!/usr/bin/python3
+"""The levers of the whole-body path (-snes_ssstar_reduction none) measured side by side: examples/prism at each level
+with one configuration after another (options added to the default), the configurations interleaved within every
+repeat (their order rotated from repeat to repeat) so that a noisy spell of the shared machine hits them all, and the
+AMG yardstick measured in the same repeat (bench/yardstick: one CG + GAMG solve of K, set-up + solve).
+
+  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|best|default] [--only a,b,...]
+                  [--config name='-opt value ...'] [--extra '-opt value']
+
+Per level and configuration, medians over the repeats: the whole run (the process's wall time, mesh to the -o file),
+its ratio to the default configuration of the same repeats (the machine divided out), whole / yardstick, the phases of
+-log_view (mesh, of it DMPlexInterpolate, assembly, SNESSolve; in it the Newton matrices, the multigrid set-ups and
+the Krylov solves), the Newton iterations, the linear solves, the Krylov iterations per solve, the preconditioner
+set-ups and the peak memory of the largest rank. And the checks against the default configuration of the first
+repeat: converged, the same contact states, the displacement within 1e-8 (max |u - u_default| / max |u_default|).
+Writes bench/output/levers.csv (one row per level and configuration) and levers.png (time and Krylov iterations
+relative to the default)."""
+import argparse
+import csv
+import math
+import os
+import re
+import shlex
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, "bench", "output")
+WORK = os.path.join(OUT, "levers")
+
+HYPRE = "-pc_type hypre -pc_hypre_type boomeramg -pc_hypre_boomeramg_coarsen_type HMIS -pc_hypre_boomeramg_interp_type ext+i -pc_hypre_boomeramg_P_max 4"
+# GAMG's coarse operators have all-zero rows (aggregates too small for the six rigid-body modes): SOR divides by
+# their zero diagonal unless it is shifted (the shift never acts elsewhere: those rows and columns are zero)
+SOR_SHIFT = " -mg_levels_pc_sor_diagonal_shift 1e-8"
+SETS = {
+    "default": [("default", "")],
+    "sweep": [
+        ("default", ""),
+        ("threshold 0", "-pc_gamg_threshold 0"),
+        ("threshold 0.01", "-pc_gamg_threshold 0.01"),
+        ("threshold 0.02", "-pc_gamg_threshold 0.02"),
+        ("threshold 0.05", "-pc_gamg_threshold 0.05"),
+        ("plain aggregation", "-pc_gamg_agg_nsmooths 0"),
+        ("no square graph", "-pc_gamg_square_graph 0"),
+        ("coarse 1000 eq", "-pc_gamg_coarse_eq_limit 1000"),
+        ("Chebyshev 1", "-mg_levels_ksp_max_it 1"),
+        ("Chebyshev 3", "-mg_levels_ksp_max_it 3"),
+        ("SOR", "-mg_levels_pc_type sor" + SOR_SHIFT),
+        ("SOR, Chebyshev 1", "-mg_levels_pc_type sor -mg_levels_ksp_max_it 1" + SOR_SHIFT),
+        ("point-block Jacobi", "-mg_levels_pc_type pbjacobi"),
+        ("block Jacobi ILU", "-mg_levels_pc_type bjacobi"),
+        ("ASM ILU", "-mg_levels_pc_type asm -mg_levels_sub_pc_type ilu"),
+        ("no interpolation reuse", "-pc_gamg_reuse_interpolation 0"),
+        ("SA eigenvalues", "-pc_gamg_use_sa_esteig 1"),
+        ("BoomerAMG", HYPRE + " -pc_hypre_boomeramg_strong_threshold 0.5"),
+        ("BoomerAMG nodal 0.5", HYPRE + " -pc_hypre_boomeramg_strong_threshold 0.5 -pc_hypre_boomeramg_nodal_coarsen 6 -pc_hypre_boomeramg_vec_interp_variant 2"),
+        ("BoomerAMG nodal 0.7", HYPRE + " -pc_hypre_boomeramg_strong_threshold 0.7 -pc_hypre_boomeramg_nodal_coarsen 6 -pc_hypre_boomeramg_vec_interp_variant 2"),
+        ("GMRES always", "-ksp_type gmres -ksp_pc_side right -ksp_norm_type unpreconditioned -ksp_gmres_restart 100"),
+        ("eta_max 0.3", "-snes_ssstar_ksp_rtol_max 0.3"),
+        ("eta_max 0.03", "-snes_ssstar_ksp_rtol_max 0.03"),
+        ("pc_reuse 0", "-snes_ssstar_pc_reuse 0"),
+        ("pc_reuse 0.6", "-snes_ssstar_pc_reuse 0.6"),
+        ("pc_reuse 1", "-snes_ssstar_pc_reuse 1"),
+    ],
+}
+PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
+AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
+ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
+KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \(\S+ per solve\), (\d+) preconditioner set-ups")
+# -log_view events: name, count, ratio, max time
+EVENTS = {"mesh": "SSStarMesh", "interpolate": "DMPlexInterp", "assembly": "SSStarAssembly", "snes": "SNESSolve",
+          "newton_matrix": "SSStarNSAssemble", "pc_setup": "SSStarNSFactor", "krylov": "SSStarNSKrylov", "output": "SSStarOutput"}
+COLUMNS = ["level", "ranks", "config", "options", "runs", "whole", "rel_default", "amg", "whole_per_amg", "mesh", "interpolate", "assembly",
+           "snes", "newton_matrix", "pc_setup", "krylov", "output", "iters", "solves", "krylov_per_solve", "pc_setups", "peak_gb",
+           "converged", "same_states", "du_rel", "states", "reason"]
+
+
+def event_time(log, name):
+    m = re.search(r"^%s\s+(\d+)\s+\S+\s+(\S+)" % re.escape(name), log, re.M)
+    return float(m.group(2)) if m else 0.0
+
+
+def mpiexec(ranks):
+    return ["mpiexec", "--oversubscribe", "-n", str(ranks)]
+
+
+def displacement(h5):
+    import h5py
+    with h5py.File(h5, "r") as f:
+        return f["/fields/displacement"][...]
+
+
+def measure(level, ranks, name, options, h5):
+    cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", "none",
+                            "-summary_header", "0", "-memory_view", "-snes_view", "-log_view", "-o", h5] + options
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    whole = time.perf_counter() - t0
+    m = ROW.search(p.stdout)
+    if p.returncode or not m:
+        print("  level %d, %s: failed (exit status %d)\n%s" % (level, name, p.returncode, p.stdout[-1500:]), flush=True)
+        return None
+    k = KRYLOV.search(p.stdout)
+    r = {"whole": whole, "iters": int(m.group(8)), "states": m.group(10), "reason": m.group(11),
+         "solves": int(k.group(1)) if k else 0, "krylov_per_solve": int(k.group(2)) / int(k.group(1)) if k else math.nan,
+         "pc_setups": int(k.group(3)) if k else 0, "peak_gb": float(PEAK.search(p.stdout).group(2)) / 1e9}
+    for key, event in EVENTS.items():
+        r[key] = event_time(p.stdout, event)
+    return r
+
+
+def yardstick(level, ranks):
+    cmd = mpiexec(ranks) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", "amg", "-options_file",
+                            os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level)]
+    m = AMG.search(subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout)
+    return float(m.group(2)) + float(m.group(3)) if m else math.nan
+
+
+def level_list(spec):
+    out = []
+    for part in spec.split(","):
+        lo, _, hi = part.partition("-")
+        out += list(range(int(lo), int(hi or lo) + 1))
+    return out
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--levels", default="8,12,16")
+    parser.add_argument("--ranks", type=int, default=2)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--set", default="sweep", choices=sorted(SETS))
+    parser.add_argument("--only", default="", help="comma-separated configuration names of the set (default kept)")
+    parser.add_argument("--config", action="append", default=[], help="name='options': an extra configuration")
+    parser.add_argument("--extra", default="", help="options added to every configuration")
+    parser.add_argument("--csv", default="levers", help="base name of the CSV and PNG in bench/output")
+    args = parser.parse_args()
+    for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
+        os.environ.setdefault(k, v)
+    os.makedirs(WORK, exist_ok=True)
+    configs = list(SETS[args.set])
+    if args.only:
+        keep = set(args.only.split(","))
+        configs = [c for c in configs if c[0] == "default" or c[0] in keep]
+    for spec in args.config:
+        name, _, opts = spec.partition("=")
+        configs.append((name, opts))
+    configs = [(name, shlex.split(opts) + shlex.split(args.extra)) for name, opts in configs]
+    rows = []
+    print("medians of %d repeats, %d ranks, seconds; rel = whole / whole of the default in the same repeats; amg = the yardstick (one CG + GAMG solve of K) of the same repeats" % (args.repeat, args.ranks))
+    print("level config                    whole   rel  amg  whole/amg  mesh (interp) assembly  snes  matrix setup krylov output  its solves kry/solve setups  GB   check")
+    for level in level_list(args.levels):
+        runs = {name: [] for name, _ in configs}
+        sticks = []
+        reference = None
+        for rep in range(args.repeat):
+            sticks.append(yardstick(level, args.ranks))
+            order = configs[rep % len(configs):] + configs[:rep % len(configs)]
+            if rep == 0:  # the default first: the reference of the checks
+                order = configs
+            for name, options in order:
+                h5 = os.path.join(WORK, "L%d_%s.h5" % (level, re.sub(r"\W+", "_", name)))
+                r = measure(level, args.ranks, name, options, h5)
+                if r is None:
+                    continue
+                r["converged"] = r["reason"].startswith("CONVERGED")
+                u = displacement(h5) if r["converged"] else None
+                if name == "default" and reference is None and u is not None:
+                    reference = (u, r["states"])
+                if reference is not None and u is not None:
+                    r["du_rel"] = float(abs(u - reference[0]).max() / abs(reference[0]).max())
+                    r["same_states"] = r["states"] == reference[1]
+                else:
+                    r["du_rel"], r["same_states"] = math.nan, False
+                r["rep"] = rep
+                runs[name].append(r)
+                for f in (h5, h5[:-3] + ".xmf"):
+                    if os.path.exists(f):
+                        os.remove(f)
+        amg = statistics.median(sticks)
+        default_whole = {r["rep"]: r["whole"] for r in runs["default"]}
+        for name, options in configs:
+            rs = runs[name]
+            if not rs:
+                print("%5d %-24s failed" % (level, name), flush=True)
+                continue
+            row = {"level": level, "ranks": args.ranks, "config": name, "options": " ".join(options), "runs": len(rs), "amg": amg,
+                   "iters": max(r["iters"] for r in rs), "states": rs[0]["states"], "reason": rs[0]["reason"],
+                   "converged": all(r["converged"] for r in rs), "same_states": all(r["same_states"] for r in rs),
+                   "du_rel": max(r["du_rel"] for r in rs)}
+            for key in ("whole", "peak_gb", "solves", "krylov_per_solve", "pc_setups") + tuple(EVENTS):
+                row[key] = statistics.median(r[key] for r in rs)
+            ratios = [r["whole"] / default_whole[r["rep"]] for r in rs if r["rep"] in default_whole]
+            row["rel_default"] = statistics.median(ratios) if ratios else math.nan
+            row["whole_per_amg"] = row["whole"] / amg
+            check = "ok" if row["converged"] and row["same_states"] and row["du_rel"] <= 1e-8 else \
+                "NOT CONVERGED" if not row["converged"] else "states differ" if not row["same_states"] else "du %.1e" % row["du_rel"]
+            print("%5d %-24s %6.2f %5.2f %5.2f %6.1f %7.2f (%5.2f) %6.2f %7.2f %6.2f %5.2f %6.2f %5.2f %5d %5d %8.1f %6d %6.2f  %s" % (
+                level, name[:24], row["whole"], row["rel_default"], amg, row["whole_per_amg"], row["mesh"], row["interpolate"],
+                row["assembly"], row["snes"], row["newton_matrix"], row["pc_setup"], row["krylov"], row["output"], row["iters"],
+                row["solves"], row["krylov_per_solve"], row["pc_setups"], row["peak_gb"], check), flush=True)
+            rows.append(row)
+    with open(os.path.join(OUT, args.csv + ".csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS)
+        w.writeheader()
+        w.writerows(rows)
+    plot(rows, args.csv)
+    print("wrote %s/%s.csv and %s.png" % (OUT, args.csv, args.csv))
+
+
+def plot(rows, name):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    levels = sorted({r["level"] for r in rows})
+    names = list(dict.fromkeys(r["config"] for r in rows))
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(13, 0.3 * len(names) + 2), sharey=True)
+    height = 0.8 / max(len(levels), 1)
+    for i, level in enumerate(levels):
+        by = {r["config"]: r for r in rows if r["level"] == level}
+        default = by.get("default")
+        ys = [k + i * height for k in range(len(names))]
+        a1.barh(ys, [by[n]["rel_default"] if n in by else 0 for n in names], height, label="level %d" % level)
+        a2.barh(ys, [by[n]["krylov_per_solve"] * by[n]["solves"] / (default["krylov_per_solve"] * default["solves"]) if n in by and default else 0
+                     for n in names], height, label="level %d" % level)
+    a1.set_yticks([k + 0.4 - height / 2 for k in range(len(names))])
+    a1.set_yticklabels(names, fontsize=7)
+    for ax, title in ((a1, "whole run / default's (same repeats)"), (a2, "Krylov iterations / default's")):
+        ax.axvline(1.0, color="black", lw=0.8)
+        ax.set_title(title, fontsize=9)
+        ax.legend(fontsize=7)
+    a1.invert_yaxis()  # shared by a2
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, name + ".png"), dpi=110)
+
+
+if __name__ == "__main__":
+    main()

@@ -32,7 +32,8 @@ WORK = os.path.join(OUT, "levers")
 
 HYPRE = "-pc_type hypre -pc_hypre_type boomeramg -pc_hypre_boomeramg_coarsen_type HMIS -pc_hypre_boomeramg_interp_type ext+i -pc_hypre_boomeramg_P_max 4"
 # GAMG's coarse operators have all-zero rows (aggregates too small for the six rigid-body modes): SOR divides by
-# their zero diagonal unless it is shifted (the shift never acts elsewhere: those rows and columns are zero)
+# their zero diagonal unless it is shifted (the shift never acts elsewhere: those rows and columns are zero); ILU
+# needs a shift for them too, and point-block Jacobi fails on their singular blocks (not in the sweep)
 SOR_SHIFT = " -mg_levels_pc_sor_diagonal_shift 1e-8"
 SETS = {
     "default": [("default", "")],
@@ -49,9 +50,8 @@ SETS = {
         ("Chebyshev 3", "-mg_levels_ksp_max_it 3"),
         ("SOR", "-mg_levels_pc_type sor" + SOR_SHIFT),
         ("SOR, Chebyshev 1", "-mg_levels_pc_type sor -mg_levels_ksp_max_it 1" + SOR_SHIFT),
-        ("point-block Jacobi", "-mg_levels_pc_type pbjacobi"),
-        ("block Jacobi ILU", "-mg_levels_pc_type bjacobi"),
-        ("ASM ILU", "-mg_levels_pc_type asm -mg_levels_sub_pc_type ilu"),
+        ("block Jacobi ILU", "-mg_levels_pc_type bjacobi -mg_levels_sub_pc_factor_shift_type nonzero"),
+        ("ASM ILU", "-mg_levels_pc_type asm -mg_levels_sub_pc_type ilu -mg_levels_sub_pc_factor_shift_type nonzero"),
         ("no interpolation reuse", "-pc_gamg_reuse_interpolation 0"),
         ("SA eigenvalues", "-pc_gamg_use_sa_esteig 1"),
         ("BoomerAMG", HYPRE + " -pc_hypre_boomeramg_strong_threshold 0.5"),
@@ -65,6 +65,17 @@ SETS = {
         ("pc_reuse 1", "-snes_ssstar_pc_reuse 1"),
     ],
 }
+# the second round: what helped at level 8 (Krylov iterations, set-up work), alone and combined
+SOR = "-mg_levels_pc_type sor" + SOR_SHIFT
+SETS["round2"] = [c for c in SETS["sweep"] if c[0] in (
+    "default", "threshold 0.01", "plain aggregation", "coarse 1000 eq", "Chebyshev 1", "Chebyshev 3", "SOR", "SOR, Chebyshev 1",
+    "block Jacobi ILU", "ASM ILU", "no interpolation reuse", "eta_max 0.3", "pc_reuse 0.6", "pc_reuse 1")] + [
+    ("SOR, coarse 1000 eq", SOR + " -pc_gamg_coarse_eq_limit 1000"),
+    ("SOR, plain aggregation", SOR + " -pc_gamg_agg_nsmooths 0"),
+    ("SOR, threshold 0.01", SOR + " -pc_gamg_threshold 0.01"),
+    ("SOR, pc_reuse 0.6", SOR + " -snes_ssstar_pc_reuse 0.6"),
+    ("SOR, eta_max 0.3", SOR + " -snes_ssstar_ksp_rtol_max 0.3"),
+]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
@@ -73,13 +84,22 @@ KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \
 EVENTS = {"mesh": "SSStarMesh", "interpolate": "DMPlexInterp", "assembly": "SSStarAssembly", "snes": "SNESSolve",
           "newton_matrix": "SSStarNSAssemble", "pc_setup": "SSStarNSFactor", "krylov": "SSStarNSKrylov", "output": "SSStarOutput"}
 COLUMNS = ["level", "ranks", "config", "options", "runs", "whole", "rel_default", "amg", "whole_per_amg", "mesh", "interpolate", "assembly",
-           "snes", "newton_matrix", "pc_setup", "krylov", "output", "iters", "solves", "krylov_per_solve", "pc_setups", "peak_gb",
+           "snes", "snes_gflop", "newton_matrix", "pc_setup", "krylov", "output", "iters", "solves", "krylov_per_solve", "pc_setups", "peak_gb",
            "converged", "same_states", "du_rel", "states", "reason"]
 
 
 def event_time(log, name):
     m = re.search(r"^%s\s+(\d+)\s+\S+\s+(\S+)" % re.escape(name), log, re.M)
     return float(m.group(2)) if m else 0.0
+
+
+def event_flops(log, name):
+    """the flops of an event summed over the ranks: -log_view's last column (Mflop/s of the sum) times the max time"""
+    m = re.search(r"^%s\s+\d+\s.*$" % re.escape(name), log, re.M)
+    if not m:
+        return math.nan
+    f = m.group(0).split()
+    return float(f[3]) * float(f[-1]) * 1e6
 
 
 def mpiexec(ranks):
@@ -108,6 +128,7 @@ def measure(level, ranks, name, options, h5):
          "pc_setups": int(k.group(3)) if k else 0, "peak_gb": float(PEAK.search(p.stdout).group(2)) / 1e9}
     for key, event in EVENTS.items():
         r[key] = event_time(p.stdout, event)
+    r["snes_gflop"] = event_flops(p.stdout, "SNESSolve") / 1e9
     return r
 
 
@@ -136,6 +157,7 @@ def main():
     parser.add_argument("--config", action="append", default=[], help="name='options': an extra configuration")
     parser.add_argument("--extra", default="", help="options added to every configuration")
     parser.add_argument("--csv", default="levers", help="base name of the CSV and PNG in bench/output")
+    parser.add_argument("--progress", action="store_true", help="a line per run on stderr")
     args = parser.parse_args()
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
@@ -150,7 +172,7 @@ def main():
     configs = [(name, shlex.split(opts) + shlex.split(args.extra)) for name, opts in configs]
     rows = []
     print("medians of %d repeats, %d ranks, seconds; rel = whole / whole of the default in the same repeats; amg = the yardstick (one CG + GAMG solve of K) of the same repeats" % (args.repeat, args.ranks))
-    print("level config                    whole   rel  amg  whole/amg  mesh (interp) assembly  snes  matrix setup krylov output  its solves kry/solve setups  GB   check")
+    print("level config                    whole   rel  amg  whole/amg  mesh (interp) assembly  snes Gflop matrix setup krylov output  its solves kry/solve setups  GB   check")
     for level in level_list(args.levels):
         runs = {name: [] for name, _ in configs}
         sticks = []
@@ -176,6 +198,9 @@ def main():
                     r["du_rel"], r["same_states"] = math.nan, False
                 r["rep"] = rep
                 runs[name].append(r)
+                if args.progress:
+                    print("  level %d repeat %d %-24s %6.2f s, %d its, %.1f Krylov its per solve, %s" % (
+                        level, rep, name, r["whole"], r["iters"], r["krylov_per_solve"], r["reason"]), file=sys.stderr, flush=True)
                 for f in (h5, h5[:-3] + ".xmf"):
                     if os.path.exists(f):
                         os.remove(f)
@@ -190,16 +215,16 @@ def main():
                    "iters": max(r["iters"] for r in rs), "states": rs[0]["states"], "reason": rs[0]["reason"],
                    "converged": all(r["converged"] for r in rs), "same_states": all(r["same_states"] for r in rs),
                    "du_rel": max(r["du_rel"] for r in rs)}
-            for key in ("whole", "peak_gb", "solves", "krylov_per_solve", "pc_setups") + tuple(EVENTS):
+            for key in ("whole", "peak_gb", "solves", "krylov_per_solve", "pc_setups", "snes_gflop") + tuple(EVENTS):
                 row[key] = statistics.median(r[key] for r in rs)
             ratios = [r["whole"] / default_whole[r["rep"]] for r in rs if r["rep"] in default_whole]
             row["rel_default"] = statistics.median(ratios) if ratios else math.nan
             row["whole_per_amg"] = row["whole"] / amg
             check = "ok" if row["converged"] and row["same_states"] and row["du_rel"] <= 1e-8 else \
                 "NOT CONVERGED" if not row["converged"] else "states differ" if not row["same_states"] else "du %.1e" % row["du_rel"]
-            print("%5d %-24s %6.2f %5.2f %5.2f %6.1f %7.2f (%5.2f) %6.2f %7.2f %6.2f %5.2f %6.2f %5.2f %5d %5d %8.1f %6d %6.2f  %s" % (
+            print("%5d %-24s %6.2f %5.2f %5.2f %6.1f %7.2f (%5.2f) %6.2f %7.2f %5.1f %6.2f %5.2f %6.2f %5.2f %5d %5d %8.1f %6d %6.2f  %s" % (
                 level, name[:24], row["whole"], row["rel_default"], amg, row["whole_per_amg"], row["mesh"], row["interpolate"],
-                row["assembly"], row["snes"], row["newton_matrix"], row["pc_setup"], row["krylov"], row["output"], row["iters"],
+                row["assembly"], row["snes"], row["snes_gflop"], row["newton_matrix"], row["pc_setup"], row["krylov"], row["output"], row["iters"],
                 row["solves"], row["krylov_per_solve"], row["pc_setups"], row["peak_gb"], check), flush=True)
             rows.append(row)
     with open(os.path.join(OUT, args.csv + ".csv"), "w", newline="") as f:

@@ -20,6 +20,7 @@ import csv
 import math
 import os
 import re
+import resource
 import shlex
 import statistics
 import subprocess
@@ -83,7 +84,7 @@ KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \
 # -log_view events: name, count, ratio, max time
 EVENTS = {"mesh": "SSStarMesh", "interpolate": "DMPlexInterp", "assembly": "SSStarAssembly", "snes": "SNESSolve",
           "newton_matrix": "SSStarNSAssemble", "pc_setup": "SSStarNSFactor", "krylov": "SSStarNSKrylov", "output": "SSStarOutput"}
-COLUMNS = ["level", "ranks", "config", "options", "runs", "whole", "rel_default", "amg", "whole_per_amg", "mesh", "interpolate", "assembly",
+COLUMNS = ["level", "ranks", "config", "options", "runs", "whole", "rel_default", "cpu", "cpu_rel_default", "amg", "whole_per_amg", "mesh", "interpolate", "assembly",
            "snes", "snes_gflop", "newton_matrix", "pc_setup", "krylov", "output", "iters", "solves", "krylov_per_solve", "pc_setups", "peak_gb",
            "converged", "same_states", "du_rel", "states", "reason"]
 
@@ -115,15 +116,15 @@ def displacement(h5):
 def measure(level, ranks, name, options, h5):
     cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", "none",
                             "-summary_header", "0", "-memory_view", "-snes_view", "-log_view", "-o", h5] + options
-    t0 = time.perf_counter()
+    t0, u0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    whole = time.perf_counter() - t0
+    whole, u1 = time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
     m = ROW.search(p.stdout)
     if p.returncode or not m:
         print("  level %d, %s: failed (exit status %d)\n%s" % (level, name, p.returncode, p.stdout[-1500:]), flush=True)
         return None
     k = KRYLOV.search(p.stdout)
-    r = {"whole": whole, "iters": int(m.group(8)), "states": m.group(10), "reason": m.group(11),
+    r = {"whole": whole, "cpu": u1.ru_utime + u1.ru_stime - u0.ru_utime - u0.ru_stime, "iters": int(m.group(8)), "states": m.group(10), "reason": m.group(11),
          "solves": int(k.group(1)) if k else 0, "krylov_per_solve": int(k.group(2)) / int(k.group(1)) if k else math.nan,
          "pc_setups": int(k.group(3)) if k else 0, "peak_gb": float(PEAK.search(p.stdout).group(2)) / 1e9}
     for key, event in EVENTS.items():
@@ -172,7 +173,7 @@ def main():
     configs = [(name, shlex.split(opts) + shlex.split(args.extra)) for name, opts in configs]
     rows = []
     print("medians of %d repeats, %d ranks, seconds; rel = whole / whole of the default in the same repeats; amg = the yardstick (one CG + GAMG solve of K) of the same repeats" % (args.repeat, args.ranks))
-    print("level config                    whole   rel  amg  whole/amg  mesh (interp) assembly  snes Gflop matrix setup krylov output  its solves kry/solve setups  GB   check")
+    print("level config                    whole   rel   cpu   rel  amg  whole/amg  mesh (interp) assembly  snes Gflop matrix setup krylov output  its solves kry/solve setups  GB   check")
     for level in level_list(args.levels):
         runs = {name: [] for name, _ in configs}
         sticks = []
@@ -199,13 +200,14 @@ def main():
                 r["rep"] = rep
                 runs[name].append(r)
                 if args.progress:
-                    print("  level %d repeat %d %-24s %6.2f s, %d its, %.1f Krylov its per solve, %s" % (
-                        level, rep, name, r["whole"], r["iters"], r["krylov_per_solve"], r["reason"]), file=sys.stderr, flush=True)
+                    print("  level %d repeat %d %-24s %6.2f s (cpu %6.1f s), %d its, %.1f Krylov its per solve, %s" % (
+                        level, rep, name, r["whole"], r["cpu"], r["iters"], r["krylov_per_solve"], r["reason"]), file=sys.stderr, flush=True)
                 for f in (h5, h5[:-3] + ".xmf"):
                     if os.path.exists(f):
                         os.remove(f)
         amg = statistics.median(sticks)
         default_whole = {r["rep"]: r["whole"] for r in runs["default"]}
+        default_cpu = {r["rep"]: r["cpu"] for r in runs["default"]}
         for name, options in configs:
             rs = runs[name]
             if not rs:
@@ -215,15 +217,17 @@ def main():
                    "iters": max(r["iters"] for r in rs), "states": rs[0]["states"], "reason": rs[0]["reason"],
                    "converged": all(r["converged"] for r in rs), "same_states": all(r["same_states"] for r in rs),
                    "du_rel": max(r["du_rel"] for r in rs)}
-            for key in ("whole", "peak_gb", "solves", "krylov_per_solve", "pc_setups", "snes_gflop") + tuple(EVENTS):
+            for key in ("whole", "cpu", "peak_gb", "solves", "krylov_per_solve", "pc_setups", "snes_gflop") + tuple(EVENTS):
                 row[key] = statistics.median(r[key] for r in rs)
             ratios = [r["whole"] / default_whole[r["rep"]] for r in rs if r["rep"] in default_whole]
             row["rel_default"] = statistics.median(ratios) if ratios else math.nan
+            ratios = [r["cpu"] / default_cpu[r["rep"]] for r in rs if r["rep"] in default_cpu]
+            row["cpu_rel_default"] = statistics.median(ratios) if ratios else math.nan
             row["whole_per_amg"] = row["whole"] / amg
             check = "ok" if row["converged"] and row["same_states"] and row["du_rel"] <= 1e-8 else \
                 "NOT CONVERGED" if not row["converged"] else "states differ" if not row["same_states"] else "du %.1e" % row["du_rel"]
-            print("%5d %-24s %6.2f %5.2f %5.2f %6.1f %7.2f (%5.2f) %6.2f %7.2f %5.1f %6.2f %5.2f %6.2f %5.2f %5d %5d %8.1f %6d %6.2f  %s" % (
-                level, name[:24], row["whole"], row["rel_default"], amg, row["whole_per_amg"], row["mesh"], row["interpolate"],
+            print("%5d %-24s %6.2f %5.2f %6.1f %5.2f %5.2f %6.1f %7.2f (%5.2f) %6.2f %7.2f %5.1f %6.2f %5.2f %6.2f %5.2f %5d %5d %8.1f %6d %6.2f  %s" % (
+                level, name[:24], row["whole"], row["rel_default"], row["cpu"], row["cpu_rel_default"], amg, row["whole_per_amg"], row["mesh"], row["interpolate"],
                 row["assembly"], row["snes"], row["snes_gflop"], row["newton_matrix"], row["pc_setup"], row["krylov"], row["output"], row["iters"],
                 row["solves"], row["krylov_per_solve"], row["pc_setups"], row["peak_gb"], check), flush=True)
             rows.append(row)

@@ -243,7 +243,7 @@ PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *n
 }
 
 /*
-   Reads a gmsh mesh through its cache (meshcache.c: every rank reads its slice, the mesh is built and interpolated in
+   Reads a gmsh mesh through its cache (meshcache.c: every rank reads its slice, the mesh is built with its faces in
    parallel), checks the groups the scene uses. tags: a local vector (one entry per local vertex, in vertex order) with
    each vertex's index in the file's node order.
 */

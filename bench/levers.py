@@ -4,7 +4,7 @@ with one configuration after another (options added to the default), the configu
 repeat (their order rotated from repeat to repeat) so that a noisy spell of the shared machine hits them all, and the
 AMG yardstick measured in the same repeat (bench/yardstick: one CG + GAMG solve of K, set-up + solve).
 
-  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|best|default] [--only a,b,...]
+  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|best|default] [--only "a;b;..."]
                   [--config name='-opt value ...'] [--extra '-opt value']
 
 Per level and configuration, medians over the repeats: the whole run (the process's wall time, mesh to the -o file),
@@ -50,7 +50,7 @@ SETS = {
         ("Chebyshev 1", "-mg_levels_ksp_max_it 1"),
         ("Chebyshev 3", "-mg_levels_ksp_max_it 3"),
         ("SOR", "-mg_levels_pc_type sor" + SOR_SHIFT),
-        ("SOR, Chebyshev 1", "-mg_levels_pc_type sor -mg_levels_ksp_max_it 1" + SOR_SHIFT),
+        ("SOR + Chebyshev 1", "-mg_levels_pc_type sor -mg_levels_ksp_max_it 1" + SOR_SHIFT),
         ("block Jacobi ILU", "-mg_levels_pc_type bjacobi -mg_levels_sub_pc_factor_shift_type nonzero"),
         ("ASM ILU", "-mg_levels_pc_type asm -mg_levels_sub_pc_type ilu -mg_levels_sub_pc_factor_shift_type nonzero"),
         ("no interpolation reuse", "-pc_gamg_reuse_interpolation 0"),
@@ -69,13 +69,13 @@ SETS = {
 # the second round: what helped at level 8 (Krylov iterations, set-up work), alone and combined
 SOR = "-mg_levels_pc_type sor" + SOR_SHIFT
 SETS["round2"] = [c for c in SETS["sweep"] if c[0] in (
-    "default", "threshold 0.01", "plain aggregation", "coarse 1000 eq", "Chebyshev 1", "Chebyshev 3", "SOR", "SOR, Chebyshev 1",
+    "default", "threshold 0.01", "plain aggregation", "coarse 1000 eq", "Chebyshev 1", "Chebyshev 3", "SOR", "SOR + Chebyshev 1",
     "block Jacobi ILU", "ASM ILU", "no interpolation reuse", "eta_max 0.3", "pc_reuse 0.6", "pc_reuse 1")] + [
-    ("SOR, coarse 1000 eq", SOR + " -pc_gamg_coarse_eq_limit 1000"),
-    ("SOR, plain aggregation", SOR + " -pc_gamg_agg_nsmooths 0"),
-    ("SOR, threshold 0.01", SOR + " -pc_gamg_threshold 0.01"),
-    ("SOR, pc_reuse 0.6", SOR + " -snes_ssstar_pc_reuse 0.6"),
-    ("SOR, eta_max 0.3", SOR + " -snes_ssstar_ksp_rtol_max 0.3"),
+    ("SOR + coarse 1000 eq", SOR + " -pc_gamg_coarse_eq_limit 1000"),
+    ("SOR + plain aggregation", SOR + " -pc_gamg_agg_nsmooths 0"),
+    ("SOR + threshold 0.01", SOR + " -pc_gamg_threshold 0.01"),
+    ("SOR + pc_reuse 0.6", SOR + " -snes_ssstar_pc_reuse 0.6"),
+    ("SOR + eta_max 0.3", SOR + " -snes_ssstar_ksp_rtol_max 0.3"),
 ]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
@@ -154,7 +154,7 @@ def main():
     parser.add_argument("--ranks", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--set", default="sweep", choices=sorted(SETS))
-    parser.add_argument("--only", default="", help="comma-separated configuration names of the set (default kept)")
+    parser.add_argument("--only", default="", help="configuration names of the set, separated by semicolons (default kept)")
     parser.add_argument("--config", action="append", default=[], help="name='options': an extra configuration")
     parser.add_argument("--extra", default="", help="options added to every configuration")
     parser.add_argument("--csv", default="levers", help="base name of the CSV and PNG in bench/output")
@@ -165,7 +165,7 @@ def main():
     os.makedirs(WORK, exist_ok=True)
     configs = list(SETS[args.set])
     if args.only:
-        keep = set(args.only.split(","))
+        keep = set(n.strip() for n in args.only.split(";"))
         configs = [c for c in configs if c[0] == "default" or c[0] in keep]
     for spec in args.config:
         name, _, opts = spec.partition("=")

@@ -126,10 +126,11 @@ static void GroupElements(int dim, int tag, int type, const size_t sortedNodes[]
 }
 
 /*
-   Rank 0: reads msh with gmsh and writes the cache to a temporary name, renamed to cache when complete. *failure: 0,
-   or 1 (gmsh cannot read it), 2 (cannot write the cache), 3 (a volume element that is not a linear tetrahedron).
+   Rank 0: writes the cache of the mesh in gmsh's current model to a temporary name, renamed to cache when complete.
+   *failure: 0, or 1 (gmsh cannot give the mesh), 2 (cannot write the cache), 3 (a volume element that is not a
+   linear tetrahedron).
 */
-static PetscErrorCode WriteCache(const char msh[], const char cache[], const long long stamp[2], int *failure)
+static PetscErrorCode WriteCacheOfModel(const char cache[], const long long stamp[2], int *failure)
 {
   char       tmp[PETSC_MAX_PATH_LEN];
   size_t    *nodeTags = NULL, nn = 0, nc3 = 0, np = 0, *sorted = NULL, *byTag = NULL, ncells = 0, ndimTags = 0, ng = 0;
@@ -141,13 +142,9 @@ static PetscErrorCode WriteCache(const char msh[], const char cache[], const lon
 
   PetscFunctionBegin;
   *failure = 0;
-  gmshInitialize(0, NULL, 0, &ierr);
-  if (!ierr) gmshOptionSetNumber("General.Verbosity", 0, &ierr);
-  if (!ierr) gmshOpen(msh, &ierr);
-  if (!ierr) gmshModelMeshGetNodes(&nodeTags, &nn, &coord, &nc3, &param, &np, -1, -1, 0, 0, &ierr);
+  gmshModelMeshGetNodes(&nodeTags, &nn, &coord, &nc3, &param, &np, -1, -1, 0, 0, &ierr);
   if (ierr) {
     *failure = 1;
-    gmshFinalize(&ierr);
     PetscFunctionReturn(0);
   }
   /* the vertices by ascending node tag */
@@ -265,6 +262,20 @@ static PetscErrorCode WriteCache(const char msh[], const char cache[], const lon
   gmshFree(coord);
   gmshFree(param);
   gmshFree(dimTags);
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0: reads msh with gmsh and writes its cache (WriteCacheOfModel(); *failure 1 also when gmsh cannot read msh) */
+static PetscErrorCode WriteCache(const char msh[], const char cache[], const long long stamp[2], int *failure)
+{
+  int ierr = 0;
+
+  PetscFunctionBegin;
+  gmshInitialize(0, NULL, 0, &ierr);
+  if (!ierr) gmshOptionSetNumber("General.Verbosity", 0, &ierr);
+  if (!ierr) gmshOpen(msh, &ierr);
+  *failure = 1;
+  if (!ierr) PetscCall(WriteCacheOfModel(cache, stamp, failure));
   gmshFinalize(&ierr);
   PetscFunctionReturn(0);
 }
@@ -317,6 +328,23 @@ static PetscBool CacheCurrent(const char cache[], const long long stamp[2])
   }
   H5E_END_TRY;
   return (PetscBool)(ok >= 0 && meta[0] == SSSTAR_CACHE_VERSION && meta[1] == stamp[0] && meta[2] == stamp[1]);
+}
+
+/*
+   Rank 0, right after gmsh wrote msh from its current model: the cache of msh from that model, so that the first read
+   of msh does not parse it again (a failure here is left to SSStarMeshLoadCached(), which writes the cache itself)
+*/
+PetscErrorCode SSStarMeshCacheFromModel(const char msh[])
+{
+  char      cache[PETSC_MAX_PATH_LEN];
+  long long stamp[2];
+  int       failure;
+
+  PetscFunctionBegin;
+  PetscCall(CacheName(msh, cache, sizeof(cache)));
+  FileStamp(msh, stamp);
+  PetscCall(WriteCacheOfModel(cache, stamp, &failure));
+  PetscFunctionReturn(0);
 }
 
 /* rows [start, start + count) of a dataset of cols columns into buf */

@@ -4,7 +4,7 @@ with one configuration after another (options added to the default), the configu
 repeat (their order rotated from repeat to repeat) so that a noisy spell of the shared machine hits them all, and the
 AMG yardstick measured in the same repeat (bench/yardstick: one CG + GAMG solve of K, set-up + solve).
 
-  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|best|default] [--only "a;b;..."]
+  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|default] [--only "a;b;..."]
                   [--config name='-opt value ...'] [--extra '-opt value']
 
 Per level and configuration, medians over the repeats: the whole run (the process's wall time, mesh to the -o file),
@@ -76,6 +76,17 @@ SETS["round2"] = [c for c in SETS["sweep"] if c[0] in (
     ("SOR + threshold 0.01", SOR + " -pc_gamg_threshold 0.01"),
     ("SOR + pc_reuse 0.6", SOR + " -snes_ssstar_pc_reuse 0.6"),
     ("SOR + eta_max 0.3", SOR + " -snes_ssstar_ksp_rtol_max 0.3"),
+]
+# the third round: SOR as a Richardson smoother (one or two sweeps, no Chebyshev: no residual of its own, no eigenvalue
+# estimates), alone and with what cuts the set-ups
+RSOR = "-mg_levels_ksp_type richardson -mg_levels_pc_type sor" + SOR_SHIFT
+SETS["round3"] = [c for c in SETS["round2"] if c[0] in ("default", "no interpolation reuse", "SOR + pc_reuse 0.6", "SOR + plain aggregation")] + [
+    ("Richardson SOR", RSOR + " -mg_levels_ksp_max_it 1"),
+    ("Richardson SOR 2", RSOR + " -mg_levels_ksp_max_it 2"),
+    ("Richardson SOR + plain aggregation", RSOR + " -mg_levels_ksp_max_it 1 -pc_gamg_agg_nsmooths 0"),
+    ("Richardson SOR 2 + plain aggregation", RSOR + " -mg_levels_ksp_max_it 2 -pc_gamg_agg_nsmooths 0"),
+    ("Richardson SOR + no interpolation reuse", RSOR + " -mg_levels_ksp_max_it 1 -pc_gamg_reuse_interpolation 0"),
+    ("Richardson SOR + pc_reuse 0.6", RSOR + " -mg_levels_ksp_max_it 1 -snes_ssstar_pc_reuse 0.6"),
 ]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")

@@ -70,6 +70,7 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
     PetscCall(PetscSNPrintf(what, sizeof(what), "-level %" PetscInt_FMT " of %s", level, geo));
     PetscCall(SSStarCheckMemory(comm, nodes, what));
   }
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshGmsh, 0, 0, 0, 0));
   if (rank == 0) {
     char tmp[PETSC_MAX_PATH_LEN];
 
@@ -86,6 +87,7 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
   }
   /* every rank raises the error, so that none waits for rank 0 */
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, comm));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshGmsh, 0, 0, 0, 0));
   PetscCheck(failure != 1, comm, PETSC_ERR_LIB, "gmsh failed to mesh %s at level %" PetscInt_FMT, geo, level);
   PetscCheck(failure != 2, comm, PETSC_ERR_FILE_WRITE, "Cannot write the mesh file %s", msh);
   PetscFunctionReturn(0);

@@ -341,9 +341,11 @@ PetscErrorCode SSStarMeshCacheFromModel(const char msh[])
   int       failure;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshCache, 0, 0, 0, 0));
   PetscCall(CacheName(msh, cache, sizeof(cache)));
   FileStamp(msh, stamp);
   PetscCall(WriteCacheOfModel(cache, stamp, &failure));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshCache, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -850,11 +852,13 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(CacheName(msh, cache, sizeof(cache)));
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshCache, 0, 0, 0, 0));
   if (rank == 0) {
     FileStamp(msh, stamp);
     if (!CacheCurrent(cache, stamp)) PetscCall(WriteCache(msh, cache, stamp, &failure));
   }
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, comm));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshCache, 0, 0, 0, 0));
   PetscCheck(failure != 1, comm, PETSC_ERR_FILE_UNEXPECTED, "Cannot read the mesh file %s (gmsh could not; is it a complete gmsh file?)", msh);
   PetscCheck(failure != 2, comm, PETSC_ERR_FILE_WRITE, "Cannot write the mesh cache %s of %s", cache, msh);
   PetscCheck(failure != 3, comm, PETSC_ERR_SUP, "The mesh file %s has volume elements that are not linear tetrahedra: ssstar's FEM is P1 on tetrahedra", msh);
@@ -864,6 +868,7 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   file = H5Fopen(cache, H5F_ACC_RDONLY, plist);
   PetscCallH5(H5Pclose(plist));
   PetscCheck(file >= 0, comm, PETSC_ERR_FILE_OPEN, "Cannot open the mesh cache %s of %s", cache, msh);
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshBuild, 0, 0, 0, 0));
   PetscCall(ReadGroups(file, &groups));
   PetscCall(CheckGroups(comm, msh, &groups, n, uses));
   PetscCall(DatasetRows(file, "cells", &NC));
@@ -881,10 +886,14 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   PetscCall(DMPlexCreateFromCellListParallelPetsc(comm, 3, nc, nv, NV, 4, PETSC_FALSE, cells, 3, coords, &vsf, NULL, &dm0));
   PetscCall(GlobalVertexNumbers(comm, vsf, NV, &vadj)); /* (3.18 writes its verticesAdj through a NULL pointer) */
   PetscCall(PetscSFDestroy(&vsf));
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshFaces, 0, 0, 0, 0));
   PetscCall(AddFaces(dm0, vadj, dm));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshFaces, 0, 0, 0, 0));
   PetscCall(DMDestroy(&dm0));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshBuild, 0, 0, 0, 0));
 
   /* the volume groups on the local cells, the surface groups on their faces */
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshLabel, 0, 0, 0, 0));
   for (PetscInt k = 0, bit = 0; k < groups.n; k++) {
     PetscCall(DMCreateLabel(*dm, groups.names[k]));
     if (groups.dims[k] != 3) continue;
@@ -900,6 +909,7 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
     PetscCall(DMGetLabel(*dm, uses[u].group, &label));
     PetscCall(DMPlexLabelComplete(*dm, label));
   }
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshLabel, 0, 0, 0, 0));
   /* tags: the file index of each local vertex */
   {
     PetscInt vStart, vEnd;

@@ -12,15 +12,14 @@ PREFIX   ?= /usr/local
 # where make install puts the Python module ssstar (Debian's python3 searches /usr/local/lib/python3/dist-packages)
 PYTHON_DIR ?= $(PREFIX)/lib/python3/dist-packages
 LIB      := lib/lib$(LIBNAME).so
-LIB_SRC  := src/ssstarregister.c src/options.c src/snes/impls/ssstar/ssstar.c src/snes/impls/ssstar/interface.c src/snes/impls/ssstar/contact.c \
-            src/snes/impls/ssstar/newton.c src/snes/impls/ssstar/newton_dense.c src/snes/impls/ssstar/newton_sparse.c \
-            src/snes/impls/ssstar/newton_full.c src/snes/impls/ssstar/denselu.c src/snes/impls/ssstar/operator.c \
-            src/snes/impls/ssstar/kernels.c src/snes/impls/ssstar/globalization.c \
-            src/reduction/reduction.c src/reduction/direct.c src/reduction/mumps.c src/reduction/explicit.c src/reduction/none.c src/contact/mesh.c src/contact/meshcache.c src/contact/elasticity.c src/contact/output.c \
-            src/contact/memory.c src/contact/scene.c src/contact/obstacle.c src/contact/pairs.c
+LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
+            $(wildcard src/snes/impls/ssstar/*.c) $(wildcard src/snes/impls/ssstar/laws/*.c) $(wildcard src/reduction/*.c) \
+            $(wildcard src/geometry/*.c) $(wildcard src/scene/*.c) $(wildcard src/scene/obstacles/*.c) $(wildcard src/scene/output/*.c) \
+            $(wildcard src/history/*.c)
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator \
+            tests/test_geometry tests/test_collective tests/test_history
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -46,7 +45,7 @@ all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/snes/impls/ssstar/*.h src/contact/*.h src/reduction/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/*/*.h src/*/*/*.h src/snes/impls/ssstar/*.h src/snes/impls/ssstar/laws/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(SAY) "  CC      $<"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@
@@ -60,7 +59,7 @@ examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_collective tests/test_history: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 

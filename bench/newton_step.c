@@ -68,7 +68,7 @@ int main(int argc, char **argv)
 
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSSStarSetContactProblem(snes, P, f));
+  PetscCall(SNESSSStarSetLinearProblem(snes, P, f));
   PetscCall(SNESSetFromOptions(snes));
   if (header) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "level,ranks,dofs,lu_reuse,run,iterations,newton_seconds,lu,reused,krylov_its,reason\n"));
   for (PetscInt r = 0; r < repeat; r++) {

@@ -7,7 +7,7 @@ Prints: cholesky level <L> ranks <R> dofs <N> time <s> flops <MUMPS RINFOG(3)>\n
         amg level <L> ranks <R> dofs <N> setup <s> solve <s> its <n>\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 
 static PetscErrorCode Cholesky(Mat K, PetscInt level)
 {

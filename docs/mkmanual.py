@@ -19,7 +19,8 @@ MANUAL = os.path.join(ROOT, "docs", "manual.md")
 DECL = re.compile(r"PETSC_EXTERN\s+((?:const\s+)?\w+\s*\**)\s*(\w+)\s*\(([^;]*)\)\s*;")
 BLOCK = re.compile(r"/\*@C?\s*\n(.*?)@\*/", re.S)
 TYPE = re.compile(r"/\*MC\s*\n(.*?)M\*/", re.S)
-HEADERS = {"ssstar.h": "The SNES type", "ssstarreduction.h": "The reduction to the contact dofs", "ssstarcontact.h": "Meshes, FEM and output"}
+HEADERS = {"ssstar.h": "The SNES type", "ssstarreduction.h": "The reduction to the contact dofs", "ssstarscene.h": "Scenes: meshes, FEM, contact groups and output", "ssstargeometry.h": "Geometry the scenes share",
+           "ssstarhistory.h": "Load histories"}
 
 
 def dedent(text):

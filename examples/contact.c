@@ -1,5 +1,6 @@
-static const char help[] = "Contact of an elastic body with rigid planes: solves the scene the options describe, and only what\n\
-they name (no contact group: one linear solve; frictionless groups: no friction work; no -gravity: no body force).\n\
+static const char help[] = "Contact of elastic bodies with rigid obstacles and with each other: solves the scene the options\n\
+describe, and only what they name (no contact group: one linear solve; frictionless groups: no friction work; no\n\
+-gravity: no body force).\n\
 A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
@@ -7,34 +8,12 @@ A scene is an options file: examples/contact -options_file scenes/hertz.opts (RE
   -o <file.h5>                    write the solution (HDF5 + XDMF)\n\
 The solver's options (-snes_ssstar_*) apply. An option nothing reads is refused before any work. Exit status 0 when every\n\
 solve converged, 2 when one did not (the load steps stop there; the -o file holds that step's iterate and says so:\n\
-attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
+attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 #include <petscviewerhdf5.h>
-
-/* The elastic body at a fraction of its load: F(u) = K u - load b, Jacobian K */
-typedef struct {
-  Mat       K;
-  Vec       b;
-  PetscReal load;
-} Body;
-
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -body->load, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0); /* K, assembled once */
-}
 
 /* What each load step gave, for the output file */
 typedef struct {
@@ -83,12 +62,14 @@ static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
 int main(int argc, char **argv)
 {
   SSStarScene         scene;
-  Body                body = {NULL, NULL, 1.0};
+  Mat                 K;
+  Vec                 b, load; /* the load b of the scene, and the one of a load step, a fraction of it */
+  PetscReal           factor = 1.0;
   SNES                snes;
   Vec                 u, r = NULL;
   PetscInt            nsteps = 1, nodes, ncontact, its = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
-  PetscBool           hasOut, hasContact;
+  PetscBool           hasOut, hasContact, hasHelp;
   char                out[PETSC_MAX_PATH_LEN] = "";
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   const SSStarState  *states = NULL;
@@ -109,9 +90,10 @@ int main(int argc, char **argv)
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetFromOptions(scene));
   PetscCall(SSStarSceneHasContact(scene, &hasContact));
-  /* contact: ssstar on the whole body; no contact: one linear solve */
+  PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
-  if (hasContact) PetscCall(SNESSetType(snes, SNESSSSTAR));
+  if (hasContact || hasHelp) PetscCall(SNESSetType(snes, SNESSSSTAR));
   else {
     KSP ksp;
     PC  pc;
@@ -124,19 +106,25 @@ int main(int argc, char **argv)
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
   PetscCall(SNESSetFromOptions(snes));
+  if (hasHelp) { /* the options are listed: no mesh, no solve, no file */
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(SSStarSceneDestroy(&scene));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(SSStarSceneCheckOptionsUsed(scene, help, snes));
 
   /* the scene: mesh, groups, contact nodes, K and b */
   PetscCall(PetscTime(&t0));
   PetscCall(SSStarSceneSetUp(scene));
-  PetscCall(SSStarSceneAssemble(scene, &body.K, &body.b));
+  PetscCall(SSStarSceneAssemble(scene, &K, &b));
   PetscCall(PetscTimeSubtract(&t0));
   t_assembly = -t0;
   PetscCall(SSStarSceneView(scene, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
 
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(VecDuplicate(b, &load));
+  PetscCall(SNESSSStarSetLinearProblem(snes, K, load)); /* F(u) = K u - load, the load set at each step */
   if (hasContact) PetscCall(SSStarSceneSetContact(scene, snes));
   {
     DM dm;
@@ -153,7 +141,9 @@ int main(int argc, char **argv)
     PetscInt            stepIts;
     SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}};
 
-    body.load = (PetscReal)k / nsteps;
+    factor = (PetscReal)k / nsteps;
+    PetscCall(VecCopy(b, load));
+    PetscCall(VecScale(load, factor));
     PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
     PetscCall(SNESGetConvergedReason(snes, &reason));
     PetscCall(SNESGetIterationNumber(snes, &stepIts));
@@ -163,13 +153,13 @@ int main(int argc, char **argv)
       PetscCall(SNESSSStarGetStates(snes, &states, counts));
       PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
     }
-    steps.factor[k - 1]       = body.load;
+    steps.factor[k - 1]       = factor;
     steps.area[k - 1]         = res.area;
     steps.normal_force[k - 1] = res.normal_force;
     steps.iterations[k - 1]   = hasContact ? stepIts : 0;
     steps.n                   = k;
     if (nsteps > 1)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)body.load, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)factor, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
                             (double)res.normal_force, reason > 0 ? "" : ", not converged: ", reason > 0 ? "" : SNESConvergedReasons[reason]));
     if (reason <= 0) break; /* the next steps would start from a point that is no solution */
   }
@@ -189,8 +179,9 @@ int main(int argc, char **argv)
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&u));
-  PetscCall(MatDestroy(&body.K));
-  PetscCall(VecDestroy(&body.b));
+  PetscCall(MatDestroy(&K));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&load));
   PetscCall(SSStarSceneDestroy(&scene));
   PetscCall(PetscFinalize());
   return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;

@@ -8,7 +8,8 @@ Usage: examples/fclib FILE.hdf5 [-o solution.h5] [options]\n\
 The summary gives the FCLib error (natural map with De Saxce's modified velocity, relative to ||q||), the solver's\n\
 ||z|| relative to its displacement scale and the worst Coulomb-law violation. An option nothing reads is refused before\n\
 any work. Exit status 0 when the solve converged, 2 when it did not (the -o file says so: attributes converged_reason,\n\
-residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input.\n";
+residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 /*
    FCLib problem files (format of FrictionalContactLibrary/fclib, src/fclib.h): per contact a 3-block with the normal
@@ -18,7 +19,7 @@ residual_norm (||z||), iterations of \"/\"), PETSc's error code for bad input.\n
    whole contacts on each rank. Starting point u = 0 (docs/derivation.md section 7); /guesses in a file are not used.
 */
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 #include <petscblaslapack.h>
 #include <petsctime.h>
 #include <hdf5.h>
@@ -657,7 +658,11 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary", NULL, header, &header, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
-  if (!file && hasHelp) {
+  PetscCall(SNESCreate(comm, &snes));
+  PetscCall(SNESSetType(snes, SNESSSSTAR));
+  PetscCall(SNESSetFromOptions(snes));
+  if (hasHelp) { /* the options are listed, with or without a file: no solve, no file */
+    PetscCall(SNESDestroy(&snes));
     PetscCall(PetscFinalize());
     return 0;
   }
@@ -665,9 +670,6 @@ int main(int argc, char **argv)
   if (hasOut) PetscCall(CheckOutputIsNotInput(comm, file, out));
   PetscCall(PetscLogStageRegister("FCLib set-up", &stageSetUp));
   PetscCall(PetscLogStageRegister("FCLib solve", &stageSolve));
-  PetscCall(SNESCreate(comm, &snes));
-  PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSetFromOptions(snes));
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   PetscCheck(isssstar, comm, PETSC_ERR_ARG_WRONG, "examples/fclib reports the stopping quantity of ssstar: run it with -snes_type ssstar");
   PetscCall(SSStarCheckOptionsUsed(comm, (const char *const[]){help, NULL}, snes)); /* every option read, before any work */
@@ -681,8 +683,8 @@ int main(int argc, char **argv)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&t1));
 
-  PetscCall(SNESSSStarSetContactProblem(snes, P, f));
-  PetscCall(SNESSSStarSetFrictionCoefficients(snes, mu));
+  PetscCall(SNESSSStarSetLinearProblem(snes, P, f));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction", mu));
   PetscCall(VecDuplicate(f, &u));
   PetscCall(VecZeroEntries(u));
   PetscCall(PetscLogStagePush(stageSolve));

@@ -13,33 +13,13 @@ Options:\n\
   -o <file.h5>                    write the contact nodes' coordinates, displacement, reaction (K u - b), normal, gap\n\
                                   and, for ssstar, the friction law, coefficient and slip bound of each\n\
 An option nothing reads is refused before any work. Exit status 0 when the solve converged, 2 when it did not (the -o\n\
-file says so: attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input.\n";
+file says so: attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 #include <petscdmda.h>
 #include <petscsnes.h>
 #include <petscviewerhdf5.h>
 #include <ssstar.h>
-
-typedef struct {
-  Mat K;
-  Vec b;
-} Body;
-
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0); /* K is constant and assembled once */
-}
 
 /* Stiffness of a trilinear brick h[0] x h[1] x h[2] (2x2x2 Gauss points); node a = di + 2 dj + 4 dk */
 static void BrickStiffness(const PetscReal h[3], PetscReal lambda, PetscReal mu, PetscScalar Ke[24 * 24])
@@ -226,44 +206,54 @@ static PetscErrorCode Report(Vec u, Vec r, IS dofs, Vec normals, Vec gaps)
   PetscFunctionReturn(0);
 }
 
-/* The friction law, coefficient and slip bound the solver used at each node: /contact/friction_law (0 none, 1 tresca,
-   2 coulomb), /contact/friction, /contact/slip_bound (tests/check_solution.py reads them) */
+/* The friction law the solver used at each node, /contact/friction_law (its index in the table of laws), and the value
+   of every parameter of the laws, /contact/<parameter> (0 where the node's law has no such parameter): friction,
+   slip_bound, friction_1, friction_2, friction_direction (tests/check_solution.py reads friction_law, friction and
+   slip_bound) */
 static PetscErrorCode WriteFriction(PetscViewer viewer, SNES snes, Vec gaps)
 {
-  PetscInt           n;
-  SSStarFrictionLaw *laws;
+  PetscInt           n, nlaws;
   PetscInt          *codes;
-  PetscReal         *phi, *bound;
-  PetscScalar       *pa, *ba;
-  Vec                vphi, vbound;
+  const char *const *laws;
   IS                 is;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(gaps, &n));
-  PetscCall(PetscMalloc4(n, &laws, n, &codes, n, &phi, n, &bound));
-  PetscCall(SNESSSStarGetNodeFriction(snes, n, laws, phi, bound));
-  PetscCall(VecDuplicate(gaps, &vphi));
-  PetscCall(VecDuplicate(gaps, &vbound));
-  PetscCall(VecGetArrayWrite(vphi, &pa));
-  PetscCall(VecGetArrayWrite(vbound, &ba));
-  for (PetscInt i = 0; i < n; i++) {
-    codes[i] = (PetscInt)laws[i];
-    pa[i]    = laws[i] == SSSTAR_FRICTION_COULOMB ? phi[i] : 0.0;
-    ba[i]    = laws[i] == SSSTAR_FRICTION_TRESCA ? bound[i] : 0.0;
-  }
-  PetscCall(VecRestoreArrayWrite(vbound, &ba));
-  PetscCall(VecRestoreArrayWrite(vphi, &pa));
-  PetscCall(PetscObjectSetName((PetscObject)vphi, "friction"));
-  PetscCall(PetscObjectSetName((PetscObject)vbound, "slip_bound"));
-  PetscCall(VecView(vphi, viewer));
-  PetscCall(VecView(vbound, viewer));
-  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)gaps), n, codes, PETSC_USE_POINTER, &is));
+  PetscCall(PetscMalloc1(n, &codes));
+  PetscCall(SNESSSStarGetNodeFrictionLaws(snes, n, codes));
+  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)gaps), n, codes, PETSC_OWN_POINTER, &is));
   PetscCall(PetscObjectSetName((PetscObject)is, "friction_law"));
   PetscCall(ISView(is, viewer));
   PetscCall(ISDestroy(&is));
-  PetscCall(VecDestroy(&vphi));
-  PetscCall(VecDestroy(&vbound));
-  PetscCall(PetscFree4(laws, codes, phi, bound));
+  PetscCall(SSStarLawGetNames(&nlaws, &laws));
+  for (PetscInt l = 0; l < nlaws; l++) {
+    PetscInt           nparams;
+    const char *const *params;
+
+    PetscCall(SSStarLawGetInfo(l, NULL, NULL, &nparams, &params));
+    for (PetscInt p = 0; p < nparams; p++) {
+      PetscBool    written = PETSC_FALSE;
+      PetscReal   *values;
+      PetscScalar *a;
+      Vec          v;
+      PetscInt     size;
+
+      for (PetscInt e = 0; e < l && !written; e++) PetscCall(SSStarLawHasParameter(e, params[p], &written)); /* shared */
+      if (written) continue;
+      PetscCall(SSStarLawGetParameterSize(params[p], &size));
+      PetscCall(PetscMalloc1(size * n + 1, &values));
+      PetscCall(SNESSSStarGetNodeLawParameter(snes, params[p], n, values));
+      PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)gaps), size * n, PETSC_DETERMINE, &v));
+      if (size > 1) PetscCall(VecSetBlockSize(v, size));
+      PetscCall(VecGetArrayWrite(v, &a));
+      for (PetscInt k = 0; k < size * n; k++) a[k] = values[k];
+      PetscCall(VecRestoreArrayWrite(v, &a));
+      PetscCall(PetscObjectSetName((PetscObject)v, params[p]));
+      PetscCall(VecView(v, viewer));
+      PetscCall(VecDestroy(&v));
+      PetscCall(PetscFree(values));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -304,9 +294,10 @@ int main(int argc, char **argv)
 {
   PetscReal           size[3] = {1, 1, 0.5}, push[3] = {0.005, 0, -0.01}, point[3] = {0, 0, -0.002}, normal[3] = {0, 0, 1}, E = 2.1e5, nu = 0.3, len;
   char                out[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasOut;
+  PetscBool           hasOut, hasHelp, hasType;
   DM                  da;
-  Body                body;
+  Mat                 K;
+  Vec                 b;
   SNES                snes;
   Vec                 u, r, normals, gaps, coords;
   IS                  dofs;
@@ -333,17 +324,25 @@ int main(int argc, char **argv)
   PetscCall(DMDACreate3d(PETSC_COMM_WORLD, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_BOX, 9, 9, 5, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 3, 1, NULL, NULL, NULL, &da));
   PetscCall(DMSetFromOptions(da));
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+  PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-snes_type", &hasType));
+  if (hasHelp && !hasType) PetscCall(SNESSetType(snes, SNESSSSTAR)); /* -help lists the options of ssstar */
   PetscCall(SNESSetFromOptions(snes));
+  if (hasHelp) { /* the options are listed: no assembly, no solve, no file */
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(DMDestroy(&da));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(SSStarCheckOptionsUsed(PETSC_COMM_WORLD, (const char *const[]){help, NULL}, snes));
 
   PetscCall(DMSetUp(da));
-  PetscCall(AssembleStiffness(da, size, E, nu, &body.K));
-  PetscCall(DMCreateGlobalVector(da, &body.b));
-  PetscCall(ImposeTopDisplacement(da, push, body.K, body.b));
+  PetscCall(AssembleStiffness(da, size, E, nu, &K));
+  PetscCall(DMCreateGlobalVector(da, &b));
+  PetscCall(ImposeTopDisplacement(da, push, K, b));
   PetscCall(DeclareBottom(da, size, point, normal, &dofs, &normals, &gaps, &coords));
 
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(SNESSSStarSetLinearProblem(snes, K, b)); /* F(u) = K u - b, with any SNES type */
   PetscCall(SNESSSStarSetContactNodes(snes, dofs, normals, gaps)); /* ignored by other SNES types */
   PetscCall(DMCreateGlobalVector(da, &u));
   PetscCall(VecZeroEntries(u));
@@ -351,7 +350,7 @@ int main(int argc, char **argv)
   PetscCall(SNESGetIterationNumber(snes, &its));
   PetscCall(SNESGetConvergedReason(snes, &reason));
   PetscCall(VecDuplicate(u, &r));
-  PetscCall(FormFunction(snes, u, r, &body));
+  PetscCall(SNESComputeFunction(snes, u, r));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s after %" PetscInt_FMT " iterations\n", SNESConvergedReasons[reason], its));
   PetscCall(Report(u, r, dofs, normals, gaps));
   if (hasOut) PetscCall(WriteContactNodes(out, snes, u, r, dofs, normals, gaps, coords));
@@ -364,8 +363,8 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&normals));
   PetscCall(VecDestroy(&gaps));
   PetscCall(VecDestroy(&coords));
-  PetscCall(MatDestroy(&body.K));
-  PetscCall(VecDestroy(&body.b));
+  PetscCall(MatDestroy(&K));
+  PetscCall(VecDestroy(&b));
   PetscCall(DMDestroy(&da));
   PetscCall(PetscFinalize());
   return reason > 0 ? 0 : SSSTAR_EXIT_NOT_CONVERGED;

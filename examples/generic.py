@@ -10,11 +10,12 @@ Options (as examples/generic): -da_grid_x <9> -da_grid_y <9> -da_grid_z <5>, -si
 -push <0.005,0,-0.01>, -obstacle_point <0,0,-0.002>, -obstacle_normal <0,0,1>, -o <file.h5> (the contact nodes'
 coordinates, displacement, reaction, normal, gap and friction, as examples/generic writes them); and, to exercise the
 per-node friction of the module:
-  -phi_left <phi>      the bottom nodes with x < a/2 get this Coulomb coefficient (set_friction_coefficients)
+  -phi_left <phi>      the bottom nodes with x < a/2 get this Coulomb coefficient (set_node_law_parameter
+                       "friction")
   -tresca_right <s>    the bottom nodes with x > a/2 get Tresca friction with bound s (set_node_friction_laws,
-                       set_slip_bounds)
+                       set_node_law_parameter "slip_bound")
 It prints the reason, ssstar's sub-reason, the iterations, the state counts, the smallest distance to the plane and
-the normal force, as one line starting "generic.py:"."""
+the normal force and the number of nodes of each law of the library's table, as one line starting "generic.py:"."""
 import os
 import sys
 
@@ -122,19 +123,17 @@ def main():
     normals = np.tile(normal, (n, 1))
 
     snes = PETSc.SNES().create(comm=comm)
-    r = b.duplicate()
-    snes.setFunction(lambda snes, u, f: (K.mult(u, f), f.axpy(-1.0, b)), r)
-    snes.setJacobian(lambda snes, u, J, Jp: None, K, K)
+    ssstar.set_linear_problem(snes, K, b)  # F(u) = K u - b, Jacobian K
     snes.setType(ssstar.SNESSSSTAR)
     snes.setFromOptions()
     ssstar.set_contact_nodes(snes, dofs, normals, gaps)
     left, right = X[:, 0] < size[0] / 2, X[:, 0] > size[0] / 2
     if phi_left >= 0:
         phi = np.where(left, phi_left, ssstar.get_friction(snes))
-        ssstar.set_friction_coefficients(snes, phi)
+        ssstar.set_node_law_parameter(snes, "friction", phi)
     if tresca_right >= 0:
         ssstar.set_node_friction_laws(snes, ["tresca" if right[q] else ssstar.get_friction_law(snes) for q in range(n)])
-        ssstar.set_slip_bounds(snes, np.where(right, tresca_right, 0.0))
+        ssstar.set_node_law_parameter(snes, "slip_bound", np.where(right, tresca_right, 0.0))
     u = da.createGlobalVec()
     u.zeroEntries()
     snes.solve(None, u)
@@ -143,11 +142,12 @@ def main():
     names = {getattr(PETSc.SNES.ConvergedReason, k): k for k in dir(PETSc.SNES.ConvergedReason) if not k.startswith("_")}
     states, counts = ssstar.get_states(snes)
     forces = ssstar.get_contact_forces(snes)
-    laws, phis, bounds = ssstar.get_node_friction(snes)
+    laws = ssstar.get_node_friction_laws(snes)
+    phis, bounds = ssstar.get_node_law_parameter(snes, "friction"), ssstar.get_node_law_parameter(snes, "slip_bound")
     ua = u.getArray(readonly=True)[dofs - rstart].reshape(n, 3) if n else np.zeros((0, 3))
     worst = minimum(comm, float((ua.dot(normal) + gaps).min()) if n else np.inf)
     force = total(comm, [forces.dot(normal).sum()])[0]
-    lawcounts = total(comm, np.bincount(laws, minlength=3)).astype(int)
+    lawcounts = total(comm, np.bincount(laws, minlength=len(ssstar.FRICTION_LAWS))).astype(int)
     PETSc.Sys.Print("generic.py: %s %s after %d iterations; states %s; smallest distance to the plane %.6e; normal force %.6e; laws %s"
                     % (names.get(reason, reason), ssstar.get_reason(snes), snes.getIterationNumber(),
                        "/".join(str(c) for c in counts), worst, force, "/".join(str(c) for c in lawcounts)), comm=comm)
@@ -180,8 +180,7 @@ def write(path, comm, X, u, r, normals, gaps, laws, phi, bounds):
     viewer = PETSc.ViewerHDF5().createHDF5(path, "w", comm=comm)
     viewer.pushGroup("/contact")
     for name, values, bs in (("coordinates", X, 3), ("displacement", u, 3), ("reaction", r, 3), ("normal", normals, 3),
-                             ("gap", gaps, 1), ("friction", np.where(laws == 2, phi, 0.0), 1),
-                             ("slip_bound", np.where(laws == 1, bounds, 0.0), 1)):
+                             ("gap", gaps, 1), ("friction", phi, 1), ("slip_bound", bounds, 1)):
         a = np.ascontiguousarray(np.asarray(values, dtype=PETSc.ScalarType).reshape(-1))
         v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=bs, comm=comm)
         v.setArray(a)

@@ -17,10 +17,11 @@ given (the Schur complement: direct, mumps or explicit; none solves on the whole
 -snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
-no -save_reduced file), PETSc's error code for bad input.\n";
+no -save_reduced file), PETSc's error code for bad input (one\n\
+line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 
 #ifndef SSSTAR_MESH_DIR
   #define SSSTAR_MESH_DIR "meshes"
@@ -46,22 +47,6 @@ typedef struct {
   Mat K;
   Vec b;
 } Body;
-
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0); /* K, assembled once */
-}
 
 /* The starting point of the solve: zero, the linear-elastic solution without contact, or a random point */
 typedef enum {
@@ -174,7 +159,7 @@ int main(int argc, char **argv)
   PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
   char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar;
+  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar, hasHelp;
   DM                  dm;
   Vec                 u, r;
   Body                body;
@@ -207,6 +192,14 @@ int main(int argc, char **argv)
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
   PetscCall(SNESSetFromOptions(snes));
+  PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  if (hasHelp) { /* the options are listed: no mesh, no solve, no file */
+    PetscCall(KSPDestroy(&guess.ksp));
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(SSStarSceneDestroy(&scene));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(SSStarSceneCheckOptionsUsed(scene, help, snes));
 
   /* mesh, FEM: the scene of the options */
@@ -218,8 +211,7 @@ int main(int argc, char **argv)
   t_assembly = -t0;
 
   /* the whole body with its contact nodes: SNESSolve reduces K to them, solves, recovers u */
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(SNESSSStarSetLinearProblem(snes, body.K, body.b));
   PetscCall(SSStarSceneSetContact(scene, snes));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));

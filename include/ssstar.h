@@ -40,13 +40,22 @@ typedef enum {
 #define SSSTAR_NUM_STATES 7
 PETSC_EXTERN const char *const SSStarStateNames[];
 
-/* The friction law of a contact node */
-typedef enum {
-  SSSTAR_FRICTION_NONE,    /* frictionless: r_t = 0                                          */
-  SSSTAR_FRICTION_TRESCA,  /* |r_t| <= s, a given slip bound s (a force), whatever r_n        */
-  SSSTAR_FRICTION_COULOMB  /* |r_t| <= phi r_n                                               */
-} SSStarFrictionLaw;
-PETSC_EXTERN const char *const SSStarFrictionLaws[];
+/*
+   The friction laws: a table of laws registered by name (SSStarLawRegisterAll(), one file per law in
+   src/snes/impls/ssstar/laws/); a law's index is its place in the table (the code of /contact/friction_law)
+*/
+#define SSSTARLAWNONE        "none"        /* frictionless: r_t = 0                                                  */
+#define SSSTARLAWTRESCA      "tresca"      /* |r_t| <= s, a given slip bound s (a force), whatever r_n               */
+#define SSSTARLAWCOULOMB     "coulomb"     /* |r_t| <= phi r_n                                                       */
+#define SSSTARLAWORTHOTROPIC "orthotropic" /* |M^-1/2 r_t| <= r_n: phi_1 along a given direction, phi_2 across it   */
+typedef struct _n_SSStarLaw *SSStarLaw;
+PETSC_EXTERN PetscErrorCode SSStarLawRegister(const char[], PetscErrorCode (*)(SSStarLaw));
+PETSC_EXTERN PetscErrorCode SSStarLawRegisterAll(void);
+PETSC_EXTERN PetscErrorCode SSStarLawGetNames(PetscInt *, const char *const *[]);
+PETSC_EXTERN PetscErrorCode SSStarLawGetIndex(const char[], PetscInt *);
+PETSC_EXTERN PetscErrorCode SSStarLawGetInfo(PetscInt, const char *[], const char *[], PetscInt *, const char *const *[]);
+PETSC_EXTERN PetscErrorCode SSStarLawHasParameter(PetscInt, const char[], PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarLawGetParameterSize(const char[], PetscInt *);
 
 /* Why an ssstar solve stopped, finer than SNESConvergedReason. */
 typedef enum {
@@ -89,25 +98,29 @@ PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm, const char *const[]
 PETSC_EXTERN PetscErrorCode SSStarWriteOutcome(SNES, PetscViewer);
 PETSC_EXTERN PetscErrorCode SSStarPushErrorHandler(void);
 
+/* Checks of a local condition that end every rank with the message of the first rank that failed */
+PETSC_EXTERN PetscErrorCode SSStarCheckAllRanks(MPI_Comm, PetscErrorCode, const char[]);
+
 /* The contact problem: the whole body (K u - b with contact nodes) or the reduced one (P u - f) */
+PETSC_EXTERN PetscErrorCode SNESSSStarSetLinearProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetContactNodes(SNES, PetscInt *, IS *, Vec *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactOperator(SNES, IS, Mat, Vec);
-PETSC_EXTERN PetscErrorCode SNESSSStarSetContactProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReductionType(SNES, SSStarReductionType *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetMemoryLimit(SNES, PetscReal);
 
-/* The friction law */
-PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionLaw(SNES, SSStarFrictionLaw);
-PETSC_EXTERN PetscErrorCode SNESSSStarGetFrictionLaw(SNES, SSStarFrictionLaw *);
+/* The friction law and its parameters */
+PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionLaw(SNES, const char[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetFrictionLaw(SNES, const char *[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetLawParameter(SNES, const char[], PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFriction(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetFriction(SNES, PetscReal *);
-PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES, Vec);
-PETSC_EXTERN PetscErrorCode SNESSSStarSetSlipBounds(SNES, Vec);
-PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES, PetscInt, const SSStarFrictionLaw[]);
-PETSC_EXTERN PetscErrorCode SNESSSStarGetNodeFriction(SNES, PetscInt, SSStarFrictionLaw[], PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeLawParameter(SNES, const char[], Vec);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNodeFrictionLaws(SNES, PetscInt, PetscInt[]);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNodeLawParameter(SNES, const char[], PetscInt, PetscReal[]);
 
 /* The method */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetScaling(SNES, PetscReal);
@@ -133,11 +146,13 @@ PETSC_EXTERN PetscErrorCode SNESConvergedSSStar(SNES, PetscInt, PetscReal, Petsc
    Per-node kernels: pure functions on 3-vectors in the node's frame (tangential components first, normal last).
    Matrices are 3x3, row-major.
 */
+#define SSSTAR_LAW_MAX_VALUES 6
 typedef struct {
-  SSStarFrictionLaw law;
-  PetscReal         phi;   /* Coulomb coefficient                                               */
-  PetscReal         bound; /* Tresca slip bound, in the units of the kernels' c (scaled by gamma) */
+  SSStarLaw law;
+  PetscReal value[SSSTAR_LAW_MAX_VALUES]; /* the law's parameters in its order (SSStarLawGetInfo()); a force in the
+                                             units of the kernels' c (times gamma), a direction in the node's frame */
 } SSStarFriction;
+PETSC_EXTERN PetscErrorCode SSStarFrictionSet(SSStarFriction *, const char[], PetscInt, const PetscReal[]);
 
 /* Approximation step (11)-(12), docs/derivation.md section 1: from the iterate u and c = P u - f. */
 PETSC_EXTERN void SSStarApproximationStep(const SSStarFriction *, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3]);

@@ -18,24 +18,31 @@ PETSC_EXTERN PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_Sc
 
 /*
    Reduction of K u = F to the contact dofs: P = K_CC - K_CI K_II^-1 K_IC, f = F_C - K_CI K_II^-1 F_I, or none (the
-   contact problem stays on the whole body)
+   contact problem stays on the whole body). Types are registered by name (SSStarReductionRegisterAll(), one file per
+   type in src/reduction/).
 */
-typedef enum {
-  SSSTAR_REDUCTION_DIRECT,   /* MUMPS through its C API: METIS nested dissection of K_II, C last, on every rank */
-  SSSTAR_REDUCTION_MUMPS,    /* PETSc's MUMPS Schur complement (MatFactorSetSchurIS), computed on rank 0      */
-  SSSTAR_REDUCTION_EXPLICIT, /* MATSCHURCOMPLEMENT made explicit, distributed                                */
-  SSSTAR_REDUCTION_NONE,     /* no reduction: P is never formed, the operator is K                            */
-  SSSTAR_REDUCTION_AUTO      /* direct where the dense route is the faster one and P fits, else none          */
-} SSStarReductionType;
-PETSC_EXTERN const char *const SSStarReductionTypes[];
+typedef const char *SSStarReductionType;
+#define SSSTARREDUCTIONDIRECT   "direct"   /* MUMPS through its C API: METIS nested dissection of K_II, C last, on every rank */
+#define SSSTARREDUCTIONMUMPS    "mumps"    /* PETSc's MUMPS Schur complement (MatFactorSetSchurIS), computed on rank 0      */
+#define SSSTARREDUCTIONEXPLICIT "explicit" /* MATSCHURCOMPLEMENT made explicit, distributed                                */
+#define SSSTARREDUCTIONNONE     "none"     /* no reduction: P is never formed, the operator is K                            */
+#define SSSTARREDUCTIONAUTO     "auto"     /* not a type: direct where the dense route is the faster one and P fits, else none */
 
 typedef struct _n_SSStarReduction *SSStarReduction;
-PETSC_EXTERN PetscErrorCode SSStarReductionCreate(Mat, IS, IS, SSStarReductionType, PetscReal, SSStarReduction *);
-PETSC_EXTERN PetscErrorCode SSStarReductionGetType(SSStarReduction, SSStarReductionType *);
-PETSC_EXTERN PetscErrorCode SSStarReductionGetOperator(SSStarReduction, Mat *);
-PETSC_EXTERN PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction, Mat *);
-PETSC_EXTERN PetscErrorCode SSStarReductionReduceLoad(SSStarReduction, Vec, Vec);
-PETSC_EXTERN PetscErrorCode SSStarReductionRecover(SSStarReduction, Vec, Vec, Vec, Vec);
-PETSC_EXTERN PetscErrorCode SSStarReductionDestroy(SSStarReduction *);
+PETSC_EXTERN PetscFunctionList SSStarReductionList;
+PETSC_EXTERN PetscErrorCode    SSStarReductionRegister(const char[], PetscErrorCode (*)(SSStarReduction, Mat));
+PETSC_EXTERN PetscErrorCode    SSStarReductionRegisterAll(void);
+PETSC_EXTERN PetscErrorCode    SSStarReductionCreate(MPI_Comm, SSStarReduction *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionSetType(SSStarReduction, SSStarReductionType);
+PETSC_EXTERN PetscErrorCode    SSStarReductionSetOptionsPrefix(SSStarReduction, const char[]);
+PETSC_EXTERN PetscErrorCode    SSStarReductionSetMemoryLimit(SSStarReduction, PetscReal);
+PETSC_EXTERN PetscErrorCode    SSStarReductionSetUp(SSStarReduction, Mat, IS, IS);
+PETSC_EXTERN PetscErrorCode    SSStarReductionGetType(SSStarReduction, SSStarReductionType *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionIsWholeBody(SSStarReduction, PetscBool *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionGetOperator(SSStarReduction, Mat *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionGetSchurComplement(SSStarReduction, Mat *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionReduceLoad(SSStarReduction, Vec, Vec);
+PETSC_EXTERN PetscErrorCode    SSStarReductionRecover(SSStarReduction, Vec, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode    SSStarReductionDestroy(SSStarReduction *);
 
 #endif

@@ -4,7 +4,9 @@
    ends with the exit status SSSTAR_EXIT_NOT_CONVERGED, and the file it writes says so.
 */
 #include <ctype.h>
+#include <stdlib.h>
 #include <strings.h>
+#include <unistd.h>
 #include <petsc/private/petscimpl.h>
 #include <ssstar.h>
 #include <petscviewerhdf5.h>
@@ -404,44 +406,109 @@ PetscErrorCode SSStarWriteOutcome(SNES snes, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* ssstar's line first: the program's name and the message, then PETSc's report (version, configuration, traceback) */
+/*
+   How an error ends a program of ours (SSStarPushErrorHandler()): one line, the program's name and the message; PETSc's
+   report (its version, configuration and calls) after it only with a debugging option; and the way out of main():
+   every rank that raised the error exits with its code, and if a rank did not raise it (it is still working, or
+   waits in a collective call), the job is aborted so that no rank is left waiting.
+*/
+static PetscErrorCode (*SSStarErrorReport)(MPI_Comm, int, const char *, const char *, PetscErrorCode, PetscErrorType, const char *, void *) = NULL;
+static MPI_Comm SSStarErrorComm = MPI_COMM_NULL; /* a copy of PETSC_COMM_WORLD where the ranks meet on their way out */
+#define SSSTAR_ERROR_WAIT 2.0 /* seconds a rank waits for the others to raise the error too */
+
+/* Leaves main(): MPI_Finalize() and the error code if every rank raised an error, else MPI_Abort() of the job */
+static void SSStarErrorExit(PetscErrorCode n)
+{
+  MPI_Request request;
+  int         done = 0;
+  double      start = MPI_Wtime();
+
+  fflush(stdout);
+  fflush(stderr);
+  if (MPI_Ibarrier(SSStarErrorComm, &request) == MPI_SUCCESS)
+    while (!done && MPI_Wtime() - start < SSSTAR_ERROR_WAIT) {
+      if (MPI_Test(&request, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) break;
+      if (!done) usleep(1000);
+    }
+  if (!done) MPI_Abort(MPI_COMM_WORLD, (int)n);
+  MPI_Finalize();
+  exit((int)n);
+}
+
 static PetscErrorCode SSStarErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
-  if (p == PETSC_ERROR_INITIAL && mess && mess[0]) {
-    PetscMPIInt rank = 0, size = 1, world;
+  if (p == PETSC_ERROR_INITIAL) {
+    PetscMPIInt rank = 0, size = 1, world = 0, worldSize = 1;
     char        name[PETSC_MAX_PATH_LEN] = "";
+    const char *text = mess;
 
     if (comm != MPI_COMM_NULL) {
       MPI_Comm_rank(comm, &rank);
       MPI_Comm_size(comm, &size);
     }
     MPI_Comm_rank(MPI_COMM_WORLD, &world);
+    MPI_Comm_size(MPI_COMM_WORLD, &worldSize);
+    if (!text || !text[0] || !strcmp(text, " ")) (void)PetscErrorMessage(n, &text, NULL); /* no message of its own: PETSc's words for the code */
     (void)PetscGetProgramName(name, sizeof(name));
-    if (size == 1 && comm != PETSC_COMM_WORLD) fprintf(stderr, "%s, rank %d: %s\n", name, (int)world, mess); /* a rank's own error */
-    else if (!rank) fprintf(stderr, "%s: %s\n", name, mess);
+    if (size == 1 && worldSize > 1) fprintf(stderr, "%s, rank %d: %s\n", name, (int)world, text ? text : "error"); /* a rank's own error */
+    else if (!rank) fprintf(stderr, "%s: %s\n", name, text ? text : "error");
     fflush(stderr);
   }
-  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+  if (SSStarErrorReport) (void)(*SSStarErrorReport)(comm, line, fun, file, n, p, mess, ctx);
+  if (fun && !strcmp(fun, "main")) SSStarErrorExit(n); /* the error leaves the program */
+  return n;
+}
+
+/* Restores the handler before ours (PetscFinalize()) */
+static PetscErrorCode SSStarPopErrorHandler(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscPopErrorHandler());
+  if (SSStarErrorComm != MPI_COMM_NULL) PetscCallMPI(MPI_Comm_free(&SSStarErrorComm));
+  PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarPushErrorHandler - makes an error print the program's name and the message on a line of its own before
-   PETSc's report of it (PetscTraceBackErrorHandler(): the message again, the versions, the configuration, the calls)
+   SSStarPushErrorHandler - makes an error end the program as users of a command expect: one line with the program's
+   name and the message, and the exit status; PETSc's report of it (its version, configuration and calls) only with a
+   debugging option; and no rank left waiting when another one failed
 
-   Not Collective
+   Collective on PETSC_COMM_WORLD
+
+   Options Database Keys:
++  -ssstar_traceback - print PETSc's report after ssstar's line (PetscTraceBackErrorHandler()); so does -info
+.  -on_error_abort - PETSc's report, then abort() (a core file, for a debugger)
+-  -on_error_attach_debugger - PETSc's report, then a debugger
 
    Notes:
    ssstar's programs call it after PetscInitialize(); PetscFinalize() (or PetscPopErrorHandler()) restores the handler
    before it.
 
+   When an error leaves main(), the ranks that raised it wait up to 2 seconds for each other: if all of them did, each
+   exits with the error code; if one did not (it goes on working, or waits in a collective call for the rank that
+   failed), MPI_Abort() ends the job with the error code, so that an error on one rank ends every rank promptly.
+
    Level: intermediate
 
-.seealso: `PetscPushErrorHandler()`, `PetscTraceBackErrorHandler()`
+.seealso: `PetscPushErrorHandler()`, `PetscTraceBackErrorHandler()`, `SSStarCheckOptionsUsed()`
 @*/
 PetscErrorCode SSStarPushErrorHandler(void)
 {
+  PetscBool traceback = PETSC_FALSE, info, abort, debugger;
+
   PetscFunctionBegin;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Error reports", NULL);
+  PetscCall(PetscOptionsBool("-ssstar_traceback", "Print PETSc's report of an error (version, configuration, calls) after ssstar's line", "SSStarPushErrorHandler", traceback, &traceback, NULL));
+  PetscOptionsEnd();
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-info", &info));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-on_error_abort", &abort));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-on_error_attach_debugger", &debugger));
+  SSStarErrorReport = NULL;
+  if (traceback || info) SSStarErrorReport = PetscTraceBackErrorHandler;
+  if (debugger) SSStarErrorReport = PetscAttachDebuggerErrorHandler;
+  if (abort) SSStarErrorReport = PetscAbortErrorHandler;
+  if (SSStarErrorComm == MPI_COMM_NULL) PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &SSStarErrorComm));
   PetscCall(PetscPushErrorHandler(SSStarErrorHandler, NULL));
-  PetscCall(PetscRegisterFinalize(PetscPopErrorHandler));
+  PetscCall(PetscRegisterFinalize(SSStarPopErrorHandler));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,12 @@
-/* Package registration: linked use (SSStarInitializePackage) and -dll_append (PetscDLLibraryRegister_ssstar). */
+/*
+   Package registration: linked use (SSStarInitializePackage) and -dll_append (PetscDLLibraryRegister_ssstar). The
+   registration file of ssstar: the SNES type, the friction laws, the reductions and the Newton steps (one register-all
+   function per family), the log events.
+*/
 #include "snes/impls/ssstar/ssstarimpl.h"
-#include <ssstarcontact.h>
+#include "snes/impls/ssstar/laws/lawimpl.h"
+#include "reduction/reductionimpl.h"
+#include <ssstarscene.h>
 
 PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 
@@ -13,7 +19,8 @@ PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SS
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 
 /*@C
-   SSStarFinalizePackage - called by PetscFinalize(): the next SSStarInitializePackage() registers again
+   SSStarFinalizePackage - called by PetscFinalize(): empties the tables of laws, reductions and Newton steps; the next
+   SSStarInitializePackage() registers again
 
    Not Collective
 
@@ -24,12 +31,19 @@ static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 PetscErrorCode SSStarFinalizePackage(void)
 {
   PetscFunctionBegin;
-  SSStarPackageInitialized = PETSC_FALSE;
+  PetscCall(SSStarLawDestroyAll());
+  PetscCall(PetscFunctionListDestroy(&SSStarReductionList));
+  PetscCall(PetscFunctionListDestroy(&SSStarNewtonList));
+  SSStarLawRegisterAllCalled       = PETSC_FALSE;
+  SSStarReductionRegisterAllCalled = PETSC_FALSE;
+  SSStarNewtonRegisterAllCalled    = PETSC_FALSE;
+  SSStarPackageInitialized         = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarInitializePackage - registers the SNES type "ssstar" (SNESSSSTAR) and the log events of ssstar
+   SSStarInitializePackage - registers the SNES type "ssstar" (SNESSSSTAR), its friction laws (SSStarLawRegisterAll()),
+   reductions (SSStarReductionRegisterAll()) and Newton steps, and the log events of ssstar
 
    Not Collective
 
@@ -48,6 +62,9 @@ PetscErrorCode SSStarInitializePackage(void)
   SSStarPackageInitialized = PETSC_TRUE;
   PetscCall(SNESInitializePackage());
   PetscCall(SNESRegister(SNESSSSTAR, SNESCreate_SSStar));
+  PetscCall(SSStarLawRegisterAll());
+  PetscCall(SSStarReductionRegisterAll());
+  PetscCall(SSStarNewtonRegisterAll());
   PetscCall(PetscLogEventRegister("SSStarAS", SNES_CLASSID, &SSSTAR_ApproxStep));
   PetscCall(PetscLogEventRegister("SSStarNS", SNES_CLASSID, &SSSTAR_NewtonStep));
   PetscCall(PetscLogEventRegister("SSStarLS", SNES_CLASSID, &SSSTAR_LineSearch));

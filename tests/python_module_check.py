@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The Python module ssstar on a small reduced problem (tests/suite_python.py runs it on 1 and 2 ranks, from the source
 tree and from a make install): every setter and getter round-trips, the solve converges with per-node laws (Coulomb
-with per-node coefficients, Tresca, frictionless), the states and forces come back per local node, and bad input
+with per-node coefficients, Tresca, frictionless; the laws' names from the library's table), the states and forces come back per local node, and bad input
 raises petsc4py.PETSc.Error. Prints "test_module: ok" and the module's library path."""
 import sys
 
@@ -46,7 +46,7 @@ def main():
     snes = PETSc.SNES().create(comm=comm)
     snes.setType(ssstar.SNESSSSTAR)
     expect(snes.getType() == "ssstar", "the type is %s" % snes.getType())
-    ssstar.set_contact_problem(snes, P, f)
+    ssstar.set_linear_problem(snes, P, f)
     expect(ssstar.get_contact_nodes(snes)[0] == n, "the node count of a reduced problem with its function vector: %d, not %d" % (ssstar.get_contact_nodes(snes)[0], n))
 
     # setters and getters
@@ -84,8 +84,8 @@ def main():
     ids = np.arange(first, first + n)
     laws = ["none" if i % 7 == 6 else ("tresca" if i % 4 == 3 else "coulomb") for i in ids]
     ssstar.set_node_friction_laws(snes, laws)
-    ssstar.set_friction_coefficients(snes, 0.2 + 0.05 * (ids % 3))
-    ssstar.set_slip_bounds(snes, np.where(ids % 4 == 3, 0.3, 0.0))
+    ssstar.set_node_law_parameter(snes, "friction", 0.2 + 0.05 * (ids % 3))
+    ssstar.set_node_law_parameter(snes, "slip_bound", np.where(ids % 4 == 3, 0.3, 0.0))
     snes.setTolerances(rtol=1e-12)
     snes.setFromOptions()
     u = f.duplicate()
@@ -100,9 +100,11 @@ def main():
     states, counts = ssstar.get_states(snes)
     expect(len(states) == n and counts.sum() == p, "states: %d local, counts %s" % (len(states), counts))
     expect(set(np.unique(states)) <= set(range(7)), "state codes %s" % np.unique(states))
-    law_codes, phi, bounds = ssstar.get_node_friction(snes)
-    expect(list(law_codes) == [ssstar.FRICTION_LAWS.index(x) for x in laws], "get_node_friction: laws %s" % law_codes)
-    expect(np.allclose(phi[law_codes == 2], (0.2 + 0.05 * (ids % 3))[law_codes == 2]) and np.allclose(bounds[law_codes == 1], 0.3), "get_node_friction: phi or bounds")
+    law_codes = ssstar.get_node_friction_laws(snes)
+    phi, bounds = ssstar.get_node_law_parameter(snes, "friction"), ssstar.get_node_law_parameter(snes, "slip_bound")
+    coulomb, tresca = ssstar.FRICTION_LAWS.index("coulomb"), ssstar.FRICTION_LAWS.index("tresca")
+    expect(list(law_codes) == [ssstar.FRICTION_LAWS.index(x) for x in laws], "get_node_friction_laws: laws %s" % law_codes)
+    expect(np.allclose(phi[law_codes == coulomb], (0.2 + 0.05 * (ids % 3))[law_codes == coulomb]) and np.allclose(bounds[law_codes == tresca], 0.3), "get_node_law_parameter: friction or slip_bound")
     r = ssstar.get_contact_forces(snes).reshape(-1)
     expected = P.createVecLeft()
     P.mult(u, expected)
@@ -111,12 +113,13 @@ def main():
     # the law at each local node, from the module's outputs alone
     ua = u.getArray().reshape(-1, 3)
     r = r.reshape(-1, 3)
-    limit = np.where(law_codes == 2, phi * r[:, 2], np.where(law_codes == 1, bounds, 0.0))
+    limit = np.where(law_codes == coulomb, phi * r[:, 2], np.where(law_codes == tresca, bounds, 0.0))
     worst = max(np.max(-ua[:, 2], initial=0), np.max(-r[:, 2], initial=0), np.max(np.abs(ua[:, 2] * r[:, 2]), initial=0),
                 np.max(np.linalg.norm(r[:, :2], axis=1) - limit, initial=0))
     expect(worst <= 1e-10, "the friction law is violated by %g" % worst)
-    counted = PETSc.Vec().createMPI((3 if rank == 0 else 0, 3), comm=comm)
-    counted.setValues([0, 1, 2], np.bincount(law_codes, minlength=3).astype(float), addv=PETSc.InsertMode.ADD_VALUES)
+    nlaws = len(ssstar.FRICTION_LAWS)
+    counted = PETSc.Vec().createMPI((nlaws if rank == 0 else 0, nlaws), comm=comm)
+    counted.setValues(list(range(nlaws)), np.bincount(law_codes, minlength=nlaws).astype(float), addv=PETSc.InsertMode.ADD_VALUES)
     counted.assemble()
     global_law_counts = [int(round(x)) for x in counted.getArray()] if rank == 0 else []
     a, b, c = ssstar.get_newton_step_counts(snes)

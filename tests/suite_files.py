@@ -81,7 +81,7 @@ def file_metadata():
         state, group, law = c["state"][:], c["group"][:], c["friction_law"][:]
         expect(text(c["state"].attrs["names"]).split(",") == STATE_NAMES, "/contact/state names %s" % c["state"].attrs["names"])
         expect(list(a["state_counts"]) == [int((state == s).sum()) for s in range(7)], "state_counts %s, /contact/state %s" % (a["state_counts"], np.bincount(state, minlength=7)))
-        expect(text(c["group"].attrs["names"]) == "contact,top" and text(c["friction_law"].attrs["names"]) == "none,tresca,coulomb", "names of groups/laws")
+        expect(text(c["group"].attrs["names"]) == "contact,top" and text(c["friction_law"].attrs["names"]) == "none,tresca,coulomb,orthotropic", "names of groups/laws")
         bottom, top = group == 0, group == 1
         expect(bottom.any() and top.any(), "nodes per group %d, %d" % (bottom.sum(), top.sum()))
         expect((law[bottom] == 2).all() and np.allclose(c["friction"][:][bottom], 0.45) and (c["slip_bound"][:][bottom] == 0).all(), "bottom: Coulomb 0.45 per node")

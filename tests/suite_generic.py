@@ -71,3 +71,75 @@ def generic_reductions_agree():
     for name in ("displacement", "reaction"):
         d = np.abs(a[name] - b[name]).max() / np.abs(a[name]).max()
         expect(d <= 1e-9, "%s differs by %.1e relative" % (name, d))
+
+
+@test("tests/check_solution.py compares files without a mesh (/contact alone, as examples/generic writes them): the "
+      "dense route against the whole body agree to 1e-8; a copy with one reaction changed by 1 % differs")
+def generic_compare_without_mesh():
+    import shutil
+    names = {"direct": "generic_cmp_direct.h5", "none": "generic_cmp_none.h5"}
+    for path, h5 in names.items():
+        generic(1, "-snes_type", "ssstar", "-snes_ssstar_reduction", path, *TILTED, h5=h5)
+    a, b = os.path.join(OUT, names["direct"]), os.path.join(OUT, names["none"])
+    with h5py.File(a, "r") as f:
+        expect("geometry" not in f and "contact" in f, "examples/generic wrote a mesh")
+    out = run(CHECK + ["compare", a, b, "--tol", "1e-8"])
+    expect("reaction" in out and "DIFFERENT" not in out, "the two routes differ", out)
+    bad = os.path.join(OUT, "generic_cmp_changed.h5")
+    shutil.copy(b, bad)
+    with h5py.File(bad, "r+") as f:
+        r = f["contact/reaction"][:]
+        k = np.argmax(np.abs(r).max(axis=1))
+        r[k] *= 1.01
+        f["contact/reaction"][...] = r
+    out = run(CHECK + ["compare", a, bad, "--tol", "1e-8"], expect_rc=1)
+    expect(re.search(r"reaction\s+max difference\s+\S+ relative DIFFERENT", out) is not None, "a changed reaction passes", out)
+
+
+def resultant(h5):
+    """The total contact force on the bottom: its normal part F_n, its tangential vector F_t (global axes), and the
+    tangential displacement of every node"""
+    c = h5py.File(os.path.join(OUT, h5), "r")["contact"]
+    r, n, u = (c[name][:].reshape(-1, 3) for name in ("reaction", "normal", "displacement"))
+    fn = (r * n).sum()
+    return fn, r.sum(axis=0) - fn * n[0], u - (u * n).sum(axis=1)[:, None] * n
+
+
+ORTHOTROPIC = ["-snes_type", "ssstar", "-nu", "0", "-snes_ssstar_friction_law", "orthotropic", "-snes_ssstar_friction_1", "0.3", "-snes_ssstar_friction_2", "0.6"]
+
+
+@test("the orthotropic law's known answer (phi_1 = 0.3 along the friction direction, phi_2 = 0.6 across, nu = 0 so that nothing moves across the push): a block pressed onto the plane and pushed along the direction by 0.008 slides, every node along the push, with a tangential force of phi_1 times the normal force (to 1e-8); pushed across by as much it holds (phi_1 F_n < F_t < phi_2 F_n, some nodes stuck); pushed across by 0.02 it slides with phi_2; pushed along by 0.004 (F_t = 0.206 F_n) no node moves tangentially; the direction turned to y swaps the axes, and a direction with a normal part is projected onto the plane; direct and none, 1 and 2 ranks")
+def generic_orthotropic_known_answer():
+    cases = [("0.008,0,-0.01", "1,0,0", 0, "slides", 0.3), ("0,0.008,-0.01", "1,0,0", 1, "holds", None), ("0,0.02,-0.01", "1,0,0", 1, "slides", 0.6),
+             ("0.004,0,-0.01", "1,0,0", 0, "sticks", None), ("0.008,0,-0.01", "0,1,0", 0, "holds", None), ("0.008,0,-0.01", "1,0,0.7", 0, "slides", 0.3)]
+    for k, (push, direction, axis, kind, phi) in enumerate(cases):
+        for red in ("direct", "none"):
+            for ranks in ((1, 2) if k < 3 else (1,)):
+                name = "ortho_%d_%s_%d.h5" % (k, red, ranks)
+                out, distance, _ = generic(ranks, *ORTHOTROPIC, "-snes_ssstar_friction_direction", direction, "-push", push, "-snes_ssstar_reduction", red, "-snes_converged_reason", h5=name)
+                fn, ft, slip = resultant(name)
+                ratio, moved = -ft[axis] / fn, np.linalg.norm(slip, axis=1)
+                what = "push %s, direction %s, %s, %d ranks: F_t/F_n = %.10f, slip %.2g..%.2g" % (push, direction, red, ranks, ratio, moved.min(), moved.max())
+                expect("CONVERGED_FNORM" in out and distance >= -1e-11 and fn > 1e3, what + ": not converged or no contact", out)
+                delta = max(abs(float(x)) for x in push.split(",")[:2])
+                expect(abs(ft[1 - axis]) <= 1e-8 * fn and np.abs(slip[:, 1 - axis]).max() <= 1e-8 * delta, what + ": a force or a slip across the push", out)
+                if kind == "slides":  # every node along the push, F_t = phi F_n against it
+                    expect(abs(ratio - phi) <= 1e-8 * phi and (slip[:, axis] > 1e-6).all(), what + ": not sliding with phi = %g" % phi, out)
+                elif kind == "holds":  # more than phi_1 could hold, less than phi_2, not sliding as a whole
+                    expect(0.3 * 1.01 < ratio < 0.6 and moved.min() <= 1e-8 * delta, what + ": does not hold between phi_1 and phi_2", out)
+                else:  # no node moves: the force of the bonded block, below phi_1
+                    expect(moved.max() <= 1e-8 * delta and abs(ratio - 0.2055608871) <= 1e-8, what + ": not stuck", out)
+
+
+@test("the orthotropic law with phi_1 = phi_2 = 0.3 (any direction) is the Coulomb law: on the tilted plane with gaps its solution equals coulomb's (phi = 0.3) to 1e-12 on both paths, with the same iterations")
+def generic_orthotropic_is_coulomb():
+    for red in ("direct", "none"):
+        iso = ["-snes_ssstar_friction_law", "orthotropic", "-snes_ssstar_friction_1", "0.3", "-snes_ssstar_friction_2", "0.3", "-snes_ssstar_friction_direction", "1,2,0"]
+        out_o, _, _ = generic(1, "-snes_type", "ssstar", *TILTED, "-snes_ssstar_reduction", red, *iso, h5="ortho_iso_%s.h5" % red)
+        out_c, _, _ = generic(1, "-snes_type", "ssstar", *TILTED, "-snes_ssstar_reduction", red, "-snes_ssstar_friction", "0.3", h5="coulomb_iso_%s.h5" % red)
+        a, b = by_coordinates("ortho_iso_%s.h5" % red), by_coordinates("coulomb_iso_%s.h5" % red)
+        its = [re.search(r"after (\d+) iterations", out).group(1) for out in (out_o, out_c)]
+        expect(its[0] == its[1], "%s: %s iterations, coulomb %s" % (red, its[0], its[1]), out_o)
+        for name in ("displacement", "reaction"):
+            d = np.abs(a[name] - b[name]).max() / np.abs(b[name]).max()
+            expect(d <= 1e-12, "%s: %s differs from coulomb's by %.1e relative" % (red, name, d))

@@ -305,3 +305,74 @@ def memory_refusal_wording():
     text = run(mpiexec(1, PRISM, "-level", "400"), expect_rc=1)
     expect("for the mesh and the assembly (the solver's own memory comes on top)" in text and " 0 GB" not in text
            and "refused before the work" in text, "the refusal of -level 400 does not say what it counted", text)
+
+
+BAD_INPUT = [([PRISM, "-level", "0"], "-level 0: the mesh level must be >= 1"),
+             ([CONTACT, *INCLINE, "-E", "0"], "Young's modulus must be a positive number"),
+             ([GENERIC, "-nu", "0.5"], "-nu 0.5: need E > 0 and -1 < nu < 0.5"),
+             ([FCLIB, os.path.join(OUT, "no_such.hdf5")], "no_such.hdf5")]
+
+
+@test("an error a driver reports is one line, the program's name and ssstar's message naming the option or file, and "
+      "the exit status (PETSc's error code): bad input on examples/prism, contact, generic and fclib run as plain "
+      "commands, no PETSc report (no 'PETSC ERROR', no 'Configure options' line)")
+def error_one_line():
+    for cmd, message in BAD_INPUT:
+        p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+        lines = p.stdout.splitlines()
+        name = cmd[0]  # the program's name as it was run
+        expect(p.returncode not in (0, NOT_CONVERGED), "%s: exit status %d" % (name, p.returncode), p.stdout)
+        expect(len(lines) == 1 and lines[0].startswith(name + ": ") and message in lines[0],
+               "%s: not the one line '%s: ... %s'" % (name, name, message), p.stdout)
+        expect("Configure options" not in p.stdout and "PETSC ERROR" not in p.stdout, "%s: PETSc's report without asking" % name, p.stdout)
+
+
+@test("a debugging option brings PETSc's report back after ssstar's line: -ssstar_traceback (the calls, the "
+      "configure line) on examples/prism and examples/contact; -ssstar_traceback is listed by -help")
+def error_traceback_on_request():
+    for cmd, message in BAD_INPUT[:2]:
+        p = subprocess.run(cmd + ["-ssstar_traceback"], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+        lines = p.stdout.splitlines()
+        expect(p.returncode not in (0, NOT_CONVERGED) and len(lines) > 10 and message in lines[0], "no report after the line", p.stdout)
+        expect("Configure options" in p.stdout and re.search(r"PETSC ERROR: #\d+ main\(\)", p.stdout) is not None, "no calls or configure line", p.stdout)
+
+
+@test("-help lists the program's, the scene's and the solver's options and exits 0 without any work: on examples/prism, "
+      "contact (without a scene), generic and fclib (without a file) each lists -snes_ssstar_friction and an option of "
+      "its own, meshes nothing (a fresh .geo stays unmeshed) and writes no -o file")
+def help_without_work():
+    geo = out("outcomes_help.geo")
+    shutil.copy(os.path.join(ROOT, "meshes", "prism.geo"), geo)
+    msh = out("outcomes_help_L2.msh")
+    own = {"prism": "-initial_guess", "contact": "-obstacle_<G>", "generic": "-obstacle_normal", "fclib": "-summary_header"}
+    work = {"prism": "level ranks  nodes", "contact": "summary: nodes", "generic": " iterations\n", "fclib": "FCLib-error"}  # what a solve prints
+    args = {"prism": ["-geo", geo, "-level", "2"], "contact": [], "generic": [], "fclib": []}
+    for program, option in own.items():
+        if os.path.exists(msh):
+            os.remove(msh)
+        h5 = fresh("outcomes_help_%s.h5" % program)
+        p = subprocess.run(mpiexec(1, os.path.join(ROOT, "examples", program), "-help", *args[program], "-o", h5), cwd=ROOT,
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+        expect(p.returncode == 0, "examples/%s -help: exit status %d" % (program, p.returncode), p.stdout)
+        expect(re.search(r"^\s*-snes_ssstar_friction <", p.stdout, re.M) is not None and option in p.stdout and "-ssstar_traceback" in p.stdout,
+               "examples/%s -help does not list -snes_ssstar_friction, %s and -ssstar_traceback" % (program, option), p.stdout)
+        expect(program != "contact" or "-obstacle_<G>" in p.stdout and "-contact_pair_<G>" in p.stdout, "examples/contact -help: no scene options", p.stdout)
+        expect(not os.path.exists(h5) and not os.path.exists(msh), "examples/%s -help wrote a file or meshed" % program)
+        expect(work[program] not in p.stdout and "SNES Function norm" not in p.stdout, "examples/%s -help solved" % program, p.stdout)
+
+
+@test("an error raised on one rank only ends every rank within seconds, with the message and a non-zero exit status: "
+      "examples/fclib on 2 ranks writes -o on rank 0 alone, and -o names a folder (rank 1 has finished and waits); "
+      "run under a timeout, so a hang fails")
+def error_on_one_rank_ends_all():
+    import time
+    folder = out("outcomes_a_folder.h5")
+    os.makedirs(folder, exist_ok=True)
+    t0 = time.time()
+    p = subprocess.run(["timeout", "60"] + mpiexec(2, FCLIB, FCLIB_SLOW, "-o", folder), cwd=ROOT, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True, timeout=120)
+    elapsed = time.time() - t0
+    expect(p.returncode not in (0, NOT_CONVERGED, 124), "exit status %d (124: the timeout ended a hang)" % p.returncode, p.stdout)
+    expect(elapsed < 30, "the ranks ended after %.0f s" % elapsed, p.stdout)
+    expect(re.search(r"^\S*fclib, rank 0: Cannot create the HDF5 file .*outcomes_a_folder\.h5", p.stdout, re.M) is not None,
+           "no one-line message of rank 0 naming the file", p.stdout)

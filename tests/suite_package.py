@@ -20,7 +20,7 @@ def install_and_build_downstream():
     shutil.rmtree(build, ignore_errors=True)
     os.makedirs(build)
     run(["make", "-s", "install", "PREFIX=" + prefix])
-    for path in ("lib/libssstar.so", "lib/pkgconfig/ssstar.pc", "include/ssstar.h", "include/ssstarreduction.h", "include/ssstarcontact.h"):
+    for path in ("lib/libssstar.so", "lib/pkgconfig/ssstar.pc", "include/ssstar.h", "include/ssstarreduction.h", "include/ssstarscene.h", "include/ssstargeometry.h"):
         expect(os.path.exists(os.path.join(prefix, path)), "make install did not install " + path)
     shutil.copy(os.path.join(ROOT, "examples", "generic.c"), build)
     env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(prefix, "lib", "pkgconfig"))
@@ -50,11 +50,11 @@ def help_of(program, *args):
     return run(mpiexec(1, os.path.join(ROOT, "examples", program), "-help", *args))
 
 
-@test("-help lists every option with its default: each -snes_ssstar_* option of the library in examples/prism -help, each scene option of src/contact in examples/prism and examples/contact -help, and each option an example reads in that example's -help")
+@test("-help lists every option with its default: each -snes_ssstar_* option of the library in examples/prism -help, each scene option of src/scene in examples/prism and examples/contact -help, and each option an example reads in that example's -help")
 def help_lists_every_option():
     sources = glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)
     library = {o for o in options_in(sources) if o.startswith("-snes_ssstar")}
-    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "contact", "*.c")), LITERAL) if not o.startswith("-dm_")}
+    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "scene", "**", "*.c"), recursive=True), LITERAL) if not o.startswith("-dm_")}
     expect(len(library) >= 5 and len(scene) >= 10, "found only %s and %s in src/" % (sorted(library), sorted(scene)))
     args = {"prism": ["-level", "2"], "contact": ["-options_file", os.path.join(ROOT, "scenes", "prism.opts"), "-level", "2"]}
     for source in sorted(glob.glob(os.path.join(ROOT, "examples", "*.c"))):
@@ -94,7 +94,7 @@ def compile_synopses(synopses, name):
     """Compiles a C file that assigns each public function to a pointer of its manual's synopsis type, with the
     project's compiler and flags and -Werror (an incompatible pointer is an error); returns (ok, compiler output)"""
     source = os.path.join(OUT, name + ".c")
-    lines = ["#include <ssstar.h>", "#include <ssstarreduction.h>", "#include <ssstarcontact.h>", ""]
+    lines = ["#include <%s>" % os.path.basename(h) for h in sorted(glob.glob(os.path.join(ROOT, "include", "*.h")))] + [""]
     for k, (function, header, signature) in enumerate(synopses):
         lines.append("%s = %s;" % (signature.replace(" %s(" % function, " (*manual_%d)(" % k, 1), function))
     open(source, "w").write("\n".join(lines) + "\n")

@@ -165,3 +165,42 @@ def pairs_cattaneo_mindlin():
     out, states2, c = contact(scene("mindlin") + ["-snes_ssstar_reduction", "none"], "pairs_mindlin_none_2.h5", 2)
     out, states1, c = contact(scene("mindlin"), "pairs_mindlin_direct_1.h5", 1)
     expect(states1 == states2, "the whole body on 2 ranks: states %s, direct on 1 rank %s" % (states2, states1), out)
+
+
+def corrupted(src, name, change):
+    """A copy of the solution file src with change(contact group) applied"""
+    import shutil
+    dst = os.path.join(OUT, name)
+    shutil.copy(src, dst)
+    with h5py.File(dst, "r+") as f:
+        change(f["contact"])
+    return dst
+
+
+@test("tests/check_solution.py judges two bodies by the relative gap and slip the file records (/contact/final_gap, "
+      "/contact/slip): the slider, the patch test and hertz2 pass 'coulomb FILE' (the law at every slave node against "
+      "the master surface); a copy with the slip reversed at the sliding nodes, and one with a slave node 1 % of the "
+      "largest displacement into the master, fail naming the law they break")
+def pairs_check_solution():
+    for name in ("slider", "patch", "hertz2"):
+        h5 = os.path.join(OUT, "check_%s.h5" % name)
+        contact(scene(name), "check_%s.h5" % name)
+        law = run(CHECK + ["coulomb", h5])
+        expect("VIOLATED" not in law and "final_gap and /contact/slip" in law, "%s: the law against the master surface" % name, law)
+    src = os.path.join(OUT, "check_slider.h5")
+
+    def reverse(c):
+        slip = c["slip"][:]
+        c["slip"][...] = -slip
+
+    def penetrate(c):
+        gap, scale = c["final_gap"][:], np.abs(c["displacement"][:]).max()
+        touching = np.argmax(np.einsum("ij,ij->i", c["reaction"][:], c["normal"][:]))
+        gap[touching] = -0.01 * scale
+        c["final_gap"][...] = gap
+
+    out = run(CHECK + ["coulomb", corrupted(src, "check_slider_reversed.h5", reverse)], expect_rc=1)
+    expect(re.search(r"r_t = -bound w_t/\|w_t\|\s+\S+ VIOLATED", out) is not None, "a reversed slip passes", out)
+    out = run(CHECK + ["coulomb", corrupted(src, "check_slider_penetrating.h5", penetrate)], expect_rc=1)
+    expect(re.search(r"w_n >= 0\s+\S+ VIOLATED", out) is not None and re.search(r"w_n r_n = 0\s+\S+ VIOLATED", out) is not None,
+           "a penetrating slave node passes", out)

@@ -10,8 +10,9 @@ SINGULAR = "K is singular: is the body held? (Dirichlet conditions)"
 
 
 def error_text(out):
-    """The PETSc error message lines (without the traceback and the configure line)"""
-    return " ".join(re.findall(r"PETSC ERROR: ((?:K is|The |Out of|MUMPS|-schur).*)", out))
+    """The error message lines: the driver's one line (program: message), or PETSc's report (-info, test programs)
+    without the traceback and the configure line"""
+    return " ".join(re.findall(r"(?:PETSC ERROR|^\S+(?:, rank \d+)?): ((?:K is|The |Out of|MUMPS|-schur).*)", out, re.M))
 
 
 @test("on a hand-assembled K (contact dofs in no particular order), direct, mumps and explicit give the same P, f and recovered u to 1e-10, and u solves the interior equations to 1e-12, on 1, 2 and 3 ranks")

@@ -4,7 +4,7 @@ static const char help[] = "ssstar Newton steps against the 6p system D [dv; eta
 
 /*
    Requirement: on random SPD K, loads and starting points, with per-node laws (Coulomb, Coulomb with phi = 0, Tresca,
-   none), tilted obstacle normals and gaps, declared through SNESSSStarSetContactNodes (every dof a contact dof, nodes
+   none, orthotropic with a random direction in global axes), tilted obstacle normals and gaps, declared through SNESSSStarSetContactNodes (every dof a contact dof, nodes
    in reversed order), the step taken by SNESSolve with -snes_max_it 1 equals the solution of the 6p system built from
    the per-node G, H blocks, to 1e-10 relative; so does the second step of -snes_max_it 2 when it is solved by GMRES on
    the LU of the first (SNESSSStarSetLUReuse(snes, 1)); the condition estimate is within a factor 10 of 1/cond_1 of the
@@ -16,13 +16,51 @@ static const char help[] = "ssstar Newton steps against the 6p system D [dv; eta
 #define NODES 16
 #define N     (3 * NODES)
 
+/* the laws of the test, by their index in the table of laws */
+enum {
+  NONE,
+  TRESCA,
+  COULOMB,
+  ORTHOTROPIC,
+  NUM_LAWS
+};
+static const char *const LawNames[NUM_LAWS] = {SSSTARLAWNONE, SSSTARLAWTRESCA, SSSTARLAWCOULOMB, SSSTARLAWORTHOTROPIC};
+static PetscInt          LawIndex[NUM_LAWS];
+
 typedef struct {
-  PetscReal         K[N * N], b[N]; /* K column-major, SPD */
-  SSStarFrictionLaw law[NODES];
-  PetscReal         phi[NODES], bound[NODES], gap[NODES], R[9 * NODES];
-  PetscBool         tilted, gaps;
-  PetscReal         gamma;
+  PetscReal K[N * N], b[N]; /* K column-major, SPD */
+  PetscInt  law[NODES];     /* NONE, ... */
+  PetscReal phi[NODES], phi2[NODES], direction[3 * NODES], bound[NODES], gap[NODES], R[9 * NODES];
+  PetscBool tilted, gaps;
+  PetscReal gamma;
 } Problem;
+
+/* The kernels' friction of node i: a bound times gamma (the kernels see gamma c), the direction in the node's frame */
+static PetscErrorCode NodeFriction(const Problem *pb, PetscInt i, SSStarFriction *fr)
+{
+  const PetscReal *R = &pb->R[9 * i], *a = &pb->direction[3 * i];
+  PetscReal        v[5];
+
+  PetscFunctionBeginUser;
+  switch (pb->law[i]) {
+  case NONE:
+    PetscCall(SSStarFrictionSet(fr, SSSTARLAWNONE, 0, NULL));
+    break;
+  case TRESCA:
+    v[0] = pb->gamma * pb->bound[i];
+    PetscCall(SSStarFrictionSet(fr, SSSTARLAWTRESCA, 1, v));
+    break;
+  case COULOMB:
+    PetscCall(SSStarFrictionSet(fr, SSSTARLAWCOULOMB, 1, &pb->phi[i]));
+    break;
+  default:
+    v[0] = pb->phi[i];
+    v[1] = pb->phi2[i];
+    for (PetscInt r = 0; r < 3; r++) v[2 + r] = R[3 * r] * a[0] + R[3 * r + 1] * a[1] + R[3 * r + 2] * a[2];
+    PetscCall(SSStarFrictionSet(fr, SSSTARLAWORTHOTROPIC, 5, v));
+  }
+  PetscFunctionReturn(0);
+}
 
 /* The 6p step at u: du, the states, and 1/cond_1 of the matrix of the unknown dofs (section 5 rows not fixed) */
 typedef struct {
@@ -76,10 +114,11 @@ static PetscErrorCode SixPStep(const Problem *pb, const PetscReal u[], Step *st)
     for (PetscInt k = 0; k < N; k++) c[r] += pb->K[k * N + r] * u[k];
   }
   for (PetscInt i = 0; i < NODES; i++) {
-    const PetscReal     *R  = &pb->R[9 * i];
-    const SSStarFriction fr = {pb->law[i], pb->phi[i], pb->gamma * pb->bound[i]};
-    PetscReal            v[3], cc[3], d[3], bb[3];
+    const PetscReal *R = &pb->R[9 * i];
+    SSStarFriction   fr;
+    PetscReal        v[3], cc[3], d[3], bb[3];
 
+    PetscCall(NodeFriction(pb, i, &fr));
     for (PetscInt r = 0; r < 3; r++) {
       v[r]  = R[3 * r] * u[3 * i] + R[3 * r + 1] * u[3 * i + 1] + R[3 * r + 2] * u[3 * i + 2] + (r == 2 ? pb->gap[i] : 0.0);
       cc[r] = pb->gamma * (R[3 * r] * c[3 * i] + R[3 * r + 1] * c[3 * i + 1] + R[3 * r + 2] * c[3 * i + 2]);
@@ -151,27 +190,6 @@ static PetscErrorCode SixPStep(const Problem *pb, const PetscReal u[], Step *st)
 }
 
 typedef struct {
-  Mat K;
-  Vec b;
-} Body;
-
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
-
-typedef struct {
   PetscInt  lu, reused, krylov;
   PetscReal rcond;
 } Counts;
@@ -184,9 +202,9 @@ static PetscErrorCode Solve(const Problem *pb, PetscBool sparse, PetscInt maxit,
 {
   MPI_Comm           comm = PETSC_COMM_WORLD;
   PetscInt           nodes = PETSC_DECIDE, Nnodes = NODES, start, dofs[N];
-  SSStarFrictionLaw  lawsUser[NODES];
-  Body               body;
-  Vec                x, normals, gaps, phi, bounds, all;
+  PetscInt           lawsUser[NODES];
+  Mat                K;
+  Vec                x, b, normals, gaps, phi, phi2, direction, bounds, all;
   IS                 is;
   SNES               snes;
   VecScatter         toAll;
@@ -196,16 +214,18 @@ static PetscErrorCode Solve(const Problem *pb, PetscBool sparse, PetscInt maxit,
   PetscCall(PetscSplitOwnership(comm, &nodes, &Nnodes));
   PetscCallMPI(MPI_Scan(&nodes, &start, 1, MPIU_INT, MPI_SUM, comm));
   start -= nodes;
-  if (sparse) PetscCall(MatCreateAIJ(comm, 3 * nodes, 3 * nodes, N, N, 3 * nodes, NULL, N - 3 * nodes, NULL, &body.K));
-  else PetscCall(MatCreateDense(comm, 3 * nodes, 3 * nodes, N, N, NULL, &body.K));
+  if (sparse) PetscCall(MatCreateAIJ(comm, 3 * nodes, 3 * nodes, N, N, 3 * nodes, NULL, N - 3 * nodes, NULL, &K));
+  else PetscCall(MatCreateDense(comm, 3 * nodes, 3 * nodes, N, N, NULL, &K));
   for (PetscInt r = 3 * start; r < 3 * (start + nodes); r++)
-    for (PetscInt c = 0; c < N; c++) PetscCall(MatSetValue(body.K, r, c, pb->K[c * N + r], INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(body.K, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(body.K, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatCreateVecs(body.K, &x, &body.b));
+    for (PetscInt c = 0; c < N; c++) PetscCall(MatSetValue(K, r, c, pb->K[c * N + r], INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(K, &x, &b));
   PetscCall(VecCreateMPI(comm, 3 * nodes, N, &normals));
+  PetscCall(VecDuplicate(normals, &direction));
   PetscCall(VecCreateMPI(comm, nodes, NODES, &gaps));
   PetscCall(VecDuplicate(gaps, &phi));
+  PetscCall(VecDuplicate(gaps, &phi2));
   PetscCall(VecDuplicate(gaps, &bounds));
   for (PetscInt k = 0; k < nodes; k++) { /* user's node k is node j */
     const PetscInt j = start + nodes - 1 - k;
@@ -213,15 +233,17 @@ static PetscErrorCode Solve(const Problem *pb, PetscBool sparse, PetscInt maxit,
     for (PetscInt r = 0; r < 3; r++) {
       dofs[3 * k + r] = 3 * j + r;
       PetscCall(VecSetValue(normals, 3 * (start + k) + r, pb->R[9 * j + 6 + r], INSERT_VALUES));
+      PetscCall(VecSetValue(direction, 3 * (start + k) + r, pb->direction[3 * j + r], INSERT_VALUES));
       PetscCall(VecSetValue(x, 3 * j + r, u0[3 * j + r], INSERT_VALUES));
-      PetscCall(VecSetValue(body.b, 3 * j + r, pb->b[3 * j + r], INSERT_VALUES));
+      PetscCall(VecSetValue(b, 3 * j + r, pb->b[3 * j + r], INSERT_VALUES));
     }
     PetscCall(VecSetValue(gaps, start + k, pb->gap[j], INSERT_VALUES));
     PetscCall(VecSetValue(phi, start + k, pb->phi[j], INSERT_VALUES));
+    PetscCall(VecSetValue(phi2, start + k, pb->phi2[j], INSERT_VALUES));
     PetscCall(VecSetValue(bounds, start + k, pb->bound[j], INSERT_VALUES));
-    lawsUser[k] = pb->law[j];
+    lawsUser[k] = LawIndex[pb->law[j]];
   }
-  for (Vec *v = (Vec[]){x, body.b, normals, gaps, phi, bounds}, *e = v + 6; v < e; v++) {
+  for (Vec *v = (Vec[]){x, b, normals, direction, gaps, phi, phi2, bounds}, *e = v + 8; v < e; v++) {
     PetscCall(VecAssemblyBegin(*v));
     PetscCall(VecAssemblyEnd(*v));
   }
@@ -229,15 +251,18 @@ static PetscErrorCode Solve(const Problem *pb, PetscBool sparse, PetscInt maxit,
 
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, NULL));
+  PetscCall(SNESSSStarSetLinearProblem(snes, K, b));
   PetscCall(SNESSSStarSetContactNodes(snes, is, pb->tilted ? normals : NULL, pb->gaps ? gaps : NULL));
-  PetscCall(SNESSSStarSetFrictionCoefficients(snes, phi));
-  PetscCall(SNESSSStarSetSlipBounds(snes, bounds));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction", phi));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "slip_bound", bounds));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction_1", phi));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction_2", phi2));
+  PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction_direction", direction));
   PetscCall(SNESSSStarSetNodeFrictionLaws(snes, nodes, lawsUser));
   PetscCall(SNESSSStarSetScaling(snes, pb->gamma));
   PetscCall(SNESSSStarSetStateTolerance(snes, 0.0));
   PetscCall(SNESSSStarSetLUReuse(snes, reuse));
+  PetscCall(SNESSSStarSetGlobalization(snes, PETSC_FALSE, PETSC_DEFAULT, PETSC_DEFAULT)); /* full steps: the ones compared */
   PetscCall(SNESSetTolerances(snes, PETSC_DEFAULT, 1e-300, PETSC_DEFAULT, maxit, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(SNESSolve(snes, NULL, x));
@@ -254,8 +279,8 @@ static PetscErrorCode Solve(const Problem *pb, PetscBool sparse, PetscInt maxit,
   PetscCall(VecDestroy(&all));
   PetscCall(SNESDestroy(&snes));
   PetscCall(ISDestroy(&is));
-  for (Vec *v = (Vec[]){x, body.b, normals, gaps, phi, bounds}, *e = v + 6; v < e; v++) PetscCall(VecDestroy(v));
-  PetscCall(MatDestroy(&body.K));
+  for (Vec *v = (Vec[]){x, b, normals, direction, gaps, phi, phi2, bounds}, *e = v + 8; v < e; v++) PetscCall(VecDestroy(v));
+  PetscCall(MatDestroy(&K));
   PetscFunctionReturn(0);
 }
 
@@ -284,17 +309,23 @@ static PetscErrorCode RandomProblem(PetscRandom rnd, PetscInt t, Problem *pb, Pe
 
     switch ((i + t) % 6) {
     case 0:
-      pb->law[i] = SSSTAR_FRICTION_NONE;
+      pb->law[i] = NONE;
       break;
     case 1:
-      pb->law[i] = SSSTAR_FRICTION_TRESCA;
+      pb->law[i] = TRESCA;
+      break;
+    case 5:
+      pb->law[i] = ORTHOTROPIC;
       break;
     default:
-      pb->law[i] = SSSTAR_FRICTION_COULOMB;
+      pb->law[i] = COULOMB;
     }
     PetscCall(PetscRandomGetValueReal(rnd, &x));
     pb->phi[i]   = (i + t) % 6 == 2 ? 0.0 : 0.3 + 0.2 * x; /* Coulomb with phi = 0 too */
+    pb->phi2[i]  = 0.1 + 0.3 * PetscAbsReal(x);
     pb->bound[i] = 20.0 + 20.0 * x;
+    for (PetscInt k = 0; k < 3; k++) PetscCall(PetscRandomGetValueReal(rnd, &pb->direction[3 * i + k]));
+    pb->direction[3 * i + 2] *= 0.2; /* far from the normals, which are within 27 degrees of (0, 0, 1) */
     PetscCall(PetscRandomGetValueReal(rnd, &x));
     pb->gap[i] = pb->gaps ? 0.05 * x : 0.0;
     if (pb->tilted) {
@@ -329,13 +360,14 @@ static PetscReal RelativeDifference(const PetscReal a[], const PetscReal b[], co
 
 int main(int argc, char **argv)
 {
-  PetscInt    trials = 24, failures = 0, seen[3][SSSTAR_NUM_STATES] = {{0}}, moved = 0;
+  PetscInt    trials = 24, failures = 0, seen[NUM_LAWS][SSSTAR_NUM_STATES] = {{0}}, moved = 0;
   PetscReal   worst[3] = {0, 0, 0}, rcondRatio[2] = {PETSC_MAX_REAL, 0};
   PetscBool   sparse = PETSC_FALSE;
   PetscRandom rnd;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
+  for (PetscInt l = 0; l < NUM_LAWS; l++) PetscCall(SSStarLawGetIndex(LawNames[l], &LawIndex[l]));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-trials", &trials, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-sparse", &sparse, NULL));
   /* the second step on the first step's LU is solved to the round-off */
@@ -393,8 +425,8 @@ int main(int argc, char **argv)
   PetscCall(PetscRandomDestroy(&rnd));
 
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "states seen (law: L M1 M2 M3+ M3- M4 LS):"));
-  for (PetscInt l = 0; l < 3; l++) {
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, " %s:", SSStarFrictionLaws[l]));
+  for (PetscInt l = 0; l < NUM_LAWS; l++) {
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, " %s:", LawNames[l]));
     for (PetscInt s = 0; s < SSSTAR_NUM_STATES; s++) PetscCall(PetscPrintf(PETSC_COMM_WORLD, " %" PetscInt_FMT, seen[l][s]));
   }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "\nworst relative difference: first step %.1e, step on an old LU %.1e (%" PetscInt_FMT " trials with dofs changing status)\n", (double)worst[0], (double)worst[1], moved));
@@ -409,10 +441,10 @@ int main(int argc, char **argv)
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "FAIL: no trial moved a dof between known and unknown on the old LU\n"));
     }
   }
-  if (!seen[SSSTAR_FRICTION_COULOMB][SSSTAR_STATE_L] || !seen[SSSTAR_FRICTION_COULOMB][SSSTAR_STATE_M1] || !seen[SSSTAR_FRICTION_COULOMB][SSSTAR_STATE_M3P] || !seen[SSSTAR_FRICTION_TRESCA][SSSTAR_STATE_LS] ||
-      !seen[SSSTAR_FRICTION_TRESCA][SSSTAR_STATE_M1] || !(seen[SSSTAR_FRICTION_NONE][SSSTAR_STATE_M1] + seen[SSSTAR_FRICTION_NONE][SSSTAR_STATE_M3P] + seen[SSSTAR_FRICTION_NONE][SSSTAR_STATE_M3M])) {
+  if (!seen[COULOMB][SSSTAR_STATE_L] || !seen[COULOMB][SSSTAR_STATE_M1] || !seen[COULOMB][SSSTAR_STATE_M3P] || !seen[TRESCA][SSSTAR_STATE_LS] || !seen[TRESCA][SSSTAR_STATE_M1] ||
+      !(seen[NONE][SSSTAR_STATE_M1] + seen[NONE][SSSTAR_STATE_M3P] + seen[NONE][SSSTAR_STATE_M3M]) || !seen[ORTHOTROPIC][SSSTAR_STATE_M1] || !seen[ORTHOTROPIC][SSSTAR_STATE_M3P]) {
     failures++;
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "FAIL: the random states do not cover Coulomb L, M1, M3+, Tresca LS, M1 and frictionless contact\n"));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "FAIL: the random states do not cover Coulomb L, M1, M3+, Tresca LS, M1, frictionless contact and orthotropic M1, M3+\n"));
   }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", failures ? "FAILED" : "OK"));
   PetscCall(PetscFinalize());

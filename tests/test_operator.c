@@ -16,22 +16,6 @@ typedef struct {
   Vec b;
 } Body;
 
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
-
 /* The frame of point p: a rotation about (1, 2, 3) by 0.3 p + 0.2 (rows t1, t2, n) */
 static void Frame(PetscInt p, PetscReal R[9])
 {
@@ -324,10 +308,9 @@ int main(int argc, char **argv)
 
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
-  PetscCall(SNESSetFunction(snes, NULL, FormFunction, &body));
-  PetscCall(SNESSetJacobian(snes, body.K, body.K, FormJacobian, &body));
+  PetscCall(SNESSSStarSetLinearProblem(snes, body.K, body.b));
   PetscCall(SNESSSStarSetContactOperator(snes, dofs, B, gaps));
-  if (formula) PetscCall(SNESSSStarSetReductionType(snes, SSSTAR_REDUCTION_DIRECT));
+  if (formula) PetscCall(SNESSSStarSetReductionType(snes, SSSTARREDUCTIONDIRECT));
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(MatCreateVecs(body.K, &u, NULL));
   PetscCall(VecZeroEntries(u));

@@ -7,31 +7,15 @@ static const char help[] = "The reductions of a scene checked against other solv
 The scene comes from the options, as for examples/contact.\n";
 
 #include <ssstar.h>
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 
 typedef struct {
   Mat K;
   Vec b;
 } Body;
 
-static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
-{
-  Body *body = (Body *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(body->K, u, r));
-  PetscCall(VecAXPY(r, -1.0, body->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
-
 /* The scene's contact problem solved by ssstar (options with prefix), from u = 0 */
-static PetscErrorCode SolveContact(SSStarScene scene, Body *body, const char prefix[], SSStarFrictionLaw *law, Vec bounds, SNES *snes, Vec *u)
+static PetscErrorCode SolveContact(SSStarScene scene, Body *body, const char prefix[], const char *law, Vec bounds, SNES *snes, Vec *u)
 {
   DM                  dm;
   SNESConvergedReason reason;
@@ -41,10 +25,9 @@ static PetscErrorCode SolveContact(SSStarScene scene, Body *body, const char pre
   PetscCall(SNESSetOptionsPrefix(*snes, prefix));
   PetscCall(SNESSetType(*snes, SNESSSSTAR));
   PetscCall(SSStarSceneSetContact(scene, *snes));
-  if (law) PetscCall(SNESSSStarSetFrictionLaw(*snes, *law));
-  if (bounds) PetscCall(SNESSSStarSetSlipBounds(*snes, bounds));
-  PetscCall(SNESSetFunction(*snes, NULL, FormFunction, body));
-  PetscCall(SNESSetJacobian(*snes, body->K, body->K, FormJacobian, body));
+  if (law) PetscCall(SNESSSStarSetFrictionLaw(*snes, law));
+  if (bounds) PetscCall(SNESSSStarSetNodeLawParameter(*snes, "slip_bound", bounds));
+  PetscCall(SNESSSStarSetLinearProblem(*snes, body->K, body->b));
   PetscCall(SNESSetTolerances(*snes, PETSC_DEFAULT, 1e-13, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(SNESSetFromOptions(*snes));
   PetscCall(SSStarSceneGetDM(scene, &dm));
@@ -72,26 +55,17 @@ static PetscErrorCode RelativeDifference(Vec x, Vec y, PetscReal *d)
   PetscFunctionReturn(0);
 }
 
+/* The reduced problem of an ssstar solve */
 typedef struct {
   Mat P;
   Vec f;
 } Reduced;
 
-static PetscErrorCode ReducedFunction(SNES snes, Vec v, Vec c, void *ctx)
-{
-  Reduced *red = (Reduced *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(red->P, v, c));
-  PetscCall(VecAXPY(c, -1.0, red->f));
-  PetscFunctionReturn(0);
-}
-
 /* Frictionless contact = the bound-constrained problem min 1/2 v'Pv - f'v, v_z >= -gap, solved by SNESVINEWTONRSLS */
 static PetscErrorCode CheckVI(SSStarScene scene, Body *body, PetscReal tol)
 {
   SNES             snes, vi;
-  Vec              u, uC, v, c, lower, upper;
+  Vec              u, uC, v, lower, upper;
   Reduced          red;
   IS               isC;
   PetscInt         n;
@@ -124,9 +98,7 @@ static PetscErrorCode CheckVI(SSStarScene scene, Body *body, PetscReal tol)
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &vi));
   PetscCall(SNESSetOptionsPrefix(vi, "vi_"));
   PetscCall(SNESSetType(vi, SNESVINEWTONRSLS));
-  PetscCall(VecDuplicate(red.f, &c));
-  PetscCall(SNESSetFunction(vi, c, ReducedFunction, &red));
-  PetscCall(SNESSetJacobian(vi, red.P, red.P, FormJacobian, NULL));
+  PetscCall(SNESSSStarSetLinearProblem(vi, red.P, red.f)); /* P v - f, with any SNES type */
   PetscCall(SNESVISetVariableBounds(vi, lower, upper));
   PetscCall(VecNorm(red.f, NORM_2, &fnorm));
   PetscCall(SNESSetTolerances(vi, 1e-12 * fnorm, 1e-14, 0.0, 100, PETSC_DEFAULT)); /* the round-off floor of |P v - f| is ~1e-14 |f| */
@@ -146,7 +118,6 @@ static PetscErrorCode CheckVI(SSStarScene scene, Body *body, PetscReal tol)
   PetscCall(VecRestoreSubVector(u, isC, &uC));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "frictionless ssstar vs SNESVINEWTONRSLS: contact displacement differs by %.3e relative (tolerance %.1e)\n", (double)d, (double)tol));
   PetscCheck(d <= tol, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "frictionless ssstar and SNESVINEWTONRSLS differ by %g > %g", (double)d, (double)tol);
-  PetscCall(VecDestroy(&c));
   PetscCall(VecDestroy(&lower));
   PetscCall(VecDestroy(&upper));
   PetscCall(VecDestroy(&v));
@@ -167,7 +138,6 @@ static PetscErrorCode CheckTresca(SSStarScene scene, Body *body, PetscReal phi, 
   const PetscScalar *ra;
   PetscScalar       *sa;
   PetscReal          d;
-  SSStarFrictionLaw  law = SSSTAR_FRICTION_TRESCA;
 
   PetscFunctionBeginUser;
   PetscCall(SolveContact(scene, body, "coulomb_", NULL, NULL, &coulomb, &uc));
@@ -188,7 +158,7 @@ static PetscErrorCode CheckTresca(SSStarScene scene, Body *body, PetscReal phi, 
   PetscCall(VecRestoreArrayWrite(bounds, &sa));
   PetscCall(VecRestoreArrayRead(rC, &ra));
   PetscCall(VecRestoreSubVector(r, isC, &rC));
-  PetscCall(SolveContact(scene, body, "tresca_", &law, bounds, &tresca, &ut));
+  PetscCall(SolveContact(scene, body, "tresca_", SSSTARLAWTRESCA, bounds, &tresca, &ut));
   PetscCall(RelativeDifference(ut, uc, &d));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "Tresca with bounds phi r_n (phi = %g) vs Coulomb: displacement differs by %.3e relative (tolerance %.1e)\n", (double)phi, (double)d, (double)tol));
   PetscCheck(d <= tol, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "Tresca and Coulomb differ by %g > %g", (double)d, (double)tol);

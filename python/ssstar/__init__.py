@@ -8,18 +8,22 @@ the C API of include/ssstar.h with their handles (README "Python", docs/manual.m
 
     snes = PETSc.SNES().create()
     snes.setType(ssstar.SNESSSSTAR)
-    snes.setFunction(form_function, r)           # F(u) = K u - b
-    snes.setJacobian(form_jacobian, K)           # K, SPD
+    ssstar.set_linear_problem(snes, K, b)        # F(u) = K u - b, Jacobian K (SPD)
     ssstar.set_contact_nodes(snes, dofs, normals, gaps)
-    ssstar.set_friction_coefficients(snes, phi)  # or set_friction(snes, 0.3), set_node_friction_laws(...)
+    ssstar.set_node_law_parameter(snes, "friction", phi)  # or set_friction(snes, 0.3), set_node_friction_laws(...)
     snes.setFromOptions()
     snes.solve(None, u)
     states, counts = ssstar.get_states(snes)     # per local contact node, codes into ssstar.STATE_NAMES
     forces = ssstar.get_contact_forces(snes)     # K u - b at each local contact node (global axes), n x 3
 
-Arguments that are arrays per local contact node (dofs, normals, gaps, coefficients, bounds) may be given as
-numpy arrays (or sequences): the module makes the IS or Vec on the SNES's communicator. A PETSc error raises
-petsc4py.PETSc.Error with PETSc's error code; PETSc prints its message on stderr.
+The friction laws are those of the library's table (FRICTION_LAWS, read from it at import: none, tresca, coulomb,
+orthotropic); each has named parameters (set_law_parameter, set_node_law_parameter: "friction", "slip_bound",
+"friction_1", "friction_2", "friction_direction").
+
+Arguments that are arrays per local contact node (dofs, normals, gaps, parameter values) may be given as
+numpy arrays (or sequences): the module makes the IS or Vec on the SNES's communicator, and the library checks them
+on every rank: input wrong on one rank raises petsc4py.PETSc.Error on every rank, with PETSc's error code (PETSc prints
+the message of the rank that found it on stderr), so that no rank waits for another in a collective call.
 
 The library is found, in this order, at $SSSTAR_LIB, where `make install` put it (_config.py), or in the source tree
 (lib/libssstar.so beside this python/ folder).
@@ -31,10 +35,10 @@ import numpy as np
 from petsc4py import PETSc
 
 __all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
-           "set_contact_nodes", "get_contact_nodes", "set_contact_operator", "set_contact_problem",
+           "set_linear_problem", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
            "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
-           "set_friction", "get_friction", "set_friction_coefficients", "set_slip_bounds", "set_node_friction_laws",
-           "get_node_friction", "set_scaling", "get_scaling", "set_state_tolerance", "set_method", "get_method",
+           "law_parameters", "set_law_parameter", "set_friction", "get_friction", "set_node_law_parameter",
+           "set_node_friction_laws", "get_node_friction_laws", "get_node_law_parameter", "set_scaling", "get_scaling", "set_state_tolerance", "set_method", "get_method",
            "set_lu_reuse", "set_globalization", "get_states", "get_reason", "get_tolerance", "get_remedy_counts",
            "get_newton_step_counts", "get_condition_estimate", "get_contact_forces"]
 
@@ -86,10 +90,17 @@ def _call(f, *args):
 
 _call(_declare("SSStarInitializePackage"))  # registers the SNES type "ssstar"
 
+def _laws():
+    """The names of the table of friction laws (their indices are the codes of get_node_friction_laws())"""
+    n, names = _Int(), ctypes.POINTER(ctypes.c_char_p)()
+    _call(_declare("SSStarLawGetNames", ctypes.POINTER(_Int), ctypes.POINTER(ctypes.POINTER(ctypes.c_char_p))), ctypes.byref(n), ctypes.byref(names))
+    return [names[i].decode() for i in range(n.value)]
+
+
 STATE_NAMES = _names("SSStarStateNames", 7)  # L, M1, M2, M3+, M3-, M4, LS: the codes of get_states()
-FRICTION_LAWS = _names("SSStarFrictionLaws", 3)  # none, tresca, coulomb
+FRICTION_LAWS = _laws()  # the library's table: none, tresca, coulomb, orthotropic
 REASONS = _names("SSStarReasons", 9)
-REDUCTION_TYPES = _names("SSStarReductionTypes", 5)
+REDUCTION_TYPES = ["direct", "mumps", "explicit", "none", "auto"]  # the registered reductions, and auto
 METHODS = _names("SSStarMethods", 2)
 REMEDIES = _names("SSStarRemedies", 5)
 _NUM_STATES, _NUM_REMEDIES = len(STATE_NAMES), len(REMEDIES)
@@ -98,18 +109,21 @@ _C = {name: _declare(name, *args) for name, args in {
     "SNESSSStarSetContactNodes": (_Handle, _Handle, _Handle, _Handle),
     "SNESSSStarGetContactNodes": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Handle), ctypes.POINTER(_Handle), ctypes.POINTER(_Handle)),
     "SNESSSStarSetContactOperator": (_Handle, _Handle, _Handle, _Handle),
-    "SNESSSStarSetContactProblem": (_Handle, _Handle, _Handle),
-    "SNESSSStarSetReductionType": (_Handle, _Enum),
-    "SNESSSStarGetReductionType": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarSetLinearProblem": (_Handle, _Handle, _Handle),
+    "SNESSSStarSetReductionType": (_Handle, ctypes.c_char_p),
+    "SNESSSStarGetReductionType": (_Handle, ctypes.POINTER(ctypes.c_char_p)),
     "SNESSSStarSetMemoryLimit": (_Handle, _Real),
-    "SNESSSStarSetFrictionLaw": (_Handle, _Enum),
-    "SNESSSStarGetFrictionLaw": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarSetFrictionLaw": (_Handle, ctypes.c_char_p),
+    "SNESSSStarGetFrictionLaw": (_Handle, ctypes.POINTER(ctypes.c_char_p)),
+    "SNESSSStarSetLawParameter": (_Handle, ctypes.c_char_p, _Int, ctypes.POINTER(_Real)),
     "SNESSSStarSetFriction": (_Handle, _Real),
     "SNESSSStarGetFriction": (_Handle, ctypes.POINTER(_Real)),
-    "SNESSSStarSetFrictionCoefficients": (_Handle, _Handle),
-    "SNESSSStarSetSlipBounds": (_Handle, _Handle),
-    "SNESSSStarSetNodeFrictionLaws": (_Handle, _Int, ctypes.POINTER(_Enum)),
-    "SNESSSStarGetNodeFriction": (_Handle, _Int, ctypes.POINTER(_Enum), ctypes.POINTER(_Real), ctypes.POINTER(_Real)),
+    "SNESSSStarSetNodeLawParameter": (_Handle, ctypes.c_char_p, _Handle),
+    "SNESSSStarSetNodeFrictionLaws": (_Handle, _Int, ctypes.POINTER(_Int)),
+    "SNESSSStarGetNodeFrictionLaws": (_Handle, _Int, ctypes.POINTER(_Int)),
+    "SNESSSStarGetNodeLawParameter": (_Handle, ctypes.c_char_p, _Int, ctypes.POINTER(_Real)),
+    "SSStarLawGetInfo": (_Int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(_Int), ctypes.POINTER(ctypes.POINTER(ctypes.c_char_p))),
+    "SSStarLawGetParameterSize": (ctypes.c_char_p, ctypes.POINTER(_Int)),
     "SNESSSStarSetScaling": (_Handle, _Real),
     "SNESSSStarGetScaling": (_Handle, ctypes.POINTER(_Real)),
     "SNESSSStarSetStateTolerance": (_Handle, _Real),
@@ -146,9 +160,8 @@ def _node_vec(snes, values, per, what):
     if values is None or isinstance(values, PETSc.Vec):
         return values
     a = np.ascontiguousarray(np.asarray(values, dtype=PETSc.ScalarType).reshape(-1))
-    if a.size % per:
-        raise ValueError("%s: %d values, not %d per contact node" % (what, a.size, per))
-    v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=per if per > 1 else None, comm=snes.getComm())
+    # no local check of the size: the library checks it on every rank (a local error would leave the others waiting)
+    v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=per if per > 1 and a.size % per == 0 else None, comm=snes.getComm())
     v.setArray(a)
     return v
 
@@ -156,9 +169,7 @@ def _node_vec(snes, values, per, what):
 def _dofs_is(snes, dofs):
     if isinstance(dofs, PETSc.IS):
         return dofs
-    a = np.asarray(dofs, dtype=PETSc.IntType).reshape(-1)
-    if a.size % 3:
-        raise ValueError("dofs: %d indices, not 3 per contact node" % a.size)
+    a = np.asarray(dofs, dtype=PETSc.IntType).reshape(-1)  # 3 per node: checked by the library on every rank
     return PETSc.IS().createGeneral(a, comm=snes.getComm())
 
 
@@ -208,20 +219,21 @@ def set_contact_operator(snes, dofs, B, gaps=None):
     _call(_C["SNESSSStarSetContactOperator"], _h(snes), _h(is_), _h(B), _h(_node_vec(snes, gaps, 1, "gaps")))
 
 
-def set_contact_problem(snes, P, f):
-    """SNESSSStarSetContactProblem(): the reduced problem c(u) = P u - f with Jacobian P"""
-    _call(_C["SNESSSStarSetContactProblem"], _h(snes), _h(P), _h(f))
+def set_linear_problem(snes, K, b):
+    """SNESSSStarSetLinearProblem(): F(u) = K u - b with Jacobian K (a whole body), or the reduced c(u) = P u - f; the
+    SNES keeps K and b (change b's values to change the load)"""
+    _call(_C["SNESSSStarSetLinearProblem"], _h(snes), _h(K), _h(b))
 
 
 def set_reduction_type(snes, kind):
-    """SNESSSStarSetReductionType(): 'direct', 'mumps', 'explicit', 'none' or 'auto'"""
-    _call(_C["SNESSSStarSetReductionType"], _h(snes), _choice(kind, REDUCTION_TYPES, "reduction"))
+    """SNESSSStarSetReductionType(): 'direct', 'mumps', 'explicit', 'none' or 'auto' (or their codes in REDUCTION_TYPES)"""
+    _call(_C["SNESSSStarSetReductionType"], _h(snes), REDUCTION_TYPES[_choice(kind, REDUCTION_TYPES, "reduction")].encode())
 
 
 def get_reduction_type(snes):
-    v = _Enum()
+    v = ctypes.c_char_p()
     _call(_C["SNESSSStarGetReductionType"], _h(snes), ctypes.byref(v))
-    return REDUCTION_TYPES[v.value]
+    return v.value.decode()
 
 
 def set_memory_limit(snes, gigabytes):
@@ -230,19 +242,40 @@ def set_memory_limit(snes, gigabytes):
 
 
 def set_friction_law(snes, law):
-    """SNESSSStarSetFrictionLaw(): 'none', 'tresca' or 'coulomb' for the nodes without a law of their own"""
-    _call(_C["SNESSSStarSetFrictionLaw"], _h(snes), _choice(law, FRICTION_LAWS, "friction law"))
+    """SNESSSStarSetFrictionLaw(): a law of FRICTION_LAWS ('none', 'tresca', 'coulomb', 'orthotropic', or its code) for
+    the nodes without a law of their own"""
+    _call(_C["SNESSSStarSetFrictionLaw"], _h(snes), FRICTION_LAWS[_choice(law, FRICTION_LAWS, "friction law")].encode())
 
 
 def get_friction_law(snes):
-    v = _Enum()
+    v = ctypes.c_char_p()
     _call(_C["SNESSSStarGetFrictionLaw"], _h(snes), ctypes.byref(v))
-    return FRICTION_LAWS[v.value]
+    return v.value.decode()
 
 
-def set_friction(snes, phi):
+def law_parameters(law):
+    """The names of the parameters of a law of FRICTION_LAWS (name or code), from the library's table"""
+    n, names = _Int(), ctypes.POINTER(ctypes.c_char_p)()
+    _call(_C["SSStarLawGetInfo"], _choice(law, FRICTION_LAWS, "friction law"), None, None, ctypes.byref(n), ctypes.byref(names))
+    return [names[i].decode() for i in range(n.value)]
+
+
+def _parameter_size(name):
+    size = _Int()
+    _call(_C["SSStarLawGetParameterSize"], name.encode(), ctypes.byref(size))
+    return size.value
+
+
+def set_law_parameter(snes, name, value):
+    """SNESSSStarSetLawParameter(): a parameter of the laws ('friction', 'slip_bound', 'friction_1', 'friction_2', or
+    'friction_direction' as x, y, z in global axes) for every node without a value of its own"""
+    values = np.atleast_1d(np.asarray(value, dtype=float))
+    _call(_C["SNESSSStarSetLawParameter"], _h(snes), name.encode(), len(values), (_Real * len(values))(*values))
+
+
+def set_friction(snes, friction):
     """SNESSSStarSetFriction(): the Coulomb coefficient of the nodes without one of their own"""
-    _call(_C["SNESSSStarSetFriction"], _h(snes), float(phi))
+    _call(_C["SNESSSStarSetFriction"], _h(snes), float(friction))
 
 
 def get_friction(snes):
@@ -251,36 +284,46 @@ def get_friction(snes):
     return v.value
 
 
-def set_friction_coefficients(snes, phi):
-    """SNESSSStarSetFrictionCoefficients(): one Coulomb coefficient per local contact node (Vec or array; None: back
-    to set_friction()'s)"""
-    _call(_C["SNESSSStarSetFrictionCoefficients"], _h(snes), _h(_node_vec(snes, phi, 1, "coefficients")))
-
-
-def set_slip_bounds(snes, bounds):
-    """SNESSSStarSetSlipBounds(): the Tresca bound of each local contact node (a force; Vec or array)"""
-    _call(_C["SNESSSStarSetSlipBounds"], _h(snes), _h(_node_vec(snes, bounds, 1, "slip bounds")))
+def set_node_law_parameter(snes, name, values):
+    """SNESSSStarSetNodeLawParameter(): one value of a law parameter per local contact node (Vec or array; three per
+    node for a direction; None: back to set_law_parameter()'s)"""
+    _call(_C["SNESSSStarSetNodeLawParameter"], _h(snes), name.encode(), _h(_node_vec(snes, values, _parameter_size(name), name)))
 
 
 def set_node_friction_laws(snes, laws):
-    """SNESSSStarSetNodeFrictionLaws(): one law per local contact node ('none', 'tresca', 'coulomb' or their codes;
-    None: every node has set_friction_law()'s)"""
+    """SNESSSStarSetNodeFrictionLaws(): one law per local contact node (names of FRICTION_LAWS or their codes; None:
+    every node has set_friction_law()'s)"""
     if laws is None:
         _call(_C["SNESSSStarSetNodeFrictionLaws"], _h(snes), 0, None)
         return
-    codes = (_Enum * len(laws))(*[_choice(law, FRICTION_LAWS, "friction law") for law in laws])
+    codes = (_Int * len(laws))(*[_choice(law, FRICTION_LAWS, "friction law") for law in laws])
     _call(_C["SNESSSStarSetNodeFrictionLaws"], _h(snes), len(laws), codes)
 
 
-def get_node_friction(snes):
-    """SNESSSStarGetNodeFriction() after the set-up or the solve: (laws, phi, bounds) of each local contact node in
-    the declared order; laws are codes into FRICTION_LAWS"""
+def _local_nodes(snes, what):
     n = get_contact_nodes(snes)[0]
     if n < 0:
-        raise RuntimeError("get_node_friction: the contact nodes are not known before SNESSetUp()")
-    laws, phi, bounds = (_Enum * max(n, 1))(), (_Real * max(n, 1))(), (_Real * max(n, 1))()
-    _call(_C["SNESSSStarGetNodeFriction"], _h(snes), n, laws, phi, bounds)
-    return (np.array(laws[:n], dtype=np.int32), np.array(phi[:n], dtype=PETSc.RealType), np.array(bounds[:n], dtype=PETSc.RealType))
+        raise RuntimeError("%s: the contact nodes are not known before SNESSetUp()" % what)
+    return n
+
+
+def get_node_friction_laws(snes):
+    """SNESSSStarGetNodeFrictionLaws() after the set-up or the solve: the law of each local contact node in the
+    declared order, as codes into FRICTION_LAWS"""
+    n = _local_nodes(snes, "get_node_friction_laws")
+    laws = (_Int * max(n, 1))()
+    _call(_C["SNESSSStarGetNodeFrictionLaws"], _h(snes), n, laws)
+    return np.array(laws[:n], dtype=np.int32)
+
+
+def get_node_law_parameter(snes, name):
+    """SNESSSStarGetNodeLawParameter() after the set-up or the solve: the value of a law parameter at each local
+    contact node (n x 3 for a direction), 0 where the node's law has no such parameter"""
+    n, size = _local_nodes(snes, "get_node_law_parameter"), _parameter_size(name)
+    values = (_Real * max(size * n, 1))()
+    _call(_C["SNESSSStarGetNodeLawParameter"], _h(snes), name.encode(), n, values)
+    a = np.array(values[:size * n], dtype=PETSc.RealType)
+    return a.reshape(n, 3) if size == 3 else a
 
 
 def set_scaling(snes, gamma):

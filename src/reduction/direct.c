@@ -21,7 +21,7 @@
 #define RINFO(i)  rinfo[(i) - 1]
 #define RINFOG(i) rinfog[(i) - 1]
 
-/* options -schur_direct_mumps_icntl_<i> this reduction relies on, and may not be changed */
+/* options -<prefix>schur_direct_mumps_icntl_<i> this reduction relies on, and may not be changed */
 static const int ReservedICNTL[] = {5, 7, 18, 19, 20, 21, 26, 28};
 
 typedef struct _n_SSStarDirect *SSStarDirect;
@@ -29,6 +29,7 @@ struct _n_SSStarDirect {
   DMUMPS_STRUC_C id;
   MPI_Comm       comm;     /* MUMPS's communicator: a duplicate of K's                          */
   PetscMPIInt    rank, size;
+  char           icntl[256]; /* -<prefix>schur_direct_mumps_icntl_, for messages                  */
   PetscBool      initialized; /* MUMPS holds data to free (JOB = -2)                             */
   MUMPS_INT     *irn, *jcn; /* the upper triangle of K's local rows (1-based), until factored     */
   PetscScalar   *a;
@@ -45,12 +46,13 @@ static PetscErrorCode RunMUMPS(SSStarDirect d, MUMPS_INT job, const char what[])
   PetscFunctionBegin;
   d->id.job = job;
   dmumps_c(&d->id);
-  PetscCall(SSStarReductionCheckMUMPS(d->comm, -1, d->id.INFOG(1), d->id.INFOG(2), d->estimate, what, "-schur_direct_mumps_icntl_"));
+  PetscCall(SSStarReductionCheckMUMPS(d->comm, -1, d->id.INFOG(1), d->id.INFOG(2), d->estimate, what, d->icntl));
   PetscFunctionReturn(0);
 }
 
-/* -schur_direct_mumps_icntl_<i>, -schur_direct_mumps_cntl_<i>: MUMPS's controls, except those the reduction relies on */
-static PetscErrorCode SetControlsFromOptions(SSStarDirect d)
+/* -<prefix>schur_direct_mumps_icntl_<i>, -<prefix>schur_direct_mumps_cntl_<i>: MUMPS's controls, except those the
+   reduction relies on */
+static PetscErrorCode SetControlsFromOptions(SSStarDirect d, const char prefix[])
 {
   char      name[64];
   PetscInt  ival;
@@ -60,14 +62,14 @@ static PetscErrorCode SetControlsFromOptions(SSStarDirect d)
   PetscFunctionBegin;
   for (int i = 1; i <= 60; i++) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "-schur_direct_mumps_icntl_%d", i));
-    PetscCall(PetscOptionsGetInt(NULL, NULL, name, &ival, &set));
+    PetscCall(PetscOptionsGetInt(NULL, prefix, name, &ival, &set));
     if (!set) continue;
-    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(ReservedICNTL); k++) PetscCheck(ReservedICNTL[k] != i, d->comm, PETSC_ERR_ARG_WRONG, "%s: ICNTL(%d) is set by the direct reduction itself", name, i);
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(ReservedICNTL); k++) PetscCheck(ReservedICNTL[k] != i, d->comm, PETSC_ERR_ARG_WRONG, "%s%d: ICNTL(%d) is set by the direct reduction itself", d->icntl, i, i);
     d->id.ICNTL(i) = (MUMPS_INT)ival;
   }
   for (int i = 1; i <= 15; i++) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "-schur_direct_mumps_cntl_%d", i));
-    PetscCall(PetscOptionsGetReal(NULL, NULL, name, &rval, &set));
+    PetscCall(PetscOptionsGetReal(NULL, prefix, name, &rval, &set));
     if (set) d->id.CNTL(i) = rval;
   }
   PetscFunctionReturn(0);
@@ -386,7 +388,7 @@ static PetscErrorCode MoveSchurToRows(SSStarDirect d, PetscInt NC, PetscInt nb, 
    Factors K with the Schur block isC and returns P (MPIDENSE, rows like isC); refuses before the factorization when
    MUMPS's estimate, P and the caller's dense work exceed memoryLimit (GB per rank, 0: MemAvailable)
 */
-static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memoryLimit, Mat *P)
+static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memoryLimit, const char prefix[], Mat *P)
 {
   PetscInt       N, NC, mC, nb;
   PetscLogDouble dense;
@@ -419,7 +421,7 @@ static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memo
   d->id.ICNTL(19) = 3; /* complete Schur complement, distributed by columns */
   d->id.ICNTL(20) = 0; /* dense right-hand sides ... */
   d->id.ICNTL(21) = 0; /* ... and solutions, on the host */
-  PetscCall(SetControlsFromOptions(d));
+  PetscCall(SetControlsFromOptions(d, prefix));
   d->id.n = (MUMPS_INT)N;
   PetscCall(GetUpperTriangle(d, K));
   PetscCall(SetOrdering(d, K, isC));
@@ -577,6 +579,7 @@ PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction red, Mat K)
   red->ops.reduceload = SSStarReductionReduceLoad_Direct;
   red->ops.recover    = SSStarReductionRecover_Direct;
   red->ops.destroy    = SSStarReductionDestroy_Direct;
-  PetscCall(DirectFactor(d, K, red->isC, red->memoryLimit, &red->P));
+  PetscCall(SSStarReductionOptionName(red, "schur_direct_mumps_icntl_", d->icntl, sizeof(d->icntl)));
+  PetscCall(DirectFactor(d, K, red->isC, red->memoryLimit, red->prefix, &red->P));
   PetscFunctionReturn(0);
 }

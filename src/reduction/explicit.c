@@ -1,6 +1,6 @@
 /*
-   The explicit reduction: MATSCHURCOMPLEMENT made explicit, with K_II factored once (MUMPS Cholesky, prefix
-   -interior_); the same factorization gives f and the recovery.
+   The explicit reduction: MATSCHURCOMPLEMENT made explicit, with K_II factored once (MUMPS Cholesky, options
+   -<prefix>interior_); the same factorization gives f and the recovery.
 */
 #include "reductionimpl.h"
 
@@ -16,6 +16,7 @@ static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
   PC        pc;
   Mat       F;
   PetscReal flops;
+  char      icntl[256];
 
   PetscFunctionBegin;
   PetscCall(MatCreateSubMatrix(K, red->isI, red->isI, MAT_INITIAL_MATRIX, &ex->Kii));
@@ -23,7 +24,8 @@ static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
   PetscCall(MatCreateSubMatrix(K, red->isC, red->isI, MAT_INITIAL_MATRIX, &ex->Kci));
   PetscCall(MatSetOption(ex->Kii, MAT_SPD, PETSC_TRUE));
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)K), &ex->kspI));
-  PetscCall(KSPSetOptionsPrefix(ex->kspI, "interior_"));
+  PetscCall(KSPSetOptionsPrefix(ex->kspI, red->prefix));
+  PetscCall(KSPAppendOptionsPrefix(ex->kspI, "interior_"));
   PetscCall(KSPSetOperators(ex->kspI, ex->Kii, ex->Kii));
   PetscCall(KSPSetType(ex->kspI, KSPPREONLY));
   PetscCall(KSPGetPC(ex->kspI, &pc));
@@ -32,7 +34,8 @@ static PetscErrorCode SetUpInterior(SSStarReduction red, Mat K)
   PetscCall(KSPSetFromOptions(ex->kspI));
   PetscCall(KSPSetUp(ex->kspI));
   PetscCall(PCFactorGetMatrix(pc, &F));
-  PetscCall(SSStarReductionCheckFactor(PetscObjectComm((PetscObject)K), -1, F, 0, "the MUMPS Cholesky factorization of K_II (explicit Schur complement)", "-interior_mat_mumps_icntl_"));
+  PetscCall(SSStarReductionOptionName(red, "interior_mat_mumps_icntl_", icntl, sizeof(icntl)));
+  PetscCall(SSStarReductionCheckFactor(PetscObjectComm((PetscObject)K), -1, F, 0, "the MUMPS Cholesky factorization of K_II (explicit Schur complement)", icntl));
   PetscCall(MatMumpsGetRinfo(F, 3, &flops)); /* PETSc does not log MUMPS's flops */
   PetscCall(PetscLogFlops(flops));
   PetscCall(MatMumpsGetRinfog(F, 3, &flops));

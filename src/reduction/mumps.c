@@ -26,6 +26,7 @@ static PetscErrorCode ReduceMUMPS(SSStarReduction red, Mat K)
   MatFactorInfo        info;
   MatFactorSchurStatus status;
   const char          *what = "the MUMPS Cholesky factorization of K with a Schur complement (PETSc, rank 0)";
+  char                 prefix[256], icntl[256];
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(comm, &size));
@@ -38,20 +39,22 @@ static PetscErrorCode ReduceMUMPS(SSStarReduction red, Mat K)
   PetscCall(ISDestroy(&isAll));
   PetscCall(ISAllGather(red->isC, &isCall));
   PetscCall(MatFactorInfoInitialize(&info));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sschur_", red->prefix ? red->prefix : ""));
+  PetscCall(SSStarReductionOptionName(red, "schur_mat_mumps_icntl_", icntl, sizeof(icntl)));
   if (rank == 0) {
     PetscCall(MatSetOption(Kseq[0], MAT_SPD, PETSC_TRUE));
     PetscCall(MatGetFactor(Kseq[0], MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F));
-    PetscCall(MatSetOptionsPrefix(F, "schur_"));
+    PetscCall(MatSetOptionsPrefix(F, prefix));
     PetscCall(MatSetFromOptions(F));
     PetscCall(MatFactorSetSchurIS(F, isCall));
     PetscCall(MatCholeskyFactorSymbolic(F, Kseq[0], NULL, &info));
   }
-  PetscCall(SSStarReductionCheckFactor(comm, 0, F, 0, what, "-schur_mat_mumps_icntl_"));
+  PetscCall(SSStarReductionCheckFactor(comm, 0, F, 0, what, icntl));
   if (rank == 0) PetscCall(MatMumpsGetInfo(F, 15, &estimateMB));
   dense = 8.0 * NC * ((rank == 0 ? 2.0 * NC : 0) + (size > 1 ? 2.0 * mC : 0) + SSSTAR_DENSE_WORK * (PetscLogDouble)mC);
   PetscCall(SSStarReductionCheckMemory(comm, red->memoryLimit, 1e6 * (PetscLogDouble)estimateMB, dense, "The mumps Schur reduction"));
   if (rank == 0) PetscCall(MatCholeskyFactorNumeric(F, Kseq[0], &info));
-  PetscCall(SSStarReductionCheckFactor(comm, 0, F, 1e6 * (PetscLogDouble)estimateMB, what, "-schur_mat_mumps_icntl_"));
+  PetscCall(SSStarReductionCheckFactor(comm, 0, F, 1e6 * (PetscLogDouble)estimateMB, what, icntl));
   if (rank == 0) {
     PetscReal flops;
 

@@ -23,6 +23,7 @@ PetscErrorCode SSStarReductionCreate_None(SSStarReduction red, Mat K)
   PetscFunctionBegin;
   red->ops.reduceload = SSStarReductionReduceLoad_None;
   red->ops.recover    = SSStarReductionRecover_None;
+  red->wholeBody      = PETSC_TRUE;
   PetscCall(PetscObjectReference((PetscObject)K));
   red->P = K;
   PetscFunctionReturn(0);

@@ -3,28 +3,41 @@
    P = K_CC - K_CI K_II^-1 K_IC,  f = F_C - K_CI K_II^-1 F_I,  and the recovery u_I = K_II^-1 (F_I - K_IC u_C),
    or no reduction at all (none: the contact problem stays on the whole body, P is never formed).
 
-   What every reduction shares: the choice of auto, the memory checks before a factorization, MUMPS's failures in
-   words, the singular-K check. The implementations are direct.c, mumps.c, explicit.c and none.c (reductionimpl.h).
+   What every reduction shares: the registry of types, the choice of auto, the memory checks before a factorization,
+   MUMPS's failures in words, the singular-K check. The implementations are direct.c, mumps.c, explicit.c and none.c
+   (reductionimpl.h), registered by regall.c.
 */
 #include "reductionimpl.h"
+#include "../sys/meminfo.h"
 #include <petscmat.h>
 #include <stdio.h>
 
-const char *const SSStarReductionTypes[] = {"direct", "mumps", "explicit", "none", "auto", "SSStarReductionType", "SSSTAR_REDUCTION_", NULL};
+PetscFunctionList SSStarReductionList = NULL;
 
-/* MemAvailable of this node (bytes) from /proc/meminfo; 0 when unknown */
-static PetscErrorCode GetMemAvailable(PetscLogDouble *bytes)
+/*@C
+   SSStarReductionRegister - adds a reduction type
+
+   Not Collective
+
+   Input Parameters:
++  name   - its name (SSStarReductionSetType(), -snes_ssstar_reduction)
+-  create - computes the operator from K (P, or K itself) and fills the ops (src/reduction/reductionimpl.h)
+
+   Level: advanced
+
+.seealso: `SSStarReductionRegisterAll()`, `SSStarReductionSetType()`
+@*/
+PetscErrorCode SSStarReductionRegister(const char name[], PetscErrorCode (*create)(SSStarReduction, Mat))
 {
-  FILE *file = fopen("/proc/meminfo", "r");
-  char  line[256];
-  long  kb;
-
   PetscFunctionBegin;
-  *bytes = 0;
-  if (!file) PetscFunctionReturn(0);
-  while (fgets(line, sizeof(line), file))
-    if (sscanf(line, "MemAvailable: %ld kB", &kb) == 1) *bytes = 1024.0 * (PetscLogDouble)kb;
-  fclose(file);
+  PetscCall(PetscFunctionListAdd(&SSStarReductionList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarReductionOptionName(SSStarReduction red, const char option[], char name[], size_t len)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(name, len, "-%s%s", red->prefix ? red->prefix : "", option));
   PetscFunctionReturn(0);
 }
 
@@ -49,7 +62,7 @@ static PetscErrorCode CompareMemory(MPI_Comm comm, PetscReal limitGB, PetscLogDo
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
   PetscCallMPI(MPI_Comm_size(node, &nodeSize));
   if (limitGB <= 0) {
-    PetscCall(GetMemAvailable(&available));
+    PetscCall(SSStarMemAvailable(&available));
     PetscCallMPI(MPI_Allreduce(&need, &nodeNeed, 1, MPI_DOUBLE, MPI_SUM, node));
   }
   PetscCallMPI(MPI_Comm_free(&node));
@@ -191,10 +204,8 @@ static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
   PetscCall(VecRestoreArrayWrite(b, &ba));
   PetscCall(MatCreateVecs(red->P, &f, &zero));
   PetscCall(VecZeroEntries(zero));
-  if (red->type == SSSTAR_REDUCTION_MUMPS) { /* its recovery takes the contact force of u_C = 0, -f */
-    PetscCall((*red->ops.reduceload)(red, b, f));
-    PetscCall(VecScale(f, -1.0));
-  }
+  PetscCall((*red->ops.reduceload)(red, b, f)); /* the contact force of u_C = 0 is -f */
+  PetscCall(VecScale(f, -1.0));
   PetscCall(RecoverWithContact(red, b, zero, f, x));
   PetscCall(MatMult(K, x, r));
   PetscCall(VecAXPY(r, -1.0, b));
@@ -222,92 +233,172 @@ static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
    the whole-body path a few multigrid solves per Newton step (~N). SSSTAR_AUTO_DENSE_MAX_DOFS is the crossover
    measured on the prism (README, section "Large problems").
 */
-static PetscErrorCode ResolveAuto(Mat K, IS isC, PetscReal memoryLimit, SSStarReductionType *type)
+static PetscErrorCode ResolveAuto(SSStarReduction red, Mat K)
 {
-  MPI_Comm  comm = PetscObjectComm((PetscObject)K);
-  PetscInt  N, NC, mC;
-  PetscBool fits;
+  PetscInt    N, NC, mC;
+  PetscBool   fits;
+  const char *type;
 
   PetscFunctionBegin;
   PetscCall(MatGetSize(K, &N, NULL));
-  PetscCall(ISGetSize(isC, &NC));
-  PetscCall(ISGetLocalSize(isC, &mC));
-  PetscCall(SSStarReductionFitsMemory(comm, memoryLimit, 0, 8.0 * NC * (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC, &fits));
-  *type = N <= SSSTAR_AUTO_DENSE_MAX_DOFS && fits ? SSSTAR_REDUCTION_DIRECT : SSSTAR_REDUCTION_NONE;
-  PetscCall(PetscInfo(K, "auto: %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact dofs, dense P %s: %s\n", N, NC, fits ? "fits" : "does not fit", SSStarReductionTypes[*type]));
+  PetscCall(ISGetSize(red->isC, &NC));
+  PetscCall(ISGetLocalSize(red->isC, &mC));
+  PetscCall(SSStarReductionFitsMemory(red->comm, red->memoryLimit, 0, 8.0 * NC * (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC, &fits));
+  type = N <= SSSTAR_AUTO_DENSE_MAX_DOFS && fits ? SSSTARREDUCTIONDIRECT : SSSTARREDUCTIONNONE;
+  PetscCall(PetscInfo(K, "auto: %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact dofs, dense P %s: %s\n", N, NC, fits ? "fits" : "does not fit", type));
+  PetscCall(SSStarReductionSetType(red, type));
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarReductionCreate - the reduction of K u = F to the dofs isC: the Schur complement P = K_CC - K_CI K_II^-1 K_IC,
-   or none (K itself)
+   SSStarReductionCreate - a reduction of K u = F to a subset of its dofs, of type auto until SSStarReductionSetType()
 
    Collective
 
-   Input Parameters:
-+  K           - the (SPD) stiffness
-.  isC         - owned global dofs of the contact nodes (3 per node), in the order P is to have
-.  isI         - all other owned dofs
-.  type        - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS, SSSTAR_REDUCTION_EXPLICIT, SSSTAR_REDUCTION_NONE or
-                 SSSTAR_REDUCTION_AUTO (direct or none, by size and memory: SSStarReductionGetType() tells which)
--  memoryLimit - GB (1e9 bytes) per rank the reduction may plan for; 0: MemAvailable of each node split over its ranks
+   Input Parameter:
+.  comm - the communicator of K
 
    Output Parameter:
 .  red - the reduction
 
    Notes:
-   P is dense and distributed by rows like isC. The factorization that gave P is kept for the recovery.
-   Before factorizing, the memory each rank needs (MUMPS's estimate after its analysis, P, and SSSTAR_DENSE_WORK
-   more dense matrices of P's size for the caller) is compared with memoryLimit: the reduction refuses, on every rank,
-   with the estimate and the limit in the message. MUMPS's failures (a singular K, memory) are raised on every rank.
-   Options: -schur_direct_mumps_icntl_<i>, -schur_direct_mumps_cntl_<i> (direct), -schur_mat_mumps_* (mumps),
-   -interior_ksp_*, -interior_pc_* (explicit).
+   SSStarReductionSetUp() computes it.
 
    Level: developer
 
-.seealso: `SSStarReductionGetSchurComplement()`, `SSStarReductionReduceLoad()`, `SSStarReductionRecover()`
+.seealso: `SSStarReductionSetType()`, `SSStarReductionSetUp()`, `SSStarReductionDestroy()`
 @*/
-PetscErrorCode SSStarReductionCreate(Mat K, IS isC, IS isI, SSStarReductionType type, PetscReal memoryLimit, SSStarReduction *red)
+PetscErrorCode SSStarReductionCreate(MPI_Comm comm, SSStarReduction *red)
 {
-  SSStarReduction r;
-
   PetscFunctionBegin;
-  PetscCall(PetscNew(&r));
-  r->memoryLimit = memoryLimit;
-  PetscCall(PetscObjectReference((PetscObject)isC));
-  PetscCall(PetscObjectReference((PetscObject)isI));
-  r->isC = isC;
-  r->isI = isI;
-  if (type == SSSTAR_REDUCTION_AUTO) PetscCall(ResolveAuto(K, isC, memoryLimit, &type));
-  r->type = type;
-  if (type == SSSTAR_REDUCTION_NONE) {
-    PetscCall(SSStarReductionCreate_None(r, K));
-    *red = r;
-    PetscFunctionReturn(0);
-  }
-  PetscCall(PetscLogEventBegin(SSSTAR_Schur, K, 0, 0, 0));
-  switch (type) {
-  case SSSTAR_REDUCTION_DIRECT:
-    PetscCall(SSStarReductionCreate_Direct(r, K));
-    break;
-  case SSSTAR_REDUCTION_MUMPS:
-    PetscCall(SSStarReductionCreate_MUMPS(r, K));
-    break;
-  case SSSTAR_REDUCTION_EXPLICIT:
-    PetscCall(SSStarReductionCreate_Explicit(r, K));
-    break;
-  default:
-    SETERRQ(PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_OUTOFRANGE, "Unknown reduction type %d", (int)type);
-  }
-  PetscCall(PetscObjectSetName((PetscObject)r->P, "P"));
-  PetscCall(CheckInteriorSolve(r, K));
-  PetscCall(PetscLogEventEnd(SSSTAR_Schur, K, 0, 0, 0));
-  *red = r;
+  PetscCall(PetscNew(red));
+  (*red)->comm = comm;
+  PetscCall(PetscStrallocpy(SSSTARREDUCTIONAUTO, &(*red)->type));
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SSStarReductionGetType - the reduction computed (auto resolved to direct or none)
+   SSStarReductionSetType - how K is reduced: a registered type (direct, mumps, explicit, none) or auto (direct or
+   none, by size and memory, decided by SSStarReductionSetUp())
+
+   Not Collective
+
+   Input Parameters:
++  red  - the reduction, before SSStarReductionSetUp()
+-  type - the type
+
+   Level: developer
+
+.seealso: `SSStarReductionRegister()`, `SSStarReductionGetType()`
+@*/
+PetscErrorCode SSStarReductionSetType(SSStarReduction red, SSStarReductionType type)
+{
+  PetscBool isauto;
+  PetscErrorCode (*create)(SSStarReduction, Mat) = NULL;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrcmp(type, SSSTARREDUCTIONAUTO, &isauto));
+  if (!isauto) PetscCall(PetscFunctionListFind(SSStarReductionList, type, &create));
+  PetscCheck(isauto || create, PETSC_COMM_SELF, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown reduction type %s", type);
+  PetscCall(PetscFree(red->type));
+  PetscCall(PetscStrallocpy(type, &red->type));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionSetOptionsPrefix - the prefix of the options of the reduction's solvers: -<prefix>schur_direct_mumps_*
+   (direct), -<prefix>schur_mat_mumps_* (mumps), -<prefix>interior_ksp_*, -<prefix>interior_pc_* (explicit)
+
+   Not Collective
+
+   Input Parameters:
++  red    - the reduction
+-  prefix - the prefix (an SNES passes its own), or NULL
+
+   Level: developer
+
+.seealso: `SSStarReductionSetUp()`
+@*/
+PetscErrorCode SSStarReductionSetOptionsPrefix(SSStarReduction red, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(red->prefix));
+  PetscCall(PetscStrallocpy(prefix, &red->prefix));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionSetMemoryLimit - the memory the reduction may plan for
+
+   Not Collective
+
+   Input Parameters:
++  red         - the reduction
+-  memoryLimit - GB (1e9 bytes) per rank; 0: MemAvailable of each node split over its ranks (the default)
+
+   Level: developer
+
+.seealso: `SSStarReductionSetUp()`
+@*/
+PetscErrorCode SSStarReductionSetMemoryLimit(SSStarReduction red, PetscReal memoryLimit)
+{
+  PetscFunctionBegin;
+  red->memoryLimit = memoryLimit;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionSetUp - the reduction of K u = F to the dofs isC: the Schur complement P = K_CC - K_CI K_II^-1 K_IC,
+   or none (K itself)
+
+   Collective
+
+   Input Parameters:
++  red - the reduction
+.  K   - the (SPD) stiffness
+.  isC - owned global dofs of the contact nodes (3 per node), in the order P is to have
+-  isI - all other owned dofs
+
+   Notes:
+   P is dense and distributed by rows like isC. The factorization that gave P is kept for the recovery.
+   Before factorizing, the memory each rank needs (MUMPS's estimate after its analysis, P, and SSSTAR_DENSE_WORK
+   more dense matrices of P's size for the caller) is compared with the memory limit: the reduction refuses, on every
+   rank, with the estimate and the limit in the message. MUMPS's failures (a singular K, memory) are raised on every
+   rank. auto is resolved here (SSStarReductionGetType() tells to what).
+
+   Level: developer
+
+.seealso: `SSStarReductionCreate()`, `SSStarReductionGetSchurComplement()`, `SSStarReductionReduceLoad()`,
+          `SSStarReductionRecover()`
+@*/
+PetscErrorCode SSStarReductionSetUp(SSStarReduction red, Mat K, IS isC, IS isI)
+{
+  PetscBool isauto;
+  PetscErrorCode (*create)(SSStarReduction, Mat) = NULL;
+
+  PetscFunctionBegin;
+  PetscCheck(!red->P, red->comm, PETSC_ERR_ARG_WRONGSTATE, "SSStarReductionSetUp: the reduction is set up already");
+  PetscCall(PetscObjectReference((PetscObject)isC));
+  PetscCall(PetscObjectReference((PetscObject)isI));
+  red->isC = isC;
+  red->isI = isI;
+  PetscCall(PetscStrcmp(red->type, SSSTARREDUCTIONAUTO, &isauto));
+  if (isauto) PetscCall(ResolveAuto(red, K));
+  PetscCall(PetscFunctionListFind(SSStarReductionList, red->type, &create));
+  PetscCheck(create, red->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown reduction type %s", red->type);
+  PetscCall(PetscLogEventBegin(SSSTAR_Schur, K, 0, 0, 0));
+  PetscCall((*create)(red, K));
+  if (!red->wholeBody) {
+    PetscCall(PetscObjectSetName((PetscObject)red->P, "P"));
+    PetscCall(CheckInteriorSolve(red, K));
+  }
+  PetscCall(PetscLogEventEnd(SSSTAR_Schur, K, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionGetType - the type of the reduction: as set, and after SSStarReductionSetUp() as computed (auto
+   resolved to direct or none)
 
    Not Collective
 
@@ -315,16 +406,39 @@ PetscErrorCode SSStarReductionCreate(Mat K, IS isC, IS isI, SSStarReductionType 
 .  red - the reduction
 
    Output Parameter:
-.  type - its type
+.  type - its type (owned by the reduction)
 
    Level: developer
 
-.seealso: `SSStarReductionCreate()`
+.seealso: `SSStarReductionSetType()`
 @*/
 PetscErrorCode SSStarReductionGetType(SSStarReduction red, SSStarReductionType *type)
 {
   PetscFunctionBegin;
   *type = red->type;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionIsWholeBody - whether the operator of the reduction is K itself (none): the contact problem keeps the
+   whole body, its interior dofs unknowns beside the contact dofs; else it is P on the contact dofs alone
+
+   Not Collective
+
+   Input Parameter:
+.  red - the reduction, set up
+
+   Output Parameter:
+.  wholeBody - PETSC_TRUE for K
+
+   Level: developer
+
+.seealso: `SSStarReductionGetOperator()`
+@*/
+PetscErrorCode SSStarReductionIsWholeBody(SSStarReduction red, PetscBool *wholeBody)
+{
+  PetscFunctionBegin;
+  *wholeBody = red->wholeBody;
   PetscFunctionReturn(0);
 }
 
@@ -369,7 +483,7 @@ PetscErrorCode SSStarReductionGetOperator(SSStarReduction red, Mat *A)
 PetscErrorCode SSStarReductionGetSchurComplement(SSStarReduction red, Mat *P)
 {
   PetscFunctionBegin;
-  PetscCheck(red->type != SSSTAR_REDUCTION_NONE, PetscObjectComm((PetscObject)red->P), PETSC_ERR_ARG_WRONGSTATE, "The reduction none forms no Schur complement");
+  PetscCheck(!red->wholeBody, red->comm, PETSC_ERR_ARG_WRONGSTATE, "The reduction %s forms no Schur complement", red->type);
   *P = red->P;
   PetscFunctionReturn(0);
 }
@@ -423,7 +537,7 @@ PetscErrorCode SSStarReductionRecover(SSStarReduction red, Vec F, Vec uC, Vec rC
 {
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Recovery, 0, 0, 0, 0));
-  if (red->type == SSSTAR_REDUCTION_NONE) PetscCall((*red->ops.recover)(red, F, uC, rC, u));
+  if (red->wholeBody) PetscCall((*red->ops.recover)(red, F, uC, rC, u));
   else PetscCall(RecoverWithContact(red, F, uC, rC, u));
   PetscCall(PetscLogEventEnd(SSSTAR_Recovery, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -450,6 +564,8 @@ PetscErrorCode SSStarReductionDestroy(SSStarReduction *red)
   PetscCall(ISDestroy(&(*red)->isC));
   PetscCall(ISDestroy(&(*red)->isI));
   PetscCall(MatDestroy(&(*red)->P));
+  PetscCall(PetscFree((*red)->type));
+  PetscCall(PetscFree((*red)->prefix));
   PetscCall(PetscFree(*red));
   PetscFunctionReturn(0);
 }

@@ -1,19 +1,28 @@
 /*
-   The contact declaration of the SNES type "ssstar" (which dofs touch which obstacle, with which friction) and the
-   reduced problem c(u) = P u - f on the contact dofs: a Schur complement of the user's K in the whole-body use,
-   the user's own P in the reduced use.
+   The contact of the SNES type "ssstar": what the user declared (the contact points with their rows of the contact
+   operator B, the friction laws and their parameters) and what the solver derives from it per node, in its order.
+   One route: SNESSSStarSetContactNodes() declares points against rigid planes, whose rows of B (each node's own dofs
+   turned into its frame) are built here and go the way of SNESSSStarSetContactOperator()'s B (operator.c).
+
+   Every check of the declaration is collective (SSStarCheckAllRanks()): a wrong entry on one rank ends every rank with
+   its message, so that no rank waits in a collective call.
 */
 #include "ssstarimpl.h"
+#include "laws/lawimpl.h"
+
+/* The message of the first failed check of this rank; checks after it are skipped */
+#define SSSTAR_MESSAGE_LEN 512
 
 /* A per-node vector must have per entries for each of the nnodes owned contact nodes (nnodes < 0: not known yet) */
-static PetscErrorCode CheckNodeVector(Vec v, PetscInt nnodes, PetscInt per, const char what[])
+static PetscErrorCode CheckNodeVector(MPI_Comm comm, Vec v, PetscInt nnodes, PetscInt per, const char what[])
 {
-  PetscInt n;
+  PetscInt n    = per * nnodes;
+  char     msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
-  if (!v || nnodes < 0) PetscFunctionReturn(0);
-  PetscCall(VecGetLocalSize(v, &n));
-  PetscCheck(n == per * nnodes, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s has %" PetscInt_FMT " local entries, expected %" PetscInt_FMT " (%" PetscInt_FMT " per contact node)", what, n, per * nnodes, per);
+  if (v && nnodes >= 0) PetscCall(VecGetLocalSize(v, &n));
+  if (n != per * nnodes) PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s: %" PetscInt_FMT " local entries, expected %" PetscInt_FMT " (%" PetscInt_FMT " per contact node)", what, n, per * nnodes, per));
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_SIZ, msg));
   PetscFunctionReturn(0);
 }
 
@@ -38,30 +47,84 @@ static PetscErrorCode DeclaredNodes(SSStarContact *ct, PetscInt *n)
   PetscFunctionReturn(0);
 }
 
-/* Every declaration change invalidates the per-node data and the reduced problem */
+/* Every declaration change invalidates the per-node data and the problem */
 static void Declared(SSStarContact *ct)
 {
   ct->declared++;
 }
 
+static PetscErrorCode FindSetting(SSStarContact *ct, const char name[], SSStarLawSetting **setting)
+{
+  PetscFunctionBegin;
+  *setting = NULL;
+  for (PetscInt s = 0; s < ct->nsettings && !*setting; s++) {
+    PetscBool same;
+
+    PetscCall(PetscStrcmp(name, ct->settings[s].name, &same));
+    if (same) *setting = &ct->settings[s];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The setting of a parameter of the registered laws, created when first named; an error for an unknown name */
+static PetscErrorCode GetSetting(SSStarContact *ct, const char name[], SSStarLawSetting **setting)
+{
+  const SSStarLawParameter *par;
+
+  PetscFunctionBegin;
+  PetscCall(FindSetting(ct, name, setting));
+  if (*setting) PetscFunctionReturn(0);
+  PetscCall(SSStarLawGetParameter(name, &par));
+  PetscCall(PetscRealloc(sizeof(SSStarLawSetting) * (ct->nsettings + 1), &ct->settings));
+  *setting = &ct->settings[ct->nsettings++];
+  PetscCall(PetscMemzero(*setting, sizeof(**setting)));
+  PetscCall(PetscStrncpy((*setting)->name, name, sizeof((*setting)->name)));
+  (*setting)->size = SSStarLawParameterSize(par->kind);
+  PetscFunctionReturn(0);
+}
+
+/* What is wrong with the values of a parameter ("-0.1: the friction coefficient must be a number >= 0"), or "" */
+static PetscErrorCode CheckValues(const SSStarLawParameter *par, const PetscReal v[], char msg[], size_t len)
+{
+  PetscFunctionBegin;
+  msg[0] = 0;
+  if (par->kind == SSSTAR_LAW_DIRECTION) {
+    if (PetscIsInfOrNanReal(v[0]) || PetscIsInfOrNanReal(v[1]) || PetscIsInfOrNanReal(v[2]) || (v[0] == 0 && v[1] == 0 && v[2] == 0)) PetscCall(PetscSNPrintf(msg, len, "%g,%g,%g: the %s must be a nonzero vector", (double)v[0], (double)v[1], (double)v[2], par->description));
+  } else if (PetscIsInfOrNanReal(v[0]) || v[0] < 0) PetscCall(PetscSNPrintf(msg, len, "%g: the %s must be a number >= 0", (double)v[0], par->description));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarContactInitialize(SSStarContact *ct)
+{
+  const PetscReal friction = 0.3;
+
+  PetscFunctionBegin;
+  ct->built = -1;
+  PetscCall(SSStarContactSetLaw(ct, SSSTARLAWCOULOMB));
+  PetscCall(SSStarContactSetParameter(PETSC_COMM_SELF, ct, "friction", 1, &friction));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals, Vec gaps)
 {
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  SSStarContact *ct   = &((SNES_SSStar *)snes->data)->contact;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)snes);
   PetscInt       n;
+  char           msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
   PetscCall(ISGetLocalSize(dofs, &n));
-  PetscCheck(n % 3 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetContactNodes: the IS of contact dofs has %" PetscInt_FMT " local entries, not 3 per node", n);
+  if (n % 3) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactNodes: the IS of contact dofs has %" PetscInt_FMT " local entries, not 3 per node", n));
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_SIZ, msg));
+  PetscCall(CheckNodeVector(comm, normals, n / 3, 3, "SNESSSStarSetContactNodes: the normals"));
+  PetscCall(CheckNodeVector(comm, gaps, n / 3, 1, "SNESSSStarSetContactNodes: the gaps"));
+  for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(CheckNodeVector(comm, ct->settings[s].perNode, n / 3, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
   PetscCall(PetscObjectReference((PetscObject)dofs));
   PetscCall(ISDestroy(&ct->dofs));
   ct->dofs = dofs;
-  PetscCall(CheckNodeVector(normals, n / 3, 3, "SNESSSStarSetContactNodes: the normals"));
-  PetscCall(CheckNodeVector(gaps, n / 3, 1, "SNESSSStarSetContactNodes: the gaps"));
-  PetscCall(CheckNodeVector(ct->coefficients, n / 3, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
-  PetscCall(CheckNodeVector(ct->bounds, n / 3, 1, "SNESSSStarSetSlipBounds: the bounds"));
   PetscCall(ReplaceVec(&ct->normals, normals));
   PetscCall(ReplaceVec(&ct->gaps, gaps));
-  PetscCall(MatDestroy(&ct->B)); /* planes: no contact operator */
+  PetscCall(MatDestroy(&ct->B)); /* built from the normals at the set-up */
   Declared(ct);
   PetscFunctionReturn(0);
 }
@@ -70,68 +133,93 @@ PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES snes, IS dofs, Mat B, Ve
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
   PetscInt       n, m;
+  char           msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
   PetscCall(ISGetLocalSize(dofs, &n));
-  PetscCheck(n % 3 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetContactOperator: the IS of the points' own dofs has %" PetscInt_FMT " local entries, not 3 per point", n);
   PetscCall(MatGetLocalSize(B, &m, NULL));
-  PetscCheck(m == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetContactOperator: B has %" PetscInt_FMT " local rows, expected 3 per contact point (%" PetscInt_FMT ")", m, n);
+  if (m != n) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactOperator: B has %" PetscInt_FMT " local rows, expected 3 per contact point (%" PetscInt_FMT ")", m, n));
+  PetscCall(SSStarCheckAllRanks(PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_SIZ, msg));
   PetscCall(SNESSSStarSetContactNodes_SSStar(snes, dofs, NULL, gaps));
   PetscCall(PetscObjectReference((PetscObject)B));
-  PetscCall(MatDestroy(&ct->B));
   ct->B = B;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES snes, Vec phi)
+PetscErrorCode SSStarContactSetLaw(SSStarContact *ct, const char law[])
 {
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-  PetscInt       n;
-
   PetscFunctionBegin;
-  PetscCall(DeclaredNodes(ct, &n));
-  PetscCall(CheckNodeVector(phi, n, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
-  PetscCall(ReplaceVec(&ct->coefficients, phi));
+  PetscCall(SSStarLawFind(law, &ct->law));
   Declared(ct);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SNESSSStarSetSlipBounds_SSStar(SNES snes, Vec s)
+/* The value of a law parameter for every node without one of its own (logically collective: the same on every rank) */
+PetscErrorCode SSStarContactSetParameter(MPI_Comm comm, SSStarContact *ct, const char name[], PetscInt n, const PetscReal values[])
 {
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-  PetscInt       n;
+  SSStarLawSetting         *setting;
+  const SSStarLawParameter *par;
+  char                      msg[SSSTAR_MESSAGE_LEN];
 
   PetscFunctionBegin;
-  PetscCall(DeclaredNodes(ct, &n));
-  PetscCall(CheckNodeVector(s, n, 1, "SNESSSStarSetSlipBounds: the bounds"));
-  PetscCall(ReplaceVec(&ct->bounds, s));
+  PetscCall(SSStarLawGetParameter(name, &par));
+  PetscCheck(n == SSStarLawParameterSize(par->kind), comm, PETSC_ERR_ARG_SIZ, "-snes_ssstar_%s: %" PetscInt_FMT " values given, it takes %" PetscInt_FMT, name, n, SSStarLawParameterSize(par->kind));
+  PetscCall(CheckValues(par, values, msg, sizeof(msg)));
+  PetscCheck(!msg[0], comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_%s %s", name, msg);
+  PetscCall(GetSetting(ct, name, &setting));
+  for (PetscInt k = 0; k < n; k++) setting->value[k] = values[k];
+  setting->set = PETSC_TRUE;
   Declared(ct);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, const SSStarFrictionLaw laws[])
+/* The value for every node of a law parameter, if set */
+PetscErrorCode SSStarContactGetParameter(SSStarContact *ct, const char name[], PetscInt *n, PetscReal values[], PetscBool *set)
 {
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  SSStarLawSetting         *setting;
+  const SSStarLawParameter *par;
 
   PetscFunctionBegin;
+  PetscCall(SSStarLawGetParameter(name, &par));
+  PetscCall(FindSetting(ct, name, &setting));
+  *n   = SSStarLawParameterSize(par->kind);
+  *set = (PetscBool)(setting && setting->set);
+  for (PetscInt k = 0; k < *n; k++) values[k] = *set ? setting->value[k] : 0.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarSetNodeLawParameter_SSStar(SNES snes, const char name[], Vec v)
+{
+  SSStarContact    *ct = &((SNES_SSStar *)snes->data)->contact;
+  SSStarLawSetting *setting;
+  PetscInt          n;
+
+  PetscFunctionBegin;
+  PetscCall(GetSetting(ct, name, &setting));
+  PetscCall(DeclaredNodes(ct, &n));
+  PetscCall(CheckNodeVector(PetscObjectComm((PetscObject)snes), v, n, setting->size, "SNESSSStarSetNodeLawParameter: the values"));
+  PetscCall(ReplaceVec(&setting->perNode, v));
+  Declared(ct);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, const PetscInt laws[])
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt       nlaws;
+  char           msg[SSSTAR_MESSAGE_LEN] = "";
+
+  PetscFunctionBegin;
+  PetscCall(SSStarLawGetNames(&nlaws, NULL));
+  for (PetscInt i = 0; laws && i < n && !msg[0]; i++)
+    if (laws[i] < 0 || laws[i] >= nlaws) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetNodeFrictionLaws: law %" PetscInt_FMT " of contact node %" PetscInt_FMT " is not in the table of laws (0..%" PetscInt_FMT ", SSStarLawGetNames())", laws[i], i, nlaws - 1));
+  PetscCall(SSStarCheckAllRanks(PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, msg));
   PetscCall(PetscFree(ct->nodeLaws));
   ct->nNodeLaws = n;
   if (laws) {
     PetscCall(PetscMalloc1(n, &ct->nodeLaws));
-    for (PetscInt i = 0; i < n; i++) {
-      PetscCheck(laws[i] >= SSSTAR_FRICTION_NONE && laws[i] <= SSSTAR_FRICTION_COULOMB, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "SNESSSStarSetNodeFrictionLaws: law %d of node %" PetscInt_FMT " is not none, tresca or coulomb", (int)laws[i], i);
-      ct->nodeLaws[i] = laws[i];
-    }
+    PetscCall(PetscArraycpy(ct->nodeLaws, laws, n));
   }
-  Declared(ct);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SSStarContactSetLaw(SSStarContact *ct, SSStarFrictionLaw law, PetscReal phi)
-{
-  PetscFunctionBegin;
-  ct->law      = law;
-  ct->friction = phi;
   Declared(ct);
   PetscFunctionReturn(0);
 }
@@ -144,8 +232,6 @@ static PetscErrorCode BuildOrder(MPI_Comm comm, SSStarContact *ct)
   PetscBool       isSorted = PETSC_TRUE;
 
   PetscFunctionBegin;
-  PetscCall(PetscFree(ct->order));
-  PetscCall(ISDestroy(&ct->isC));
   PetscCall(ISGetIndices(ct->dofs, &idx));
   for (PetscInt i = 1; i < n; i++)
     if (idx[3 * i] < idx[3 * (i - 1)]) isSorted = PETSC_FALSE;
@@ -166,19 +252,23 @@ static PetscErrorCode BuildOrder(MPI_Comm comm, SSStarContact *ct)
 }
 
 /* The owned dofs that are not contact dofs; every contact dof must be owned by the rank that declares it */
-static PetscErrorCode BuildInterior(SSStarContact *ct, Vec x)
+static PetscErrorCode BuildInterior(MPI_Comm comm, SSStarContact *ct, Vec x)
 {
-  PetscInt lo, hi, n;
-  IS       sortedC;
+  PetscInt        lo, hi, n;
+  PetscMPIInt     rank;
+  IS              sortedC;
   const PetscInt *idx;
+  char            msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
-  PetscCall(ISDestroy(&ct->isI));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(VecGetOwnershipRange(x, &lo, &hi));
   PetscCall(ISGetLocalSize(ct->isC, &n));
   PetscCall(ISGetIndices(ct->isC, &idx));
-  for (PetscInt i = 0; i < n; i++) PetscCheck(idx[i] >= lo && idx[i] < hi, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "SNESSSStarSetContactNodes: dof %" PetscInt_FMT " of contact node %" PetscInt_FMT " is not owned by this rank (owned: %" PetscInt_FMT "..%" PetscInt_FMT ")", idx[i], ct->order[i / 3], lo, hi - 1);
+  for (PetscInt i = 0; i < n && !msg[0]; i++)
+    if (idx[i] < lo || idx[i] >= hi) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactNodes: dof %" PetscInt_FMT " of contact node %" PetscInt_FMT " of rank %d is not owned by that rank (it owns %" PetscInt_FMT "..%" PetscInt_FMT "): a rank declares the nodes whose dofs it owns", idx[i], ct->order[i / 3], rank, lo, hi - 1));
   PetscCall(ISRestoreIndices(ct->isC, &idx));
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_OUTOFRANGE, msg));
   PetscCall(ISDuplicate(ct->isC, &sortedC));
   PetscCall(ISSort(sortedC));
   PetscCall(ISComplement(sortedC, lo, hi, &ct->isI));
@@ -186,364 +276,302 @@ static PetscErrorCode BuildInterior(SSStarContact *ct, Vec x)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode BuildFrames(MPI_Comm comm, SSStarContact *ct)
+/*
+   The rows of B of nodes against rigid planes: node i's own dofs turned into its frame (t1, t2, n) from the normal n
+   (SSStarNodeFrame(); the identity without normals). The normals must be unit vectors.
+*/
+static PetscErrorCode BuildNodeOperator(MPI_Comm comm, SSStarContact *ct, Vec x, Mat *B)
 {
-  const PetscScalar *na;
-  PetscBool          tilted = PETSC_FALSE;
+  const PetscScalar *na = NULL;
+  const PetscInt    *idx;
+  PetscInt           m, rstart;
+  char               msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
-  PetscCall(PetscFree(ct->frames));
-  if (!ct->normals) PetscFunctionReturn(0);
-  PetscCall(VecGetArrayRead(ct->normals, &na));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const PetscScalar *n   = &na[3 * ct->order[i]];
+  if (ct->normals) PetscCall(VecGetArrayRead(ct->normals, &na));
+  for (PetscInt j = 0; na && j < ct->nnodes && !msg[0]; j++) {
+    const PetscScalar *n   = &na[3 * j];
     const PetscReal    len = PetscSqrtReal(PetscRealPart(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
 
-    PetscCheck(PetscAbsReal(len - 1) <= 1e-8, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "SNESSSStarSetContactNodes: the normal (%g, %g, %g) of contact node %" PetscInt_FMT " is not a unit vector", (double)PetscRealPart(n[0]), (double)PetscRealPart(n[1]), (double)PetscRealPart(n[2]), ct->order[i]);
-    if (n[0] != 0.0 || n[1] != 0.0 || n[2] != 1.0) tilted = PETSC_TRUE;
+    if (!(PetscAbsReal(len - 1) <= 1e-8)) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactNodes: the normal (%g, %g, %g) of contact node %" PetscInt_FMT " is not a unit vector", (double)PetscRealPart(n[0]), (double)PetscRealPart(n[1]), (double)PetscRealPart(n[2]), j));
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tilted, 1, MPIU_BOOL, MPI_LOR, comm));
-  if (tilted) {
-    PetscCall(PetscMalloc1(9 * ct->nnodes, &ct->frames));
-    for (PetscInt i = 0; i < ct->nnodes; i++) {
-      const PetscReal n[3] = {PetscRealPart(na[3 * ct->order[i]]), PetscRealPart(na[3 * ct->order[i] + 1]), PetscRealPart(na[3 * ct->order[i] + 2])};
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_OUTOFRANGE, msg));
+  PetscCall(VecGetLocalSize(x, &m));
+  PetscCall(MatCreateAIJ(comm, 3 * ct->nnodes, m, PETSC_DETERMINE, PETSC_DETERMINE, 3, NULL, 3, NULL, B));
+  PetscCall(MatGetOwnershipRange(*B, &rstart, NULL));
+  PetscCall(ISGetIndices(ct->dofs, &idx));
+  for (PetscInt j = 0; j < ct->nnodes; j++) { /* the user's order: B's rows are laid out like the dofs */
+    const PetscInt rows[3] = {rstart + 3 * j, rstart + 3 * j + 1, rstart + 3 * j + 2};
+    PetscReal      R[9]    = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    PetscScalar    Rs[9];
 
-      SSStarNodeFrame(n, &ct->frames[9 * i]);
+    if (na) {
+      const PetscReal n[3] = {PetscRealPart(na[3 * j]), PetscRealPart(na[3 * j + 1]), PetscRealPart(na[3 * j + 2])};
+
+      SSStarNodeFrame(n, R);
     }
+    for (PetscInt k = 0; k < 9; k++) Rs[k] = R[k];
+    PetscCall(MatSetValues(*B, 3, rows, 3, &idx[3 * j], Rs, INSERT_VALUES));
   }
-  PetscCall(VecRestoreArrayRead(ct->normals, &na));
+  PetscCall(ISRestoreIndices(ct->dofs, &idx));
+  if (na) PetscCall(VecRestoreArrayRead(ct->normals, &na));
+  PetscCall(MatAssemblyBegin(*B, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*B, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
 /*
-   A per-node value of the user's vector v (NULL: fallback), checked to be finite and >= 0 unless negative is allowed;
-   with allowDefault an entry PETSC_DEFAULT takes the fallback too
+   The law of every node and its values (section 0 and the law's own section in docs/derivation.md): a node's own
+   value of a parameter (SNESSSStarSetNodeLawParameter(); PETSC_DEFAULT: none), else the value for every node
+   (SNESSSStarSetLawParameter(), -snes_ssstar_<name>); a direction turned into the node's frame. Then the law checks
+   and prepares them.
 */
-static PetscErrorCode NodeValues(SSStarContact *ct, Vec v, PetscReal fallback, PetscBool allowNegative, PetscBool allowDefault, const char what[], PetscReal out[])
-{
-  const PetscScalar *a;
-
-  PetscFunctionBegin;
-  if (!v) {
-    for (PetscInt i = 0; i < ct->nnodes; i++) out[i] = fallback;
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecGetArrayRead(v, &a));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    out[i] = PetscRealPart(a[ct->order[i]]);
-    if (allowDefault && out[i] == (PetscReal)PETSC_DEFAULT) out[i] = fallback;
-    PetscCheck(!PetscIsInfOrNanReal(out[i]) && (allowNegative || out[i] >= 0), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%s of contact node %" PetscInt_FMT " is %g", what, ct->order[i], (double)out[i]);
-  }
-  PetscCall(VecRestoreArrayRead(v, &a));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode BuildFriction(MPI_Comm comm, SSStarContact *ct)
 {
-  PetscReal *phi, *bound;
+  PetscInt local = 0;
+  char     msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
-  PetscCall(PetscFree(ct->nodeFriction));
-  PetscCall(PetscFree(ct->gap));
-  PetscCheck(!ct->nodeLaws || ct->nNodeLaws == ct->nnodes, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarSetNodeFrictionLaws: %" PetscInt_FMT " laws for %" PetscInt_FMT " contact nodes", ct->nNodeLaws, ct->nnodes);
+  PetscCall(SSStarLawGetNames(&ct->nlaws, NULL));
+  PetscCall(PetscCalloc1(ct->nlaws, &ct->lawCounts));
   PetscCall(PetscMalloc1(ct->nnodes, &ct->nodeFriction));
-  PetscCall(PetscMalloc2(ct->nnodes, &phi, ct->nnodes, &bound));
-  PetscCall(NodeValues(ct, ct->coefficients, ct->friction, PETSC_FALSE, PETSC_TRUE, "The friction coefficient (SNESSSStarSetFrictionCoefficients)", phi));
-  PetscCall(NodeValues(ct, ct->bounds, 0.0, PETSC_FALSE, PETSC_FALSE, "The slip bound (SNESSSStarSetSlipBounds)", bound));
-  PetscCall(PetscArrayzero(ct->lawCounts, 3));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    SSStarFriction *fr = &ct->nodeFriction[i];
+  if (ct->nodeLaws && ct->nNodeLaws != ct->nnodes) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetNodeFrictionLaws: %" PetscInt_FMT " laws for %" PetscInt_FMT " contact nodes", ct->nNodeLaws, ct->nnodes));
+  for (PetscInt i = 0; i < ct->nnodes && !msg[0]; i++) {
+    const PetscInt   j  = ct->order[i]; /* the user's node */
+    SSStarFriction  *fr = &ct->nodeFriction[i];
+    const PetscReal *R  = ct->frames ? &ct->frames[9 * i] : NULL;
+    const char      *problem;
 
-    fr->law   = ct->nodeLaws ? ct->nodeLaws[ct->order[i]] : ct->law;
-    fr->phi   = phi[i];
-    fr->bound = bound[i];
-    PetscCheck(fr->law != SSSTAR_FRICTION_TRESCA || ct->bounds, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "Contact node %" PetscInt_FMT " has Tresca friction but no slip bound: call SNESSSStarSetSlipBounds()", ct->order[i]);
-    ct->lawCounts[fr->law]++;
+    if (ct->nodeLaws) PetscCall(SSStarLawGet(ct->nodeLaws[j], &fr->law));
+    else fr->law = ct->law;
+    PetscCall(PetscArrayzero(fr->value, SSSTAR_LAW_MAX_VALUES));
+    for (PetscInt p = 0; p < fr->law->nparams && !msg[0]; p++) {
+      const SSStarLawParameter *par    = &fr->law->params[p];
+      const PetscInt            offset = SSStarLawParameterOffset(fr->law, p);
+      SSStarLawSetting         *setting;
+      PetscReal                 v[3]   = {0, 0, 0};
+      PetscBool                 given  = PETSC_FALSE;
+      char                      bad[256];
+
+      PetscCall(FindSetting(ct, par->name, &setting));
+      if (setting && setting->perNode) {
+        const PetscScalar *a;
+
+        PetscCall(VecGetArrayRead(setting->perNode, &a));
+        given = (PetscBool)(PetscRealPart(a[setting->size * j]) != (PetscReal)PETSC_DEFAULT);
+        for (PetscInt k = 0; given && k < setting->size; k++) v[k] = PetscRealPart(a[setting->size * j + k]);
+        PetscCall(VecRestoreArrayRead(setting->perNode, &a));
+      }
+      if (!given && setting && setting->set) {
+        given = PETSC_TRUE;
+        for (PetscInt k = 0; k < setting->size; k++) v[k] = setting->value[k];
+      }
+      if (!given) {
+        PetscCall(PetscSNPrintf(msg, sizeof(msg), "Contact node %" PetscInt_FMT " has the friction law %s but no %s: give it with -snes_ssstar_%s, SNESSSStarSetLawParameter() or SNESSSStarSetNodeLawParameter()", j, fr->law->name, par->name, par->name));
+        break;
+      }
+      PetscCall(CheckValues(par, v, bad, sizeof(bad)));
+      if (bad[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "Contact node %" PetscInt_FMT " (law %s), its %s %s", j, fr->law->name, par->name, bad));
+      if (par->kind == SSSTAR_LAW_DIRECTION)
+        for (PetscInt r = 0; r < 3; r++) fr->value[offset + r] = R ? R[3 * r] * v[0] + R[3 * r + 1] * v[1] + R[3 * r + 2] * v[2] : v[r];
+      else fr->value[offset] = v[0];
+    }
+    if (msg[0]) break;
+    problem = fr->law->ops.prepare ? fr->law->ops.prepare(fr) : NULL;
+    if (problem) PetscCall(PetscSNPrintf(msg, sizeof(msg), "Contact node %" PetscInt_FMT " (law %s): %s", j, fr->law->name, problem));
+    ct->lawCounts[fr->law->index]++;
+    if (fr->law->coupled) local++;
   }
-  PetscCall(PetscFree2(phi, bound));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ct->lawCounts, 3, MPIU_INT, MPI_SUM, comm));
-  ct->hasFriction = (PetscBool)(ct->lawCounts[SSSTAR_FRICTION_TRESCA] + ct->lawCounts[SSSTAR_FRICTION_COULOMB] > 0);
-  if (ct->gaps) {
-    PetscCall(PetscMalloc1(ct->nnodes, &ct->gap));
-    PetscCall(NodeValues(ct, ct->gaps, 0.0, PETSC_TRUE, PETSC_FALSE, "The gap (SNESSSStarSetContactNodes)", ct->gap));
-  }
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_WRONG, msg));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ct->lawCounts, ct->nlaws, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(&local, &ct->coupled, 1, MPIU_INT, MPI_SUM, comm));
   PetscFunctionReturn(0);
 }
 
-/* The per-node data in the solver's order, rebuilt when the declaration changed */
-PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct)
+/* The initial gaps in the solver's order, as the kernels see them: w_i / d_i = R_i (u_s - M_i u) + g_i / d_i */
+static PetscErrorCode BuildGaps(MPI_Comm comm, SSStarContact *ct)
+{
+  const PetscScalar *a;
+  char               msg[SSSTAR_MESSAGE_LEN] = "";
+
+  PetscFunctionBegin;
+  if (!ct->gaps) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(ct->nnodes, &ct->gap));
+  PetscCall(VecGetArrayRead(ct->gaps, &a));
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const PetscReal g = PetscRealPart(a[ct->order[i]]);
+
+    if (PetscIsInfOrNanReal(g) && !msg[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "The gap (SNESSSStarSetContactNodes) of contact node %" PetscInt_FMT " is %g", ct->order[i], (double)g));
+    ct->gap[i] = ct->pointScale ? g / ct->pointScale[i] : g;
+  }
+  PetscCall(VecRestoreArrayRead(ct->gaps, &a));
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_OUTOFRANGE, msg));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The per-node data in the solver's order, rebuilt when the declaration changed (rebuilt says whether it was).
+   Collective, and every check collective.
+*/
+PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct, PetscBool *rebuilt)
 {
   MPI_Comm comm = PetscObjectComm((PetscObject)snes);
   PetscInt n;
+  char     msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
+  if (rebuilt) *rebuilt = PETSC_FALSE;
   if (ct->built == ct->declared) PetscFunctionReturn(0);
   PetscCall(SSStarContactReset(ct));
+  if (rebuilt) *rebuilt = PETSC_TRUE;
   if (ct->dofs) {
+    Mat B = ct->B;
+
     PetscCall(ISGetLocalSize(ct->dofs, &n));
     ct->nnodes = n / 3;
+    for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(CheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
     PetscCall(BuildOrder(comm, ct));
-    PetscCall(BuildInterior(ct, snes->vec_func));
+    PetscCall(BuildInterior(comm, ct, snes->vec_func));
+    if (!B) PetscCall(BuildNodeOperator(comm, ct, snes->vec_func, &B));
+    PetscCall(SSStarContactBuildOperator(comm, ct, B, snes->vec_func));
+    if (!ct->B) PetscCall(MatDestroy(&B));
   } else {
     PetscCall(VecGetLocalSize(snes->vec_func, &n));
-    PetscCheck(n % 3 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "ssstar: local vector size %" PetscInt_FMT " is not a multiple of 3 (one (u_t1, u_t2, u_n) block per contact node); to solve on a whole body, call SNESSSStarSetContactNodes()", n);
+    if (n % 3) PetscCall(PetscSNPrintf(msg, sizeof(msg), "ssstar: local vector size %" PetscInt_FMT " is not a multiple of 3 (one (u_t1, u_t2, u_n) block per contact node); to solve on a whole body, call SNESSSStarSetContactNodes()", n));
+    PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_SIZ, msg));
     ct->nnodes = n / 3;
+    for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(CheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
     PetscCall(PetscMalloc1(ct->nnodes, &ct->order));
     for (PetscInt i = 0; i < ct->nnodes; i++) ct->order[i] = i;
   }
-  PetscCall(CheckNodeVector(ct->coefficients, ct->nnodes, 1, "SNESSSStarSetFrictionCoefficients: the coefficients"));
-  PetscCall(CheckNodeVector(ct->bounds, ct->nnodes, 1, "SNESSSStarSetSlipBounds: the bounds"));
-  if (ct->B) PetscCall(SSStarContactBuildOperator(comm, ct, snes->vec_func));
-  else PetscCall(BuildFrames(comm, ct));
   PetscCall(BuildFriction(comm, ct));
-  if (ct->gap && ct->pointScale) /* w_i / d_i = R_i (u_s - M_i u) + g_i / d_i */
-    for (PetscInt i = 0; i < ct->nnodes; i++) ct->gap[i] /= ct->pointScale[i];
+  PetscCall(BuildGaps(comm, ct));
   ct->built = ct->declared;
   PetscFunctionReturn(0);
 }
 
-/*
-   K from the user's Jacobian routine. Not SNESComputeJacobian(): it hands K to the SNES's KSP, which belongs to the
-   Newton system here.
-*/
-static PetscErrorCode ComputeK(SNES snes, Mat *K)
+/* The contact nodes of this rank: declared, or (reduced use) 1/3 of the function vector once it exists; -1 before */
+PetscErrorCode SSStarContactGetNodeCount(SNES snes, SSStarContact *ct, PetscInt *n)
 {
-  Mat   A, B;
-  void *ctx;
-  PetscErrorCode (*jac)(SNES, Vec, Mat, Mat, void *);
-
   PetscFunctionBegin;
-  PetscCall(SNESGetJacobian(snes, &A, &B, &jac, &ctx));
-  if (jac) {
-    PetscCall(PetscLogEventBegin(SNES_JacobianEval, snes, snes->vec_sol, A, B));
-    PetscCallBack("SNES callback Jacobian", (*jac)(snes, snes->vec_sol, A, B, ctx));
-    PetscCall(PetscLogEventEnd(SNES_JacobianEval, snes, snes->vec_sol, A, B));
+  PetscCall(DeclaredNodes(ct, n));
+  if (*n < 0 && snes->vec_func) {
+    PetscCall(VecGetLocalSize(snes->vec_func, n));
+    *n /= 3;
   }
-  *K = A;
   PetscFunctionReturn(0);
 }
 
-/* The mean diagonal entry of the contact rows of K and their largest sum |K_ij| (the scaling's data, section 6) */
-static PetscErrorCode ContactRowStatistics(SSStarContact *ct, Mat K)
+/* The arrays of a getter must have one entry per node of this rank */
+static PetscErrorCode CheckNodeArrays(SNES snes, SSStarContact *ct, PetscInt n, const char caller[])
 {
-  PetscInt           n, rstart, ncols;
-  const PetscInt    *rows = NULL, *cols;
-  const PetscScalar *vals;
-  PetscReal          sums[2] = {0, 0}, rowmax = 0;
+  char msg[SSSTAR_MESSAGE_LEN] = "";
 
   PetscFunctionBegin;
-  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
-  if (ct->isC) {
-    PetscCall(ISGetLocalSize(ct->isC, &n));
-    PetscCall(ISGetIndices(ct->isC, &rows));
-  } else PetscCall(MatGetLocalSize(K, &n, NULL));
-  for (PetscInt k = 0; k < n; k++) {
-    const PetscInt row = rows ? rows[k] : rstart + k;
-    PetscReal      sum = 0;
+  PetscCheck(snes->vec_func, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "%s: call SNESSetUp() or SNESSolve() first", caller);
+  PetscCall(SSStarContactSetUp(snes, ct, NULL));
+  if (n != ct->nnodes) PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s: arrays of %" PetscInt_FMT " entries for the %" PetscInt_FMT " contact nodes of this rank", caller, n, ct->nnodes));
+  PetscCall(SSStarCheckAllRanks(PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_SIZ, msg));
+  PetscFunctionReturn(0);
+}
 
-    PetscCall(MatGetRow(K, row, &ncols, &cols, &vals));
-    for (PetscInt j = 0; j < ncols; j++) {
-      sum += PetscAbsScalar(vals[j]);
-      if (cols[j] == row) sums[0] += PetscRealPart(vals[j]);
+PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, PetscInt laws[])
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  PetscCall(CheckNodeArrays(snes, ct, n, "SNESSSStarGetNodeFrictionLaws"));
+  for (PetscInt i = 0; i < ct->nnodes; i++) laws[ct->order[i]] = ct->nodeFriction[i].law->index;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES snes, const char name[], PetscInt n, PetscReal values[])
+{
+  SSStarContact            *ct = &((SNES_SSStar *)snes->data)->contact;
+  const SSStarLawParameter *par;
+  PetscInt                  size;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarLawGetParameter(name, &par));
+  PetscCall(CheckNodeArrays(snes, ct, n, "SNESSSStarGetNodeLawParameter"));
+  size = SSStarLawParameterSize(par->kind);
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const SSStarFriction *fr = &ct->nodeFriction[i];
+    const PetscInt        p  = SSStarLawFindParameter(fr->law, name);
+    const PetscReal      *R  = ct->frames ? &ct->frames[9 * i] : NULL;
+    PetscReal            *v  = &values[size * ct->order[i]];
+
+    for (PetscInt k = 0; k < size; k++) v[k] = 0.0;
+    if (p < 0) continue;
+    if (par->kind != SSSTAR_LAW_DIRECTION) v[0] = fr->value[SSStarLawParameterOffset(fr->law, p)];
+    else { /* the direction in use, in global axes: R^T of the node's */
+      const PetscReal *a = &fr->value[SSStarLawParameterOffset(fr->law, p)];
+
+      for (PetscInt k = 0; k < 3; k++) v[k] = R ? R[k] * a[0] + R[3 + k] * a[1] + R[6 + k] * a[2] : a[k];
     }
-    PetscCall(MatRestoreRow(K, row, &ncols, &cols, &vals));
-    rowmax = PetscMax(rowmax, sum);
   }
-  if (rows) PetscCall(ISRestoreIndices(ct->isC, &rows));
-  sums[1] = n;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)K)));
-  PetscCall(MPIU_Allreduce(&rowmax, &ct->maxRowSum, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)K)));
-  ct->meanDiag = sums[1] > 0 ? sums[0] / sums[1] : 0;
   PetscFunctionReturn(0);
 }
 
-/* Where the contact dofs sit in A's vectors: 3 i + k in a reduced space, their own offsets on the whole body */
-static PetscErrorCode BuildLayout(SSStarContact *ct, PetscBool wholeBody)
+/* The parameters of the laws in use, set for every node: "  Coulomb friction coefficient phi = 0.3 (or per node)" */
+PetscErrorCode SSStarContactViewParameters(SSStarContact *ct, PetscViewer viewer)
 {
-  PetscInt        rstart, nlocal, *mark;
-  const PetscInt *idx;
-
   PetscFunctionBegin;
-  PetscCall(PetscFree(ct->layoutDofs));
-  PetscCall(PetscFree(ct->free));
-  ct->nfree = 0;
-  PetscCall(PetscMalloc1(3 * ct->nnodes, &ct->layoutDofs));
-  if (!wholeBody) {
-    for (PetscInt k = 0; k < 3 * ct->nnodes; k++) ct->layoutDofs[k] = k;
-    PetscFunctionReturn(0);
-  }
-  PetscCall(MatGetOwnershipRange(ct->A, &rstart, NULL));
-  PetscCall(MatGetLocalSize(ct->A, &nlocal, NULL));
-  PetscCall(ISGetIndices(ct->isC, &idx));
-  PetscCall(PetscCalloc1(nlocal, &mark));
-  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
-    ct->layoutDofs[k]        = idx[k] - rstart;
-    mark[idx[k] - rstart] = 1;
-  }
-  PetscCall(ISRestoreIndices(ct->isC, &idx));
-  ct->nfree = nlocal - 3 * ct->nnodes;
-  PetscCall(PetscMalloc1(ct->nfree, &ct->free));
-  for (PetscInt j = 0, a = 0; j < nlocal; j++)
-    if (!mark[j]) ct->free[a++] = j;
-  PetscCall(PetscFree(mark));
-  PetscFunctionReturn(0);
-}
+  for (PetscInt l = 0; l < ct->nlaws; l++) {
+    SSStarLaw law;
 
-/* The Newton step that fits A: the whole body for none, else by P's storage */
-static PetscErrorCode ChooseNewton(SSStarContact *ct)
-{
-  PetscBool dense;
+    if (!ct->lawCounts[l]) continue;
+    PetscCall(SSStarLawGet(l, &law));
+    for (PetscInt p = 0; p < law->nparams; p++) {
+      SSStarLawSetting *setting;
 
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)ct->A, &dense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
-  ct->newtonType = dense ? SSSTAR_NEWTON_DENSE : SSSTAR_NEWTON_SPARSE;
-  PetscFunctionReturn(0);
-}
-
-/*
-   A and f for the current K and load: the Jacobian is evaluated once (c is affine), b = -F(0), and in the whole-body
-   use K is reduced to the contact dofs, or kept (reduction none), again only when K changed.
-*/
-PetscErrorCode SSStarContactSetUpProblem(SNES snes, SSStarContact *ct)
-{
-  Mat                 K = NULL;
-  PetscObjectState    state;
-  Vec                 zero, bC;
-  PetscInt            nI = 0;
-  SSStarReductionType type = SSSTAR_REDUCTION_DIRECT;
-
-  PetscFunctionBegin;
-  PetscCall(ComputeK(snes, &K));
-  PetscCall(PetscObjectStateGet((PetscObject)K, &state));
-  if (K != ct->K || state != ct->Kstate || !ct->A) {
-    PetscCall(SSStarReductionDestroy(&ct->reduction));
-    PetscCall(MatDestroy(&ct->A));
-    PetscCall(MatDestroy(&ct->Kw));
-    PetscCall(VecDestroy(&ct->f));
-    PetscCall(SSStarContactTransformStiffness(ct, K, &ct->Kw));
-    PetscCall(ContactRowStatistics(ct, ct->Kw));
-    if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
-    if (ct->dofs && nI > 0) {
-      PetscCall(SSStarReductionCreate(ct->Kw, ct->isC, ct->isI, ct->reductionType, ct->memoryLimit, &ct->reduction));
-      PetscCall(SSStarReductionGetOperator(ct->reduction, &ct->A));
-      PetscCall(PetscObjectReference((PetscObject)ct->A));
-      PetscCall(SSStarReductionGetType(ct->reduction, &type));
-    } else if (ct->dofs) { /* every dof a contact dof, in another order */
-      PetscCall(MatCreateSubMatrix(ct->Kw, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &ct->A));
-    } else {
-      PetscCall(PetscObjectReference((PetscObject)K));
-      ct->A = K;
+      PetscCall(FindSetting(ct, law->params[p].name, &setting));
+      if (!setting || !setting->set) continue;
+      if (setting->size == 1) PetscCall(PetscViewerASCIIPrintf(viewer, "  %s %s %s = %g%s\n", law->label, law->params[p].description, law->params[p].symbol, (double)setting->value[0], setting->perNode ? " (or per node)" : ""));
+      else PetscCall(PetscViewerASCIIPrintf(viewer, "  %s %s %s = (%g, %g, %g)%s\n", law->label, law->params[p].description, law->params[p].symbol, (double)setting->value[0], (double)setting->value[1], (double)setting->value[2], setting->perNode ? " (or per node)" : ""));
     }
-    if (type == SSSTAR_REDUCTION_NONE) ct->newtonType = SSSTAR_NEWTON_FULL;
-    else PetscCall(ChooseNewton(ct));
-    PetscCall(BuildLayout(ct, (PetscBool)(type == SSSTAR_REDUCTION_NONE)));
-    PetscCall(MatCreateVecs(ct->A, &ct->f, NULL));
-    ct->K      = K;
-    ct->Kstate = state;
   }
-  if (!ct->b) PetscCall(VecDuplicate(snes->vec_func, &ct->b));
-  PetscCall(VecDuplicate(snes->vec_sol, &zero));
-  PetscCall(VecZeroEntries(zero));
-  PetscCall(SNESComputeFunction(snes, zero, ct->b));
-  PetscCall(VecDestroy(&zero));
-  PetscCall(VecScale(ct->b, -1.0));
-  PetscCall(VecDestroy(&ct->bw));
-  if (ct->T) { /* the load in the points' variables: T^T b */
-    PetscCall(VecDuplicate(ct->b, &ct->bw));
-    PetscCall(MatMultTranspose(ct->T, ct->b, ct->bw));
-  } else {
-    PetscCall(PetscObjectReference((PetscObject)ct->b));
-    ct->bw = ct->b;
-  }
-  if (ct->reduction) PetscCall(SSStarReductionReduceLoad(ct->reduction, ct->bw, ct->f));
-  else if (ct->dofs) {
-    PetscCall(VecGetSubVector(ct->bw, ct->isC, &bC));
-    PetscCall(VecCopy(bC, ct->f));
-    PetscCall(VecRestoreSubVector(ct->bw, ct->isC, &bC));
-  } else PetscCall(VecCopy(ct->b, ct->f));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SSStarContactGetLayout(SSStarContact *ct, SSStarContactLayout *layout)
-{
-  PetscFunctionBegin;
-  layout->nnodes = ct->nnodes;
-  layout->dofs   = ct->layoutDofs;
-  layout->frames = ct->frames;
-  PetscFunctionReturn(0);
-}
-
-/* u, the solver's unknown, from the SNES vector x (in the points' variables, T^-1 x) */
-PetscErrorCode SSStarContactGetInitialGuess(SSStarContact *ct, Vec x, Vec u)
-{
-  Vec v, vC;
-
-  PetscFunctionBegin;
-  if (!ct->dofs) {
-    PetscCall(VecCopy(x, u));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecDuplicate(x, &v));
-  PetscCall(SSStarContactToPointVariables(ct, x, v));
-  if (ct->newtonType == SSSTAR_NEWTON_FULL) PetscCall(VecCopy(v, u));
-  else {
-    PetscCall(VecGetSubVector(v, ct->isC, &vC));
-    PetscCall(VecCopy(vC, u));
-    PetscCall(VecRestoreSubVector(v, ct->isC, &vC));
-  }
-  PetscCall(VecDestroy(&v));
-  PetscFunctionReturn(0);
-}
-
-/*
-   The SNES vector x from the solution u and its contact force c = A u - f: in the whole-body use v = K^-1 (b + E_C c)
-   (or u itself on the whole body), in the points' variables, and x = T v
-*/
-PetscErrorCode SSStarContactSetSolution(SSStarContact *ct, Vec u, Vec c, Vec x)
-{
-  Vec v;
-
-  PetscFunctionBegin;
-  if (!ct->dofs) {
-    PetscCall(VecCopy(u, x));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecDuplicate(x, &v));
-  if (ct->reduction) PetscCall(SSStarReductionRecover(ct->reduction, ct->bw, u, c, v));
-  else PetscCall(VecISCopy(v, ct->isC, SCATTER_FORWARD, u));
-  if (ct->T) PetscCall(MatMult(ct->T, v, x));
-  else PetscCall(VecCopy(v, x));
-  PetscCall(VecDestroy(&v));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SSStarContactView(SSStarContact *ct, PetscViewer viewer)
 {
-  PetscFunctionBegin;
-  if (ct->dofs && ct->reduction) {
-    SSStarReductionType type;
-    char                chosen[64] = "";
+  char counts[256] = "", effects[256] = "";
 
-    PetscCall(SSStarReductionGetType(ct->reduction, &type));
-    if (ct->reductionType == SSSTAR_REDUCTION_AUTO) PetscCall(PetscSNPrintf(chosen, sizeof(chosen), " (chosen by auto)"));
-    if (type == SSSTAR_REDUCTION_NONE) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: solved on the whole body, P never formed (reduction none%s)\n", chosen));
-    else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", SSStarReductionTypes[type], chosen));
-  } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", SSStarReductionTypes[ct->reductionType]));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
+  PetscFunctionBegin;
   if (!ct->nodeFriction) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  friction law %s%s", SSStarFrictionLaws[ct->law], ct->nodeLaws ? " (and per node)" : ""));
-    if (ct->law == SSSTAR_FRICTION_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g%s", (double)ct->friction, ct->coefficients ? " (and per node)" : ""));
+    SSStarLawSetting *setting;
+
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  friction law %s%s", ct->law->name, ct->nodeLaws ? " (and per node)" : ""));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
+    for (PetscInt p = 0; p < ct->law->nparams; p++) {
+      PetscCall(FindSetting(ct, ct->law->params[p].name, &setting));
+      if (setting && setting->set && setting->size == 1) PetscCall(PetscViewerASCIIPrintf(viewer, ", %s = %g%s", ct->law->params[p].name, (double)setting->value[0], setting->perNode ? " (and per node)" : ""));
+    }
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
     PetscFunctionReturn(0);
   }
-  if (ct->B) PetscCall(PetscViewerASCIIPrintf(viewer, "  contact points by a contact operator B%s\n", ct->T ? ", compared with master dofs (changed to the points' variables, T^T K T)" : ""));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact nodes: %" PetscInt_FMT " frictionless, %" PetscInt_FMT " Tresca, %" PetscInt_FMT " Coulomb%s%s\n", ct->lawCounts[SSSTAR_FRICTION_NONE], ct->lawCounts[SSSTAR_FRICTION_TRESCA], ct->lawCounts[SSSTAR_FRICTION_COULOMB], ct->frames ? "; tilted obstacle normals (local frames)" : "", ct->gap ? "; initial gaps" : ""));
-  if (ct->lawCounts[SSSTAR_FRICTION_COULOMB]) PetscCall(PetscViewerASCIIPrintf(viewer, "  Coulomb friction coefficient phi = %g%s\n", (double)ct->friction, ct->coefficients ? " (or per node)" : ""));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  active effects: non-penetration%s%s\n", ct->lawCounts[SSSTAR_FRICTION_TRESCA] ? ", Tresca friction" : "", ct->lawCounts[SSSTAR_FRICTION_COULOMB] ? ", Coulomb friction" : ""));
+  for (PetscInt l = 0; l < ct->nlaws; l++) {
+    SSStarLaw law;
+    char      item[64];
+
+    PetscCall(SSStarLawGet(l, &law));
+    PetscCall(PetscSNPrintf(item, sizeof(item), "%s%" PetscInt_FMT " %s", l ? ", " : "", ct->lawCounts[l], law->label));
+    PetscCall(PetscStrlcat(counts, item, sizeof(counts)));
+    if (ct->lawCounts[l] && law->effect) {
+      PetscCall(PetscStrlcat(effects, ", ", sizeof(effects)));
+      PetscCall(PetscStrlcat(effects, law->effect, sizeof(effects)));
+    }
+  }
+  if (ct->B || ct->T) PetscCall(PetscViewerASCIIPrintf(viewer, "  contact points by a contact operator B%s\n", ct->T ? ", compared with master dofs (changed to the points' variables, T^T K T)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact nodes: %s%s%s\n", counts, ct->frames ? "; tilted obstacle normals (local frames)" : "", ct->gap ? "; initial gaps" : ""));
+  PetscCall(SSStarContactViewParameters(ct, viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  active effects: non-penetration%s\n", effects));
   PetscFunctionReturn(0);
 }
 
-/* Drops what was derived from the declaration and from K */
+/* Drops what was derived from the declaration */
 PetscErrorCode SSStarContactReset(SSStarContact *ct)
 {
   PetscFunctionBegin;
@@ -552,21 +580,14 @@ PetscErrorCode SSStarContactReset(SSStarContact *ct)
   PetscCall(PetscFree(ct->order));
   PetscCall(PetscFree(ct->frames));
   PetscCall(PetscFree(ct->gap));
-  PetscCall(PetscFree(ct->nodeFriction));
-  PetscCall(SSStarReductionDestroy(&ct->reduction));
-  PetscCall(MatDestroy(&ct->A));
-  PetscCall(MatDestroy(&ct->Kw));
-  PetscCall(MatDestroy(&ct->T));
   PetscCall(PetscFree(ct->pointScale));
-  PetscCall(VecDestroy(&ct->f));
-  PetscCall(VecDestroy(&ct->b));
-  PetscCall(VecDestroy(&ct->bw));
-  PetscCall(PetscFree(ct->layoutDofs));
-  PetscCall(PetscFree(ct->free));
-  ct->nfree  = 0;
-  ct->K      = NULL;
-  ct->nnodes = 0;
-  ct->built  = -1;
+  PetscCall(MatDestroy(&ct->T));
+  PetscCall(PetscFree(ct->nodeFriction));
+  PetscCall(PetscFree(ct->lawCounts));
+  ct->nlaws   = 0;
+  ct->coupled = 0;
+  ct->nnodes  = 0;
+  ct->built   = -1;
   PetscFunctionReturn(0);
 }
 
@@ -578,8 +599,9 @@ PetscErrorCode SSStarContactDestroy(SSStarContact *ct)
   PetscCall(MatDestroy(&ct->B));
   PetscCall(VecDestroy(&ct->normals));
   PetscCall(VecDestroy(&ct->gaps));
-  PetscCall(VecDestroy(&ct->coefficients));
-  PetscCall(VecDestroy(&ct->bounds));
+  for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(VecDestroy(&ct->settings[s].perNode));
+  PetscCall(PetscFree(ct->settings));
+  ct->nsettings = 0;
   PetscCall(PetscFree(ct->nodeLaws));
   PetscFunctionReturn(0);
 }

@@ -250,7 +250,7 @@ PetscErrorCode SSStarGlobalizationFixedPoint(SNES snes, PetscReal znorm, PetscBo
   PetscFunctionBegin;
   PetscCall(VecCopy(ss->u, ss->ut));
   PetscCall(VecCopy(ss->c, ss->ct));
-  ss->scaling = 1 / ss->contact.maxRowSum;
+  ss->scaling = 1 / ss->problem.maxRowSum;
   for (PetscInt i = 0; i < SSSTAR_FIXED_POINT_ITS && solved; i++) {
     PetscCall(SNESSSStarApproximationStep(snes, ss->ut, ss->ct, &znew));
     PetscCall(SNESSSStarFixedPointStep(snes, ss->ut, ss->ct, &solved));

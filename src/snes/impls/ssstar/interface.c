@@ -1,11 +1,94 @@
 /*
-   The public functions of the SNES type "ssstar". Setters are no-ops on a SNES of another type (PetscTryMethod), so
-   a program may declare its contact nodes and still run with -snes_type ksponly.
+   The public functions of the SNES type "ssstar" for what it solves: the linear problem, the contact declaration, the
+   reduction of K, the friction laws and their parameters. Setters are no-ops on a SNES of another type
+   (PetscTryMethod), so a program may declare its contact nodes and still run with -snes_type ksponly. Every collective
+   entry checks its input on every rank (SSStarCheckAllRanks()).
 */
 #include "ssstarimpl.h"
 
+typedef struct {
+  Mat K;
+  Vec b;
+} LinearProblem;
+
+static PetscErrorCode LinearProblemFunction(SNES snes, Vec u, Vec r, void *ctx)
+{
+  LinearProblem *lp = (LinearProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(lp->K, u, r));
+  PetscCall(VecAXPY(r, -1.0, lp->b));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LinearProblemJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscFunctionReturn(0); /* J = K, constant */
+}
+
+static PetscErrorCode LinearProblemDestroy(void *ctx)
+{
+  LinearProblem *lp = (LinearProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&lp->K));
+  PetscCall(VecDestroy(&lp->b));
+  PetscCall(PetscFree(lp));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLinearProblem - sets the SNES function F(u) = K u - b and the Jacobian K of a linear elastic body (or
+   c(u) = P u - f and P of a reduced contact problem, 3 dofs per contact node)
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+.  K    - the stiffness, SPD (Dirichlet dofs eliminated or given identity rows); or the reduced P
+-  b    - the load, laid out like K's rows; or the reduced f
+
+   Notes:
+   Works with any SNES type; the SNES keeps references to K and b, so a program that changes b's values between
+   solves (load steps) changes the load. After SNESSolve(), SNESGetFunction() holds K u - b: at the contact nodes the
+   contact forces. A whole body declares its contact nodes (SNESSSStarSetContactNodes() or
+   SNESSSStarSetContactOperator()); without a declaration every dof is a contact dof (the reduced use).
+
+   Level: beginner
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`, `SNESSetFunction()`, `SNESSetJacobian()`
+@*/
+PetscErrorCode SNESSSStarSetLinearProblem(SNES snes, Mat K, Vec b)
+{
+  LinearProblem *lp;
+  PetscContainer container;
+  Vec            r;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(K, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(b, VEC_CLASSID, 3);
+  PetscCall(PetscNew(&lp));
+  PetscCall(PetscObjectReference((PetscObject)K));
+  PetscCall(PetscObjectReference((PetscObject)b));
+  lp->K = K;
+  lp->b = b;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)snes), &container));
+  PetscCall(PetscContainerSetPointer(container, lp));
+  PetscCall(PetscContainerSetUserDestroy(container, LinearProblemDestroy));
+  PetscCall(PetscObjectCompose((PetscObject)snes, "SNESSSStarLinearProblem", (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscCall(VecDuplicate(b, &r));
+  PetscCall(SNESSetFunction(snes, r, LinearProblemFunction, lp));
+  PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(snes, K, K, LinearProblemJacobian, lp));
+  PetscFunctionReturn(0);
+}
+
 /*@
    SNESSSStarSetContactNodes - declares the contact nodes of a whole-body problem F(u) = K u - b with Jacobian K
+   against rigid planes
 
    Collective
 
@@ -23,11 +106,14 @@
    SNESGetFunction() then holds K u - b, whose contact entries are the contact forces (global axes).
    K must be SPD: Dirichlet dofs eliminated or given identity rows. The SNES keeps references to the arguments.
    On a SNES of another type the call does nothing, so a program may declare its nodes and run -snes_type ksponly.
+   It is SNESSSStarSetContactOperator() with B's rows built from the normals (each node's own dofs turned into its
+   frame, no master dofs). Wrong sizes on any rank, a node whose dofs another rank owns, a normal that is not a unit
+   vector are refused on every rank, naming the node.
 
    Level: beginner
 
-.seealso: `SNESSSStarGetContactNodes()`, `SNESSSStarSetContactOperator()`, `SNESSSStarSetContactProblem()`,
-          `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarGetStates()`
+.seealso: `SNESSSStarGetContactNodes()`, `SNESSSStarSetContactOperator()`, `SNESSSStarSetLinearProblem()`,
+          `SNESSSStarSetNodeLawParameter()`, `SNESSSStarGetStates()`
 @*/
 PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec gaps)
 {
@@ -50,7 +136,7 @@ PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec ga
 
    Output Parameters:
 +  n       - the contact nodes of this rank: 1/3 of the declared dofs; in the reduced use 1/3 of the local size of
-             the SNES function vector once it exists (SNESSetFunction() with a vector, SNESSSStarSetContactProblem(),
+             the SNES function vector once it exists (SNESSetFunction() with a vector, SNESSSStarSetLinearProblem(),
              SNESSetUp()), -1 before
 .  dofs    - the declared IS of contact dofs, or NULL (reduced use)
 .  normals - the declared normals, or NULL
@@ -61,7 +147,7 @@ PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec ga
 
    Level: intermediate
 
-.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetStates()`, `SNESSSStarGetNodeFriction()`
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetStates()`, `SNESSSStarGetNodeFrictionLaws()`
 @*/
 PetscErrorCode SNESSSStarGetContactNodes(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
 {
@@ -102,7 +188,7 @@ PetscErrorCode SNESSSStarGetContactNodes(SNES snes, PetscInt *n, IS *dofs, Vec *
 
    Level: intermediate
 
-.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetNodeFrictionLaws()`
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarSetNodeLawParameter()`, `SNESSSStarSetNodeFrictionLaws()`
 @*/
 PetscErrorCode SNESSSStarSetContactOperator(SNES snes, IS dofs, Mat B, Vec gaps)
 {
@@ -116,182 +202,34 @@ PetscErrorCode SNESSSStarSetContactOperator(SNES snes, IS dofs, Mat B, Vec gaps)
 }
 
 /*@
-   SNESSSStarSetFrictionLaw - sets the friction law of every contact node without a law of its own (default coulomb)
-
-   Logically Collective
-
-   Input Parameters:
-+  snes - the SNES
--  law  - SSSTAR_FRICTION_NONE, SSSTAR_FRICTION_TRESCA or SSSTAR_FRICTION_COULOMB
-
-   Options Database Key:
-.  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
-
-   Notes:
-   tresca needs SNESSSStarSetSlipBounds(). SNESSSStarSetNodeFrictionLaws() sets one law per node.
-
-   Level: beginner
-
-.seealso: `SNESSSStarGetFrictionLaw()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarSetFriction()`,
-          `SNESSSStarSetSlipBounds()`
-@*/
-PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, SSStarFrictionLaw law)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetFrictionLaw_C", (SNES, SSStarFrictionLaw), (snes, law));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetFrictionLaw - the friction law of the nodes without a law of their own
+   SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
+   order of the contact nodes sorted by their first dof)
 
    Not Collective
 
    Input Parameter:
-.  snes - the SNES
+.  snes - the SNES, after SNESSolve()
 
-   Output Parameter:
-.  law - the law
-
-   Level: beginner
-
-.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarGetNodeFriction()`
-@*/
-PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, SSStarFrictionLaw *law)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetFrictionLaw_C", (SNES, SSStarFrictionLaw *), (snes, law));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetFriction - sets the Coulomb friction coefficient phi of every node without one of its own (default 0.3)
-
-   Logically Collective
-
-   Input Parameters:
-+  snes - the SNES
--  phi  - the coefficient, >= 0
-
-   Options Database Key:
-.  -snes_ssstar_friction <0.3> - the coefficient
-
-   Level: beginner
-
-.seealso: `SNESSSStarGetFriction()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetFrictionLaw()`
-@*/
-PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal phi)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetFriction_C", (SNES, PetscReal), (snes, phi));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetFriction - the Coulomb coefficient of the nodes without a coefficient of their own
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES
-
-   Output Parameter:
-.  phi - the coefficient
-
-   Level: beginner
-
-.seealso: `SNESSSStarSetFriction()`, `SNESSSStarGetNodeFriction()`
-@*/
-PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *phi)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetFriction_C", (SNES, PetscReal *), (snes, phi));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetFrictionCoefficients - one Coulomb coefficient per contact node
-
-   Collective
-
-   Input Parameters:
-+  snes - the SNES
--  phi  - 1 entry (>= 0, or PETSC_DEFAULT) per contact node owned by the rank, in the order of the contact nodes; NULL: back to the
-          scalar of SNESSSStarSetFriction()
+   Output Parameters:
++  P - the reduced operator (owned by the SNES), or pass NULL
+-  f - the reduced load (owned by the SNES), or pass NULL
 
    Notes:
-   The SNES keeps a reference to phi. The coefficient applies to the nodes whose law is coulomb. An entry PETSC_DEFAULT
-   gives its node the coefficient of SNESSSStarSetFriction() (-snes_ssstar_friction) as it is at SNESSolve(): a scene
-   hands over the coefficients of its groups without fixing the solver's default (SSStarSceneSetContact()). Any other
-   entry must be a number >= 0.
+   An error before the first solve, and after a solve on the whole body (reduction none), which never forms P.
 
-   Level: intermediate
+   Level: advanced
 
-.seealso: `SNESSSStarSetFriction()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarGetNodeFriction()`
+.seealso: `SNESSSStarSetLinearProblem()`, `SNESSSStarSetReductionType()`
 @*/
-PetscErrorCode SNESSSStarSetFrictionCoefficients(SNES snes, Vec phi)
+PetscErrorCode SNESSSStarGetReducedProblem(SNES snes, Mat *P, Vec *f)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  if (phi) PetscValidHeaderSpecific(phi, VEC_CLASSID, 2);
-  PetscTryMethod(snes, "SNESSSStarSetFrictionCoefficients_C", (SNES, Vec), (snes, phi));
+  PetscUseMethod(snes, "SNESSSStarGetReducedProblem_C", (SNES, Mat *, Vec *), (snes, P, f));
   PetscFunctionReturn(0);
 }
 
-/*@
-   SNESSSStarSetSlipBounds - the Tresca slip bound s of each contact node: |r_t| <= s, and r_t = -s u_t/|u_t| where
-   the node slips
-
-   Collective
-
-   Input Parameters:
-+  snes - the SNES
--  s    - 1 entry (>= 0, a force in the units of F) per contact node owned by the rank, in node order
-
-   Notes:
-   The bound applies to the nodes whose law is tresca (SNESSSStarSetFrictionLaw(), SNESSSStarSetNodeFrictionLaws()).
-
-   Level: intermediate
-
-.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarGetNodeFriction()`
-@*/
-PetscErrorCode SNESSSStarSetSlipBounds(SNES snes, Vec s)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  if (s) PetscValidHeaderSpecific(s, VEC_CLASSID, 2);
-  PetscTryMethod(snes, "SNESSSStarSetSlipBounds_C", (SNES, Vec), (snes, s));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetNodeFrictionLaws - one friction law per contact node owned by the rank
-
-   Not Collective
-
-   Input Parameters:
-+  snes - the SNES
-.  n    - the number of contact nodes of this rank
--  laws - the law of each, in node order (copied); NULL: every node has the law of SNESSSStarSetFrictionLaw()
-
-   Level: intermediate
-
-.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetSlipBounds()`,
-          `SNESSSStarGetNodeFriction()`
-@*/
-PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStarFrictionLaw laws[])
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetNodeFrictionLaws_C", (SNES, PetscInt, const SSStarFrictionLaw[]), (snes, n, laws));
-  PetscFunctionReturn(0);
-}
-
-/*@
+/*@C
    SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use: a Schur complement P
    (direct, mumps, explicit), none (the Newton steps on the whole body, P never formed) or auto (direct where the dense
    P is the faster route and fits the memory, else none); default auto
@@ -300,26 +238,31 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const SSStar
 
    Input Parameters:
 +  snes - the SNES
--  type - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS, SSSTAR_REDUCTION_EXPLICIT, SSSTAR_REDUCTION_NONE (no
-          reduction: the Newton steps on the whole body) or SSSTAR_REDUCTION_AUTO (the default: direct or none, by
-          size and memory)
+-  type - SSSTARREDUCTIONDIRECT ("direct"), SSSTARREDUCTIONMUMPS, SSSTARREDUCTIONEXPLICIT, SSSTARREDUCTIONNONE (no
+          reduction: the Newton steps on the whole body), another registered type (SSStarReductionRegister()), or
+          SSSTARREDUCTIONAUTO ("auto", the default: direct or none, by size and memory)
 
    Options Database Key:
 .  -snes_ssstar_reduction <auto> - direct, mumps, explicit, none or auto
 
+   Notes:
+   The options of the reduction's solvers take the SNES's prefix: -<prefix>schur_direct_mumps_icntl_<i> (direct),
+   -<prefix>schur_mat_mumps_* (mumps), -<prefix>interior_ksp_*, -<prefix>interior_pc_* (explicit).
+
    Level: intermediate
 
-.seealso: `SNESSSStarGetReductionType()`, `SSStarReductionCreate()`, `SNESSSStarSetMemoryLimit()`
+.seealso: `SNESSSStarGetReductionType()`, `SSStarReductionSetType()`, `SNESSSStarSetMemoryLimit()`
 @*/
 PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidCharPointer(type, 2);
   PetscTryMethod(snes, "SNESSSStarSetReductionType_C", (SNES, SSStarReductionType), (snes, type));
   PetscFunctionReturn(0);
 }
 
-/*@
+/*@C
    SNESSSStarGetReductionType - the reduction of the last SNESSolve() (auto resolved to direct or none), or the one
    set before the first
 
@@ -329,8 +272,7 @@ PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
 .  snes - the SNES
 
    Output Parameter:
-.  type - SSSTAR_REDUCTION_DIRECT, SSSTAR_REDUCTION_MUMPS, SSSTAR_REDUCTION_EXPLICIT, SSSTAR_REDUCTION_NONE or (before
-          the first solve) SSSTAR_REDUCTION_AUTO
+.  type - "direct", "mumps", "explicit", "none" or (before the first solve) "auto"; owned by the SNES
 
    Level: intermediate
 
@@ -341,58 +283,6 @@ PetscErrorCode SNESSSStarGetReductionType(SNES snes, SSStarReductionType *type)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
   PetscUseMethod(snes, "SNESSSStarGetReductionType_C", (SNES, SSStarReductionType *), (snes, type));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetPCReuse - whole body (reduction none): keep the preconditioner (multigrid) of an earlier Newton step
-   while at most this fraction of the contact nodes changed which of their rows are known since it was built; a new
-   one (on the old interpolation, with PCGAMG) when more did
-
-   Logically Collective
-
-   Input Parameters:
-+  snes     - the SNES
--  fraction - at most 1; negative: a new preconditioner at every step (default 0.3)
-
-   Options Database Key:
-.  -snes_ssstar_pc_reuse <fraction> - the fraction
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetKSPRtolMax()`, `SNESSSStarGetNewtonStepCounts()`
-@*/
-PetscErrorCode SNESSSStarSetPCReuse(SNES snes, PetscReal fraction)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetPCReuse_C", (SNES, PetscReal), (snes, fraction));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetKSPRtolMax - whole body (reduction none): the loosest relative tolerance of the linear solve of a
-   Newton step (inexact Newton). The tolerance of step k is min(rtol, ||z_k||/||z_0||) (rtol^2 once a remedy of
-   the globalization acted), with an absolute floor of a tenth of the stopping threshold; -ksp_rtol fixes it instead.
-
-   Logically Collective
-
-   Input Parameters:
-+  snes - the SNES
--  rtol - in (0, 1) (default 0.1)
-
-   Options Database Key:
-.  -snes_ssstar_ksp_rtol_max <rtol> - the tolerance
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetPCReuse()`
-@*/
-PetscErrorCode SNESSSStarSetKSPRtolMax(SNES snes, PetscReal rtol)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetKSPRtolMax_C", (SNES, PetscReal), (snes, rtol));
   PetscFunctionReturn(0);
 }
 
@@ -421,35 +311,41 @@ PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
   PetscFunctionReturn(0);
 }
 
-/*@
-   SNESSSStarSetScaling - sets gamma, the scaling of the approximation step (docs/derivation.md section 6)
+/*@C
+   SNESSSStarSetFrictionLaw - sets the friction law of every contact node without a law of its own (default coulomb)
 
    Logically Collective
 
    Input Parameters:
-+  snes  - the SNES
--  gamma - > 0, or 0 (the default): gamma = 1/mean(diag P), the contact block of K on the whole body
++  snes - the SNES
+-  law  - the name of a law of the table (SSStarLawGetNames()): SSSTARLAWNONE ("none"), SSSTARLAWTRESCA ("tresca"),
+          SSSTARLAWCOULOMB ("coulomb"), SSSTARLAWORTHOTROPIC ("orthotropic")
 
    Options Database Key:
-.  -snes_ssstar_scaling <0> - the scaling
+.  -snes_ssstar_friction_law <coulomb> - none, tresca, coulomb or orthotropic
 
    Notes:
-   gamma does not change the solutions, only the path to them and the units of ||z|| (a displacement for the default).
+   A law takes its parameters from SNESSSStarSetLawParameter() (one value for every node) and
+   SNESSSStarSetNodeLawParameter() (one per node): coulomb "friction" (0.3 unless set), tresca "slip_bound",
+   orthotropic "friction_1" along "friction_direction" and "friction_2" across it. SNESSSStarSetNodeFrictionLaws()
+   sets one law per node.
 
-   Level: advanced
+   Level: beginner
 
-.seealso: `SNESSSStarGetScaling()`, `SNESConvergedSSStar()`
+.seealso: `SNESSSStarGetFrictionLaw()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarSetLawParameter()`,
+          `SSStarLawGetNames()`
 @*/
-PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
+PetscErrorCode SNESSSStarSetFrictionLaw(SNES snes, const char law[])
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetScaling_C", (SNES, PetscReal), (snes, gamma));
+  PetscValidCharPointer(law, 2);
+  PetscTryMethod(snes, "SNESSSStarSetFrictionLaw_C", (SNES, const char[]), (snes, law));
   PetscFunctionReturn(0);
 }
 
-/*@
-   SNESSSStarGetScaling - gamma: the one set by the user, else 1/mean(diag P) of the last solve (0 before it)
+/*@C
+   SNESSSStarGetFrictionLaw - the friction law of the nodes without a law of their own
 
    Not Collective
 
@@ -457,182 +353,84 @@ PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
 .  snes - the SNES
 
    Output Parameter:
-.  gamma - the scaling
+.  law - its name (owned by ssstar)
 
-   Level: advanced
+   Level: beginner
 
-.seealso: `SNESSSStarSetScaling()`
+.seealso: `SNESSSStarSetFrictionLaw()`, `SNESSSStarGetNodeFrictionLaws()`
 @*/
-PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
+PetscErrorCode SNESSSStarGetFrictionLaw(SNES snes, const char *law[])
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetScaling_C", (SNES, PetscReal *), (snes, gamma));
+  PetscUseMethod(snes, "SNESSSStarGetFrictionLaw_C", (SNES, const char *[]), (snes, law));
   PetscFunctionReturn(0);
 }
 
-/*@
-   SNESSSStarSetStateTolerance - sets tau, the relative tolerance of the contact-state classification (default 1e-13;
-   docs/derivation.md section 2)
-
-   Logically Collective
-
-   Input Parameters:
-+  snes - the SNES
--  tau  - >= 0; 0 classifies by exact zeros
-
-   Options Database Key:
-.  -snes_ssstar_state_tol <1e-13> - the tolerance
-
-   Level: advanced
-
-.seealso: `SSStarClassify()`, `SNESSSStarGetStates()`
-@*/
-PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetStateTolerance_C", (SNES, PetscReal), (snes, tau));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetMethod - chooses the iteration: the semismooth* Newton method (SSSTAR_METHOD_NEWTON, the default) or
-   the first-order baseline SSSTAR_METHOD_FIXEDPOINT, u <- u + R^T z with the approximation step z alone
-   (docs/derivation.md section 1), for comparisons (bench/accuracy.py)
+/*@C
+   SNESSSStarSetLawParameter - sets a parameter of the friction laws for every contact node without a value of its own
 
    Logically Collective
 
    Input Parameters:
 +  snes   - the SNES
--  method - SSSTAR_METHOD_NEWTON or SSSTAR_METHOD_FIXEDPOINT
+.  name   - the parameter: "friction" (coulomb, default 0.3), "slip_bound" (tresca, a force), "friction_1",
+            "friction_2", "friction_direction" (orthotropic), or one of another registered law (SSStarLawGetInfo())
+.  n      - the number of values: 1, or 3 for a direction
+-  values - a coefficient or force >= 0; a direction as x, y, z in global axes (projected onto each node's tangent
+            plane)
 
-   Options Database Key:
-.  -snes_ssstar_method <newton> - newton or fixedpoint
+   Options Database Keys:
++  -snes_ssstar_friction <0.3> - the Coulomb coefficient
+.  -snes_ssstar_slip_bound <slip_bound> - the Tresca bound (no default)
+.  -snes_ssstar_friction_1 <phi_1> - the orthotropic coefficient along the direction (no default)
+.  -snes_ssstar_friction_2 <phi_2> - the orthotropic coefficient across it (no default)
+-  -snes_ssstar_friction_direction <x,y,z> - the orthotropic direction (no default)
 
    Notes:
-   The fixed-point iteration is a projected (with friction, proximal) gradient method: its gamma is 1/||P||_inf
-   unless -snes_ssstar_scaling sets it, small enough for it to converge on frictionless and Tresca problems, at a
-   linear rate 1 - lambda_min(P)/||P||_inf; with Coulomb friction it is not guaranteed to converge. It has no Newton
-   step, hence no globalization; the stopping rule is the same.
+   A parameter applies to the nodes whose law has it. An unknown name is refused with the list of the parameters.
 
-   Level: advanced
+   Level: intermediate
 
-.seealso: `SNESSSStarGetMethod()`, `SNESSSStarSetScaling()`
+.seealso: `SNESSSStarSetNodeLawParameter()`, `SNESSSStarSetFrictionLaw()`, `SNESSSStarSetFriction()`
 @*/
-PetscErrorCode SNESSSStarSetMethod(SNES snes, SSStarMethod method)
+PetscErrorCode SNESSSStarSetLawParameter(SNES snes, const char name[], PetscInt n, const PetscReal values[])
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetMethod_C", (SNES, SSStarMethod), (snes, method));
+  PetscValidCharPointer(name, 2);
+  PetscValidRealPointer(values, 4);
+  PetscTryMethod(snes, "SNESSSStarSetLawParameter_C", (SNES, const char[], PetscInt, const PetscReal[]), (snes, name, n, values));
   PetscFunctionReturn(0);
 }
 
 /*@
-   SNESSSStarGetMethod - the iteration chosen by SNESSSStarSetMethod()
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES
-
-   Output Parameter:
-.  method - SSSTAR_METHOD_NEWTON or SSSTAR_METHOD_FIXEDPOINT
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetMethod()`
-@*/
-PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetMethod_C", (SNES, SSStarMethod *), (snes, method));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetLUReuse - with a dense P, keep the LU factors of the Newton matrix and solve the next steps by GMRES
-   preconditioned with them while at most this fraction of the contact nodes changed which of their rows are known
-   (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge
-   (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). Default 0: the old LU only while no node changed;
-   a negative fraction gives a fresh LU at every step.
+   SNESSSStarSetFriction - sets the Coulomb friction coefficient of every node without one of its own (default 0.3):
+   SNESSSStarSetLawParameter(snes, "friction", 1, &friction)
 
    Logically Collective
 
    Input Parameters:
 +  snes     - the SNES
--  fraction - the fraction of the contact nodes
+-  friction - the coefficient, >= 0
 
    Options Database Key:
-.  -snes_ssstar_lu_reuse <fraction> - the fraction, at most 1 (negative: a fresh LU at every step)
+.  -snes_ssstar_friction <0.3> - the coefficient
 
-   Level: advanced
+   Level: beginner
 
-.seealso: `SNESSSStarGetNewtonStepCounts()`, `SNESSSStarSetLUThreads()`
+.seealso: `SNESSSStarGetFriction()`, `SNESSSStarSetLawParameter()`, `SNESSSStarSetNodeLawParameter()`
 @*/
-PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
+PetscErrorCode SNESSSStarSetFriction(SNES snes, PetscReal friction)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetLUReuse_C", (SNES, PetscReal), (snes, fraction));
+  PetscCall(SNESSSStarSetLawParameter(snes, "friction", 1, &friction));
   PetscFunctionReturn(0);
 }
 
 /*@
-   SNESSSStarSetLUThreads - on several ranks with a dense P, the LU of the Newton matrix is computed on rank 0 while the
-   other ranks sleep: this many BLAS (OpenBLAS) threads of rank 0 compute it, 0 for as many as the cores rank 0 may run
-   on (start with mpiexec --bind-to none), at most the ranks of its node. Default 1: the BLAS is left as it is (as on one
-   rank, where OPENBLAS_NUM_THREADS decides). Takes effect at the next SNESSolve() with a new P.
-
-   Logically Collective
-
-   Input Parameters:
-+  snes    - the SNES
--  threads - the BLAS threads of rank 0, >= 0
-
-   Options Database Key:
-.  -snes_ssstar_lu_threads <n> - the threads
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetLUReuse()`
-@*/
-PetscErrorCode SNESSSStarSetLUThreads(SNES snes, PetscInt threads)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscTryMethod(snes, "SNESSSStarSetLUThreads_C", (SNES, PetscInt), (snes, threads));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve() were solved
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES
-
-   Output Parameters:
-+  factorizations - LU factorizations of the Newton matrix (dense P), or pass NULL
-.  reused         - steps solved on an older LU (by GMRES, SNESSSStarSetLUReuse()), or pass NULL
--  krylov         - their Krylov iterations (also in SNESGetLinearSolveIterations()), or pass NULL
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetLUReuse()`, `SNESSSStarGetConditionEstimate()`
-@*/
-PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetNewtonStepCounts_C", (SNES, PetscInt *, PetscInt *, PetscInt *), (snes, factorizations, reused, krylov));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetConditionEstimate - LAPACK's estimate of 1/cond_1 of the last LU-factored Newton matrix
+   SNESSSStarGetFriction - the Coulomb coefficient of the nodes without a coefficient of their own
 
    Not Collective
 
@@ -640,295 +438,132 @@ PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations
 .  snes - the SNES
 
    Output Parameter:
-.  rcond - the estimate for a dense P (the system of the unknown dofs, A_RR), or -1 when none is known (sparse P,
-           no factorization yet, a singular matrix)
+.  friction - the coefficient
 
-   Level: advanced
+   Level: beginner
 
-.seealso: `SNESSSStarGetNewtonStepCounts()`
+.seealso: `SNESSSStarSetFriction()`, `SNESSSStarGetNodeLawParameter()`
 @*/
-PetscErrorCode SNESSSStarGetConditionEstimate(SNES snes, PetscReal *rcond)
+PetscErrorCode SNESSSStarGetFriction(SNES snes, PetscReal *friction)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetConditionEstimate_C", (SNES, PetscReal *), (snes, rcond));
+  PetscUseMethod(snes, "SNESSSStarGetFriction_C", (SNES, PetscReal *), (snes, friction));
   PetscFunctionReturn(0);
 }
 
 /*@C
-   SNESSSStarGetStates - the state of each owned contact node at the last iterate, and the global counts per state
+   SNESSSStarSetNodeLawParameter - one value of a friction-law parameter per contact node
 
-   Not Collective
+   Collective
 
-   Input Parameter:
-.  snes - the SNES, after SNESSolve()
-
-   Output Parameters:
-+  states - the states of the contact nodes of this rank, in the order they were declared (owned by the SNES), or
-            pass NULL
--  counts - the number of nodes in each state over all ranks (SSSTAR_NUM_STATES entries), or pass NULL
+   Input Parameters:
++  snes   - the SNES
+.  name   - the parameter ("friction", "slip_bound", "friction_1", "friction_2", "friction_direction", ...)
+-  values - 1 entry per contact node owned by the rank (3 for a direction, x, y, z in global axes), in the order of the
+            contact nodes; NULL: back to the value of SNESSSStarSetLawParameter()
 
    Notes:
-   The states are those of Table 1 (SSStarState, docs/derivation.md section 2); SSStarStateNames[] names them.
-
-   Level: beginner
-
-.seealso: `SNESSSStarGetReason()`, `SNESSSStarMonitorStates()`, `SSStarClassify()`
-@*/
-PetscErrorCode SNESSSStarGetStates(SNES snes, const SSStarState *states[], PetscInt counts[SSSTAR_NUM_STATES])
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetStates_C", (SNES, const SSStarState *[], PetscInt[]), (snes, states, counts));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetReason - why the last solve stopped, finer than SNESGetConvergedReason()
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES
-
-   Output Parameter:
-.  reason - the sub-reason (SSStarReason; SSStarReasons[] names it)
-
-   Notes:
-   -snes_converged_reason prints it on the line "ssstar: ..."; README "When it does not converge" maps each onto the
-   SNESConvergedReason.
-
-   Level: beginner
-
-.seealso: `SNESGetConvergedReason()`, `SNESSSStarGetTolerance()`, `SNESSSStarGetRemedyCounts()`
-@*/
-PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetReason_C", (SNES, SSStarReason *), (snes, reason));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetTolerance - the threshold the last solve's stopping rule compared ||z|| with
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES
-
-   Output Parameter:
-.  tol - max(atol, rtol max(||u||, ||gamma f||)) at the last iterate (SNESConvergedSSStar())
+   The SNES keeps a reference to values. An entry PETSC_DEFAULT (for a direction: its first component) gives its node
+   the value of SNESSSStarSetLawParameter() as it is at SNESSolve(): a scene hands over the values of its groups without
+   fixing the solver's default. The value applies where the node's law has the parameter; it is checked at the
+   set-up (a number >= 0; a direction not normal to the node's plane), naming the node, on every rank. A vector of
+   the wrong size on any rank is refused on every rank.
 
    Level: intermediate
 
-.seealso: `SNESConvergedSSStar()`, `SNESGetFunctionNorm()`, `SNESSSStarGetReason()`
+.seealso: `SNESSSStarSetLawParameter()`, `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarGetNodeLawParameter()`
 @*/
-PetscErrorCode SNESSSStarGetTolerance(SNES snes, PetscReal *tol)
+PetscErrorCode SNESSSStarSetNodeLawParameter(SNES snes, const char name[], Vec values)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscValidRealPointer(tol, 2);
-  PetscUseMethod(snes, "SNESSSStarGetTolerance_C", (SNES, PetscReal *), (snes, tol));
-  PetscFunctionReturn(0);
-}
-
-/*@C
-   SNESSSStarGetNodeFriction - the friction law, Coulomb coefficient and Tresca slip bound the solver uses at each
-   contact node of this rank, in the order the nodes were declared
-
-   Not Collective
-
-   Input Parameters:
-+  snes - the SNES, after SNESSetUp() or SNESSolve()
--  n    - the number of contact nodes of this rank (the length of each array)
-
-   Output Parameters:
-+  laws   - the law of each node, or NULL
-.  phi    - the Coulomb coefficient of each node (meaningful where the law is coulomb), or NULL
--  bounds - the Tresca slip bound of each node (a force; meaningful where the law is tresca), or NULL
-
-   Notes:
-   What SNESSSStarSetFrictionLaw(), SNESSSStarSetFriction(), SNESSSStarSetFrictionCoefficients(),
-   SNESSSStarSetSlipBounds() and SNESSSStarSetNodeFrictionLaws() together gave each node; the output files of the
-   scenes record it (/contact/friction_law, /contact/friction, /contact/slip_bound).
-
-   Level: intermediate
-
-.seealso: `SNESSSStarSetNodeFrictionLaws()`, `SNESSSStarSetFrictionCoefficients()`, `SNESSSStarSetSlipBounds()`
-@*/
-PetscErrorCode SNESSSStarGetNodeFriction(SNES snes, PetscInt n, SSStarFrictionLaw laws[], PetscReal phi[], PetscReal bounds[])
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetNodeFriction_C", (SNES, PetscInt, SSStarFrictionLaw[], PetscReal[], PetscReal[]), (snes, n, laws, phi, bounds));
+  PetscValidCharPointer(name, 2);
+  if (values) PetscValidHeaderSpecific(values, VEC_CLASSID, 3);
+  PetscTryMethod(snes, "SNESSSStarSetNodeLawParameter_C", (SNES, const char[], Vec), (snes, name, values));
   PetscFunctionReturn(0);
 }
 
 /*@
-   SNESSSStarSetGlobalization - turns the globalization of ssstar on or off and sets its parameters
-
-   Logically Collective
-
-   Input Parameters:
-+  snes          - the SNES
-.  on            - PETSC_TRUE (default): damped steps on the merit function ||z|| and remedies (a full step or a
-                   doubled gamma after a failed line search, a regularized Newton step or fixed-point iterations for a
-                   singular Newton matrix, a doubled gamma on a cycle); PETSC_FALSE: the plain iteration
-.  dampingMin    - the smallest damping factor of the line search (default 1/64), or PETSC_DEFAULT
--  stagnationIts - stop (SNES_DIVERGED_LOCAL_MIN, sub-reason STAGNATION) after this many iterations without a smaller
-                   ||z|| (default 20), or PETSC_DEFAULT
-
-   Options Database Keys:
-+  -snes_ssstar_globalization <true> - on or off
-.  -snes_ssstar_damping_min <0.015625> - dampingMin
--  -snes_ssstar_stagnation_its <20> - stagnationIts
-
-   Notes:
-   Cycles and stagnation are detected in both cases; without globalization they end the solve. README, "When it does
-   not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
-
-   Level: advanced
-
-.seealso: `SNESSSStarGetRemedyCounts()`, `SNESSSStarGetReason()`
-@*/
-PetscErrorCode SNESSSStarSetGlobalization(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscValidLogicalCollectiveBool(snes, on, 2);
-  PetscValidLogicalCollectiveReal(snes, dampingMin, 3);
-  PetscValidLogicalCollectiveInt(snes, stagnationIts, 4);
-  PetscTryMethod(snes, "SNESSSStarSetGlobalization_C", (SNES, PetscBool, PetscReal, PetscInt), (snes, on, dampingMin, stagnationIts));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetRemedyCounts - how often the last solve used each remedy of the globalization
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES
-
-   Output Parameter:
-.  counts - SSSTAR_NUM_REMEDIES counts, in SSStarRemedy order (SSStarRemedies[] names them)
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetGlobalization()`, `SNESSSStarGetReason()`
-@*/
-PetscErrorCode SNESSSStarGetRemedyCounts(SNES snes, PetscInt counts[SSSTAR_NUM_REMEDIES])
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetRemedyCounts_C", (SNES, PetscInt[]), (snes, counts));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
-   order of the contact nodes sorted by their first dof)
-
-   Not Collective
-
-   Input Parameter:
-.  snes - the SNES, after SNESSolve()
-
-   Output Parameters:
-+  P - the reduced operator (owned by the SNES), or pass NULL
--  f - the reduced load (owned by the SNES), or pass NULL
-
-   Notes:
-   An error before the first solve, and after a solve on the whole body (reduction none), which never forms P.
-
-   Level: advanced
-
-.seealso: `SNESSSStarSetContactProblem()`, `SNESSSStarSetReductionType()`
-@*/
-PetscErrorCode SNESSSStarGetReducedProblem(SNES snes, Mat *P, Vec *f)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscUseMethod(snes, "SNESSSStarGetReducedProblem_C", (SNES, Mat *, Vec *), (snes, P, f));
-  PetscFunctionReturn(0);
-}
-
-typedef struct {
-  Mat P;
-  Vec f;
-} ContactProblem;
-
-static PetscErrorCode ContactProblemFunction(SNES snes, Vec u, Vec c, void *ctx)
-{
-  ContactProblem *cp = (ContactProblem *)ctx;
-
-  PetscFunctionBegin;
-  PetscCall(MatMult(cp->P, u, c));
-  PetscCall(VecAXPY(c, -1.0, cp->f));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ContactProblemJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
-{
-  PetscFunctionBegin;
-  PetscFunctionReturn(0); /* J = P, constant */
-}
-
-static PetscErrorCode ContactProblemDestroy(void *ctx)
-{
-  ContactProblem *cp = (ContactProblem *)ctx;
-
-  PetscFunctionBegin;
-  PetscCall(MatDestroy(&cp->P));
-  PetscCall(VecDestroy(&cp->f));
-  PetscCall(PetscFree(cp));
-  PetscFunctionReturn(0);
-}
-
-/*@
-   SNESSSStarSetContactProblem - sets the SNES function c(u) = P u - f and the Jacobian P of a reduced contact problem
-   0 in P u - f + Q(u), for a program that has P (dense or sparse, 3 dofs per contact node) and f
+   SNESSSStarSetNodeFrictionLaws - one friction law per contact node owned by the rank
 
    Collective
 
    Input Parameters:
 +  snes - the SNES
-.  P    - the reduced stiffness, 3 rows per contact node (u_t1, u_t2, u_n), SPD
--  f    - the reduced load, laid out like P's rows
-
-   Notes:
-   Works with any SNES type; the SNES keeps references to P and f. After SNESSolve(), SNESGetFunction()
-   gives the reaction r = P u - f at the solution.
+.  n    - the number of contact nodes of this rank
+-  laws - the index in the table of laws (SSStarLawGetIndex()) of each node's law, in node order (copied); NULL: every
+          node has the law of SNESSSStarSetFrictionLaw()
 
    Level: intermediate
 
-.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`
+.seealso: `SNESSSStarSetFrictionLaw()`, `SSStarLawGetIndex()`, `SNESSSStarSetNodeLawParameter()`,
+          `SNESSSStarGetNodeFrictionLaws()`
 @*/
-PetscErrorCode SNESSSStarSetContactProblem(SNES snes, Mat P, Vec f)
+PetscErrorCode SNESSSStarSetNodeFrictionLaws(SNES snes, PetscInt n, const PetscInt laws[])
 {
-  ContactProblem *cp;
-  PetscContainer  container;
-  Vec             r;
-
   PetscFunctionBegin;
   PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
-  PetscValidHeaderSpecific(P, MAT_CLASSID, 2);
-  PetscValidHeaderSpecific(f, VEC_CLASSID, 3);
-  PetscCall(PetscNew(&cp));
-  PetscCall(PetscObjectReference((PetscObject)P));
-  PetscCall(PetscObjectReference((PetscObject)f));
-  cp->P = P;
-  cp->f = f;
-  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)snes), &container));
-  PetscCall(PetscContainerSetPointer(container, cp));
-  PetscCall(PetscContainerSetUserDestroy(container, ContactProblemDestroy));
-  PetscCall(PetscObjectCompose((PetscObject)snes, "SNESSSStarContactProblem", (PetscObject)container));
-  PetscCall(PetscContainerDestroy(&container));
-  PetscCall(VecDuplicate(f, &r));
-  PetscCall(SNESSetFunction(snes, r, ContactProblemFunction, cp));
-  PetscCall(VecDestroy(&r));
-  PetscCall(SNESSetJacobian(snes, P, P, ContactProblemJacobian, cp));
+  PetscTryMethod(snes, "SNESSSStarSetNodeFrictionLaws_C", (SNES, PetscInt, const PetscInt[]), (snes, n, laws));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetNodeFrictionLaws - the friction law the solver uses at each contact node of this rank
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES, after SNESSetUp() or SNESSolve()
+-  n    - the number of contact nodes of this rank (the length of laws)
+
+   Output Parameter:
+.  laws - the index in the table of laws of each node's law (SSStarLawGetNames()), in the order the nodes were
+          declared
+
+   Notes:
+   What SNESSSStarSetFrictionLaw() and SNESSSStarSetNodeFrictionLaws() together gave each node; the output files record
+   it (/contact/friction_law, with the names of the table).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetNodeLawParameter()`, `SNESSSStarSetNodeFrictionLaws()`
+@*/
+PetscErrorCode SNESSSStarGetNodeFrictionLaws(SNES snes, PetscInt n, PetscInt laws[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetNodeFrictionLaws_C", (SNES, PetscInt, PetscInt[]), (snes, n, laws));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetNodeLawParameter - the value of a friction-law parameter the solver uses at each contact node of this
+   rank
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES, after SNESSetUp() or SNESSolve()
+.  name - the parameter ("friction", "slip_bound", ...)
+-  n    - the number of contact nodes of this rank
+
+   Output Parameter:
+.  values - 1 value per node (3 for a direction: the unit direction in use, in global axes), in the order the nodes
+            were declared; 0 at the nodes whose law has no such parameter
+
+   Notes:
+   The output files of the scenes record "friction" and "slip_bound" (/contact/friction, /contact/slip_bound).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetNodeFrictionLaws()`, `SNESSSStarSetNodeLawParameter()`
+@*/
+PetscErrorCode SNESSSStarGetNodeLawParameter(SNES snes, const char name[], PetscInt n, PetscReal values[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidCharPointer(name, 2);
+  PetscUseMethod(snes, "SNESSSStarGetNodeLawParameter_C", (SNES, const char[], PetscInt, PetscReal[]), (snes, name, n, values));
   PetscFunctionReturn(0);
 }

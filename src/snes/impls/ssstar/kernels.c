@@ -1,22 +1,61 @@
 /*
-   Per-node contact kernels of the semismooth* Newton method: pure functions on 3-vectors
-   (u_t1, u_t2, u_n) in the node's frame. Section and equation numbers refer to docs/derivation.md.
+   Per-node contact kernels of the semismooth* Newton method: pure functions on 3-vectors (u_t1, u_t2, u_n) in the
+   node's frame. Section and equation numbers refer to docs/derivation.md.
 
-   The friction law of a node is one of
-     coulomb: Q(u) = { (-phi lam d|u12|, lam) : lam in N_R+(u3) }          (section 0)
-     tresca:  Q(u) = s d|u12| x N_R+(u3), s the slip bound (no normal-tangential coupling)
-     none:    Q(u) = {0} x N_R+(u3)                                          (frictionless)
-   Tresca is Coulomb with the threshold phi (-g3) replaced by the constant s, so its blocks are
-   the Coulomb ones without the coupling terms phi om, with separate normal and tangential states.
+   What every friction law shares: the normal part of the approximation step (1.1), the states of Table 1 (2.1), the
+   blocks G, H, S, T of each state (3.1), (5.2) and the node frames. What depends on the law (its tangential step, how
+   far inside its friction set a force is, a sliding node's W and coupling) is in laws/, one file per law
+   (laws/lawimpl.h): Q(u) = { (g_t, lam) : lam in N_R+(u3), g_t in -lam d sigma(u_t) } for the Coulomb-type laws with
+   the support function sigma of their friction set (coulomb: phi |.|, orthotropic: |M^1/2 .|), g_t in -s d|u_t| with
+   a given bound s for tresca, g_t = 0 for none.
 */
-#include <ssstar.h>
+#include "laws/lawimpl.h"
 
-const char *const SSStarStateNames[]   = {"L", "M1", "M2", "M3+", "M3-", "M4", "LS", "SSStarState", "SSSTAR_STATE_", NULL};
-const char *const SSStarFrictionLaws[] = {"none", "tresca", "coulomb", "SSStarFrictionLaw", "SSSTAR_FRICTION_", NULL};
+const char *const SSStarStateNames[] = {"L", "M1", "M2", "M3+", "M3-", "M4", "LS", "SSStarState", "SSSTAR_STATE_", NULL};
 
 static PetscReal Norm2(const PetscReal v[2])
 {
   return PetscSqrtReal(v[0] * v[0] + v[1] * v[1]);
+}
+
+/* (1.2): the prox of s|.| at v, block soft-thresholding; the "if" keeps d an exact zero when |v| <= s */
+void SSStarSoftThreshold(PetscReal s, const PetscReal v[2], PetscReal d[2])
+{
+  const PetscReal nv = Norm2(v);
+
+  if (nv > s) {
+    d[0] = (1.0 - s / nv) * v[0];
+    d[1] = (1.0 - s / nv) * v[1];
+  } else {
+    d[0] = 0.0;
+    d[1] = 0.0;
+  }
+}
+
+/*
+   A sliding node of an isotropic law with the friction force s om, om = +d12/|d12| ((3.2): the slides' omega has the
+   other sign, which breaks the quadratic convergence): W = s/|d12| (I - om om^T) (3.1) and the coupling k = kappa om,
+   kappa the coefficient of the normal force in the sliding law (Coulomb: phi). Zero where s = 0.
+*/
+void SSStarIsotropicSliding(PetscReal s, PetscReal kappa, const PetscReal d[3], PetscReal W[4], PetscReal k[2])
+{
+  const PetscReal nd = Norm2(d);
+  PetscReal       om[2], w;
+
+  if (s == 0.0) {
+    W[0] = W[1] = W[2] = W[3] = 0.0;
+    k[0] = k[1] = 0.0;
+    return;
+  }
+  om[0] = d[0] / nd;
+  om[1] = d[1] / nd;
+  w     = s / nd;
+  W[0]  = w * (1.0 - om[0] * om[0]);
+  W[1]  = -w * om[0] * om[1];
+  W[2]  = W[1];
+  W[3]  = w * (1.0 - om[1] * om[1]);
+  k[0]  = kappa * om[0];
+  k[1]  = kappa * om[1];
 }
 
 /*@C
@@ -25,7 +64,7 @@ static PetscReal Norm2(const PetscReal v[2])
    Not Collective
 
    Input Parameters:
-+  fr - the node's friction law (a Tresca bound in the units of c)
++  fr - the node's friction law and its values (SSStarFrictionSet(); a force in the units of c)
 .  u  - the iterate in the node's frame (t1, t2, n), gap included: non-penetration is u[2] >= 0
 -  c  - (scaled) c = gamma (P u - f) in the node's frame
 
@@ -35,11 +74,13 @@ static PetscReal Norm2(const PetscReal v[2])
 -  b - b = -z - c
 
    Notes:
-   A pure function; d[2], b[2] and d12 come out as exact zeros where the projection is active.
+   A pure function; d[2], b[2] and d12 come out as exact zeros where the projection is active. The normal part is
+   the same for every law; the tangential one is the law's (the prox of the normal force times the support function
+   of its friction set).
 
    Level: developer
 
-.seealso: `SSStarClassify()`, `SSStarTangentBlocks()`, `SSStarReducedBlocks()`
+.seealso: `SSStarClassify()`, `SSStarTangentBlocks()`, `SSStarReducedBlocks()`, `SSStarFrictionSet()`
 @*/
 void SSStarApproximationStep(const SSStarFriction *fr, const PetscReal u[3], const PetscReal c[3], PetscReal z[3], PetscReal d[3], PetscReal b[3])
 {
@@ -48,39 +89,11 @@ void SSStarApproximationStep(const SSStarFriction *fr, const PetscReal u[3], con
   z[2] = PetscMax(-c[2], -u[2]); /* (1.1), the slides' (11) */
   d[2] = PetscMax(u[2] - c[2], 0.0);
   b[2] = -PetscMax(0.0, c[2] - u[2]);
-  if (fr->law == SSSTAR_FRICTION_NONE) {
-    d[0] = v[0];
-    d[1] = v[1];
-  } else {
-    /* (1.2)-(1.3), the slides' (12): block soft-thresholding with the threshold s; the "if" keeps d12 an exact zero
-       when |v| <= s */
-    const PetscReal s  = fr->law == SSSTAR_FRICTION_COULOMB ? fr->phi * PetscMax(0.0, c[2] - u[2]) : fr->bound;
-    const PetscReal nv = Norm2(v);
-
-    if (nv > s) {
-      d[0] = (1.0 - s / nv) * v[0];
-      d[1] = (1.0 - s / nv) * v[1];
-    } else {
-      d[0] = 0.0;
-      d[1] = 0.0;
-    }
-  }
+  fr->law->ops.tangential(fr, PetscMax(0.0, c[2] - u[2]), v, d); /* (1.2)-(1.3), the slides' (12) */
   z[0] = d[0] - u[0];
   z[1] = d[1] - u[1];
   b[0] = -z[0] - c[0];
   b[1] = -z[1] - c[1];
-}
-
-/* Tresca: normal and tangential states apart, mapped onto Table 1 (LS: separated and stuck) */
-static SSStarState ClassifyTresca(PetscReal bound, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
-{
-  const PetscBool sliding = (PetscBool)(Norm2(d) > tol_d);
-  const PetscBool strong  = (PetscBool)(bound - Norm2(b) > tol_b);
-
-  if (d[2] > tol_d) return sliding ? SSSTAR_STATE_L : SSSTAR_STATE_LS;
-  if (-b[2] <= tol_b) return sliding ? SSSTAR_STATE_M2 : SSSTAR_STATE_M4;
-  if (sliding) return SSSTAR_STATE_M1;
-  return strong ? SSSTAR_STATE_M3P : SSSTAR_STATE_M3M;
 }
 
 /*@C
@@ -89,14 +102,16 @@ static SSStarState ClassifyTresca(PetscReal bound, const PetscReal d[3], const P
    Not Collective
 
    Input Parameters:
-+  fr    - the node's friction law
++  fr    - the node's friction law and its values
 .  d     - the projected point of the approximation step, in the node's frame
 .  b     - its partner in gph Q
 .  tol_d - the tolerance of the zero tests on displacements
 -  tol_b - the tolerance of the zero tests on (scaled) forces
 
    Notes:
-   Returns the state; Tresca nodes may also be SSSTAR_STATE_LS (separated, tangentially stuck).
+   Returns the state. A sticking node is M3+ when its force lies inside the law's friction set by more than tol_b;
+   the nodes of a law whose tangential law holds without contact (Tresca) may also be SSSTAR_STATE_LS (separated,
+   tangentially stuck).
 
    Level: developer
 
@@ -104,14 +119,12 @@ static SSStarState ClassifyTresca(PetscReal bound, const PetscReal d[3], const P
 @*/
 SSStarState SSStarClassify(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal tol_d, PetscReal tol_b)
 {
-  const PetscReal phi     = fr->law == SSSTAR_FRICTION_COULOMB ? fr->phi : 0.0;
   const PetscBool sliding = (PetscBool)(Norm2(d) > tol_d);
 
-  if (fr->law == SSSTAR_FRICTION_TRESCA) return ClassifyTresca(fr->bound, d, b, tol_d, tol_b);
-  if (d[2] > tol_d) return SSSTAR_STATE_L;
+  if (d[2] > tol_d) return sliding || !fr->law->separate ? SSSTAR_STATE_L : SSSTAR_STATE_LS;
   if (-b[2] <= tol_b) return sliding ? SSSTAR_STATE_M2 : SSSTAR_STATE_M4;
   if (sliding) return SSSTAR_STATE_M1;
-  return (-phi * b[2] - Norm2(b) > tol_b) ? SSSTAR_STATE_M3P : SSSTAR_STATE_M3M;
+  return fr->law->ops.margin(fr, b) > tol_b ? SSSTAR_STATE_M3P : SSSTAR_STATE_M3M;
 }
 
 static PetscBool IsStrongContact(SSStarState state)
@@ -124,44 +137,6 @@ static PetscBool IsSliding(SSStarState state)
   return (PetscBool)(state == SSSTAR_STATE_L || state == SSSTAR_STATE_M1 || state == SSSTAR_STATE_M2);
 }
 
-/*
-   The tangential slip of a node at (d, b): om = +d12/|d12| ((3.2): the slides' omega has the other sign, which breaks
-   the quadratic convergence), W = s/|d12| (I - om om^T) (3.1) with s the threshold of the approximation step at (d, b)
-   (Coulomb: -phi b3), and kappa, the coefficient of the normal force in the sliding law (Coulomb: phi; section 3).
-   All vanish without friction.
-*/
-static void SlidingDirection(const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal om[2], PetscReal W[4], PetscReal *kappa)
-{
-  const PetscReal nd = Norm2(d);
-  PetscReal       s, w;
-
-  switch (fr->law) {
-  case SSSTAR_FRICTION_COULOMB:
-    s      = -fr->phi * b[2];
-    *kappa = fr->phi;
-    break;
-  case SSSTAR_FRICTION_TRESCA:
-    s      = fr->bound;
-    *kappa = 0.0;
-    break;
-  default:
-    s      = 0.0;
-    *kappa = 0.0;
-  }
-  if (s == 0.0) {
-    om[0] = om[1] = 0.0;
-    W[0] = W[1] = W[2] = W[3] = 0.0;
-    return;
-  }
-  om[0] = d[0] / nd;
-  om[1] = d[1] / nd;
-  w     = s / nd;
-  W[0]  = w * (1.0 - om[0] * om[0]);
-  W[1]  = -w * om[0] * om[1];
-  W[2]  = W[1];
-  W[3]  = w * (1.0 - om[1] * om[1]);
-}
-
 static void SetDiagonal(PetscReal M[9], PetscReal m0, PetscReal m1, PetscReal m2)
 {
   for (int k = 0; k < 9; k++) M[k] = 0.0;
@@ -171,9 +146,9 @@ static void SetDiagonal(PetscReal M[9], PetscReal m0, PetscReal m1, PetscReal m2
 }
 
 /*
-   Which kind of blocks a node gets. Coulomb and none: the states of Table 1, where without friction (phi = 0 or
-   none) every strong contact slides (section 3, "phi = 0"). Tresca: the normal state (closed when in strong contact)
-   and the tangential one (sliding or stuck) apart.
+   Which kind of blocks a node gets. The states of Table 1, where without friction (no tangential force at the node)
+   every strong contact slides (section 3, "phi = 0"). A law whose tangential law holds without contact (Tresca): the
+   normal state (closed when in strong contact) and the tangential one (sliding or stuck) apart.
 */
 typedef struct {
   PetscBool closed;  /* normal: u3 = 0 (and g3 free)       */
@@ -186,14 +161,12 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
   BlockKind k;
 
   k.closed = IsStrongContact(state);
-  if (fr->law == SSSTAR_FRICTION_TRESCA) {
+  if (fr->law->separate) {
     k.tangent = PETSC_TRUE;
     k.slides  = IsSliding(state);
   } else {
-    const PetscBool frictionless = (PetscBool)(fr->law == SSSTAR_FRICTION_NONE || fr->phi == 0.0);
-
-    k.tangent = k.closed; /* Coulomb: g12 = 0 unless in strong contact */
-    k.slides  = (PetscBool)(state == SSSTAR_STATE_M1 || (frictionless && k.closed));
+    k.tangent = k.closed; /* g12 = 0 unless in strong contact */
+    k.slides  = (PetscBool)(state == SSSTAR_STATE_M1 || (fr->law->ops.frictionless(fr) && k.closed));
   }
   return k;
 }
@@ -206,7 +179,7 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
 
    Input Parameters:
 +  state - the node's state (SSStarClassify())
-.  fr    - the node's friction law
+.  fr    - the node's friction law and its values
 .  d     - the projected point
 -  b     - its partner in gph Q
 
@@ -221,20 +194,20 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
 void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal G[9], PetscReal H[9])
 {
   const BlockKind k = GetBlockKind(state, fr);
-  PetscReal       om[2], W[4], kappa;
+  PetscReal       W[4], kk[2];
 
   SetDiagonal(G, 1.0, 1.0, k.closed ? 0.0 : 1.0);
   SetDiagonal(H, 0.0, 0.0, k.closed ? 1.0 : 0.0);
   if (!k.tangent) return;
   if (k.slides) {
-    SlidingDirection(fr, d, b, om, W, &kappa);
+    fr->law->ops.sliding(fr, d, b, W, kk);
     H[0] = W[0];
     H[1] = W[1];
     H[3] = W[2];
     H[4] = W[3];
     if (k.closed) {
-      H[2] = -kappa * om[0];
-      H[5] = -kappa * om[1];
+      H[2] = -kk[0];
+      H[5] = -kk[1];
     }
   } else {
     G[0] = G[4] = 0.0;
@@ -250,7 +223,7 @@ void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const Pets
 
    Input Parameters:
 +  state - the node's state (SSStarClassify())
-.  fr    - the node's friction law
+.  fr    - the node's friction law and its values
 .  d     - the projected point
 -  b     - its partner in gph Q
 
@@ -265,20 +238,20 @@ void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const Pets
 void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal S[9], PetscReal T[9])
 {
   const BlockKind k = GetBlockKind(state, fr);
-  PetscReal       om[2], W[4], kappa;
+  PetscReal       W[4], kk[2];
 
   SetDiagonal(S, 1.0, 1.0, k.closed ? 0.0 : 1.0);
   SetDiagonal(T, 0.0, 0.0, k.closed ? 1.0 : 0.0);
   if (!k.tangent) return;
   if (k.slides) {
-    SlidingDirection(fr, d, b, om, W, &kappa);
+    fr->law->ops.sliding(fr, d, b, W, kk);
     T[0] = W[0];
     T[1] = W[1];
     T[3] = W[2];
     T[4] = W[3];
     if (k.closed) {
-      S[2] = kappa * om[0];
-      S[5] = kappa * om[1];
+      S[2] = kk[0];
+      S[5] = kk[1];
     }
   } else {
     S[0] = S[4] = 0.0;

@@ -1,17 +1,25 @@
 /*
    The Newton step of ssstar: what every implementation shares (newtonimpl.h). The SNES creates one SSStarNewton and
-   keeps it; each SNESSolve gives it the operator and the implementation that fits it.
+   keeps it; each SNESSolve gives it the operator and the name of the implementation that fits it (registered by
+   newtonregall.c).
 */
 #include "newtonimpl.h"
 
-const char *const SSStarNewtonTypes[] = {"dense", "sparse", "full", "SSStarNewtonType", "SSSTAR_NEWTON_", NULL};
+PetscFunctionList SSStarNewtonList = NULL;
+
+/* Adds an implementation of the Newton step: create fills the ops (newtonimpl.h) */
+PetscErrorCode SSStarNewtonRegister(const char name[], PetscErrorCode (*create)(SSStarNewton))
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&SSStarNewtonList, name, create));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode SSStarNewtonCreate(SNES snes, SSStarNewton *newton)
 {
   PetscFunctionBegin;
   PetscCall(PetscNew(newton));
   (*newton)->snes      = snes;
-  (*newton)->type      = SSSTAR_NEWTON_DENSE;
   (*newton)->reuse     = 0;
   (*newton)->luThreads = 1;
   (*newton)->pcReuse   = SSSTAR_PC_REUSE_DEFAULT;
@@ -63,13 +71,6 @@ PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton nt, PetscInt *threads)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarNewtonGetType(SSStarNewton nt, SSStarNewtonType *type)
-{
-  PetscFunctionBegin;
-  *type = nt->type;
-  PetscFunctionReturn(0);
-}
-
 /* Drops everything built for an operator (the settings stay) */
 PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 {
@@ -79,6 +80,7 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
   PetscCall(PetscFree(nt->data));
   PetscCall(PetscMemzero(&nt->ops, sizeof(nt->ops)));
   PetscCall(MatDestroy(&nt->A));
+  PetscCall(PetscFree(nt->type));
   PetscFunctionReturn(0);
 }
 
@@ -86,8 +88,11 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
    The operator A (P, or K on the whole body) with the given implementation, the scaling gamma and the contact nodes'
    layout, for one SNESSolve: the counts start afresh; what was built for another operator is dropped
 */
-PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, SSStarNewtonType type, Mat A, PetscReal gamma, const SSStarContactLayout *layout)
+PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A, PetscReal gamma, const SSStarContactLayout *layout)
 {
+  PetscBool sameType;
+  PetscErrorCode (*create)(SSStarNewton) = NULL;
+
   PetscFunctionBegin;
   nt->gamma     = gamma;
   nt->rcond     = -1;
@@ -97,28 +102,20 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, SSStarNewtonType type, M
   nt->nKrylov   = 0;
   nt->nFallback = 0;
   nt->layout    = *layout;
-  if (A == nt->A && type == nt->type && nt->ops.setup) {
+  PetscCall(PetscStrcmp(type, nt->type, &sameType));
+  if (A == nt->A && sameType && nt->ops.setup) {
     if (nt->ops.setscaling) PetscCall((*nt->ops.setscaling)(nt)); /* gamma may have changed */
     PetscFunctionReturn(0);
   }
   PetscCall(SSStarNewtonReset(nt));
+  PetscCall(PetscFunctionListFind(SSStarNewtonList, type, &create));
+  PetscCheck(create, PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown Newton step %s", type);
   PetscCall(PetscObjectReference((PetscObject)A));
-  nt->A    = A;
-  nt->type = type;
-  /* the SNES's KSP is the sparse and full paths' (SNESSetFromOptions gave it the user's Jacobian: drop that) */
+  nt->A = A;
+  PetscCall(PetscStrallocpy(type, &nt->type));
+  /* the SNES's KSP may be the implementation's (SNESSetFromOptions gave it the user's Jacobian: drop that) */
   PetscCall(KSPReset(nt->snes->ksp));
-  nt->snes->usesksp = (PetscBool)(type != SSSTAR_NEWTON_DENSE);
-  switch (type) {
-  case SSSTAR_NEWTON_DENSE:
-    PetscCall(SSStarNewtonCreate_Dense(nt));
-    break;
-  case SSSTAR_NEWTON_SPARSE:
-    PetscCall(SSStarNewtonCreate_Sparse(nt));
-    break;
-  case SSSTAR_NEWTON_FULL:
-    PetscCall(SSStarNewtonCreate_Full(nt));
-    break;
-  }
+  PetscCall((*create)(nt));
   PetscCall((*nt->ops.setup)(nt));
   PetscFunctionReturn(0);
 }

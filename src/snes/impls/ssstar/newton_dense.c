@@ -640,6 +640,7 @@ PetscErrorCode SSStarNewtonCreate_Dense(SSStarNewton nt)
   Newton_Dense *dn;
 
   PetscFunctionBegin;
+  nt->snes->usesksp = PETSC_FALSE; /* the Newton systems are solved by dense LU and its own GMRES */
   PetscCall(PetscNew(&dn));
   dn->lu.N            = -1;
   nt->data            = dn;

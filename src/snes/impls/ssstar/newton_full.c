@@ -402,6 +402,7 @@ PetscErrorCode SSStarNewtonCreate_Full(SSStarNewton nt)
   Newton_Full *nf;
 
   PetscFunctionBegin;
+  nt->snes->usesksp = PETSC_TRUE; /* the SNES's KSP solves the Newton systems */
   PetscCall(PetscNew(&nf));
   nt->data           = nf;
   nt->ops.setup      = SSStarNewtonSetUp_Full;

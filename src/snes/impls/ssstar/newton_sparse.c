@@ -145,6 +145,7 @@ PetscErrorCode SSStarNewtonCreate_Sparse(SSStarNewton nt)
   Newton_Sparse *sp;
 
   PetscFunctionBegin;
+  nt->snes->usesksp = PETSC_TRUE; /* the SNES's KSP solves the Newton systems */
   PetscCall(PetscNew(&sp));
   nt->data      = sp;
   nt->ops.setup = SSStarNewtonSetUp_Sparse;

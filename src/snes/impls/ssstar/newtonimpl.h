@@ -2,7 +2,8 @@
 #define SSSTARNEWTONIMPL_H
 
 /*
-   The Newton step of ssstar (docs/derivation.md section 5) behind an ops table, one implementation per file:
+   The Newton step of ssstar (docs/derivation.md section 5) behind an ops table, one implementation per file,
+   registered by name (newtonregall.c):
 
      newton_dense.c   P dense (a Schur complement): the known dofs eliminated, LU of the rest (denselu.c), GMRES on an
                       older LU while few nodes changed
@@ -33,7 +34,7 @@ struct _SSStarNewtonOps {
 
 struct _n_SSStarNewton {
   struct _SSStarNewtonOps ops;
-  SSStarNewtonType        type;
+  char                   *type; /* its registered name */
   void                   *data; /* the implementation's */
   SNES                    snes;
 
@@ -57,6 +58,7 @@ struct _n_SSStarNewton {
   PetscInt  nFallback; /* dense: steps on an old LU that fell back to a fresh one                  */
 };
 
+/* Create_<type> fills the ops and says whether the SNES's KSP is its (snes->usesksp) */
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate_Dense(SSStarNewton);
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate_Sparse(SSStarNewton);
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate_Full(SSStarNewton);

@@ -10,6 +10,7 @@
    variables u = T v, T = I + E_S^T M (v: the slave dofs replaced by u_s - M u, the other dofs kept) turns every point
    into a node against a rigid obstacle: K becomes T^T K T (SPD), b becomes T^T b, and the rest of the solver (the
    kernels, the reductions, the Newton steps) does not change. T is unit triangular: invertible, v = u - E_S^T M u.
+   Without master dofs (every point against a rigid obstacle, SNESSSStarSetContactNodes()) there is no T.
 */
 #include "ssstarimpl.h"
 #include <petscblaslapack.h>
@@ -40,10 +41,10 @@ static PetscReal OrthogonalityDefect(const PetscReal R[9])
 /*
    From B: the frame R_i and the scale d_i of every point (solver's order), and T = I + E_S^T M with
    M_i = -(1/d_i) R_i^T (B_i without the point's own columns). Refuses what makes B rank-deficient or T singular,
-   naming the points: a block at a point's own dofs that is not an invertible multiple of a rotation, and a point's
-   own dofs among the dofs another point is compared with.
+   naming the points, on every rank: a block at a point's own dofs that is not an invertible multiple of a rotation,
+   and a point's own dofs among the dofs another point is compared with.
 */
-PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Vec x)
+PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Mat B, Vec x)
 {
   PetscInt        rB, n = ct->nnodes, m, xstart, nmaster = 0, *dnz, *onz, xend;
   const PetscInt *idx;
@@ -53,13 +54,13 @@ PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Vec 
   PetscBool       tilted = PETSC_FALSE;
   Vec             mark;
   PetscScalar    *ma;
+  char            msg[512] = "";
 
   PetscFunctionBegin;
-  PetscCall(MatGetOwnershipRange(ct->B, &rB, NULL));
+  PetscCall(MatGetOwnershipRange(B, &rB, NULL));
   PetscCall(VecGetOwnershipRange(x, &xstart, &xend));
   PetscCall(VecGetLocalSize(x, &m));
   PetscCall(ISGetIndices(ct->dofs, &idx));
-  PetscCall(PetscFree(ct->frames));
   PetscCall(PetscMalloc1(9 * n, &ct->frames));
   PetscCall(PetscMalloc1(n, &ct->pointScale));
   PetscCall(PetscMalloc3(3 * n, &ncols, 3 * n, &cols, 3 * n, &vals));
@@ -80,7 +81,7 @@ PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Vec 
     for (PetscInt c = 0; c < 3; c++) {
       const PetscInt row = 3 * i + c;
 
-      PetscCall(MatGetRow(ct->B, rB + 3 * j + c, &nc, &rc, &rv));
+      PetscCall(MatGetRow(B, rB + 3 * j + c, &nc, &rc, &rv));
       PetscCall(PetscMalloc2(nc, &cols[row], nc, &vals[row]));
       ncols[row] = 0;
       for (PetscInt e = 0; e < nc; e++) {
@@ -93,18 +94,19 @@ PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Vec 
           vals[row][ncols[row]++] = rv[e];
         }
       }
-      PetscCall(MatRestoreRow(ct->B, rB + 3 * j + c, &nc, &rc, &rv));
+      PetscCall(MatRestoreRow(B, rB + 3 * j + c, &nc, &rc, &rv));
     }
     d = Det3(S);
-    PetscCheck(d > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SNESSSStarSetContactOperator: contact point %" PetscInt_FMT " (dofs %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): B's block at the point's own dofs has determinant %g, not positive: B is rank-deficient there (or its rows are not t1, t2, n)", j, own[0], own[1], own[2], (double)d);
-    d = PetscCbrtReal(d);
+    if (!(d > 0) && !msg[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactOperator: contact point %" PetscInt_FMT " (dofs %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): B's block at the point's own dofs has determinant %g, not positive: B is rank-deficient there (or its rows are not t1, t2, n)", j, own[0], own[1], own[2], (double)d));
+    d = d > 0 ? PetscCbrtReal(d) : 1;
     for (PetscInt k = 0; k < 9; k++) R[k] = S[k] / d;
-    PetscCheck(OrthogonalityDefect(R) <= SSSTAR_ROTATION_TOL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SNESSSStarSetContactOperator: contact point %" PetscInt_FMT " (dofs %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): B's block at the point's own dofs is not a positive multiple of a rotation (rows t1, t2, n; defect %g)", j, own[0], own[1], own[2], (double)OrthogonalityDefect(R));
+    if (!(OrthogonalityDefect(R) <= SSSTAR_ROTATION_TOL) && !msg[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactOperator: contact point %" PetscInt_FMT " (dofs %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): B's block at the point's own dofs is not a positive multiple of a rotation (rows t1, t2, n; defect %g)", j, own[0], own[1], own[2], (double)OrthogonalityDefect(R)));
     ct->pointScale[i] = d;
     if (R[0] != 1.0 || R[4] != 1.0 || R[8] != 1.0) tilted = PETSC_TRUE;
     for (PetscInt c = 0; c < 3; c++) nmaster += ncols[3 * i + c];
   }
   PetscCall(ISRestoreIndices(ct->dofs, &idx));
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_WRONG, msg));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tilted, 1, MPIU_BOOL, MPI_LOR, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nmaster, 1, MPIU_INT, MPI_SUM, comm));
   if (!tilted) PetscCall(PetscFree(ct->frames));
@@ -134,12 +136,13 @@ PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Vec 
     for (PetscInt i = 0; i < n; i++)
       for (PetscInt c = 0; c < 3; c++)
         for (PetscInt e = 0; e < ncols[3 * i + c]; e++, nall++)
-          PetscCheck(sa[nall] == 0.0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SNESSSStarSetContactOperator: contact point %" PetscInt_FMT " is compared with dof %" PetscInt_FMT ", which is another contact point's own dof: a node may be a slave or a master, not both", ct->order[i], cols[3 * i + c][e]);
+          if (sa[nall] != 0.0 && !msg[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactOperator: contact point %" PetscInt_FMT " is compared with dof %" PetscInt_FMT ", which is another contact point's own dof: a node may be a slave or a master, not both", ct->order[i], cols[3 * i + c][e]));
     PetscCall(VecRestoreArrayRead(seen, &sa));
     PetscCall(VecScatterDestroy(&toSeen));
     PetscCall(VecDestroy(&seen));
     PetscCall(ISDestroy(&isMaster));
     PetscCall(PetscFree(all));
+    PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_WRONG, msg));
 
     PetscCall(PetscCalloc2(m, &dnz, m, &onz));
     for (PetscInt r = 0; r < m; r++) dnz[r] = 1;

@@ -1,14 +1,14 @@
 /*
    The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (docs/derivation.md section 7), on the contact
-   dofs of a reduced problem or on the whole body (contact.c says which: the layout of the operator's vectors).
+   dofs of a reduced problem or on the whole body (problem.c says which: the layout of the operator's vectors). The
+   iteration is here; the per-node work in nodesteps.c, the globalization in globalization.c, the declaration in
+   contact.c, the problem in problem.c, options and views in view.c, the composed setters in accessors.c.
 */
 #include "ssstarimpl.h"
 
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
 const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
 
-/* A Newton matrix whose estimated 1/cond is below this is treated as singular: its LU solution has no reliable digit */
-#define SSSTAR_RCOND_MIN 1e-12
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
 
@@ -20,7 +20,7 @@ const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERG
 static PetscErrorCode SNESSSStarComputeScaling(SNES snes)
 {
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
-  SSStarContact *ct = &ss->contact;
+  SSStarProblem *pb = &ss->problem;
 
   PetscFunctionBegin;
   if (ss->scaling_user > 0) {
@@ -28,12 +28,12 @@ static PetscErrorCode SNESSSStarComputeScaling(SNES snes)
     PetscFunctionReturn(0);
   }
   if (ss->method == SSSTAR_METHOD_FIXEDPOINT) {
-    PetscCheck(ct->maxRowSum > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: the contact rows of the stiffness sum to %g, not positive; set -snes_ssstar_scaling", (double)ct->maxRowSum);
-    ss->scaling = 1 / ct->maxRowSum;
+    PetscCheck(pb->maxRowSum > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: the contact rows of the stiffness sum to %g, not positive; set -snes_ssstar_scaling", (double)pb->maxRowSum);
+    ss->scaling = 1 / pb->maxRowSum;
     PetscFunctionReturn(0);
   }
-  PetscCheck(ct->meanDiag > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: the mean diagonal entry of the stiffness at the contact dofs is %g, not positive; set -snes_ssstar_scaling", (double)ct->meanDiag);
-  ss->scaling = 1 / ct->meanDiag;
+  PetscCheck(pb->meanDiag > 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONG, "ssstar: the mean diagonal entry of the stiffness at the contact dofs is %g, not positive; set -snes_ssstar_scaling", (double)pb->meanDiag);
+  ss->scaling = 1 / pb->meanDiag;
   PetscFunctionReturn(0);
 }
 
@@ -43,8 +43,8 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscInt     n;
 
   PetscFunctionBegin;
-  PetscCheck(snes->jacobian, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "ssstar needs the matrix K (or P): call SNESSetJacobian()");
-  PetscCall(SSStarContactSetUp(snes, &ss->contact));
+  PetscCheck(snes->jacobian, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "ssstar needs the matrix K (or P): call SNESSetJacobian() or SNESSSStarSetLinearProblem()");
+  PetscCall(SSStarContactSetUp(snes, &ss->contact, NULL));
   n = ss->contact.nnodes;
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
@@ -64,240 +64,15 @@ static PetscErrorCode CreateWorkVectors(SNES snes)
   PetscInt     n = -1, m;
 
   PetscFunctionBegin;
-  PetscCall(MatGetLocalSize(ss->contact.A, &m, NULL));
+  PetscCall(MatGetLocalSize(ss->problem.A, &m, NULL));
   if (ss->u) PetscCall(VecGetLocalSize(ss->u, &n));
   if (n == m) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&ss->u));
-  PetscCall(MatCreateVecs(ss->contact.A, &ss->u, NULL));
+  PetscCall(MatCreateVecs(ss->problem.A, &ss->u, NULL));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) {
     PetscCall(VecDestroy(w));
     PetscCall(VecDuplicate(ss->u, w));
   }
-  PetscFunctionReturn(0);
-}
-
-/* The scaled friction of node i: a Tresca bound is a force and the kernels see gamma c (section 6) */
-static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i)
-{
-  SSStarFriction fr = ss->contact.nodeFriction[i];
-
-  fr.bound *= ss->scaling;
-  return fr;
-}
-
-/* y = R x (R NULL: identity), x the entries of node i in a vector of the operator */
-static void NodeRotate(const SSStarContact *ct, PetscInt i, const PetscScalar *a, PetscReal y[3])
-{
-  const PetscInt  *dof = &ct->layoutDofs[3 * i];
-  const PetscReal *R   = ct->frames ? &ct->frames[9 * i] : NULL;
-
-  for (PetscInt k = 0; k < 3; k++) y[k] = R ? R[3 * k] * PetscRealPart(a[dof[0]]) + R[3 * k + 1] * PetscRealPart(a[dof[1]]) + R[3 * k + 2] * PetscRealPart(a[dof[2]]) : PetscRealPart(a[dof[k]]);
-}
-
-/* v_i = R_i u_i + g_i e3: the iterate in node i's frame, with the gap */
-static void NodeIterate(const SSStarContact *ct, PetscInt i, const PetscScalar *ua, PetscReal v[3])
-{
-  NodeRotate(ct, i, ua, v);
-  if (ct->gap) v[2] += ct->gap[i];
-}
-
-/* c = A u - f */
-PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCall(MatMult(ct->A, u, c));
-  PetscCall(VecAXPY(c, -1.0, ct->f));
-  PetscFunctionReturn(0);
-}
-
-/* ||u_C||: the norm of the contact dofs of u */
-static PetscErrorCode ContactNorm(SNES snes, Vec u, PetscReal *norm)
-{
-  SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
-  const PetscScalar *ua;
-  PetscReal          sum = 0;
-
-  PetscFunctionBegin;
-  if (!ct->nfree) {
-    PetscCall(VecNorm(u, NORM_2, norm));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecGetArrayRead(u, &ua));
-  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) sum += PetscRealPart(ua[ct->layoutDofs[k]] * ua[ct->layoutDofs[k]]);
-  PetscCall(VecRestoreArrayRead(u, &ua));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)snes)));
-  *norm = PetscSqrtReal(sum);
-  PetscFunctionReturn(0);
-}
-
-/*
-   Section 1 on every local node of the iterate u with c = A u - f, in the node's frame, with the scaled
-   c = gamma (A u - f) (section 6): z, d, b into ss->z, ss->d, ss->b, and ||z||. A free dof (whole body) has no
-   contact law: z = -gamma c, the residual of its equilibrium in displacement units.
-*/
-PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *znorm)
-{
-  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  SSStarContact     *ct = &ss->contact;
-  const PetscScalar *ua, *ca;
-  PetscScalar       *za, *da, *ba;
-
-  PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(SSSTAR_ApproxStep, snes, 0, 0, 0));
-  PetscCall(VecGetArrayRead(u, &ua));
-  PetscCall(VecGetArrayRead(c, &ca));
-  PetscCall(VecGetArrayWrite(ss->z, &za));
-  PetscCall(VecGetArrayWrite(ss->d, &da));
-  PetscCall(VecGetArrayWrite(ss->b, &ba));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i);
-    const PetscInt      *dof = &ct->layoutDofs[3 * i];
-    PetscReal            v[3], cv[3], z[3];
-
-    NodeIterate(ct, i, ua, v);
-    NodeRotate(ct, i, ca, cv);
-    for (PetscInt k = 0; k < 3; k++) cv[k] *= ss->scaling;
-    SSStarApproximationStep(&fr, v, cv, z, &da[3 * i], &ba[3 * i]);
-    for (PetscInt k = 0; k < 3; k++) za[dof[k]] = z[k];
-  }
-  for (PetscInt j = 0; j < ct->nfree; j++) za[ct->free[j]] = -ss->scaling * ca[ct->free[j]];
-  PetscCall(VecRestoreArrayWrite(ss->b, &ba));
-  PetscCall(VecRestoreArrayWrite(ss->d, &da));
-  PetscCall(VecRestoreArrayWrite(ss->z, &za));
-  PetscCall(VecRestoreArrayRead(c, &ca));
-  PetscCall(VecRestoreArrayRead(u, &ua));
-  PetscCall(VecNorm(ss->z, NORM_2, znorm));
-  PetscCall(PetscLogEventEnd(SSSTAR_ApproxStep, snes, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-/* Section 2 with tol_d = tau max(|v|, |d|), tol_b = tau max(|gamma f|, |b|) (infinity norms over all nodes) */
-static PetscErrorCode SNESSSStarClassify(SNES snes)
-{
-  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  SSStarContact     *ct = &ss->contact;
-  const PetscScalar *ua, *da, *ba;
-  PetscReal          norms[3] = {0, 0, 0}, tol_d, tol_b;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(ss->u, &ua));
-  PetscCall(VecGetArrayRead(ss->d, &da));
-  PetscCall(VecGetArrayRead(ss->b, &ba));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    PetscReal v[3];
-
-    NodeIterate(ct, i, ua, v);
-    for (PetscInt k = 0; k < 3; k++) {
-      norms[0] = PetscMax(norms[0], PetscAbsReal(v[k]));
-      norms[1] = PetscMax(norms[1], PetscAbsScalar(da[3 * i + k]));
-      norms[2] = PetscMax(norms[2], PetscAbsScalar(ba[3 * i + k]));
-    }
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, norms, 3, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  tol_d = ss->state_tol * PetscMax(norms[0], norms[1]);
-  tol_b = ss->state_tol * PetscMax(ss->scaling * ss->fnorm_inf, norms[2]);
-  PetscCall(PetscArrayzero(ss->counts, SSSTAR_NUM_STATES));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr = ScaledFriction(ss, i);
-
-    ss->states[i] = SSStarClassify(&fr, &da[3 * i], &ba[3 * i], tol_d, tol_b);
-    ss->counts[ss->states[i]]++;
-    ss->userStates[ct->order[i]] = ss->states[i];
-  }
-  PetscCall(VecRestoreArrayRead(ss->b, &ba));
-  PetscCall(VecRestoreArrayRead(ss->d, &da));
-  PetscCall(VecRestoreArrayRead(ss->u, &ua));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ss->counts, SSSTAR_NUM_STATES, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)snes)));
-  PetscFunctionReturn(0);
-}
-
-/*
-   Whole body: the tolerances of the next linear solve (inexact Newton). Its residual r (units of gamma^-1 y) moves
-   the next ||z|| by about gamma ||r||: gamma ||r|| <= eta ||z|| (eta: see SNESSolve_SSStar), never below a tenth of
-   the stopping threshold. The bound is on ||z||, not relative to the right-hand side: the eliminated known dofs
-   make that large, and one CG iteration could meet a relative tolerance with a useless step. Once a full step
-   left every node in its state, the problem is locally linear and one exact step ends it (as on the dense route):
-   eta = 0, the floor alone.
-*/
-static PetscErrorCode SetLinearTolerances(SNES snes, PetscReal znorm, PetscReal rtol)
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  PetscReal    unorm, threshold;
-
-  PetscFunctionBegin;
-  if (ss->contact.newtonType != SSSTAR_NEWTON_FULL) PetscFunctionReturn(0);
-  PetscCall(ContactNorm(snes, ss->u, &unorm));
-  threshold = PetscMax(snes->abstol, snes->rtol * PetscMax(unorm, ss->scale));
-  PetscCall(SSStarNewtonSetTolerances(ss->newton, 0.0, PetscMax(rtol * znorm, 0.1 * threshold) / ss->scaling));
-  PetscFunctionReturn(0);
-}
-
-/*
-   Section 5 in the nodes' frames: S, T per node, y = (S + T) z (and y = z on the free dofs), then the Newton system
-   for du. solved is false when its matrix is singular or, by the estimate of its condition, nearly so.
-
-   regularized: the coupling phi om of the sliding (M1) rows of S dropped, i.e. the normal force in the linearized
-   sliding law frozen at the iterate. Every row is then a row of gamma P, or a unit row, or a row of gamma P plus
-   the PSD W of section 3 on the node's tangential dofs: after the unit rows the matrix is gamma P_FF + W_FF with
-   P_FF a principal submatrix of the SPD P, nonsingular.
-*/
-static PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscReal znorm, PetscReal eta, PetscBool regularized, PetscBool *solved)
-{
-  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  SSStarContact     *ct = &ss->contact;
-  const PetscScalar *za, *da, *ba;
-  PetscScalar       *ya;
-
-  PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(SSSTAR_NewtonStep, snes, 0, 0, 0));
-  PetscCall(VecGetArrayRead(ss->z, &za));
-  PetscCall(VecGetArrayRead(ss->d, &da));
-  PetscCall(VecGetArrayRead(ss->b, &ba));
-  PetscCall(VecGetArrayWrite(ss->y, &ya));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i);
-    const PetscInt      *dof = &ct->layoutDofs[3 * i];
-    PetscReal           *S = &ss->S[9 * i], *T = &ss->T[9 * i];
-
-    SSStarReducedBlocks(ss->states[i], &fr, &da[3 * i], &ba[3 * i], S, T);
-    if (regularized) S[2] = S[5] = 0.0;
-    for (PetscInt r = 0; r < 3; r++) {
-      ya[dof[r]] = 0;
-      for (PetscInt k = 0; k < 3; k++) ya[dof[r]] += (S[3 * r + k] + T[3 * r + k]) * za[dof[k]];
-    }
-  }
-  for (PetscInt j = 0; j < ct->nfree; j++) ya[ct->free[j]] = za[ct->free[j]];
-  PetscCall(VecRestoreArrayWrite(ss->y, &ya));
-  PetscCall(VecRestoreArrayRead(ss->b, &ba));
-  PetscCall(VecRestoreArrayRead(ss->d, &da));
-  PetscCall(VecRestoreArrayRead(ss->z, &za));
-  PetscCall(SetLinearTolerances(snes, znorm, eta));
-  PetscCall(SSStarNewtonSolve(ss->newton, ss->S, ss->T, ss->y, ss->dv, solved));
-  if (*solved) {
-    PetscReal rcond;
-
-    PetscCall(SSStarNewtonGetConditionEstimate(ss->newton, &rcond));
-    if (rcond >= 0 && rcond < SSSTAR_RCOND_MIN) *solved = PETSC_FALSE;
-  }
-  PetscCall(PetscLogEventEnd(SSSTAR_NewtonStep, snes, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-/*
-   The fixed-point step u <- u + R^T z of the approximation step z at u (section 1; z is ss->z), with c = A u - f
-   updated; on the whole body the free dofs follow the contact dofs into equilibrium (one linear solve).
-*/
-PetscErrorCode SNESSSStarFixedPointStep(SNES snes, Vec u, Vec c, PetscBool *solved)
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarNewtonSolveKnown(ss->newton, ss->z, ss->dv, solved));
-  if (!*solved) PetscFunctionReturn(0);
-  PetscCall(VecAXPY(u, 1.0, ss->dv));
-  PetscCall(SNESSSStarResidual(snes, u, c));
   PetscFunctionReturn(0);
 }
 
@@ -310,13 +85,14 @@ static PetscErrorCode Equilibrate(SNES snes)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
+  SSStarProblem     *pb = &ss->problem;
   PetscReal          sums[2] = {0, 0}, unorm;
   const PetscScalar *ca;
   PetscBool          solved;
   Vec                uC = ss->ut;
 
   PetscFunctionBegin;
-  PetscCall(ContactNorm(snes, ss->u, &unorm));
+  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   PetscCall(VecCopy(ss->u, uC));
   PetscCall(VecZeroEntries(ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
@@ -326,7 +102,7 @@ static PetscErrorCode Equilibrate(SNES snes)
     /* pass 0: from u = 0; pass 1: to the given contact displacement. The known step moves the contact dofs by y */
     PetscCall(VecGetArrayWrite(ss->z, &za));
     if (pass == 0) {
-      for (PetscInt k = 0; k < 3 * ct->nnodes; k++) za[ct->layoutDofs[k]] = 0;
+      for (PetscInt k = 0; k < 3 * ct->nnodes; k++) za[pb->layoutDofs[k]] = 0;
     } else {
       const PetscScalar *ga;
 
@@ -334,15 +110,15 @@ static PetscErrorCode Equilibrate(SNES snes)
       for (PetscInt i = 0; i < ct->nnodes; i++) {
         PetscReal y[3];
 
-        NodeRotate(ct, i, ga, y);
-        for (PetscInt k = 0; k < 3; k++) za[ct->layoutDofs[3 * i + k]] = y[k];
+        SNESSSStarNodeRotate(ct, pb, i, ga, y);
+        for (PetscInt k = 0; k < 3; k++) za[pb->layoutDofs[3 * i + k]] = y[k];
       }
       PetscCall(VecRestoreArrayRead(uC, &ga));
     }
     PetscCall(VecRestoreArrayWrite(ss->z, &za));
     PetscCall(VecGetArrayRead(ss->c, &ca));
     PetscCall(VecGetArrayWrite(ss->z, &za));
-    for (PetscInt j = 0; j < ct->nfree; j++) za[ct->free[j]] = -ss->scaling * ca[ct->free[j]];
+    for (PetscInt j = 0; j < pb->nfree; j++) za[pb->free[j]] = -ss->scaling * ca[pb->free[j]];
     PetscCall(VecRestoreArrayWrite(ss->z, &za));
     PetscCall(VecRestoreArrayRead(ss->c, &ca));
     PetscCall(SSStarNewtonSetTolerances(ss->newton, SSSTAR_EQUILIBRIUM_RTOL, 0.0));
@@ -352,7 +128,7 @@ static PetscErrorCode Equilibrate(SNES snes)
     /* f = -(K u0 - b)_C, in the global frame */
     PetscCall(VecGetArrayRead(ss->c, &ca));
     for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
-      const PetscReal fk = -PetscRealPart(ca[ct->layoutDofs[k]]);
+      const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);
 
       sums[0] += fk * fk;
       sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
@@ -404,11 +180,11 @@ static PetscErrorCode FirstNonFinite(Vec v, PetscInt *first)
 }
 
 /* " (node 3 of the solver's order)" after the position of a contact dof in a reduced space; nothing on the whole body */
-static PetscErrorCode NodeOfRow(SSStarContact *ct, PetscInt row, char buf[], size_t len)
+static PetscErrorCode NodeOfRow(SSStarProblem *pb, PetscInt row, char buf[], size_t len)
 {
   PetscFunctionBegin;
   buf[0] = 0;
-  if (ct->newtonType != SSSTAR_NEWTON_FULL) PetscCall(PetscSNPrintf(buf, len, " (node %" PetscInt_FMT " of the solver's order)", row / 3));
+  if (!pb->wholeBody) PetscCall(PetscSNPrintf(buf, len, " (node %" PetscInt_FMT " of the solver's order)", row / 3));
   PetscFunctionReturn(0);
 }
 
@@ -416,9 +192,9 @@ static PetscErrorCode NodeOfRow(SSStarContact *ct, PetscInt row, char buf[], siz
 static PetscErrorCode CheckProblem(SNES snes)
 {
   SNES_SSStar   *ss    = (SNES_SSStar *)snes->data;
-  SSStarContact *ct    = &ss->contact;
+  SSStarProblem *pb    = &ss->problem;
   MPI_Comm       comm  = PetscObjectComm((PetscObject)snes);
-  PetscBool      whole = (PetscBool)(ct->newtonType == SSSTAR_NEWTON_FULL);
+  PetscBool      whole = pb->wholeBody;
   const char    *dof   = whole ? "dof" : "contact dof";
   char           node[64];
   Vec            rowsum;
@@ -427,18 +203,18 @@ static PetscErrorCode CheckProblem(SNES snes)
   PetscFunctionBegin;
   PetscCheck(snes->rtol >= 0 && snes->rtol < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_rtol %g: must be in [0, 1)", (double)snes->rtol);
   PetscCheck(snes->abstol >= 0 && !PetscIsInfOrNanReal(snes->abstol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_atol %g: must be a number >= 0", (double)snes->abstol);
-  PetscCall(VecDuplicate(ct->f, &rowsum)); /* A 1: a row with a NaN or an Inf sums to NaN or Inf */
+  PetscCall(VecDuplicate(pb->f, &rowsum)); /* A 1: a row with a NaN or an Inf sums to NaN or Inf */
   PetscCall(VecSet(ss->ut, 1.0));
-  PetscCall(MatMult(ct->A, ss->ut, rowsum));
+  PetscCall(MatMult(pb->A, ss->ut, rowsum));
   PetscCall(FirstNonFinite(rowsum, &first));
   PetscCall(VecDestroy(&rowsum));
-  PetscCall(NodeOfRow(ct, first, node, sizeof(node)));
+  PetscCall(NodeOfRow(pb, first, node, sizeof(node)));
   PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the %s has NaN or Inf entries in row %" PetscInt_FMT "%s: the stiffness K is not finite", whole ? "stiffness K" : "reduced stiffness P", first, node);
-  PetscCall(FirstNonFinite(ct->f, &first));
-  PetscCall(NodeOfRow(ct, first, node, sizeof(node)));
+  PetscCall(FirstNonFinite(pb->f, &first));
+  PetscCall(NodeOfRow(pb, first, node, sizeof(node)));
   PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the %s is NaN or Inf at %s %" PetscInt_FMT "%s: the load b is not finite", whole ? "load b" : "reduced load f", dof, first, node);
   PetscCall(FirstNonFinite(ss->u, &first));
-  PetscCall(NodeOfRow(ct, first, node, sizeof(node)));
+  PetscCall(NodeOfRow(pb, first, node, sizeof(node)));
   PetscCheck(first < 0, comm, PETSC_ERR_FP, "ssstar: the initial guess is NaN or Inf at %s %" PetscInt_FMT "%s", dof, first, node);
   PetscFunctionReturn(0);
 }
@@ -448,20 +224,21 @@ static PetscErrorCode SetUpSolve(SNES snes)
 {
   SNES_SSStar        *ss = (SNES_SSStar *)snes->data;
   SSStarContact      *ct = &ss->contact;
+  SSStarProblem      *pb = &ss->problem;
   SSStarContactLayout layout;
 
   PetscFunctionBegin;
-  PetscCall(SSStarContactSetUpProblem(snes, ct));
+  PetscCall(SSStarProblemSetUp(snes, ct, pb));
   PetscCall(CreateWorkVectors(snes));
   PetscCall(SNESSSStarComputeScaling(snes));
-  PetscCall(SSStarContactGetLayout(ct, &layout));
-  PetscCall(SSStarNewtonSetOperator(ss->newton, ct->newtonType, ct->A, ss->scaling, &layout));
-  PetscCall(SSStarContactGetInitialGuess(ct, snes->vec_sol, ss->u));
+  PetscCall(SSStarProblemGetLayout(ct, pb, &layout));
+  PetscCall(SSStarNewtonSetOperator(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
+  PetscCall(SSStarProblemGetInitialGuess(ct, pb, snes->vec_sol, ss->u));
   PetscCall(CheckProblem(snes));
-  if (ct->newtonType == SSSTAR_NEWTON_FULL) PetscCall(Equilibrate(snes));
+  if (pb->wholeBody) PetscCall(Equilibrate(snes)); /* the free dofs in equilibrium with the contact dofs */
   else {
-    PetscCall(VecNorm(ct->f, NORM_2, &ss->scale));
-    PetscCall(VecNorm(ct->f, NORM_INFINITY, &ss->fnorm_inf));
+    PetscCall(VecNorm(pb->f, NORM_2, &ss->scale));
+    PetscCall(VecNorm(pb->f, NORM_INFINITY, &ss->fnorm_inf));
     ss->scale *= ss->scaling;
     PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   }
@@ -472,6 +249,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 {
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
   SSStarContact *ct = &ss->contact;
+  SSStarProblem *pb = &ss->problem;
   PetscReal      znorm, unorm, dunorm = 0, z0 = 0;
   PetscBool      solved;
 
@@ -490,7 +268,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
-    PetscCall(ContactNorm(snes, ss->u, &unorm));
+    PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
     PetscCall(SNESSSStarClassify(snes));
     if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
     PetscCall(PetscObjectSAWsTakeAccess((PetscObject)snes));
@@ -513,7 +291,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
     if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
-      PetscCall(SetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
+      PetscCall(SNESSSStarSetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
       PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
       dunorm = znorm;
       if (solved) continue;
@@ -540,7 +318,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
-      if (!solved && ss->glob.on && ct->lawCounts[SSSTAR_FRICTION_COULOMB] > 0) {
+      if (!solved && ss->glob.on && ct->coupled > 0) {
         PetscCall(SSStarGlobalizationRecord(&ss->glob, SSSTAR_REMEDY_REGULARIZED));
         PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_TRUE, &solved));
       }
@@ -551,7 +329,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         if (improved) continue;
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
-        PetscCall(ContactNorm(snes, ss->dv, &dunorm));
+        PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, &stop));
       }
     }
@@ -575,7 +353,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   }
   /* the last iterate and its c = A u - f, the contact force: the SNES vector gets the whole u, F(u) its residual */
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(SSStarContactSetSolution(ct, ss->u, ss->c, snes->vec_sol));
+  PetscCall(SSStarProblemSetSolution(ct, pb, ss->u, ss->c, snes->vec_sol));
   PetscCall(SNESComputeFunction(snes, snes->vec_sol, snes->vec_func));
   PetscFunctionReturn(0);
 }
@@ -627,6 +405,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
 
   PetscFunctionBegin;
   PetscCall(SSStarContactReset(&ss->contact));
+  PetscCall(SSStarProblemReset(&ss->problem));
   PetscCall(SSStarNewtonReset(ss->newton));
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
@@ -638,9 +417,6 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscFunctionReturn(0);
 }
 
-#define SSSTAR_COMPOSED(F) "SNESSSStar" #F "_C"
-static const char *const ComposedNames[] = {SSSTAR_COMPOSED(SetContactNodes), SSSTAR_COMPOSED(SetContactOperator), SSSTAR_COMPOSED(SetFrictionLaw), SSSTAR_COMPOSED(GetFrictionLaw), SSSTAR_COMPOSED(SetFriction), SSSTAR_COMPOSED(GetFriction), SSSTAR_COMPOSED(SetFrictionCoefficients), SSSTAR_COMPOSED(SetSlipBounds), SSSTAR_COMPOSED(SetNodeFrictionLaws), SSSTAR_COMPOSED(SetReductionType), SSSTAR_COMPOSED(GetReductionType), SSSTAR_COMPOSED(SetPCReuse), SSSTAR_COMPOSED(SetKSPRtolMax), SSSTAR_COMPOSED(SetMemoryLimit), SSSTAR_COMPOSED(SetScaling), SSSTAR_COMPOSED(GetScaling), SSSTAR_COMPOSED(SetStateTolerance), SSSTAR_COMPOSED(GetStates), SSSTAR_COMPOSED(GetReason), SSSTAR_COMPOSED(GetTolerance), SSSTAR_COMPOSED(GetContactNodes), SSSTAR_COMPOSED(GetNodeFriction), SSSTAR_COMPOSED(GetReducedProblem), SSSTAR_COMPOSED(SetLUReuse), SSSTAR_COMPOSED(GetNewtonStepCounts), SSSTAR_COMPOSED(GetConditionEstimate), SSSTAR_COMPOSED(SetLUThreads), SSSTAR_COMPOSED(SetGlobalization), SSSTAR_COMPOSED(GetRemedyCounts), SSSTAR_COMPOSED(SetMethod), SSSTAR_COMPOSED(GetMethod)};
-
 static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
@@ -649,411 +425,8 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
   PetscCall(SNESReset_SSStar(snes));
   PetscCall(SSStarContactDestroy(&ss->contact));
   PetscCall(SSStarNewtonDestroy(&ss->newton));
-  for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(ComposedNames); k++) PetscCall(PetscObjectComposeFunction((PetscObject)snes, ComposedNames[k], NULL));
+  PetscCall(SNESSSStarComposeFunctions(snes, PETSC_FALSE));
   PetscCall(PetscFree(snes->data));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptionsObject)
-{
-  SNES_SSStar        *ss = (SNES_SSStar *)snes->data;
-  SSStarContact      *ct = &ss->contact;
-  PetscReal           value;
-  SSStarFrictionLaw   law;
-  SSStarReductionType rtype;
-  SSStarMethod        method;
-  PetscBool           set;
-  PetscInt            threads;
-
-  PetscFunctionBegin;
-  PetscOptionsHeadBegin(PetscOptionsObject, "SNES ssstar options (semismooth* Newton for contact with friction)");
-  PetscCall(PetscOptionsEnum("-snes_ssstar_friction_law", "Friction law of the contact nodes", "SNESSSStarSetFrictionLaw", SSStarFrictionLaws, (PetscEnum)ct->law, (PetscEnum *)&law, &set));
-  if (set) PetscCall(SNESSSStarSetFrictionLaw(snes, law));
-  PetscCall(PetscOptionsReal("-snes_ssstar_friction", "Coulomb friction coefficient phi >= 0", "SNESSSStarSetFriction", ct->friction, &value, &set));
-  if (set) PetscCall(SNESSSStarSetFriction(snes, value));
-  PetscCall(PetscOptionsEnum("-snes_ssstar_reduction", "Whole-body use: K reduced to the contact dofs (direct, mumps, explicit), or none (the whole body, P never formed), or auto", "SNESSSStarSetReductionType", SSStarReductionTypes, (PetscEnum)ct->reductionType, (PetscEnum *)&rtype, &set));
-  if (set) PetscCall(SNESSSStarSetReductionType(snes, rtype));
-  PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ct->memoryLimit, &value, &set));
-  if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));
-  if (set) PetscCall(SNESSSStarSetScaling(snes, value));
-  PetscCall(PetscOptionsEnum("-snes_ssstar_method", "The iteration: newton (semismooth*) or fixedpoint (u <- u + z, a first-order baseline)", "SNESSSStarSetMethod", SSStarMethods, (PetscEnum)ss->method, (PetscEnum *)&method, &set));
-  if (set) PetscCall(SNESSSStarSetMethod(snes, method));
-  PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
-  if (set) PetscCall(SNESSSStarSetStateTolerance(snes, value));
-  PetscCall(SSStarNewtonGetReuse(ss->newton, &value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_lu_reuse", "Solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: a fresh LU at every step)", "SNESSSStarSetLUReuse", value, &value, &set));
-  if (set) PetscCall(SNESSSStarSetLUReuse(snes, value));
-  PetscCall(SSStarNewtonGetPCReuse(ss->newton, &value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_pc_reuse", "Whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows since it (negative: a new one every step)", "SNESSSStarSetPCReuse", value, &value, &set));
-  if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
-  if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
-  PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
-  PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
-  if (set) PetscCall(SNESSSStarSetLUThreads(snes, threads));
-  {
-    PetscBool on = ss->glob.on, setOn, setDamping, setStagnation;
-    PetscInt  its;
-
-    PetscCall(PetscOptionsBool("-snes_ssstar_globalization", "Damped steps on ||z|| and remedies (false: the plain iteration)", "SNESSSStarSetGlobalization", on, &on, &setOn));
-    PetscCall(PetscOptionsReal("-snes_ssstar_damping_min", "Smallest damping factor of the line search on ||z||", "SNESSSStarSetGlobalization", ss->glob.dampingMin, &value, &setDamping));
-    PetscCall(PetscOptionsInt("-snes_ssstar_stagnation_its", "Stop after this many iterations without a smaller ||z||", "SNESSSStarSetGlobalization", ss->glob.stagnationIts, &its, &setStagnation));
-    if (setOn || setDamping || setStagnation) PetscCall(SNESSSStarSetGlobalization(snes, on, setDamping ? value : PETSC_DEFAULT, setStagnation ? its : PETSC_DEFAULT));
-  }
-  PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state, and the remedies", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
-  PetscOptionsHeadEnd();
-  PetscFunctionReturn(0);
-}
-
-/* "L 14 M1 55 M2 0 M3+ 15 M3- 0 M4 0" (LS, a Tresca state, only when some node has it) */
-static PetscErrorCode FormatStateCounts(const PetscInt counts[], char buf[], size_t len)
-{
-  size_t used = 0;
-
-  PetscFunctionBegin;
-  buf[0] = 0;
-  for (PetscInt s = 0; s < SSSTAR_NUM_STATES; s++) {
-    if (s == SSSTAR_STATE_LS && !counts[s]) continue;
-    PetscCall(PetscSNPrintf(buf + used, len - used, "%s%s %" PetscInt_FMT, s ? " " : "", SSStarStateNames[s], counts[s]));
-    PetscCall(PetscStrlen(buf, &used));
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  PetscBool    isascii;
-
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
-  if (!isascii) PetscFunctionReturn(0);
-  PetscCall(SSStarContactView(&ss->contact, viewer));
-  if (ss->method != SSSTAR_METHOD_NEWTON) PetscCall(PetscViewerASCIIPrintf(viewer, "  method: %s (u <- u + z, no Newton step)\n", SSStarMethods[ss->method]));
-  if (ss->scaling_user > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = %g\n", (double)ss->scaling_user));
-  else if (ss->method == SSSTAR_METHOD_FIXEDPOINT) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/(largest contact row sum of K)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag K_CC)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
-  if (snes->ops->converged == SNESConvergedSSStar) PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
-  PetscCall(SSStarNewtonView(ss->newton, viewer));
-  PetscCall(SSStarGlobalizationView(&ss->glob, viewer));
-  if (ss->reason != SSSTAR_REASON_ITERATING) {
-    char counts[256];
-
-    PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s after %" PetscInt_FMT " iterations, ||z|| = %g; contact states %s\n", SSStarReasons[ss->reason], snes->iter, (double)snes->norm, counts));
-    PetscCall(SSStarGlobalizationViewCounts(&ss->glob, viewer));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* With -snes_converged_reason, a line after PETSc's with the finer reason of ssstar */
-static PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
-{
-  PetscViewer       viewer;
-  PetscViewerFormat format;
-  PetscBool         flg, isssstar;
-
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
-  if (!isssstar) PetscFunctionReturn(0);
-  PetscCall(PetscOptionsGetViewer(PetscObjectComm((PetscObject)snes), ((PetscObject)snes)->options, ((PetscObject)snes)->prefix, "-snes_converged_reason", &viewer, &format, &flg));
-  if (!flg) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g\n", SSStarReasons[((SNES_SSStar *)snes->data)->reason], (double)snes->norm));
-  PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(PetscViewerDestroy(&viewer));
-  PetscFunctionReturn(0);
-}
-
-/*@C
-   SNESSSStarMonitorStates - prints, at every iteration, how many contact nodes are in each state of Table 1, with
-   the remedies that led to the iterate
-
-   Collective
-
-   Input Parameters:
-+  snes  - the SNES
-.  its   - the iteration
-.  znorm - ||z||
--  vf    - the viewer and its format
-
-   Options Database Key:
-.  -snes_ssstar_monitor_states - activates it
-
-   Level: intermediate
-
-.seealso: `SNESMonitorSet()`, `SNESSSStarGetStates()`
-@*/
-PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm, PetscViewerAndFormat *vf)
-{
-  SNES_SSStar *ss     = (SNES_SSStar *)snes->data;
-  PetscViewer  viewer = vf->viewer;
-  char         counts[256], events[512];
-  PetscInt     nlu, nreused, nkrylov;
-
-  PetscFunctionBegin;
-  PetscCall(PetscViewerPushFormat(viewer, vf->format));
-  PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(FormatStateCounts(ss->counts, counts, sizeof(counts)));
-  PetscCall(SSStarNewtonGetCounts(ss->newton, &nlu, &nreused, &nkrylov));
-  PetscCall(SSStarGlobalizationFormatEvents(&ss->glob, events, sizeof(events)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its)%s\n", its, counts, nlu, nreused, nkrylov, events));
-  PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(PetscViewerPopFormat(viewer));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetFrictionLaw_SSStar(SNES snes, SSStarFrictionLaw law)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCheck(law >= SSSTAR_FRICTION_NONE && law <= SSSTAR_FRICTION_COULOMB, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_friction_law %d: not none, tresca or coulomb", (int)law);
-  PetscCall(SSStarContactSetLaw(ct, law, ct->friction));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetFrictionLaw_SSStar(SNES snes, SSStarFrictionLaw *law)
-{
-  PetscFunctionBegin;
-  *law = ((SNES_SSStar *)snes->data)->contact.law;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetFriction_SSStar(SNES snes, PetscReal phi)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCheck(phi >= 0 && !PetscIsInfOrNanReal(phi), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_friction %g: the friction coefficient must be a number >= 0", (double)phi);
-  PetscCall(SSStarContactSetLaw(ct, ct->law, phi));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetFriction_SSStar(SNES snes, PetscReal *phi)
-{
-  PetscFunctionBegin;
-  *phi = ((SNES_SSStar *)snes->data)->contact.friction;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetReductionType_SSStar(SNES snes, SSStarReductionType type)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  if (type != ct->reductionType) {
-    ct->reductionType = type;
-    PetscCall(MatDestroy(&ct->A)); /* the next solve sets the problem up again */
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetReductionType_SSStar(SNES snes, SSStarReductionType *type)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  *type = ct->reductionType;
-  if (ct->reduction) PetscCall(SSStarReductionGetType(ct->reduction, type));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetPCReuse_SSStar(SNES snes, PetscReal fraction)
-{
-  PetscFunctionBegin;
-  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_pc_reuse %g must be at most 1 (negative: never)", (double)fraction);
-  PetscCall(SSStarNewtonSetPCReuse(((SNES_SSStar *)snes->data)->newton, fraction));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetKSPRtolMax_SSStar(SNES snes, PetscReal rtol)
-{
-  PetscFunctionBegin;
-  PetscCheck(rtol > 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_ksp_rtol_max %g must be in (0, 1)", (double)rtol);
-  ((SNES_SSStar *)snes->data)->etaMax = rtol;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetMemoryLimit_SSStar(SNES snes, PetscReal gigabytes)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCheck(gigabytes >= 0 && !PetscIsInfOrNanReal(gigabytes), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_memory_limit %g: the limit must be > 0 GB (or 0 for the available memory)", (double)gigabytes);
-  ct->memoryLimit = gigabytes;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetScaling_SSStar(SNES snes, PetscReal gamma)
-{
-  PetscFunctionBegin;
-  PetscCheck(gamma >= 0 && !PetscIsInfOrNanReal(gamma), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_scaling %g: gamma must be > 0 (or 0 for 1/mean diag P)", (double)gamma);
-  ((SNES_SSStar *)snes->data)->scaling_user = gamma;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetScaling_SSStar(SNES snes, PetscReal *gamma)
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-
-  PetscFunctionBegin;
-  *gamma = ss->scaling_user > 0 ? ss->scaling_user : ss->scaling;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetStateTolerance_SSStar(SNES snes, PetscReal tau)
-{
-  PetscFunctionBegin;
-  PetscCheck(tau >= 0 && tau < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_state_tol %g must be in [0, 1)", (double)tau);
-  ((SNES_SSStar *)snes->data)->state_tol = tau;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetMethod_SSStar(SNES snes, SSStarMethod method)
-{
-  PetscFunctionBegin;
-  PetscCheck(method == SSSTAR_METHOD_NEWTON || method == SSSTAR_METHOD_FIXEDPOINT, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "ssstar: unknown method %d", (int)method);
-  ((SNES_SSStar *)snes->data)->method = method;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetMethod_SSStar(SNES snes, SSStarMethod *method)
-{
-  PetscFunctionBegin;
-  *method = ((SNES_SSStar *)snes->data)->method;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetLUReuse_SSStar(SNES snes, PetscReal fraction)
-{
-  PetscFunctionBegin;
-  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_reuse %g must be at most 1 (negative: never)", (double)fraction);
-  PetscCall(SSStarNewtonSetReuse(((SNES_SSStar *)snes->data)->newton, fraction));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetNewtonStepCounts_SSStar(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
-{
-  PetscFunctionBegin;
-  PetscCall(SSStarNewtonGetCounts(((SNES_SSStar *)snes->data)->newton, factorizations, reused, krylov));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetLUThreads_SSStar(SNES snes, PetscInt threads)
-{
-  PetscFunctionBegin;
-  PetscCheck(threads >= 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_threads %" PetscInt_FMT " must be >= 0 (0: the cores rank 0 may run on)", threads);
-  PetscCall(SSStarNewtonSetLUThreads(((SNES_SSStar *)snes->data)->newton, threads));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetConditionEstimate_SSStar(SNES snes, PetscReal *rcond)
-{
-  PetscFunctionBegin;
-  PetscCall(SSStarNewtonGetConditionEstimate(((SNES_SSStar *)snes->data)->newton, rcond));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetStates_SSStar(SNES snes, const SSStarState *states[], PetscInt counts[])
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-
-  PetscFunctionBegin;
-  if (states) *states = ss->userStates;
-  if (counts) PetscCall(PetscArraycpy(counts, ss->counts, SSSTAR_NUM_STATES));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetReason_SSStar(SNES snes, SSStarReason *reason)
-{
-  PetscFunctionBegin;
-  *reason = ((SNES_SSStar *)snes->data)->reason;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetContactNodes_SSStar(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-  PetscInt       size;
-
-  PetscFunctionBegin;
-  if (n) {
-    if (ct->dofs) {
-      PetscCall(ISGetLocalSize(ct->dofs, &size));
-      *n = size / 3;
-    } else if (snes->vec_func) {
-      PetscCall(VecGetLocalSize(snes->vec_func, &size));
-      *n = size / 3;
-    }
-  }
-  if (dofs) *dofs = ct->dofs;
-  if (normals) *normals = ct->normals;
-  if (gaps) *gaps = ct->gaps;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetTolerance_SSStar(SNES snes, PetscReal *tol)
-{
-  PetscFunctionBegin;
-  *tol = ((SNES_SSStar *)snes->data)->tolerance;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetNodeFriction_SSStar(SNES snes, PetscInt n, SSStarFrictionLaw laws[], PetscReal phi[], PetscReal bounds[])
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCheck(snes->vec_func, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetNodeFriction: call SNESSetUp() or SNESSolve() first");
-  PetscCall(SSStarContactSetUp(snes, ct));
-  PetscCheck(n == ct->nnodes, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SNESSSStarGetNodeFriction: arrays of %" PetscInt_FMT " entries for the %" PetscInt_FMT " contact nodes of this rank", n, ct->nnodes);
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const PetscInt        j  = ct->order[i]; /* the user's node */
-    const SSStarFriction *fr = &ct->nodeFriction[i];
-
-    if (laws) laws[j] = fr->law;
-    if (phi) phi[j] = fr->phi;
-    if (bounds) bounds[j] = fr->bound;
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarSetGlobalization_SSStar(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
-{
-  SSStarGlobalization *glob = &((SNES_SSStar *)snes->data)->glob;
-
-  PetscFunctionBegin;
-  glob->on = on;
-  if (dampingMin != PETSC_DEFAULT) {
-    PetscCheck(dampingMin > 0 && dampingMin <= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_damping_min %g: must be in (0, 1]", (double)dampingMin);
-    glob->dampingMin = dampingMin;
-  }
-  if (stagnationIts != PETSC_DEFAULT) {
-    PetscCheck(stagnationIts >= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_stagnation_its %" PetscInt_FMT ": must be >= 1", stagnationIts);
-    glob->stagnationIts = stagnationIts;
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetRemedyCounts_SSStar(SNES snes, PetscInt counts[])
-{
-  PetscFunctionBegin;
-  PetscCall(PetscArraycpy(counts, ((SNES_SSStar *)snes->data)->glob.counts, SSSTAR_NUM_REMEDIES));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec *f)
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCheck(ct->A, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: no reduced problem before SNESSolve()");
-  PetscCheck(ct->newtonType != SSSTAR_NEWTON_FULL, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: the last solve ran on the whole body (reduction none): no P was formed");
-  if (P) *P = ct->A;
-  if (f) *f = ct->f;
   PetscFunctionReturn(0);
 }
 
@@ -1110,11 +483,10 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   snes->rtol                = 1e-10;
 
   PetscCall(PetscNew(&ss));
-  ss->contact.law           = SSSTAR_FRICTION_COULOMB;
-  ss->contact.friction      = 0.3;
-  ss->contact.reductionType = SSSTAR_REDUCTION_AUTO;
+  PetscCall(SSStarContactInitialize(&ss->contact));
+  PetscCall(PetscStrncpy(ss->problem.reductionType, SSSTARREDUCTIONAUTO, sizeof(ss->problem.reductionType)));
+  ss->problem.built         = -1;
   ss->etaMax                = 0.1;
-  ss->contact.built         = -1;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;
   ss->glob.dampingMin       = 1.0 / 64;
@@ -1131,36 +503,6 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
     if (snes->reasonview[i] == SNESSSStarConvergedReasonView) registered = PETSC_TRUE;
   if (!registered) PetscCall(SNESConvergedReasonViewSet(snes, SNESSSStarConvergedReasonView, NULL, NULL));
 
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetContactNodes), SNESSSStarSetContactNodes_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetContactOperator), SNESSSStarSetContactOperator_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetFrictionLaw), SNESSSStarSetFrictionLaw_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetFrictionLaw), SNESSSStarGetFrictionLaw_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetFriction), SNESSSStarSetFriction_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetFriction), SNESSSStarGetFriction_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetFrictionCoefficients), SNESSSStarSetFrictionCoefficients_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetSlipBounds), SNESSSStarSetSlipBounds_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetNodeFrictionLaws), SNESSSStarSetNodeFrictionLaws_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetReductionType), SNESSSStarSetReductionType_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReductionType), SNESSSStarGetReductionType_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetPCReuse), SNESSSStarSetPCReuse_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetKSPRtolMax), SNESSSStarSetKSPRtolMax_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetMemoryLimit), SNESSSStarSetMemoryLimit_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetScaling), SNESSSStarSetScaling_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetScaling), SNESSSStarGetScaling_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetStateTolerance), SNESSSStarSetStateTolerance_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetMethod), SNESSSStarSetMethod_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetMethod), SNESSSStarGetMethod_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetStates), SNESSSStarGetStates_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReason), SNESSSStarGetReason_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetTolerance), SNESSSStarGetTolerance_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetContactNodes), SNESSSStarGetContactNodes_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetNodeFriction), SNESSSStarGetNodeFriction_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetReducedProblem), SNESSSStarGetReducedProblem_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetGlobalization), SNESSSStarSetGlobalization_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetRemedyCounts), SNESSSStarGetRemedyCounts_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetLUReuse), SNESSSStarSetLUReuse_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetNewtonStepCounts), SNESSSStarGetNewtonStepCounts_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(GetConditionEstimate), SNESSSStarGetConditionEstimate_SSStar));
-  PetscCall(PetscObjectComposeFunction((PetscObject)snes, SSSTAR_COMPOSED(SetLUThreads), SNESSSStarSetLUThreads_SSStar));
+  PetscCall(SNESSSStarComposeFunctions(snes, PETSC_TRUE));
   PetscFunctionReturn(0);
 }

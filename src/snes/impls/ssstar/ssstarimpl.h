@@ -10,17 +10,15 @@ PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSear
 PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
-   The Newton step (newton.c and one file per implementation, newtonimpl.h): for the per-node blocks S, T of
-   docs/derivation.md section 5 it solves the Newton system on the operator A of the solve (P, or K on the whole body)
-   and returns du in the global frame. Created with the SNES (it keeps the settings); each SNESSolve gives it the
-   operator, the implementation that fits it and the contact nodes' layout. Counts are of the current SNESSolve.
+   The Newton step (newton.c and one file per implementation, newtonimpl.h, registered by name): for the per-node
+   blocks S, T of docs/derivation.md section 5 it solves the Newton system on the operator A of the solve (P, or K on
+   the whole body) and returns du in the global frame. Created with the SNES (it keeps the settings); each SNESSolve
+   gives it the operator, the name of the implementation that fits it and the contact nodes' layout. Counts are of the
+   current SNESSolve.
 */
-typedef enum {
-  SSSTAR_NEWTON_DENSE,  /* dense P: known dofs eliminated, LU of the rest, GMRES on an older LU        */
-  SSSTAR_NEWTON_SPARSE, /* sparse P (the user's): the Newton matrix factored by the SNES's KSP         */
-  SSSTAR_NEWTON_FULL    /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
-} SSStarNewtonType;
-PETSC_EXTERN const char *const SSStarNewtonTypes[];
+#define SSSTARNEWTONDENSE  "dense"  /* dense P: known dofs eliminated, LU of the rest, GMRES on an older LU        */
+#define SSSTARNEWTONSPARSE "sparse" /* sparse P (the user's): the Newton matrix factored by the SNES's KSP         */
+#define SSSTARNEWTONFULL   "full"   /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
 
 /* Where the contact nodes are in the operator's vectors, and their frames */
 typedef struct {
@@ -33,65 +31,110 @@ typedef struct {
 #define SSSTAR_PC_REUSE_DEFAULT 0.3
 
 typedef struct _n_SSStarNewton *SSStarNewton;
-PETSC_INTERN PetscErrorCode SSStarNewtonCreate(SNES, SSStarNewton *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetReuse(SSStarNewton, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetOperator(SSStarNewton, SSStarNewtonType, Mat, PetscReal, const SSStarContactLayout *);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetType(SSStarNewton, SSStarNewtonType *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetScaling(SSStarNewton, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarNewtonSetTolerances(SSStarNewton, PetscReal, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
-PETSC_INTERN PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton, Vec, Vec, PetscBool *);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
-PETSC_INTERN PetscErrorCode SSStarNewtonGetSteps(SSStarNewton, PetscInt *);
-PETSC_INTERN PetscErrorCode SSStarNewtonView(SSStarNewton, PetscViewer);
-PETSC_INTERN PetscErrorCode SSStarNewtonReset(SSStarNewton);
-PETSC_INTERN PetscErrorCode SSStarNewtonDestroy(SSStarNewton *);
+PETSC_EXTERN PetscFunctionList SSStarNewtonList;
+PETSC_INTERN PetscErrorCode    SSStarNewtonRegister(const char[], PetscErrorCode (*)(SSStarNewton));
+PETSC_INTERN PetscErrorCode    SSStarNewtonRegisterAll(void);
+PETSC_EXTERN PetscBool         SSStarNewtonRegisterAllCalled;
+PETSC_INTERN PetscErrorCode    SSStarNewtonCreate(SNES, SSStarNewton *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetReuse(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetOperator(SSStarNewton, const char[], Mat, PetscReal, const SSStarContactLayout *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetScaling(SSStarNewton, PetscReal);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetTolerances(SSStarNewton, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSolveKnown(SSStarNewton, Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetSteps(SSStarNewton, PetscInt *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonView(SSStarNewton, PetscViewer);
+PETSC_INTERN PetscErrorCode    SSStarNewtonReset(SSStarNewton);
+PETSC_INTERN PetscErrorCode    SSStarNewtonDestroy(SSStarNewton *);
 
 /*
-   The contact declaration and the problem the iteration runs on (contact.c). The solver's unknown u lives in the
-   vectors of an operator A: the contact dofs in the global frame (3 per node; in node i's frame v_i = R_i u_i + g_i e_3,
-   with v_i3 >= 0) and, on the whole body, the other dofs too (free dofs).
+   The contact (contact.c): what the user declared (the contact points with their rows of the contact operator B, the
+   friction laws and their parameters) and what the solver derives from it per node. A point i has three own dofs and
+   w_i = B_i u + g_i in its frame (t1, t2, n), w_i3 >= 0 (operator.c). SNESSSStarSetContactNodes() declares points
+   against rigid planes: B's rows are built from the normals (each node's own dofs turned into its frame).
+*/
+
+/* A law parameter as declared: one value for every node (-snes_ssstar_<name>) and/or one per node */
+typedef struct {
+  char      name[64];
+  PetscInt  size;    /* values per node: 1, or 3 for a direction                   */
+  PetscBool set;     /* value is the default of the nodes without their own         */
+  PetscReal value[3];
+  Vec       perNode; /* size entries per contact node (PETSC_DEFAULT: the default), or NULL */
+} SSStarLawSetting;
+
+typedef struct {
+  /* as declared by the user */
+  IS                dofs;      /* contact dofs of the SNES vector, 3 per owned node; NULL: every dof     */
+  Vec               normals;   /* 3 per node, or NULL for (0, 0, 1) (without B)                         */
+  Mat               B;         /* the contact operator given, or NULL: built from the normals           */
+  Vec               gaps;      /* 1 per node, or NULL for 0                                            */
+  SSStarLaw         law;       /* of the nodes without a law of their own                              */
+  PetscInt         *nodeLaws;  /* index into the table of laws per owned node, or NULL                   */
+  PetscInt          nNodeLaws;
+  PetscInt          nsettings; /* the law parameters declared                                          */
+  SSStarLawSetting *settings;
+  PetscObjectState  declared;  /* bumped by every setter: the per-node data are rebuilt when it moved  */
+
+  /* derived, in the solver's node order (nodes sorted by their first dof) */
+  PetscObjectState built;       /* value of declared the per-node data were built for                  */
+  PetscInt         nnodes;      /* owned contact nodes                                                  */
+  IS               isC, isI;    /* contact dofs in the solver's order, and the other owned dofs         */
+  PetscInt        *order;       /* solver's node i is the user's node order[i]                          */
+  PetscReal       *frames;      /* 9 per node (rows t1, t2, n), or NULL when every frame is the identity */
+  PetscReal       *gap;         /* per node (g_i / d_i), or NULL                                        */
+  PetscReal       *pointScale;  /* d_i of each point (its block of B at its own dofs is d_i R_i)        */
+  Mat              T;           /* with master dofs: u = T v, the change to the points' variables       */
+  SSStarFriction  *nodeFriction; /* per node; forces as forces (the kernels see them times gamma)        */
+  PetscInt         nlaws;       /* the size of the table of laws when built                             */
+  PetscInt        *lawCounts;   /* nodes per law of the table (global)                                  */
+  PetscInt         coupled;     /* nodes whose friction depends on the normal force (global)            */
+} SSStarContact;
+
+PETSC_INTERN PetscErrorCode SSStarContactInitialize(SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactSetUp(SNES, SSStarContact *, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarContactReset(SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactDestroy(SSStarContact *);
+PETSC_INTERN PetscErrorCode SSStarContactView(SSStarContact *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarContactGetNodeCount(SNES, SSStarContact *, PetscInt *);
+PETSC_INTERN PetscErrorCode SSStarContactSetLaw(SSStarContact *, const char[]);
+PETSC_INTERN PetscErrorCode SSStarContactSetParameter(MPI_Comm, SSStarContact *, const char[], PetscInt, const PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarContactGetParameter(SSStarContact *, const char[], PetscInt *, PetscReal[], PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarContactViewParameters(SSStarContact *, PetscViewer);
+PETSC_INTERN PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES, IS, Vec, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES, IS, Mat, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetNodeLawParameter_SSStar(SNES, const char[], Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const PetscInt[]);
+PETSC_INTERN PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES, PetscInt, PetscInt[]);
+PETSC_INTERN PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES, const char[], PetscInt, PetscReal[]);
+/* operator.c: the frames and scales of the points from B, and the change of variables T */
+PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Mat, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
+PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, Vec);
+
+/*
+   The problem the iteration runs on (problem.c): c(u) = A u - f. The solver's unknown u lives in the vectors of A: the
+   contact dofs in the global frame (3 per node; in node i's frame v_i = R_i u_i + g_i e_3, with v_i3 >= 0) and, on the
+   whole body, the other dofs too (free dofs).
 
      reduced use:          A = the user's P (every dof a contact dof), u = u_C
      whole body, a Schur reduction of K:  A = P = K_CC - K_CI K_II^-1 K_IC, load f, u = u_C
      whole body, reduction none:          A = K, load b, u = the whole displacement (P never formed)
+
+   It is kept while K and the declaration are unchanged.
 */
 typedef struct {
-  /* as declared by the user */
-  IS                  dofs;         /* contact dofs of the SNES vector, 3 per owned node; NULL: every dof     */
-  Vec                 normals;      /* 3 per node, or NULL for (0, 0, 1)                                    */
-  Mat                 B;            /* the contact operator (operator.c), or NULL: the nodes against planes */
-  Vec                 gaps;         /* 1 per node, or NULL for 0                                            */
-  SSStarFrictionLaw   law;          /* of the nodes without a law of their own                              */
-  PetscReal           friction;     /* phi of the nodes without a coefficient of their own                  */
-  Vec                 coefficients; /* phi per node, or NULL                                                */
-  Vec                 bounds;       /* Tresca slip bound per node, or NULL                                  */
-  SSStarFrictionLaw  *nodeLaws;     /* per owned node, or NULL                                              */
-  PetscInt            nNodeLaws;
-  SSStarReductionType reductionType;
-  PetscReal           memoryLimit;  /* GB per rank for the reduction; 0: MemAvailable of the node per rank  */
-  PetscObjectState    declared;     /* bumped by every setter: the per-node data are rebuilt when it moved  */
+  /* settings */
+  char             reductionType[64]; /* a registered reduction, or auto                              */
+  PetscReal        memoryLimit;       /* GB per rank for the reduction; 0: MemAvailable of the node per rank */
 
-  /* derived, in the solver's node order (nodes sorted by their first dof) */
-  PetscObjectState built;           /* value of declared the per-node data were built for                  */
-  PetscInt         nnodes;          /* owned contact nodes                                                  */
-  IS               isC, isI;        /* contact dofs in the solver's order, and the other owned dofs         */
-  PetscInt        *order;           /* solver's node i is the user's node order[i]                          */
-  PetscReal       *frames;          /* 9 per node (rows t1, t2, n), or NULL when every normal is (0, 0, 1)  */
-  PetscReal       *gap;             /* per node, or NULL                                                    */
-  PetscReal       *pointScale;      /* with B: d_i of each point (its block at its own dofs is d_i R_i)     */
-  Mat              T;               /* with B and masters: u = T v, the change to the points' variables      */
-  SSStarFriction  *nodeFriction;    /* per node; Tresca bounds as forces                                    */
-  PetscBool        hasFriction;     /* some node has friction (global)                                     */
-  PetscInt         lawCounts[3];    /* nodes per law (global)                                               */
-
-  /* the problem c(u) = A u - f, kept while K and the declaration are unchanged */
   SSStarReduction  reduction;       /* NULL in the reduced use                                              */
   Mat              K;               /* the Jacobian the problem was set up from                             */
   Mat              Kw;              /* K in the points' variables, T^T K T (K itself without masters)       */
@@ -100,29 +143,21 @@ typedef struct {
   PetscReal        maxRowSum;       /* largest sum |K_ij| of a contact row: a bound of lambda_max(P)        */
   Mat              A;               /* the operator: P, or K (reduction none)                               */
   Vec              b, bw, f;        /* the whole load b = -F(0), T^T b, and A's load f (reduced, or bw)     */
-  SSStarNewtonType newtonType;      /* the Newton step that fits A                                          */
+  PetscBool        wholeBody;       /* A is K: the free dofs are unknowns too (the reduction says)          */
+  PetscObjectState built;           /* the contact's built state it was set up for                          */
+  const char      *newtonType;      /* the Newton step that fits A                                          */
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
-} SSStarContact;
+} SSStarProblem;
 
-PETSC_INTERN PetscErrorCode SSStarContactSetUp(SNES, SSStarContact *);
-PETSC_INTERN PetscErrorCode SSStarContactSetUpProblem(SNES, SSStarContact *);
-PETSC_INTERN PetscErrorCode SSStarContactGetLayout(SSStarContact *, SSStarContactLayout *);
-PETSC_INTERN PetscErrorCode SSStarContactGetInitialGuess(SSStarContact *, Vec, Vec);
-PETSC_INTERN PetscErrorCode SSStarContactSetSolution(SSStarContact *, Vec, Vec, Vec);
-PETSC_INTERN PetscErrorCode SSStarContactReset(SSStarContact *);
-PETSC_INTERN PetscErrorCode SSStarContactDestroy(SSStarContact *);
-PETSC_INTERN PetscErrorCode SSStarContactView(SSStarContact *, PetscViewer);
-PETSC_INTERN PetscErrorCode SSStarContactSetLaw(SSStarContact *, SSStarFrictionLaw, PetscReal);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES, IS, Vec, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES, IS, Mat, Vec);
-/* operator.c: the contact operator B and the change of variables T */
-PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Vec);
-PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
-PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetFrictionCoefficients_SSStar(SNES, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetSlipBounds_SSStar(SNES, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const SSStarFrictionLaw[]);
+PETSC_INTERN PetscErrorCode SSStarProblemSetUp(SNES, SSStarContact *, SSStarProblem *);
+PETSC_INTERN PetscErrorCode SSStarProblemGetLayout(SSStarContact *, SSStarProblem *, SSStarContactLayout *);
+PETSC_INTERN PetscErrorCode SSStarProblemGetInitialGuess(SSStarContact *, SSStarProblem *, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemSetSolution(SSStarContact *, SSStarProblem *, Vec, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemSetReductionType(SSStarProblem *, const char[]);
+PETSC_INTERN PetscErrorCode SSStarProblemGetReductionType(SSStarProblem *, const char *[]);
+PETSC_INTERN PetscErrorCode SSStarProblemView(SSStarContact *, SSStarProblem *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarProblemReset(SSStarProblem *);
 
 /*
    The globalization (globalization.c): damped steps on the merit function ||z||, detection of cycles and
@@ -164,6 +199,7 @@ typedef struct {
 
 typedef struct {
   SSStarContact contact;
+  SSStarProblem problem;
 
   /* the method */
   SSStarMethod method;       /* Newton (default) or the fixed-point baseline                          */
@@ -189,10 +225,23 @@ typedef struct {
   SSStarGlobalization glob;
 } SNES_SSStar;
 
-/* ssstar.c: the per-node work of an iteration on any iterate (u, c) */
-PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
-PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *);
+/* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */
 PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode SNESSSStarClassify(SNES);
+PETSC_INTERN PetscErrorCode SNESSSStarNewtonStep(SNES, PetscReal, PetscReal, PetscBool, PetscBool *);
+PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SNESSSStarSetLinearTolerances(SNES, PetscReal, PetscReal);
+PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
+
+/* accessors.c: the type's composed functions (SNESSSStar*_C) on and off */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeFunctions(SNES, PetscBool);
+/* view.c: options, -snes_view, -snes_converged_reason's line */
+PETSC_INTERN PetscErrorCode SNESSetFromOptions_SSStar(SNES, PetscOptionItems *);
+PETSC_INTERN PetscErrorCode SNESView_SSStar(SNES, PetscViewer);
+PETSC_INTERN PetscErrorCode SNESSSStarConvergedReasonView(SNES, void *);
+PETSC_INTERN PetscErrorCode SNESSSStarFormatStateCounts(const PetscInt[], char[], size_t);
 
 /* globalization.c */
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBegin(SNES);

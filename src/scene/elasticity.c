@@ -123,7 +123,7 @@ static PetscErrorCode CellMaterials(SSStarScene scene, PetscInt cStart, PetscInt
 /* The area of a boundary face of group (a triangle) and its vertex coordinates */
 static PetscErrorCode BoundaryTriangle(DM dm, PetscInt f, const char group[], PetscReal x[9], PetscReal *area)
 {
-  PetscReal e1[3], e2[3], n[3];
+  PetscReal n[3];
   PetscInt  support;
   PetscBool triangle;
 
@@ -132,14 +132,7 @@ static PetscErrorCode BoundaryTriangle(DM dm, PetscInt f, const char group[], Pe
   PetscCheck(triangle, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of physical group \"%s\" is not a triangle", f, group);
   PetscCall(DMPlexGetSupportSize(dm, f, &support));
   PetscCheck(support == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "The triangle (%g, %g, %g), (%g, %g, %g), (%g, %g, %g) of physical group \"%s\" is not on the boundary of the body", (double)x[0], (double)x[1], (double)x[2], (double)x[3], (double)x[4], (double)x[5], (double)x[6], (double)x[7], (double)x[8], group);
-  for (PetscInt k = 0; k < 3; k++) {
-    e1[k] = x[3 + k] - x[k];
-    e2[k] = x[6 + k] - x[k];
-  }
-  n[0]  = e1[1] * e2[2] - e1[2] * e2[1];
-  n[1]  = e1[2] * e2[0] - e1[0] * e2[2];
-  n[2]  = e1[0] * e2[1] - e1[1] * e2[0];
-  *area = 0.5 * PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  *area = SSStarTriangleNormal(&x[0], &x[3], &x[6], n);
   PetscFunctionReturn(0);
 }
 

@@ -1,6 +1,6 @@
 /* Memory before work: an estimate of what a mesh of N nodes needs, against what the machine has. */
-#include <ssstarcontact.h>
-#include <stdio.h>
+#include <ssstarscene.h>
+#include "../sys/meminfo.h"
 
 /*
    Measured with the prism at levels 6, 10, 12 (peak resident memory, one rank): reading, interpolating and
@@ -11,30 +11,13 @@
 */
 #define SSSTAR_MESH_BYTES 30000.0
 
-/* MemAvailable of /proc/meminfo in bytes (0 if unknown) */
-static PetscErrorCode MemAvailable(PetscReal *bytes)
-{
-  FILE  *fp;
-  char   line[256];
-  double kb;
-
-  PetscFunctionBegin;
-  *bytes = 0;
-  fp     = fopen("/proc/meminfo", "r");
-  if (!fp) PetscFunctionReturn(0);
-  while (fgets(line, sizeof(line), fp))
-    if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1) *bytes = 1024.0 * kb;
-  fclose(fp);
-  PetscFunctionReturn(0);
-}
-
 /* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
    summed over the machines */
 static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *perRank)
 {
   MPI_Comm    node;
   PetscMPIInt noderank, size;
-  PetscReal   mine = 0;
+  PetscLogDouble mine = 0;
   PetscBool   set;
 
   PetscFunctionBegin;
@@ -49,7 +32,7 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
   PetscCallMPI(MPI_Comm_rank(node, &noderank));
   PetscCallMPI(MPI_Comm_free(&node));
-  if (noderank == 0) PetscCall(MemAvailable(&mine));
+  if (noderank == 0) PetscCall(SSStarMemAvailable(&mine));
   PetscCall(MPIU_Allreduce(&mine, limit, 1, MPIU_REAL, MPIU_SUM, comm));
   PetscFunctionReturn(0);
 }

@@ -1,8 +1,9 @@
 #ifndef SSSTARSCENEIMPL_H
 #define SSSTARSCENEIMPL_H
 
-#include <ssstarcontact.h>
+#include <ssstarscene.h>
 #include "obstacle.h"
+#include <ssstargeometry.h>
 
 #define SSSTAR_GROUP_NAME_LEN 128
 
@@ -26,11 +27,11 @@ typedef struct {
   PetscReal value[3];
 } SSStarGroupValues;
 
-/* A contact group: its rigid obstacle and its friction law */
+/* A contact group: its contact source (a rigid obstacle, or the master surface of a pair) and its friction law */
 typedef struct {
   char              name[SSSTAR_GROUP_NAME_LEN];
-  SSStarObstacle    obstacle;           /* -obstacle_<G>: a plane, ball, cylinder or mesh (obstacle.c) */
-  SSStarFrictionLaw law;
+  SSStarObstacle    obstacle;           /* -obstacle_<G>: a registered shape (obstacle.c, obstacles/)   */
+  PetscInt          law;                /* its friction law: an index of the table of laws (SSStarLawGetNames()) */
   PetscBool         lawSet, phiSet, boundSet; /* -friction_law_<G>, -friction_<G>, -slip_bound_<G> given */
   PetscReal         phi, bound;         /* Coulomb coefficient, Tresca slip bound (a force)      */
   PetscInt          nodes;              /* contact nodes of the group (global)                  */
@@ -72,20 +73,24 @@ struct _n_SSStarScene {
   PetscInt  *tag;         /* index of the node in the mesh file                                   */
   PetscInt  *group;       /* its contact group                                                    */
   PetscReal *coords;      /* 3 per node                                                           */
-  PetscReal *normal;      /* 3 per node: the normal of its plane                                  */
-  PetscReal *gap;         /* initial distance to its plane                                        */
+  PetscReal *normal;      /* 3 per node: the normal of its obstacle or master surface, into the body */
+  PetscReal *gap;         /* its initial normal gap to it                                        */
   PetscReal *area;        /* tributary area (a third of the adjacent faces of its group)         */
   IS         isC;         /* the 3 global dofs of each node                                       */
 
-  /* bodies and contact pairs (pairs.c) */
+  /* bodies (bodies.c) and contact pairs (pairs.c, mortar.c) */
   PetscInt   nPairs;      /* contact groups with -contact_pair_<G>                                */
   SSStarPairDiscretization pairMethod; /* -pair_discretization                                      */
   PetscInt   pairFallback; /* dual mortar: slave nodes the master does not cover (node-to-surface)  */
   PetscInt   nBodies;     /* connected components of the mesh                                     */
   PetscInt  *body;        /* per local vertex: its body (the smallest file index of its nodes)    */
-  Mat        B;           /* with pairs: the contact operator, 3 rows (t1, t2, n) per contact node */
-  PetscReal *frame;       /* with pairs: the frame of each contact node (9, rows t1, t2, n)       */
-  PetscReal *weight;      /* with pairs: per node the master dofs (3, -1: none) and weights (3)   */
+
+  /* the contact operator (operator.c): 3 rows (t1, t2, n) per contact node, B_i = R_i (E_i - sum_j w_ij E_{m_j}) */
+  PetscReal *frame;        /* R_i, 9 per node (rows t1, t2, n): the frame of its normal            */
+  PetscInt  *masterStart;  /* n + 1: the masters of node i are masterStart[i] .. masterStart[i + 1] - 1 */
+  PetscInt  *masterDof;    /* the x-dof of a master vertex m_j (y, z follow); none for a rigid obstacle */
+  PetscReal *masterWeight; /* w_ij                                                                 */
+  Mat        B;
 };
 
 PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
@@ -97,10 +102,43 @@ PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
 
+/* What a contact source adds to the rows of B: the masters of its nodes (node, x-dof, weight), in any order */
+typedef struct {
+  PetscInt   n, max;
+  PetscInt  *node, *dof;
+  PetscReal *weight;
+} SSStarMasters;
+PETSC_INTERN PetscErrorCode SSStarMastersAdd(SSStarMasters *, PetscInt, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarMastersDestroy(SSStarMasters *);
+
+/* The boundary faces as triangles (faces.c) */
+typedef struct {
+  DM                 dm;
+  PetscSection       csec, gsec;
+  Vec                coordinates, tags;
+  const PetscScalar *xa, *ta;
+  PetscInt           vStart, vEnd, fStart, fEnd;
+  PetscBool         *leaf; /* leaf[f]: face f is owned by another rank */
+} SSStarFaces;
+PETSC_INTERN PetscErrorCode SSStarFacesBegin(SSStarScene, SSStarFaces *);
+PETSC_INTERN PetscErrorCode SSStarFacesEnd(SSStarFaces *);
+PETSC_INTERN PetscErrorCode SSStarFaceTriangle(const SSStarFaces *, PetscInt, PetscReal[9], PetscInt[3], PetscInt[3], PetscInt *, PetscReal[3], PetscReal *);
+
+/* A node an error is about (nodes.c): its file index, group (and another), coordinates and gap */
+typedef struct {
+  PetscInt  tag, group, other;
+  PetscReal x[3], gap;
+} SSStarBadNode;
+PETSC_INTERN PetscErrorCode SSStarSceneShareBadNode(MPI_Comm, SSStarBadNode *, PetscBool *);
+
+PETSC_INTERN PetscErrorCode SSStarSceneGroupUses(SSStarScene, PetscInt *, SSStarGroupUse **, char ***);
+PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);
-PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
-PETSC_INTERN PetscErrorCode SSStarPairsSetUp(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarPairRows(SSStarScene, PetscInt, SSStarMasters *);
 PETSC_INTERN PetscErrorCode SSStarSceneContactKinematics(SSStarScene, Vec, Vec, PetscReal[], PetscReal[], PetscReal[], PetscReal[]);
 
 #endif

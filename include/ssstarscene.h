@@ -1,10 +1,11 @@
-#ifndef SSSTARCONTACT_H
-#define SSSTARCONTACT_H
+#ifndef SSSTARSCENE_H
+#define SSSTARSCENE_H
 
 /*
-   Scenes: elastic bodies (gmsh meshes on DMPlex, P1 linear elasticity) with the effects a scene names -- Dirichlet
-   groups, tractions, gravity, soft springs, rigid planes with a friction law per contact group -- and their output.
-   Kept apart from the solver: a scene assembles K and b and declares its contact nodes to an "ssstar" SNES.
+   The scene library (src/scene): elastic bodies (gmsh meshes on DMPlex, P1 linear elasticity) with the effects a scene
+   names -- Dirichlet groups, tractions, gravity, soft springs, contact groups against rigid obstacles or against
+   another body, with a friction law each -- and their output. Kept apart from the solver: a scene assembles K and b
+   and declares its contact to an "ssstar" SNES through the contact operator B.
 */
 #include <petscdmplex.h>
 #include <petscksp.h>

@@ -1,0 +1,169 @@
+/*
+   The contact nodes of a scene: the vertices of its contact groups that are not held fixed, owned by this rank, in
+   vertex order (their global dofs increase), each with its group (the first listed in -contact when it is in two groups
+   whose obstacles agree at the node), its coordinates, its dofs and its tributary area. Their gaps, normals and rows
+   of the contact operator come from their groups' contact sources (operator.c).
+*/
+#include "sceneimpl.h"
+
+/* SSStarSceneContactTolerance - "on the obstacle up to round-off": relative to the size of the body */
+PetscErrorCode SSStarSceneContactTolerance(SSStarScene scene, PetscReal *tol)
+{
+  PetscReal gmin[3], gmax[3];
+
+  PetscFunctionBegin;
+  PetscCall(DMGetBoundingBox(scene->dm, gmin, gmax));
+  *tol = 0;
+  for (PetscInt k = 0; k < 3; k++) *tol += PetscSqr(gmax[k] - gmin[k]);
+  *tol = 1e-10 * PetscSqrtReal(*tol);
+  PetscFunctionReturn(0);
+}
+
+/* Tributary area of every local vertex on the contact groups (a third of each adjacent face), in the x-dofs of a global vector */
+static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
+{
+  const PetscReal unit[3] = {1, 0, 0};
+  Vec             loc;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetLocalVector(scene->dm, &loc));
+  PetscCall(VecZeroEntries(loc));
+  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(SSStarAddTraction(scene->dm, scene->contact[g].name, unit, loc));
+  PetscCall(DMCreateGlobalVector(scene->dm, areas));
+  PetscCall(VecZeroEntries(*areas));
+  PetscCall(DMLocalToGlobal(scene->dm, loc, ADD_VALUES, *areas));
+  PetscCall(DMRestoreLocalVector(scene->dm, &loc));
+  PetscFunctionReturn(0);
+}
+
+/* Whether the obstacles of two contact groups give the node at x the same gap and normal */
+static PetscErrorCode SameObstacleAt(const SSStarContactGroup *a, const SSStarContactGroup *b, const PetscReal x[3], PetscReal tol, PetscBool *same)
+{
+  PetscReal ga, gb, na[3], nb[3];
+
+  PetscFunctionBegin;
+  PetscCall(SSStarObstacleGap(a->obstacle, x, tol, &ga, na));
+  PetscCall(SSStarObstacleGap(b->obstacle, x, tol, &gb, nb));
+  *same = (PetscBool)(PetscAbsReal(na[0] - nb[0]) + PetscAbsReal(na[1] - nb[1]) + PetscAbsReal(na[2] - nb[2]) <= 1e-12 && PetscAbsReal(ga - gb) <= tol);
+  PetscFunctionReturn(0);
+}
+
+/* SSStarSceneShareBadNode - the node an error is about: the owner's data reach every rank (the lowest file index wins) */
+PetscErrorCode SSStarSceneShareBadNode(MPI_Comm comm, SSStarBadNode *bad, PetscBool *found)
+{
+  PetscInt  tag = bad->tag >= 0 ? bad->tag : PETSC_MAX_INT, first;
+  PetscReal data[7];
+
+  PetscFunctionBegin;
+  PetscCall(MPIU_Allreduce(&tag, &first, 1, MPIU_INT, MPI_MIN, comm));
+  *found = (PetscBool)(first != PETSC_MAX_INT);
+  if (!*found) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < 7; k++) data[k] = 0;
+  if (tag == first) {
+    data[0] = (PetscReal)bad->group;
+    data[1] = (PetscReal)bad->other;
+    data[2] = bad->x[0];
+    data[3] = bad->x[1];
+    data[4] = bad->x[2];
+    data[5] = bad->gap;
+    data[6] = 1;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, data, 7, MPIU_REAL, MPIU_SUM, comm));
+  bad->tag   = first;
+  bad->group = (PetscInt)(data[0] / data[6]);
+  bad->other = (PetscInt)(data[1] / data[6]);
+  for (PetscInt k = 0; k < 3; k++) bad->x[k] = data[2 + k] / data[6];
+  bad->gap = data[5] / data[6];
+  PetscFunctionReturn(0);
+}
+
+/* SSStarSceneFindContactNodes - the owned contact nodes (tag, group, coordinates, dofs, area), the nodes per group */
+PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
+{
+  DM                 dm = scene->dm, cdm;
+  DMLabel           *labels;
+  PetscSection       sec, gsec, csec;
+  PetscInt           vStart, vEnd, n = 0, *dofs, rstart;
+  Vec                coordinates, areas;
+  const PetscScalar *ta, *xa, *aa;
+  PetscReal          tol;
+  SSStarBadNode      twice = {-1, -1, -1, {0, 0, 0}, 0};
+  PetscBool          found;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarSceneContactTolerance(scene, &tol));
+  PetscCall(ContactAreas(scene, &areas));
+  PetscCall(PetscMalloc1(scene->nContact, &labels));
+  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(DMGetLabel(dm, scene->contact[g].name, &labels[g]));
+  PetscCall(DMGetLocalSection(dm, &sec));
+  PetscCall(DMGetGlobalSection(dm, &gsec));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(PetscMalloc4(vEnd - vStart, &scene->tag, vEnd - vStart, &scene->group, 3 * (vEnd - vStart), &scene->coords, 3 * (vEnd - vStart), &scene->normal));
+  PetscCall(PetscMalloc2(vEnd - vStart, &scene->gap, vEnd - vStart, &scene->area));
+  PetscCall(PetscMalloc1(3 * (vEnd - vStart), &dofs));
+  PetscCall(VecGetArrayRead(scene->tags, &ta));
+  PetscCall(VecGetArrayRead(coordinates, &xa));
+  PetscCall(VecGetArrayRead(areas, &aa));
+  PetscCall(VecGetOwnershipRange(areas, &rstart, NULL));
+  for (PetscInt g = 0; g < scene->nContact; g++) scene->contact[g].nodes = 0;
+  /* vertices in point order have increasing global offsets, so the dofs are sorted */
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt  off, ncon, coff, group = -1;
+    PetscReal x[3];
+    PetscBool same;
+
+    PetscCall(PetscSectionGetOffset(gsec, v, &off));
+    PetscCall(PetscSectionGetConstraintDof(sec, v, &ncon));
+    if (off < 0 || ncon) continue; /* not owned, or held fixed */
+    PetscCall(PetscSectionGetOffset(csec, v, &coff));
+    for (PetscInt k = 0; k < 3; k++) x[k] = PetscRealPart(xa[coff + k]);
+    for (PetscInt g = 0; g < scene->nContact; g++) {
+      PetscInt value;
+
+      PetscCall(DMLabelGetValue(labels[g], v, &value));
+      if (value < 0) continue;
+      if (group < 0) {
+        group = g;
+        continue;
+      }
+      PetscCall(SameObstacleAt(&scene->contact[group], &scene->contact[g], x, tol, &same));
+      if (!same && twice.tag < 0) {
+        twice.tag   = (PetscInt)PetscRealPart(ta[v - vStart]);
+        twice.group = group;
+        twice.other = g;
+        PetscCall(PetscArraycpy(twice.x, x, 3));
+      }
+    }
+    if (group < 0) continue;
+    scene->tag[n]   = (PetscInt)PetscRealPart(ta[v - vStart]);
+    scene->group[n] = group;
+    scene->area[n]  = PetscRealPart(aa[off - rstart]); /* in the x-dof */
+    for (PetscInt k = 0; k < 3; k++) {
+      scene->coords[3 * n + k] = x[k];
+      dofs[3 * n + k]          = off + k;
+    }
+    scene->contact[group].nodes++;
+    n++;
+  }
+  PetscCall(VecRestoreArrayRead(areas, &aa));
+  PetscCall(VecRestoreArrayRead(coordinates, &xa));
+  PetscCall(VecRestoreArrayRead(scene->tags, &ta));
+  PetscCall(VecDestroy(&areas));
+  PetscCall(PetscFree(labels));
+  scene->n = n;
+  PetscCall(ISCreateGeneral(scene->comm, 3 * n, dofs, PETSC_OWN_POINTER, &scene->isC));
+
+  PetscCall(SSStarSceneShareBadNode(scene->comm, &twice, &found));
+  PetscCheck(!found, scene->comm, PETSC_ERR_ARG_WRONG, "Mesh node %" PetscInt_FMT " (0-based, file order) at (%g, %g, %g) is in the contact groups \"%s\" and \"%s\" whose obstacles (-obstacle_%s, -obstacle_%s) differ at this node: a node touches one obstacle", twice.tag, (double)twice.x[0], (double)twice.x[1], (double)twice.x[2], scene->contact[twice.group].name, scene->contact[twice.other].name, scene->contact[twice.group].name, scene->contact[twice.other].name);
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    SSStarContactGroup *cg = &scene->contact[g];
+
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &cg->nodes, 1, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCheck(cg->nodes > 0, scene->comm, PETSC_ERR_ARG_WRONG, "Contact group \"%s\" (option -contact) has no nodes once the nodes held fixed (-dirichlet) are removed", cg->name);
+  }
+  PetscCall(MPIU_Allreduce(&n, &scene->nGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
+  PetscFunctionReturn(0);
+}

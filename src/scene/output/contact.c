@@ -1,0 +1,330 @@
+/*
+   The contact nodes and faces in the output: /contact (per contact node, in file order: what was declared, what the
+   solver used, the state and the kinematics at the solution) and /contact_faces (the contact groups' triangles with
+   the point fields ParaView colours them by).
+*/
+#include "outputimpl.h"
+
+PetscErrorCode SSStarNodeFrictionGet(SSStarScene scene, SNES snes, SSStarNodeFriction *nf)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &nf->known));
+  PetscCall(PetscMalloc3(scene->n + 1, &nf->law, scene->n + 1, &nf->phi, scene->n + 1, &nf->bound));
+  if (nf->known) {
+    PetscCall(SNESSSStarGetNodeFrictionLaws(snes, scene->n, nf->law));
+    PetscCall(SNESSSStarGetNodeLawParameter(snes, "friction", scene->n, nf->phi));
+    PetscCall(SNESSSStarGetNodeLawParameter(snes, "slip_bound", scene->n, nf->bound));
+  } else
+    for (PetscInt i = 0; i < scene->n; i++) { /* the scene's own description */
+      const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
+
+      nf->law[i]   = cg->law;
+      nf->phi[i]   = cg->phi;
+      nf->bound[i] = cg->bound;
+    }
+  for (PetscInt i = 0; i < scene->n; i++) {
+    PetscBool friction, bound;
+
+    PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
+    PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
+    if (!friction) nf->phi[i] = 0;
+    if (!bound) nf->bound[i] = 0;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *nf)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree3(nf->law, nf->phi, nf->bound));
+  PetscFunctionReturn(0);
+}
+
+/* The datasets of /contact: per contact node, in the order of the mesh file */
+PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, const SSStarState states[], const SSStarNodeFriction *nf)
+{
+  MPI_Comm           comm = scene->comm;
+  PetscInt           p, n = scene->n, *pos, *all;
+  PetscReal         *ul, *rl, *sl, *gl, *ll;
+  const PetscScalar *ua, *ra;
+  Vec                uC, rC;
+  char               names[1024];
+  hid_t              group;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc5(n + 1, &pos, 3 * n + 1, &ul, 3 * n + 1, &rl, n + 1, &sl, n + 1, &gl));
+  PetscCall(PetscMalloc1(n + 1, &ll));
+  PetscCall(SSStarFileOrder(comm, n, scene->tag, &p, &all, pos));
+  PetscCall(PetscFree(all));
+  PetscCall(VecGetSubVector(u, scene->isC, &uC));
+  PetscCall(VecGetSubVector(r, scene->isC, &rC));
+  PetscCall(VecGetArrayRead(uC, &ua));
+  PetscCall(VecGetArrayRead(rC, &ra));
+  for (PetscInt i = 0; i < 3 * n; i++) {
+    ul[i] = PetscRealPart(ua[i]);
+    rl[i] = PetscRealPart(ra[i]);
+  }
+  PetscCall(VecRestoreArrayRead(rC, &ra));
+  PetscCall(VecRestoreArrayRead(uC, &ua));
+  PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
+  PetscCall(VecRestoreSubVector(u, scene->isC, &uC));
+  PetscCall(SSStarH5GroupOpen(file, "/contact", &group));
+  PetscCallH5(H5Gclose(group));
+  {
+    const char      *vnames[] = {"/contact/coordinates", "/contact/displacement", "/contact/reaction", "/contact/normal", "/contact/gap", "/contact/area", "/contact/friction", "/contact/slip_bound"};
+    const PetscReal *values[] = {scene->coords, ul, rl, scene->normal, scene->gap, scene->area, nf->phi, nf->bound};
+    const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1, 1, 1};
+
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) {
+      if (k >= 6 && !nf->known) continue; /* the friction the solver used, if it is an ssstar */
+      PetscCall(SSStarWriteNodeField(comm, file, vnames[k], p, n, pos, bs[k], values[k], PETSC_FALSE));
+    }
+  }
+  for (PetscInt i = 0; i < n; i++) {
+    sl[i] = states ? (PetscReal)states[i] : -1;
+    gl[i] = (PetscReal)scene->group[i];
+    ll[i] = (PetscReal)nf->law[i];
+  }
+  PetscCall(SSStarWriteNodeField(comm, file, "/contact/state", p, n, pos, 1, sl, PETSC_TRUE));
+  PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
+  PetscCall(SSStarH5ObjectAttrString(file, "/contact/state", "names", names));
+  PetscCall(SSStarWriteNodeField(comm, file, "/contact/group", p, n, pos, 1, gl, PETSC_TRUE));
+  names[0] = 0;
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    if (g) PetscCall(PetscStrlcat(names, ",", sizeof(names)));
+    PetscCall(PetscStrlcat(names, scene->contact[g].name, sizeof(names)));
+    if (scene->contact[g].master[0]) { /* a pair: slave->master */
+      PetscCall(PetscStrlcat(names, "->", sizeof(names)));
+      PetscCall(PetscStrlcat(names, scene->contact[g].master, sizeof(names)));
+    }
+  }
+  PetscCall(SSStarH5ObjectAttrString(file, "/contact/group", "names", names));
+  { /* at the solution: the gap, pressure, tangential traction and slip (against the plane or the master surface) */
+    PetscReal *kin[4];
+
+    PetscCall(PetscMalloc4(n + 1, &kin[0], n + 1, &kin[1], 3 * n + 1, &kin[2], 3 * n + 1, &kin[3]));
+    PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3]));
+    PetscCall(SSStarWriteNodeField(comm, file, "/contact/final_gap", p, n, pos, 1, kin[0], PETSC_FALSE));
+    PetscCall(SSStarWriteNodeField(comm, file, "/contact/pressure", p, n, pos, 1, kin[1], PETSC_FALSE));
+    PetscCall(SSStarWriteNodeField(comm, file, "/contact/traction", p, n, pos, 3, kin[2], PETSC_FALSE));
+    PetscCall(SSStarWriteNodeField(comm, file, "/contact/slip", p, n, pos, 3, kin[3], PETSC_FALSE));
+    PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
+  }
+  PetscCall(SSStarWriteNodeField(comm, file, "/contact/friction_law", p, n, pos, 1, ll, PETSC_TRUE));
+  {
+    PetscInt           nlaws;
+    const char *const *laws;
+
+    PetscCall(SSStarLawGetNames(&nlaws, &laws));
+    PetscCall(SSStarJoinNames(nlaws, laws, names, sizeof(names)));
+  }
+  PetscCall(SSStarH5ObjectAttrString(file, "/contact/friction_law", "names", names));
+  PetscCall(PetscFree5(pos, ul, rl, sl, gl));
+  PetscCall(PetscFree(ll));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------------------------------------------------------
+   The contact faces: the triangles of the contact groups on the vertices of those faces (the contact nodes and the
+   held vertices among them), with the point fields ParaView colours them by
+   ------------------------------------------------------------------------------------------------------------------ */
+
+/* The first contact group whose label holds point q, or -1 */
+static PetscErrorCode PointGroup(SSStarScene scene, const DMLabel labels[], PetscInt q, PetscInt *g)
+{
+  PetscFunctionBegin;
+  *g = -1;
+  for (PetscInt k = 0; k < scene->nContact && *g < 0; k++) {
+    PetscInt value;
+
+    PetscCall(DMLabelGetValue(labels[k], q, &value));
+    if (value >= 0) *g = k;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec r, const SSStarState states[], PetscInt *nvertices, PetscInt *ntriangles)
+{
+  MPI_Comm           comm = scene->comm;
+  DM                 dm   = scene->dm, cdm;
+  DMLabel           *labels;
+  PetscSection       csec;
+  Vec                coordinates, uC, rC;
+  PetscBool         *ghost;
+  PetscInt           pStart, vStart, vEnd, fStart, fEnd, nq = 0, q, *tag, *pos, *all, ntri = 0, *tri, c = 0;
+  PetscReal         *x, *du, *st, *pr, *tt, *sl, *gp, *kin[4];
+  const PetscScalar *ta, *xa, *ua, *ra;
+  PetscMPIInt        rank, size;
+  hid_t              group;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(SSStarGhostPoints(dm, &ghost));
+  PetscCall(PetscMalloc1(scene->nContact, &labels));
+  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(DMGetLabel(dm, scene->contact[g].name, &labels[g]));
+  PetscCall(DMPlexGetChart(dm, &pStart, NULL));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  PetscCall(DMGetCoordinatesLocal(dm, &coordinates));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(VecGetArrayRead(scene->tags, &ta));
+  PetscCall(VecGetArrayRead(coordinates, &xa));
+  PetscCall(VecGetSubVector(u, scene->isC, &uC));
+  PetscCall(VecGetSubVector(r, scene->isC, &rC));
+  PetscCall(VecGetArrayRead(uC, &ua));
+  PetscCall(VecGetArrayRead(rC, &ra));
+
+  /* the owned vertices of the contact faces; the contact nodes among them come in the scene's order (vertex order) */
+  PetscCall(PetscMalloc2(vEnd - vStart + 1, &tag, vEnd - vStart + 1, &pos));
+  PetscCall(PetscMalloc5(3 * (vEnd - vStart) + 1, &x, 3 * (vEnd - vStart) + 1, &du, vEnd - vStart + 1, &st, vEnd - vStart + 1, &pr, 3 * (vEnd - vStart) + 1, &tt));
+  PetscCall(PetscMalloc2(3 * (vEnd - vStart) + 1, &sl, vEnd - vStart + 1, &gp));
+  PetscCall(PetscMalloc4(scene->n + 1, &kin[0], scene->n + 1, &kin[1], 3 * scene->n + 1, &kin[2], 3 * scene->n + 1, &kin[3]));
+  PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3])); /* gap and slip: against a plane or a master surface */
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt  g, off;
+    PetscReal xv[3];
+
+    if (ghost[v - pStart]) continue;
+    PetscCall(PointGroup(scene, labels, v, &g));
+    if (g < 0) continue;
+    PetscCall(PetscSectionGetOffset(csec, v, &off));
+    for (PetscInt k = 0; k < 3; k++) xv[k] = PetscRealPart(xa[off + k]);
+    tag[nq] = (PetscInt)PetscRealPart(ta[v - vStart]);
+    for (PetscInt k = 0; k < 3; k++) x[3 * nq + k] = xv[k];
+    if (c < scene->n && scene->tag[c] == tag[nq]) { /* contact node c */
+      const PetscReal *n = &scene->normal[3 * c], ui[3] = {PetscRealPart(ua[3 * c]), PetscRealPart(ua[3 * c + 1]), PetscRealPart(ua[3 * c + 2])};
+      const PetscReal  ri[3] = {PetscRealPart(ra[3 * c]), PetscRealPart(ra[3 * c + 1]), PetscRealPart(ra[3 * c + 2])};
+      const PetscReal  rn = SSStarDot3(ri, n), area = scene->area[c] > 0 ? scene->area[c] : 1;
+
+      st[nq] = states ? (PetscReal)states[c] : -1;
+      pr[nq] = rn / area;
+      gp[nq] = kin[0][c]; /* for a plane, gap + u.n */
+      for (PetscInt k = 0; k < 3; k++) {
+        du[3 * nq + k] = ui[k];
+        tt[3 * nq + k] = (ri[k] - rn * n[k]) / area;
+        sl[3 * nq + k] = kin[3][3 * c + k]; /* for a plane, u - (u.n) n */
+      }
+      c++;
+    } else { /* held fixed (Dirichlet) */
+      PetscReal n[3];
+
+      st[nq] = -1;
+      pr[nq] = 0;
+      PetscCall(SSStarObstacleGap(scene->contact[g].obstacle, xv, 0, &gp[nq], n));
+      for (PetscInt k = 0; k < 3; k++) du[3 * nq + k] = tt[3 * nq + k] = sl[3 * nq + k] = 0;
+    }
+    nq++;
+  }
+  PetscCheck(c == scene->n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " of the %" PetscInt_FMT " contact nodes found on the contact faces", c, scene->n);
+  PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
+  PetscCall(SSStarFileOrder(comm, nq, tag, &q, &all, pos));
+
+  /* the owned contact faces, as rows of 3 positions among the face vertices, their normal out of the body */
+  PetscCall(PetscMalloc1(3 * (fEnd - fStart) + 1, &tri));
+  for (PetscInt f = fStart; f < fEnd; f++) {
+    PetscInt *closure = NULL, nclosure, nv = 0, g, verts[3];
+    PetscReal xv[3][3], e1[3], e2[3], nrm[3];
+
+    if (ghost[f - pStart]) continue;
+    PetscCall(PointGroup(scene, labels, f, &g));
+    if (g < 0) continue;
+    PetscCall(DMPlexGetTransitiveClosure(dm, f, PETSC_TRUE, &nclosure, &closure));
+    for (PetscInt i = 0; i < nclosure; i++) {
+      const PetscInt pt = closure[2 * i];
+
+      if (pt >= vStart && pt < vEnd && nv < 3) {
+        PetscInt off;
+
+        PetscCall(PetscSectionGetOffset(csec, pt, &off));
+        for (PetscInt k = 0; k < 3; k++) xv[nv][k] = PetscRealPart(xa[off + k]);
+        verts[nv++] = (PetscInt)PetscRealPart(ta[pt - vStart]);
+      }
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &nclosure, &closure));
+    PetscCheck(nv == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of contact group %s has %" PetscInt_FMT " vertices, not 3", f, scene->contact[g].name, nv);
+    for (PetscInt k = 0; k < 3; k++) {
+      e1[k] = xv[1][k] - xv[0][k];
+      e2[k] = xv[2][k] - xv[0][k];
+    }
+    SSStarCross3(e1, e2, nrm);
+    {
+      PetscReal centre[3], gap, n[3];
+
+      for (PetscInt k = 0; k < 3; k++) centre[k] = (xv[0][k] + xv[1][k] + xv[2][k]) / 3;
+      PetscCall(SSStarObstacleGap(scene->contact[g].obstacle, centre, 0, &gap, n));
+      for (PetscInt k = 0; k < 3; k++) e1[k] = n[k];
+    }
+    if (SSStarDot3(nrm, e1) > 0) { /* the obstacle's normal (at the face's centre) points into the body; the face's out of it */
+      const PetscInt t = verts[1];
+
+      verts[1] = verts[2];
+      verts[2] = t;
+    }
+    for (PetscInt k = 0; k < 3; k++) {
+      PetscInt at;
+
+      PetscCall(PetscFindInt(verts[k], q, all, &at));
+      PetscCheck(at >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Vertex %" PetscInt_FMT " of a contact face is not among the contact faces' vertices", verts[k]);
+      tri[3 * ntri + k] = at;
+    }
+    ntri++;
+  }
+  PetscCall(VecRestoreArrayRead(rC, &ra));
+  PetscCall(VecRestoreArrayRead(uC, &ua));
+  PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
+  PetscCall(VecRestoreSubVector(u, scene->isC, &uC));
+  PetscCall(VecRestoreArrayRead(coordinates, &xa));
+  PetscCall(VecRestoreArrayRead(scene->tags, &ta));
+
+  PetscCall(SSStarH5GroupOpen(file, "/contact_faces", &group));
+  PetscCallH5(H5Gclose(group));
+  {
+    const char      *vnames[] = {"/contact_faces/vertices", "/contact_faces/displacement", "/contact_faces/pressure", "/contact_faces/tangential_traction", "/contact_faces/slip", "/contact_faces/gap"};
+    const PetscReal *values[] = {x, du, pr, tt, sl, gp};
+    const PetscInt   bs[]     = {3, 3, 1, 3, 3, 1};
+
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) PetscCall(SSStarWriteNodeField(comm, file, vnames[k], q, nq, pos, bs[k], values[k], PETSC_FALSE));
+    PetscCall(SSStarWriteNodeField(comm, file, "/contact_faces/state", q, nq, pos, 1, st, PETSC_TRUE));
+  }
+  /* the triangles: on rank 0, each rotated to start at its smallest vertex, sorted */
+  {
+    PetscMPIInt *counts, *displs, nsend = (PetscMPIInt)(3 * ntri);
+    PetscInt    *alltri = NULL, total = 0, three = 3;
+
+    PetscCall(PetscCalloc2(size, &counts, size + 1, &displs));
+    PetscCallMPI(MPI_Gather(&nsend, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
+    for (PetscMPIInt i = 0; i < size; i++) displs[i + 1] = displs[i] + counts[i];
+    if (!rank) total = displs[size] / 3;
+    PetscCall(PetscMalloc1(3 * total + 1, &alltri));
+    PetscCallMPI(MPI_Gatherv(tri, nsend, MPIU_INT, alltri, counts, displs, MPIU_INT, 0, comm));
+    for (PetscInt t = 0; t < total; t++) {
+      PetscInt *row = &alltri[3 * t], m = row[1] < row[0] ? (row[2] < row[1] ? 2 : 1) : (row[2] < row[0] ? 2 : 0), rot[3];
+
+      for (PetscInt k = 0; k < 3; k++) rot[k] = row[(m + k) % 3];
+      for (PetscInt k = 0; k < 3; k++) row[k] = rot[k];
+    }
+    if (total > 1) PetscCall(PetscTimSort(total, alltri, 3 * sizeof(PetscInt), SSStarCompareRows, &three));
+    PetscCall(SSStarH5WriteRows(comm, file, "/contact_faces/triangles", total, 3, NULL, alltri));
+    PetscCallMPI(MPI_Bcast(&total, 1, MPIU_INT, 0, comm));
+    *ntriangles = total;
+    PetscCall(PetscFree(alltri));
+    PetscCall(PetscFree2(counts, displs));
+  }
+  {
+    char names[256];
+
+    PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
+    PetscCall(SSStarH5ObjectAttrString(file, "/contact_faces/state", "names", names));
+  }
+  *nvertices = q;
+  PetscCall(PetscFree(tri));
+  PetscCall(PetscFree(all));
+  PetscCall(PetscFree2(sl, gp));
+  PetscCall(PetscFree5(x, du, st, pr, tt));
+  PetscCall(PetscFree2(tag, pos));
+  PetscCall(PetscFree(labels));
+  PetscCall(PetscFree(ghost));
+  PetscFunctionReturn(0);
+}

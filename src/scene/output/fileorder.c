@@ -1,0 +1,326 @@
+/*
+   The mesh in file order: vertex v of the file is row v of /geometry/vertices and /fields/displacement, on any number
+   of ranks. Each rank writes the rows [start_r, start_r + n_r) of an even split of the N vertices; a vertex goes from
+   the rank that owns it (the root of DMPlex's point SF) to the rank of its row. Per-node fields (the contact nodes, the
+   contact faces' vertices: few) are gathered on rank 0 in file order.
+*/
+#include "outputimpl.h"
+#include <petscsf.h>
+
+/* ghost[p - pStart]: point p is a leaf of the point SF (another rank owns it) */
+PetscErrorCode SSStarGhostPoints(DM dm, PetscBool **ghost)
+{
+  PetscSF         sf;
+  PetscInt        pStart, pEnd, nleaves;
+  const PetscInt *ilocal;
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(PetscCalloc1(pEnd - pStart + 1, ghost));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &ilocal, NULL));
+  for (PetscInt i = 0; i < (nleaves > 0 ? nleaves : 0); i++) (*ghost)[(ilocal ? ilocal[i] : i) - pStart] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The even split of N rows over the ranks: rank r has rows [ranges[r], ranges[r + 1]) */
+static PetscErrorCode EvenRanges(MPI_Comm comm, PetscInt N, PetscInt **ranges)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscMalloc1(size + 1, ranges));
+  for (PetscMPIInt r = 0; r <= size; r++) (*ranges)[r] = r * (N / size) + PetscMin(r, N % size);
+  PetscFunctionReturn(0);
+}
+
+/*
+   A field of bs values per mesh vertex (local vector local with its section sec) in file order: nat holds this rank's
+   rows of the even split
+*/
+static PetscErrorCode VertexFieldInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt bs, Vec local, PetscSection sec, Vec *nat)
+{
+  PetscInt           pStart, vStart, vEnd, *ranges;
+  PetscMPIInt        rank;
+  const PetscScalar *la, *ta;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
+  PetscCall(EvenRanges(scene->comm, scene->nodesGlobal, &ranges));
+  PetscCall(VecCreateMPI(scene->comm, bs * (ranges[rank + 1] - ranges[rank]), bs * scene->nodesGlobal, nat));
+  PetscCall(VecSetBlockSize(*nat, bs));
+  PetscCall(PetscFree(ranges));
+  PetscCall(DMPlexGetChart(scene->dm, &pStart, NULL));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(local, &la));
+  PetscCall(VecGetArrayRead(scene->tags, &ta));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off, row = (PetscInt)PetscRealPart(ta[v - vStart]);
+
+    if (ghost[v - pStart]) continue;
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    PetscCall(VecSetValuesBlocked(*nat, 1, &row, &la[off], INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(scene->tags, &ta));
+  PetscCall(VecRestoreArrayRead(local, &la));
+  PetscCall(VecAssemblyBegin(*nat));
+  PetscCall(VecAssemblyEnd(*nat));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteVec(hid_t file, const char path[], PetscInt cols, Vec v)
+{
+  const PetscScalar *a;
+  PetscReal         *w;
+  PetscInt           n;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(PetscMalloc1(n + 1, &w));
+  PetscCall(VecGetArrayRead(v, &a));
+  for (PetscInt i = 0; i < n; i++) w[i] = PetscRealPart(a[i]);
+  PetscCall(VecRestoreArrayRead(v, &a));
+  PetscCall(SSStarH5WriteRows(PetscObjectComm((PetscObject)v), file, path, n / (cols ? cols : 1), cols, w, NULL));
+  PetscCall(PetscFree(w));
+  PetscFunctionReturn(0);
+}
+
+/* The vertices of a tetrahedron, reordered by an even permutation (orientation kept) so that the smallest comes first
+   and the smallest of the other three second: the same cell gives the same row whatever the mesh's numbering */
+static void CanonicalTetrahedron(PetscInt c[4])
+{
+  PetscInt m = 0, t[4], k = 1;
+
+  for (PetscInt i = 1; i < 4; i++)
+    if (c[i] < c[m]) m = i;
+  switch (m) { /* double transpositions bring the smallest to the front */
+  case 0:
+    t[0] = c[0], t[1] = c[1], t[2] = c[2], t[3] = c[3];
+    break;
+  case 1:
+    t[0] = c[1], t[1] = c[0], t[2] = c[3], t[3] = c[2];
+    break;
+  case 2:
+    t[0] = c[2], t[1] = c[3], t[2] = c[0], t[3] = c[1];
+    break;
+  default:
+    t[0] = c[3], t[1] = c[2], t[2] = c[1], t[3] = c[0];
+  }
+  for (PetscInt i = 2; i < 4; i++)
+    if (t[i] < t[k]) k = i;
+  c[0] = t[0]; /* a rotation of the last three brings the smallest of them second */
+  c[1] = t[k];
+  c[2] = t[k == 3 ? 1 : k + 1];
+  c[3] = t[k == 1 ? 3 : k - 1];
+}
+
+/* Rows of cols vertex numbers, compared by their sorted entries */
+int SSStarCompareRows(const void *a, const void *b, void *ctx)
+{
+  const PetscInt cols = *(const PetscInt *)ctx;
+  PetscInt       x[4], y[4];
+
+  for (PetscInt k = 0; k < cols; k++) {
+    x[k] = ((const PetscInt *)a)[k];
+    y[k] = ((const PetscInt *)b)[k];
+  }
+  PetscSortInt(cols, x);
+  PetscSortInt(cols, y);
+  for (PetscInt k = 0; k < cols; k++)
+    if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
+  return 0;
+}
+
+/*
+   The tetrahedra of the mesh as rows of 4 file vertex numbers, canonical and sorted: each cell goes to the rank whose
+   even-split vertex range holds its smallest vertex, which sorts its cells; the ranks' rows in rank order are sorted.
+*/
+static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt *nout, PetscInt **out)
+{
+  MPI_Comm           comm = scene->comm;
+  PetscMPIInt        size, *scount, *sdispl, *rcount, *rdispl;
+  PetscInt           pStart, cStart, cEnd, vStart, vEnd, ncells = 0, *rows, *ranges, *sorted, cols = 4, nrecv = 0;
+  const PetscScalar *ta, *xa;
+  DM                 cdm;
+  PetscSection       csec;
+  Vec                coordinates;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(EvenRanges(comm, scene->nodesGlobal, &ranges));
+  PetscCall(DMPlexGetChart(scene->dm, &pStart, NULL));
+  PetscCall(DMPlexGetHeightStratum(scene->dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(4 * (cEnd - cStart) + 1, &rows));
+  PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
+  PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(VecGetArrayRead(coordinates, &xa));
+  PetscCall(VecGetArrayRead(scene->tags, &ta));
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    PetscInt  v[4], *row = &rows[4 * ncells];
+    PetscReal x[4][3], e[3][3], volume;
+
+    if (ghost[c - pStart]) continue;
+    PetscCall(SSStarMeshCellVertices(scene->dm, c, v));
+    for (PetscInt i = 0; i < 4; i++) {
+      PetscInt off;
+
+      PetscCall(PetscSectionGetOffset(csec, v[i], &off));
+      for (PetscInt k = 0; k < 3; k++) x[i][k] = PetscRealPart(xa[off + k]);
+      row[i] = (PetscInt)PetscRealPart(ta[v[i] - vStart]);
+    }
+    /* VTK's (and XDMF's) orientation: (x1 - x0) x (x2 - x0) . (x3 - x0) > 0 */
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt k = 0; k < 3; k++) e[i][k] = x[i + 1][k] - x[0][k];
+    volume = (e[0][1] * e[1][2] - e[0][2] * e[1][1]) * e[2][0] + (e[0][2] * e[1][0] - e[0][0] * e[1][2]) * e[2][1] + (e[0][0] * e[1][1] - e[0][1] * e[1][0]) * e[2][2];
+    if (volume < 0) {
+      const PetscInt t = row[2];
+
+      row[2] = row[3];
+      row[3] = t;
+    }
+    CanonicalTetrahedron(row);
+    ncells++;
+  }
+  PetscCall(VecRestoreArrayRead(scene->tags, &ta));
+  PetscCall(VecRestoreArrayRead(coordinates, &xa));
+  /* rows to the rank of their smallest vertex (rows[4 i]): sort by destination first */
+  PetscCall(PetscCalloc4(size, &scount, size + 1, &sdispl, size, &rcount, size + 1, &rdispl));
+  {
+    PetscInt *dest, *perm, *tmp;
+
+    PetscCall(PetscMalloc3(ncells + 1, &dest, ncells + 1, &perm, 4 * ncells + 1, &tmp));
+    for (PetscInt i = 0; i < ncells; i++) {
+      PetscInt r = 0;
+
+      while (r + 1 < size && ranges[r + 1] <= rows[4 * i]) r++; /* the range [ranges[r], ranges[r + 1]) holding it */
+      dest[i] = r;
+      perm[i] = i;
+      scount[r] += 4;
+    }
+    PetscCall(PetscSortIntWithArray(ncells, dest, perm));
+    for (PetscInt i = 0; i < ncells; i++)
+      for (PetscInt k = 0; k < 4; k++) tmp[4 * i + k] = rows[4 * perm[i] + k];
+    PetscCall(PetscArraycpy(rows, tmp, 4 * ncells));
+    PetscCall(PetscFree3(dest, perm, tmp));
+  }
+  PetscCallMPI(MPI_Alltoall(scount, 1, MPI_INT, rcount, 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    sdispl[r + 1] = sdispl[r] + scount[r];
+    rdispl[r + 1] = rdispl[r] + rcount[r];
+  }
+  nrecv = rdispl[size] / 4;
+  PetscCall(PetscMalloc1(4 * nrecv + 1, &sorted));
+  PetscCallMPI(MPI_Alltoallv(rows, scount, sdispl, MPIU_INT, sorted, rcount, rdispl, MPIU_INT, comm));
+  if (nrecv > 1) PetscCall(PetscTimSort(nrecv, sorted, 4 * sizeof(PetscInt), SSStarCompareRows, &cols));
+  PetscCall(PetscFree4(scount, sdispl, rcount, rdispl));
+  PetscCall(PetscFree(rows));
+  PetscCall(PetscFree(ranges));
+  *nout = nrecv;
+  *out  = sorted;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
+{
+  DM           cdm;
+  PetscSection csec, sec;
+  Vec          coordinates, ul, nat;
+  PetscBool   *ghost;
+  PetscInt     ncells, *cells;
+  hid_t        group;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
+  PetscCall(SSStarH5GroupOpen(file, "/geometry", &group));
+  PetscCallH5(H5Gclose(group));
+  PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
+  PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(VertexFieldInFileOrder(scene, ghost, 3, coordinates, csec, &nat));
+  PetscCall(WriteVec(file, "/geometry/vertices", 3, nat));
+  PetscCall(VecDestroy(&nat));
+
+  /* the displacement with the held dofs (0: DMGlobalToLocal leaves the constrained dofs as they are) */
+  PetscCall(SSStarH5GroupOpen(file, "/fields", &group));
+  PetscCallH5(H5Gclose(group));
+  PetscCall(DMGetLocalSection(scene->dm, &sec));
+  PetscCall(DMGetLocalVector(scene->dm, &ul));
+  PetscCall(VecZeroEntries(ul));
+  PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, ul));
+  PetscCall(VertexFieldInFileOrder(scene, ghost, 3, ul, sec, &nat));
+  PetscCall(DMRestoreLocalVector(scene->dm, &ul));
+  PetscCall(WriteVec(file, "/fields/displacement", 3, nat));
+  PetscCall(VecDestroy(&nat));
+
+  PetscCall(CellsInFileOrder(scene, ghost, &ncells, &cells));
+  PetscCall(SSStarH5GroupOpen(file, "/viz/topology", &group));
+  PetscCallH5(H5Gclose(group));
+  PetscCall(SSStarH5WriteRows(scene->comm, file, "/viz/topology/cells", ncells, 4, NULL, cells));
+  {
+    hid_t set = H5Dopen2(file, "/viz/topology/cells", H5P_DEFAULT);
+
+    PetscCall(SSStarH5AttrInt(set, "cell_dim", 3)); /* what PETSc's petsc_gen_xdmf.py reads */
+    PetscCall(SSStarH5AttrInt(set, "cell_corners", 4));
+    PetscCallH5(H5Dclose(set));
+  }
+  PetscCall(PetscFree(cells));
+  PetscCall(PetscFree(ghost));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------------------------------------------------------
+   Per-node fields gathered on rank 0 in file order (the contact nodes, the contact faces' vertices: few)
+   ------------------------------------------------------------------------------------------------------------------ */
+
+/* Position of each of the n local keys (file vertex numbers) among the sorted keys of all ranks; *p: their number */
+PetscErrorCode SSStarFileOrder(MPI_Comm comm, PetscInt n, const PetscInt key[], PetscInt *p, PetscInt **all, PetscInt pos[])
+{
+  IS              local, gathered;
+  const PetscInt *keys;
+
+  PetscFunctionBegin;
+  PetscCall(ISCreateGeneral(comm, n, key, PETSC_USE_POINTER, &local));
+  PetscCall(ISAllGather(local, &gathered));
+  PetscCall(ISGetLocalSize(gathered, p));
+  PetscCall(ISGetIndices(gathered, &keys));
+  PetscCall(PetscMalloc1(*p + 1, all));
+  PetscCall(PetscArraycpy(*all, keys, *p));
+  PetscCall(ISRestoreIndices(gathered, &keys));
+  PetscCall(PetscSortInt(*p, *all));
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscFindInt(key[i], *p, *all, &pos[i]));
+  PetscCall(ISDestroy(&gathered));
+  PetscCall(ISDestroy(&local));
+  PetscFunctionReturn(0);
+}
+
+/* The dataset path (p rows of bs values, bs = 1: 1-d) from the n local nodes at positions pos; integers if asInt */
+PetscErrorCode SSStarWriteNodeField(MPI_Comm comm, hid_t file, const char path[], PetscInt p, PetscInt n, const PetscInt pos[], PetscInt bs, const PetscReal values[], PetscBool asInt)
+{
+  PetscMPIInt        rank;
+  Vec                v;
+  const PetscScalar *a;
+  PetscReal         *w;
+  PetscInt          *iw;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(VecCreateMPI(comm, rank ? 0 : p * bs, p * bs, &v));
+  for (PetscInt i = 0; i < n; i++)
+    for (PetscInt k = 0; k < bs; k++) PetscCall(VecSetValue(v, pos[i] * bs + k, values[i * bs + k], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(v));
+  PetscCall(VecAssemblyEnd(v));
+  PetscCall(PetscMalloc2(rank ? 1 : p * bs + 1, &w, rank ? 1 : p * bs + 1, &iw));
+  PetscCall(VecGetArrayRead(v, &a));
+  for (PetscInt i = 0; i < (rank ? 0 : p * bs); i++) {
+    w[i]  = PetscRealPart(a[i]);
+    iw[i] = (PetscInt)PetscRealPart(a[i]);
+  }
+  PetscCall(VecRestoreArrayRead(v, &a));
+  PetscCall(SSStarH5WriteRows(comm, file, path, rank ? 0 : p, bs > 1 ? bs : 0, asInt ? NULL : w, asInt ? iw : NULL));
+  PetscCall(PetscFree2(w, iw));
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(0);
+}

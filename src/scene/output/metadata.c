@@ -1,0 +1,217 @@
+/* What was simulated (/scene) and how the run went (the attributes of /) */
+#include "outputimpl.h"
+
+/* An obstacle's attributes (SSStarObstacleWriteAttributes()) on the HDF5 group *ctx */
+static PetscErrorCode AttributeReals(void *ctx, const char name[], PetscInt n, const PetscReal v[])
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarH5AttrReals(*(hid_t *)ctx, name, n, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AttributeInt(void *ctx, const char name[], PetscInt v)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarH5AttrInt(*(hid_t *)ctx, name, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AttributeString(void *ctx, const char name[], const char v[])
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarH5AttrString(*(hid_t *)ctx, name, v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeFriction *nf)
+{
+  hid_t group, sub;
+  char  path[PETSC_MAX_PATH_LEN], list[4096];
+
+  PetscFunctionBegin;
+  PetscCall(SSStarH5GroupOpen(file, "/scene", &group));
+  PetscCall(SSStarH5AttrString(group, "mesh", scene->mesh));
+  PetscCall(SSStarH5AttrInt(group, "nodes", scene->nodesGlobal));
+  PetscCall(SSStarH5AttrInt(group, "cells", scene->cellsGlobal));
+  PetscCall(SSStarH5AttrReal(group, "mesh_scale", scene->meshScale));
+  if (scene->hasE) PetscCall(SSStarH5AttrReal(group, "E", scene->E));
+  if (scene->hasNu) PetscCall(SSStarH5AttrReal(group, "nu", scene->nu));
+  if (scene->hasGravity) {
+    PetscCall(SSStarH5AttrReals(group, "gravity", 3, scene->gravity));
+    PetscCall(SSStarH5AttrReal(group, "density", scene->density));
+  }
+  PetscCall(SSStarJoinNames(scene->nDirichlet, (const char *const *)scene->dirichlet, list, sizeof(list)));
+  PetscCall(SSStarH5AttrString(group, "dirichlet", list));
+  list[0] = 0;
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    if (g) PetscCall(PetscStrlcat(list, ",", sizeof(list)));
+    PetscCall(PetscStrlcat(list, scene->contact[g].name, sizeof(list)));
+  }
+  PetscCall(SSStarH5AttrString(group, "contact", list));
+  PetscCallH5(H5Gclose(group));
+  for (PetscInt m = 0; m < scene->nMaterials; m++) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/material/%s", scene->materials[m].name));
+    PetscCall(SSStarH5GroupOpen(file, path, &sub));
+    PetscCall(SSStarH5AttrReal(sub, "E", scene->materials[m].value[0]));
+    PetscCall(SSStarH5AttrReal(sub, "nu", scene->materials[m].value[1]));
+    PetscCallH5(H5Gclose(sub));
+  }
+  for (PetscInt t = 0; t < scene->nTractions; t++) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/traction/%s", scene->tractions[t].name));
+    PetscCall(SSStarH5GroupOpen(file, path, &sub));
+    PetscCall(SSStarH5AttrReals(sub, "traction", 3, scene->tractions[t].value));
+    PetscCallH5(H5Gclose(sub));
+  }
+  for (PetscInt s = 0; s < scene->nSprings; s++) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/spring/%s", scene->springs[s].name));
+    PetscCall(SSStarH5GroupOpen(file, path, &sub));
+    PetscCall(SSStarH5AttrReal(sub, "k", scene->springs[s].value[0]));
+    PetscCallH5(H5Gclose(sub));
+  }
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    const SSStarContactGroup *cg = &scene->contact[g];
+    PetscInt                 *laws, nlaws, law = -1, with[2] = {0, 0}; /* nodes per law; nodes with a friction, a slip bound */
+    PetscReal                 range[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* min phi, -max phi, min s, -max s */
+    const char               *name = "mixed";
+
+    PetscCall(SSStarLawGetNames(&nlaws, NULL));
+    PetscCall(PetscCalloc1(nlaws, &laws));
+    for (PetscInt i = 0; i < scene->n; i++) {
+      PetscBool friction, bound;
+
+      if (scene->group[i] != g) continue;
+      laws[nf->law[i]]++;
+      PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
+      PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
+      if (friction) {
+        with[0]++;
+        range[0] = PetscMin(range[0], nf->phi[i]);
+        range[1] = PetscMin(range[1], -nf->phi[i]);
+      }
+      if (bound) {
+        with[1]++;
+        range[2] = PetscMin(range[2], nf->bound[i]);
+        range[3] = PetscMin(range[3], -nf->bound[i]);
+      }
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, laws, nlaws, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, with, 2, MPIU_INT, MPI_SUM, scene->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 4, MPIU_REAL, MPIU_MIN, scene->comm));
+    for (PetscInt k = 0; k < nlaws; k++)
+      if (laws[k] == cg->nodes) law = k;
+    PetscCall(PetscFree(laws));
+    if (law >= 0) PetscCall(SSStarLawGetInfo(law, &name, NULL, NULL, NULL));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/contact/%s", cg->name));
+    PetscCall(SSStarH5GroupOpen(file, path, &sub));
+    PetscCall(SSStarH5AttrString(sub, "law", name));
+    if (nf->known && with[0] && range[0] == -range[1]) PetscCall(SSStarH5AttrReal(sub, "friction", range[0]));
+    if (nf->known && with[1] && range[2] == -range[3]) PetscCall(SSStarH5AttrReal(sub, "slip_bound", range[2]));
+    if (cg->master[0]) { /* a contact pair: its master surface and discretization, no obstacle */
+      PetscCall(SSStarH5AttrString(sub, "master", cg->master));
+      PetscCall(SSStarH5AttrString(sub, "discretization", SSStarPairDiscretizations[scene->pairMethod]));
+    } else {
+      SSStarAttributeWriter writer = {&sub, AttributeReals, AttributeInt, AttributeString};
+      char                  text[PETSC_MAX_PATH_LEN + 128];
+
+      PetscCall(SSStarObstacleDescribe(cg->obstacle, text, sizeof(text)));
+      PetscCall(SSStarH5AttrString(sub, "obstacle", text));
+      PetscCall(SSStarObstacleWriteAttributes(cg->obstacle, &writer));
+    }
+    PetscCall(SSStarH5AttrInt(sub, "nodes", cg->nodes));
+    PetscCall(SSStarH5AttrReal(sub, "gap_min", cg->gapMin));
+    PetscCall(SSStarH5AttrReal(sub, "gap_max", cg->gapMax));
+    PetscCallH5(H5Gclose(sub));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The command line as one string, each argument quoted when the shell would need it (rank 0's, on every rank) */
+static PetscErrorCode CommandLine(MPI_Comm comm, char **line)
+{
+  int         argc;
+  char      **argv;
+  size_t      len = 1;
+  PetscMPIInt rank;
+  int         n;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscGetArgs(&argc, &argv));
+  for (int i = 0; i < argc; i++) len += strlen(argv[i]) + 3;
+  n = (int)len;
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, 0, comm));
+  PetscCall(PetscCalloc1(n, line));
+  if (!rank)
+    for (int i = 0; i < argc; i++) {
+      const PetscBool quote = (PetscBool)(!argv[i][0] || strpbrk(argv[i], " \t\"'$*?;&|<>()") != NULL);
+
+      if (i) PetscCall(PetscStrlcat(*line, " ", n));
+      if (quote) PetscCall(PetscStrlcat(*line, "'", n));
+      PetscCall(PetscStrlcat(*line, argv[i], n));
+      if (quote) PetscCall(PetscStrlcat(*line, "'", n));
+    }
+  PetscCallMPI(MPI_Bcast(*line, n, MPI_CHAR, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarWriteRun(SSStarScene scene, hid_t file, SNES snes)
+{
+  hid_t               root;
+  char                version[64], *line, names[256];
+  PetscInt            major, minor, subminor, release, its, maxit, maxf;
+  PetscReal           norm, atol, rtol, stol;
+  PetscMPIInt         size;
+  SNESConvergedReason reason;
+  SNESType            type;
+  PetscBool           isssstar;
+
+  PetscFunctionBegin;
+  root = H5Gopen2(file, "/", H5P_DEFAULT);
+  PetscCheck(root >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 cannot open the root group");
+  PetscCall(PetscSNPrintf(version, sizeof(version), "%d.%d.%d", SSSTAR_VERSION_MAJOR, SSSTAR_VERSION_MINOR, SSSTAR_VERSION_SUBMINOR));
+  PetscCall(SSStarH5AttrString(root, "ssstar_version", version));
+  PetscCall(PetscGetVersionNumber(&major, &minor, &subminor, &release));
+  PetscCall(PetscSNPrintf(version, sizeof(version), "%" PetscInt_FMT ".%" PetscInt_FMT ".%" PetscInt_FMT, major, minor, subminor));
+  PetscCall(SSStarH5AttrString(root, "petsc_version", version));
+  PetscCall(CommandLine(scene->comm, &line));
+  PetscCall(SSStarH5AttrString(root, "command_line", line));
+  PetscCall(PetscFree(line));
+  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
+  PetscCall(SSStarH5AttrInt(root, "ranks", size));
+
+  PetscCall(SNESGetType(snes, &type));
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, &its));
+  PetscCall(SNESGetFunctionNorm(snes, &norm));
+  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, &maxf));
+  PetscCall(SSStarH5AttrString(root, "snes_type", type ? type : ""));
+  PetscCall(SSStarH5AttrString(root, "converged_reason", SNESConvergedReasons[reason]));
+  PetscCall(SSStarH5AttrInt(root, "converged_reason_code", (PetscInt)reason));
+  PetscCall(SSStarH5AttrInt(root, "iterations", its));
+  PetscCall(SSStarH5AttrReal(root, "residual_norm", norm));
+  PetscCall(SSStarH5AttrReal(root, "rtol", rtol));
+  PetscCall(SSStarH5AttrReal(root, "atol", atol));
+  PetscCall(SSStarH5AttrInt(root, "max_it", maxit));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (isssstar) {
+    SSStarReason        sub;
+    PetscReal           tol, gamma;
+    PetscInt            counts[SSSTAR_NUM_STATES];
+    SSStarReductionType rtype;
+
+    PetscCall(SNESSSStarGetReason(snes, &sub));
+    PetscCall(SNESSSStarGetTolerance(snes, &tol));
+    PetscCall(SNESSSStarGetStates(snes, NULL, counts));
+    PetscCall(SNESSSStarGetScaling(snes, &gamma));
+    PetscCall(SNESSSStarGetReductionType(snes, &rtype));
+    PetscCall(SSStarH5AttrString(root, "sub_reason", SSStarReasons[sub]));
+    PetscCall(SSStarH5AttrReal(root, "tolerance", tol));
+    PetscCall(SSStarH5AttrReal(root, "scaling", gamma));
+    PetscCall(SSStarH5AttrString(root, "reduction", rtype));
+    PetscCall(SSStarH5AttrInts(root, "state_counts", SSSTAR_NUM_STATES, counts));
+    PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
+    PetscCall(SSStarH5AttrString(root, "state_names", names));
+  }
+  PetscCallH5(H5Gclose(root));
+  PetscFunctionReturn(0);
+}

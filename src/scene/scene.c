@@ -1,0 +1,361 @@
+/*
+   A scene: the body (a gmsh mesh), its material, supports and loads, and its contact groups, each with a contact source
+   (a rigid obstacle: obstacle.c; or the master surface of a contact pair: pairs.c) and a friction law. Only what the
+   options name is built: no contact group, no contact nodes; no -gravity, no body force. The description comes from
+   the options (sceneoptions.c); SSStarSceneSetUp() meshes, finds the bodies (bodies.c) and the contact nodes (nodes.c)
+   and builds the contact operator (operator.c).
+*/
+#include "sceneimpl.h"
+
+/*@C
+   SSStarSceneCreate - an empty scene; SSStarSceneSetFromOptions() describes it, SSStarSceneSetUp() builds it
+
+   Collective
+
+   Input Parameter:
+.  comm - the ranks that share the scene
+
+   Output Parameter:
+.  scene - the scene
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetFromOptions()`, `SSStarSceneSetUp()`, `SSStarSceneDestroy()`
+@*/
+PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscNew(scene));
+  (*scene)->comm      = comm;
+  (*scene)->meshScale = 1.0;
+  (*scene)->level     = -1;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneDestroy - frees the scene, its mesh and contact nodes
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene (set to NULL)
+
+   Level: beginner
+
+.seealso: `SSStarSceneCreate()`
+@*/
+PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
+{
+  SSStarScene s = *scene;
+
+  PetscFunctionBegin;
+  if (!s) PetscFunctionReturn(0);
+  for (PetscInt g = 0; g < s->nDirichlet; g++) PetscCall(PetscFree(s->dirichlet[g]));
+  PetscCall(PetscFree(s->dirichlet));
+  PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
+  for (PetscInt g = 0; g < s->nContact; g++) PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
+  PetscCall(PetscFree(s->contact));
+  PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
+  PetscCall(PetscFree2(s->gap, s->area));
+  PetscCall(ISDestroy(&s->isC));
+  PetscCall(PetscFree(s->body));
+  PetscCall(PetscFree(s->frame));
+  PetscCall(PetscFree3(s->masterStart, s->masterDof, s->masterWeight));
+  PetscCall(MatDestroy(&s->B));
+  PetscCall(VecDestroy(&s->tags));
+  PetscCall(DMDestroy(&s->dm));
+  PetscCall(PetscFree(*scene));
+  PetscFunctionReturn(0);
+}
+
+/* The mesh file of -geo at -level: meshes/prism.geo at level 6 -> meshes/prism_L6.msh */
+static PetscErrorCode MeshFileOfLevel(SSStarScene scene)
+{
+  size_t len;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrlen(scene->geo, &len));
+  PetscCheck(len > 4 && !strcmp(scene->geo + len - 4, ".geo"), scene->comm, PETSC_ERR_ARG_WRONG, "-geo %s: expected a .geo file", scene->geo);
+  PetscCall(PetscSNPrintf(scene->mesh, sizeof(scene->mesh), "%.*s_L%" PetscInt_FMT ".msh", (int)(len - 4), scene->geo, scene->level));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
+   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups), finds the bodies (connected parts of the
+   mesh; one that no -dirichlet or -spring_<G> group holds is refused, named by its volume groups), the contact nodes
+   and the contact operator B (each node's rows from its group's rigid obstacle or contact pair)
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetFromOptions()
+
+   Notes:
+   Refuses, before each costly step, a problem too large for the machine's memory (SSStarCheckMemory()).
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetFromOptions()`, `SSStarSceneAssemble()`, `SSStarSceneSetContact()`
+@*/
+PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
+{
+  SSStarGroupUse *uses;
+  char          **options;
+  PetscInt        nuses = 0, cells;
+  Vec             coordinates;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_Mesh, 0, 0, 0, 0));
+  if (scene->geo[0]) {
+    PetscCall(MeshFileOfLevel(scene));
+    PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
+  }
+  PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
+  PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
+  PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
+  PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, &scene->dm, &scene->tags));
+  for (PetscInt k = 0; k < nuses; k++) PetscCall(PetscFree(options[k]));
+  PetscCall(PetscFree(options));
+  PetscCall(PetscFree(uses));
+  PetscCall(SSStarMeshScale(scene->dm, scene->meshScale));
+  PetscCall(SSStarMeshCreateSection(scene->dm, scene->nDirichlet, scene->dirichlet));
+  PetscCall(DMGetCoordinates(scene->dm, &coordinates));
+  PetscCall(VecGetSize(coordinates, &scene->nodesGlobal));
+  scene->nodesGlobal /= 3;
+  {
+    PetscInt cStart, cEnd;
+
+    PetscCall(DMPlexGetHeightStratum(scene->dm, 0, &cStart, &cEnd));
+    cells = cEnd - cStart;
+    PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
+  }
+  PetscCall(SSStarSceneFindBodies(scene));
+  PetscCall(SSStarSceneFindContactNodes(scene));
+  PetscCall(SSStarSceneBuildContactOperator(scene));
+  PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneGetDM - the distributed mesh of the scene, with its displacement section
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameter:
+.  dm - the DMPlex (owned by the scene); DMCreateGlobalVector() gives the displacement vectors
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetUp()`, `SSStarSceneAssemble()`
+@*/
+PetscErrorCode SSStarSceneGetDM(SSStarScene scene, DM *dm)
+{
+  PetscFunctionBegin;
+  *dm = scene->dm;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneGetSizes - the number of mesh nodes and of contact nodes (global)
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameters:
++  nodes   - the mesh nodes, or pass NULL
+-  contact - the contact nodes, or pass NULL
+
+   Level: beginner
+
+.seealso: `SSStarSceneGetContactNodes()`
+@*/
+PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt *contact)
+{
+  PetscFunctionBegin;
+  if (nodes) *nodes = scene->nodesGlobal;
+  if (contact) *contact = scene->nGlobal;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneAssemble - the stiffness K (SPD, with the springs) and the load b (tractions, gravity) of the scene
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameters:
++  K - the stiffness (the caller destroys it); the rigid-body modes are its near-null space
+-  b - the load (the caller destroys it)
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetContact()`, `SSStarSceneGetDM()`
+@*/
+PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarAssembleElasticity(scene, K, b));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneHasContact - whether the scene names contact groups (-contact); without, one linear solve is all there is
+   to do
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene
+
+   Output Parameter:
+.  has - PETSC_TRUE with contact groups
+
+   Level: beginner
+
+.seealso: `SSStarSceneSetContact()`
+@*/
+PetscErrorCode SSStarSceneHasContact(SSStarScene scene, PetscBool *has)
+{
+  PetscFunctionBegin;
+  *has = (PetscBool)(scene->nContact > 0);
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneGetContactDofs - the global x, y, z dofs of the owned contact nodes
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameter:
+.  dofs - 3 per node, in the order of the states SNESSSStarGetStates() returns for this scene (owned by the scene)
+
+   Level: intermediate
+
+.seealso: `SSStarSceneGetContactNodes()`, `SSStarSceneSetContact()`
+@*/
+PetscErrorCode SSStarSceneGetContactDofs(SSStarScene scene, IS *dofs)
+{
+  PetscFunctionBegin;
+  *dofs = scene->isC;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneGetContactNodes - the owned contact nodes, in the order of SSStarSceneGetContactDofs()
+
+   Not Collective
+
+   Input Parameter:
+.  scene - the scene, after SSStarSceneSetUp()
+
+   Output Parameters:
++  n       - their number, or pass NULL
+.  coords  - their coordinates, 3 per node, or pass NULL
+.  normals - the normals of their obstacles at them (out of the obstacle, into the body), 3 per node, or pass NULL
+.  gaps    - their initial gaps, 1 per node, or pass NULL
+-  areas   - their tributary areas (a third of their adjacent contact faces), 1 per node, or pass NULL
+
+   Notes:
+   The arrays belong to the scene.
+
+   Level: intermediate
+
+.seealso: `SSStarSceneGetContactDofs()`, `SSStarSceneGetContactResult()`
+@*/
+PetscErrorCode SSStarSceneGetContactNodes(SSStarScene scene, PetscInt *n, const PetscReal *coords[], const PetscReal *normals[], const PetscReal *gaps[], const PetscReal *areas[])
+{
+  PetscFunctionBegin;
+  if (n) *n = scene->n;
+  if (coords) *coords = scene->coords;
+  if (normals) *normals = scene->normal;
+  if (gaps) *gaps = scene->gap;
+  if (areas) *areas = scene->area;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneView - what the scene simulates: the body, its material, supports and loads, its contact groups, and
+   the line "active effects"
+
+   Collective
+
+   Input Parameters:
++  scene  - the scene
+-  viewer - an ASCII viewer
+
+   Level: beginner
+
+.seealso: `SSStarSceneContactView()`, `SSStarSceneSetFromOptions()`
+@*/
+PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
+{
+  char effects[512] = "elasticity";
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  if (scene->hasE && scene->hasNu) PetscCall(PetscViewerASCIIPrintf(viewer, "material: E = %g, nu = %g\n", (double)scene->E, (double)scene->nu));
+  for (PetscInt m = 0; m < scene->nMaterials; m++) PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g\n", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
+  for (PetscInt g = 0; g < scene->nDirichlet; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "held fixed: %s\n", scene->dirichlet[g]));
+  for (PetscInt s = 0; s < scene->nSprings; s++) PetscCall(PetscViewerASCIIPrintf(viewer, "spring on %s: k = %g per unit area, every direction\n", scene->springs[s].name, (double)scene->springs[s].value[0]));
+  for (PetscInt t = 0; t < scene->nTractions; t++) PetscCall(PetscViewerASCIIPrintf(viewer, "traction on %s: (%g, %g, %g)\n", scene->tractions[t].name, (double)scene->tractions[t].value[0], (double)scene->tractions[t].value[1], (double)scene->tractions[t].value[2]));
+  if (scene->hasGravity) PetscCall(PetscViewerASCIIPrintf(viewer, "gravity: (%g, %g, %g), density %g\n", (double)scene->gravity[0], (double)scene->gravity[1], (double)scene->gravity[2], (double)scene->density));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    const SSStarContactGroup *cg = &scene->contact[g];
+    char                      obstacle[PETSC_MAX_PATH_LEN + 128];
+    const char               *law;
+    PetscBool                 friction, bound;
+
+    PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
+    PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
+    PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
+    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, law));
+    else {
+      PetscCall(SSStarObstacleDescribe(cg->obstacle, obstacle, sizeof(obstacle)));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, law));
+    }
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
+    if (friction && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
+    if (friction && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
+    if (bound) PetscCall(PetscViewerASCIIPrintf(viewer, ", slip bound %g per node", (double)cg->bound));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
+  }
+  if (scene->nBodies > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "bodies: %" PetscInt_FMT " (connected parts of the mesh)\n", scene->nBodies));
+  if (scene->nPairs && scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(PetscViewerASCIIPrintf(viewer, "dual mortar: %" PetscInt_FMT " slave nodes not covered by their master surface keep node-to-surface\n", scene->pairFallback));
+  if (scene->nSprings) PetscCall(PetscStrlcat(effects, ", springs", sizeof(effects)));
+  if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
+  if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
+  if (scene->nContact) {
+    PetscInt nlaws;
+
+    PetscCall(PetscStrlcat(effects, ", contact (non-penetration)", sizeof(effects)));
+    if (scene->nPairs) PetscCall(PetscStrlcat(effects, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? ", contact pairs (dual mortar)" : ", contact pairs (node-to-surface)", sizeof(effects)));
+    PetscCall(SSStarLawGetNames(&nlaws, NULL));
+    for (PetscInt l = 0; l < nlaws; l++) { /* the effects of the laws in use, in the table's order */
+      PetscBool   used = PETSC_FALSE;
+      const char *effect;
+
+      for (PetscInt g = 0; g < scene->nContact; g++) used = (PetscBool)(used || scene->contact[g].law == l);
+      PetscCall(SSStarLawGetInfo(l, NULL, &effect, NULL, NULL));
+      if (used && effect) {
+        PetscCall(PetscStrlcat(effects, ", ", sizeof(effects)));
+        PetscCall(PetscStrlcat(effects, effect, sizeof(effects)));
+      }
+    }
+  } else PetscCall(PetscStrlcat(effects, "; no contact: one linear solve", sizeof(effects)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "active effects: %s\n", effects));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(0);
+}

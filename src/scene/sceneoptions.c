@@ -1,0 +1,408 @@
+/*
+   The scene's description from the options database (README "Scenes"): the body, its material, supports, loads and
+   contact groups, each option checked where it is read, with errors that name the option; the groups the options
+   name, for the checks against the mesh; the refusal of unread options with the scene's own among the known ones.
+*/
+#include "sceneimpl.h"
+
+#define SSSTAR_MAX_LIST 64 /* groups in one -dirichlet or -contact list */
+
+/* A real array option of exactly n finite values (or not given) */
+static PetscErrorCode GetFiniteArray(MPI_Comm comm, const char option[], PetscInt n, const char form[], PetscReal v[], PetscBool *set)
+{
+  PetscInt got = n;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetRealArray(NULL, NULL, option, v, &got, set));
+  if (!*set) PetscFunctionReturn(0);
+  PetscCheck(got == n, comm, PETSC_ERR_ARG_WRONG, "Option %s needs %" PetscInt_FMT " comma-separated values %s (got %" PetscInt_FMT ")", option, n, form, got);
+  for (PetscInt k = 0; k < n; k++) PetscCheck(!PetscIsInfOrNanReal(v[k]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s: value %" PetscInt_FMT " is not a finite number (%g)", option, k + 1, (double)v[k]);
+  PetscFunctionReturn(0);
+}
+
+/* A list of group names (-dirichlet, -contact); each name once */
+static PetscErrorCode GetGroupList(MPI_Comm comm, const char option[], PetscInt *n, char ***names)
+{
+  char     *list[SSSTAR_MAX_LIST];
+  PetscInt  max = SSSTAR_MAX_LIST;
+  PetscBool set, same;
+
+  PetscFunctionBegin;
+  *n     = 0;
+  *names = NULL;
+  PetscCall(PetscOptionsGetStringArray(NULL, NULL, option, list, &max, &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(max, names));
+  for (PetscInt i = 0; i < max; i++) {
+    size_t len;
+
+    PetscCall(PetscStrlen(list[i], &len));
+    PetscCheck(len > 0 && len < SSSTAR_GROUP_NAME_LEN, comm, PETSC_ERR_ARG_WRONG, "Option %s: group name %" PetscInt_FMT " is empty or longer than %d characters", option, i + 1, SSSTAR_GROUP_NAME_LEN - 1);
+    for (PetscInt j = 0; j < i; j++) {
+      PetscCall(PetscStrcmp(list[i], list[j], &same));
+      PetscCheck(!same, comm, PETSC_ERR_ARG_WRONG, "Option %s names the group \"%s\" twice", option, list[i]);
+    }
+    (*names)[i] = list[i];
+  }
+  *n = max;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FindName(const char name[], PetscInt n, char *const names[], PetscInt *index)
+{
+  PetscBool same;
+
+  PetscFunctionBegin;
+  *index = -1;
+  for (PetscInt i = 0; i < n && *index < 0; i++) {
+    PetscCall(PetscStrcmp(name, names[i], &same));
+    if (same) *index = i;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The options that carry a group name: -<prefix><G> */
+typedef enum {
+  OPT_MATERIAL,
+  OPT_TRACTION,
+  OPT_SPRING,
+  OPT_OBSTACLE,
+  OPT_FRICTION_LAW,
+  OPT_FRICTION,
+  OPT_SLIP_BOUND,
+  OPT_CONTACT_PAIR,
+  OPT_COUNT
+} GroupOption;
+/* friction_law_ before friction_: the longer prefix is tried first */
+static const char *const GroupOptionPrefix[OPT_COUNT] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-friction_", "-slip_bound_", "-contact_pair_"};
+
+/* Calls found(scene, kind, group, option) for every option of the database with a group prefix */
+static PetscErrorCode ForEachGroupOption(SSStarScene scene, PetscErrorCode (*found)(SSStarScene, GroupOption, const char[], const char[]))
+{
+  char  *all, *token, *save = NULL;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  for (token = strtok_r(all, " ", &save); token; token = strtok_r(NULL, " ", &save)) {
+    for (PetscInt k = 0; k < OPT_COUNT; k++) {
+      size_t    len;
+      PetscBool match;
+
+      PetscCall(PetscStrlen(GroupOptionPrefix[k], &len));
+      PetscCall(PetscStrncmp(token, GroupOptionPrefix[k], len, &match));
+      if (!match) continue;
+      if (token[len]) {
+        size_t glen;
+
+        PetscCall(PetscStrlen(token + len, &glen));
+        PetscCheck(glen < SSSTAR_GROUP_NAME_LEN, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: the group name is longer than %d characters", token, SSSTAR_GROUP_NAME_LEN - 1);
+        PetscCall(found(scene, (GroupOption)k, token + len, token));
+      }
+      break;
+    }
+  }
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, const char group[], const char option[])
+{
+  PetscFunctionBegin;
+  if (kind == OPT_MATERIAL) scene->nMaterials++;
+  if (kind == OPT_TRACTION) scene->nTractions++;
+  if (kind == OPT_SPRING) scene->nSprings++;
+  PetscFunctionReturn(0);
+}
+
+/* The contact group G of a -obstacle_G, -friction_law_G, -friction_G or -slip_bound_G (which must be in -contact) */
+static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const char option[], SSStarContactGroup **cg)
+{
+  PetscBool same;
+
+  PetscFunctionBegin;
+  *cg = NULL;
+  for (PetscInt g = 0; g < scene->nContact && !*cg; g++) {
+    PetscCall(PetscStrcmp(group, scene->contact[g].name, &same));
+    if (same) *cg = &scene->contact[g];
+  }
+  PetscCheck(*cg, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: \"%s\" is not a contact group (not in -contact)", option, group);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const char group[], const char option[])
+{
+  SSStarContactGroup *cg;
+  SSStarGroupValues  *gv;
+  PetscBool           set;
+  PetscInt            nlaws;
+  const char *const  *laws;
+  char                name[64], known[256] = "";
+
+  PetscFunctionBegin;
+  switch (kind) {
+  case OPT_MATERIAL:
+  case OPT_TRACTION:
+  case OPT_SPRING:
+    gv = kind == OPT_MATERIAL ? &scene->materials[scene->nMaterials++] : kind == OPT_TRACTION ? &scene->tractions[scene->nTractions++] : &scene->springs[scene->nSprings++];
+    PetscCall(PetscStrncpy(gv->name, group, sizeof(gv->name)));
+    PetscCall(GetFiniteArray(scene->comm, option, kind == OPT_MATERIAL ? 2 : kind == OPT_TRACTION ? 3 : 1, kind == OPT_MATERIAL ? "E,nu" : kind == OPT_TRACTION ? "x,y,z" : "k", gv->value, &set));
+    PetscCheck(kind != OPT_SPRING || gv->value[0] > 0, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the spring stiffness must be positive", option, (double)gv->value[0]);
+    break;
+  case OPT_OBSTACLE: {
+    char spec[PETSC_MAX_PATH_LEN + 8] = "";
+
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, spec, sizeof(spec), &set));
+    PetscCall(SSStarObstacleDestroy(&cg->obstacle));
+    PetscCall(SSStarObstacleCreateFromString(scene->comm, option, spec, &cg->obstacle)); /* obstacle.c */
+  } break;
+  case OPT_FRICTION_LAW:
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
+    PetscCall(SSStarLawGetIndex(name, &cg->law));
+    PetscCall(SSStarLawGetNames(&nlaws, &laws));
+    for (PetscInt l = 0; l < nlaws && cg->law < 0; l++) { /* the message names the laws of the table */
+      PetscCall(PetscStrlcat(known, l ? ", " : "", sizeof(known)));
+      PetscCall(PetscStrlcat(known, laws[l], sizeof(known)));
+    }
+    PetscCheck(cg->law >= 0, scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown option %s for %s: the friction laws are %s", name, option, known);
+    cg->lawSet = PETSC_TRUE;
+    break;
+  case OPT_FRICTION:
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(PetscOptionsGetReal(NULL, NULL, option, &cg->phi, &set));
+    PetscCheck(cg->phi >= 0 && !PetscIsInfOrNanReal(cg->phi), scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the friction coefficient must be a number >= 0", option, (double)cg->phi);
+    cg->phiSet = PETSC_TRUE;
+    break;
+  case OPT_SLIP_BOUND:
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(PetscOptionsGetReal(NULL, NULL, option, &cg->bound, &set));
+    PetscCheck(cg->bound >= 0 && !PetscIsInfOrNanReal(cg->bound), scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the slip bound must be a number >= 0 (a force per contact node)", option, (double)cg->bound);
+    cg->boundSet = PETSC_TRUE;
+    break;
+  case OPT_CONTACT_PAIR:
+    PetscCall(ContactGroup(scene, group, option, &cg));
+    PetscCall(SSStarPairsReadOption(scene, cg, option));
+    break;
+  default:
+    break;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Contradictory and incomplete entries of a contact group */
+static PetscErrorCode CheckContactGroup(SSStarScene scene, const SSStarContactGroup *cg)
+{
+  const char *law;
+  PetscBool   friction, bound;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
+  PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
+  PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
+  PetscCheck(!cg->phiSet || friction, scene->comm, PETSC_ERR_ARG_WRONG, "Options -friction_%s and -friction_law_%s %s contradict each other: a friction coefficient is for the coulomb law", cg->name, cg->name, law);
+  PetscCheck(!cg->boundSet || bound, scene->comm, PETSC_ERR_ARG_WRONG, "Options -slip_bound_%s and -friction_law_%s %s contradict each other: a slip bound is for the tresca law", cg->name, cg->name, law);
+  PetscCheck(cg->boundSet || !bound, scene->comm, PETSC_ERR_ARG_WRONG, "Option -friction_law_%s tresca needs -slip_bound_%s (the Tresca bound, a force per contact node)", cg->name, cg->name);
+  PetscFunctionReturn(0);
+}
+
+/* A group listed by two options that exclude each other */
+static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const char option[])
+{
+  PetscInt d;
+
+  PetscFunctionBegin;
+  PetscCall(FindName(group, scene->nDirichlet, scene->dirichlet, &d));
+  PetscCheck(d < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Options %s and -dirichlet contradict each other: the group \"%s\" is held fixed", option, group);
+  PetscFunctionReturn(0);
+}
+
+/* The options -help lists for the groups (read below by name, so PetscOptions* does not list them itself) */
+static const char SceneGroupHelp[] = "\
+  -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
+  -material_<G> <E,nu>: material of volume group G\n\
+  -traction_<G> <x,y,z>: constant traction on surface group G (global axes)\n\
+  -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
+  -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
+  -contact <G1,G2,...>: the contact groups (without -contact: no contact at all)\n\
+  -obstacle_<G> <0,0,0,0,0,1>: the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers: a point and\n\
+      the normal into the body), sphere:cx,cy,cz,R (a ball touched from outside), cylinder:px,py,pz,ax,ay,az,R\n\
+      (infinite, axis through p along a) or mesh:FILE.msh (a rigid body bounded by gmsh triangles, normals out of it)\n\
+  -friction_law_<G> <coulomb>: none, tresca or coulomb\n\
+  -friction_<G> <phi>: Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
+  -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n\
+  -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
+  -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
+
+/* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density";
+
+/*@C
+   SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
+   solver has read (SSStarCheckOptionsUsed()), naming the nearest option among the program's (its help text), the
+   scene's and the solver's
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetFromOptions()
+.  help  - the program's help text (its options as "-name"), or NULL
+-  snes  - the program's SNES after SNESSetFromOptions(), or NULL
+
+   Level: intermediate
+
+.seealso: `SSStarCheckOptionsUsed()`, `SSStarSceneSetFromOptions()`
+@*/
+PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[], SNES snes)
+{
+  const char *known[4] = {help ? help : "", SceneOptionNames, SceneGroupHelp, NULL};
+
+  PetscFunctionBegin;
+  PetscCall(SSStarCheckOptionsUsed(scene->comm, known, snes));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
+   option for unknown, contradictory or incomplete entries
+
+   Collective
+
+   Input Parameter:
+.  scene - the scene
+
+   Options Database Keys:
++  -mesh <file.msh> - the body, a gmsh mesh
+.  -geo <file.geo> - or a geometry meshed at -level
+.  -level <L> - the level of -geo
+.  -mesh_scale <1> - multiply the coordinates by this
+.  -E <E> - Young's modulus of the cells without -material_<G>
+.  -nu <nu> - Poisson's ratio of those cells
+.  -material_<G> <E,nu> - the material of volume group G
+.  -dirichlet <G1,G2> - groups held fixed
+.  -traction_<G> <x,y,z> - traction on surface group G
+.  -spring_<G> <k> - soft support of surface group G
+.  -gravity <gx,gy,gz> - gravity, with -density
+.  -density <rho> - the mass density
+.  -contact <G1,G2> - the contact groups
+.  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
+.  -friction_law_<G> <coulomb> - none, tresca or coulomb
+.  -friction_<G> <phi> - the Coulomb coefficient of G
+-  -slip_bound_<G> <s> - the Tresca bound of G
+
+   Notes:
+   With -help it lists the scene's options and reads no further (no check, no group): a program prints its options
+   with -help and stops, with or without a scene.
+
+   Level: beginner
+
+.seealso: `SSStarSceneCreate()`, `SSStarSceneSetUp()`, `SSStarSceneView()`
+@*/
+PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
+{
+  MPI_Comm  comm = scene->comm;
+  PetscBool hasMesh, hasGeo, hasLevel, hasDensity, help;
+  char    **contact;
+  char      option[SSSTAR_GROUP_NAME_LEN + 16];
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(comm, NULL, "Scene: the body, its loads and its contact groups", "ssstar");
+  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file", NULL, scene->mesh, scene->mesh, sizeof(scene->mesh), &hasMesh));
+  PetscCall(PetscOptionsString("-geo", "gmsh geometry meshed at -level", NULL, scene->geo, scene->geo, sizeof(scene->geo), &hasGeo));
+  PetscCall(PetscOptionsInt("-level", "Mesh level of -geo (the number L of the .geo)", NULL, scene->level, &scene->level, &hasLevel));
+  PetscCall(PetscOptionsReal("-mesh_scale", "Multiply the mesh coordinates by this", NULL, scene->meshScale, &scene->meshScale, NULL));
+  PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
+  PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
+  PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
+  if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) PetscCall((*PetscHelpPrintf)(comm, "%s", SceneGroupHelp));
+  PetscOptionsEnd();
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) PetscFunctionReturn(0); /* the options are listed: the drivers stop here, with or without a scene */
+  PetscCheck(!(hasMesh && hasGeo), comm, PETSC_ERR_ARG_WRONG, "Options -mesh and -geo contradict each other: give one body");
+  PetscCheck(hasMesh || hasGeo, comm, PETSC_ERR_ARG_WRONG, "No body: give -mesh file.msh, or -geo file.geo with -level L");
+  PetscCheck(!(hasMesh && hasLevel), comm, PETSC_ERR_ARG_WRONG, "Options -mesh and -level contradict each other: -level is for -geo");
+  PetscCheck(!hasGeo || hasLevel, comm, PETSC_ERR_ARG_WRONG, "Option -geo %s needs -level L", scene->geo);
+  PetscCheck(!hasGeo || scene->level >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-level %" PetscInt_FMT ": the mesh level must be >= 1", scene->level);
+  PetscCheck(!scene->hasE || (scene->E > 0 && !PetscIsInfOrNanReal(scene->E)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be a positive number", (double)scene->E);
+  PetscCheck(!scene->hasNu || (scene->nu > -1 && scene->nu < 0.5), comm, PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
+
+  PetscCall(GetFiniteArray(comm, "-gravity", 3, "gx,gy,gz", scene->gravity, &scene->hasGravity));
+  PetscCheck(scene->hasGravity == hasDensity, comm, PETSC_ERR_ARG_WRONG, "Incomplete body force: %s needs %s", scene->hasGravity ? "-gravity" : "-density", scene->hasGravity ? "-density" : "-gravity");
+  PetscCheck(!hasDensity || (scene->density >= 0 && !PetscIsInfOrNanReal(scene->density)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-density %g: the density must be a number >= 0", (double)scene->density);
+
+  PetscCall(GetGroupList(comm, "-dirichlet", &scene->nDirichlet, &scene->dirichlet));
+  PetscCall(GetGroupList(comm, "-contact", &scene->nContact, &contact));
+  PetscCall(PetscCalloc1(scene->nContact, &scene->contact));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    SSStarContactGroup *cg = &scene->contact[g];
+
+    PetscCall(PetscStrncpy(cg->name, contact[g], sizeof(cg->name)));
+    PetscCall(PetscFree(contact[g]));
+    PetscCall(SSStarObstacleCreateDefault(&cg->obstacle)); /* the plane z = 0 */
+    PetscCall(SSStarLawGetIndex(SSSTARLAWCOULOMB, &cg->law));
+    PetscCall(CheckNotHeld(scene, cg->name, "-contact"));
+  }
+  PetscCall(PetscFree(contact));
+
+  /* the options -<prefix><G>: count, then read */
+  scene->nMaterials = scene->nTractions = scene->nSprings = 0;
+  PetscCall(ForEachGroupOption(scene, CountGroupOption));
+  PetscCall(PetscFree3(scene->materials, scene->tractions, scene->springs));
+  PetscCall(PetscCalloc3(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs));
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = 0;
+  PetscCall(ForEachGroupOption(scene, ReadGroupOption));
+  PetscCall(SSStarPairsCheckOptions(scene));
+  for (PetscInt t = 0; t < scene->nTractions; t++) {
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
+    PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
+  }
+  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(CheckContactGroup(scene, &scene->contact[g]));
+  PetscFunctionReturn(0);
+}
+
+/* SSStarSceneGroupUses - every group an option names, with the kind of group the option needs (for the mesh checks) */
+PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
+{
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs, k = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(total, uses));
+  PetscCall(PetscCalloc1(total, options));
+  for (PetscInt g = 0; g < scene->nDirichlet; g++, k++) {
+    (*uses)[k].group = scene->dirichlet[g];
+    (*uses)[k].kind  = SSSTAR_GROUP_ANY;
+    PetscCall(PetscStrallocpy("-dirichlet", &(*options)[k]));
+  }
+  for (PetscInt g = 0; g < scene->nContact; g++, k++) {
+    (*uses)[k].group = scene->contact[g].name;
+    (*uses)[k].kind  = SSSTAR_GROUP_SURFACE;
+    PetscCall(PetscStrallocpy("-contact", &(*options)[k]));
+  }
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    char option[SSSTAR_GROUP_NAME_LEN + 16];
+
+    if (!scene->contact[g].master[0]) continue;
+    (*uses)[k].group = scene->contact[g].master;
+    (*uses)[k].kind  = SSSTAR_GROUP_SURFACE;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-contact_pair_%s", scene->contact[g].name));
+    PetscCall(PetscStrallocpy(option, &(*options)[k++]));
+  }
+  {
+    const SSStarGroupValues *lists[3] = {scene->materials, scene->tractions, scene->springs};
+    const PetscInt           sizes[3] = {scene->nMaterials, scene->nTractions, scene->nSprings};
+    const char              *names[3] = {"-material_", "-traction_", "-spring_"};
+
+    for (PetscInt l = 0; l < 3; l++)
+      for (PetscInt g = 0; g < sizes[l]; g++, k++) {
+        char option[SSSTAR_GROUP_NAME_LEN + 16];
+
+        (*uses)[k].group = lists[l][g].name;
+        (*uses)[k].kind  = l == 0 ? SSSTAR_GROUP_VOLUME : SSSTAR_GROUP_SURFACE;
+        PetscCall(PetscSNPrintf(option, sizeof(option), "%s%s", names[l], lists[l][g].name));
+        PetscCall(PetscStrallocpy(option, &(*options)[k]));
+      }
+  }
+  for (PetscInt i = 0; i < total; i++) (*uses)[i].option = (*options)[i];
+  *n = total;
+  PetscFunctionReturn(0);
+}

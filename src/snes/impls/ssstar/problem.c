@@ -1,0 +1,296 @@
+/*
+   The problem the iteration of the SNES type "ssstar" runs on, c(u) = A u - f: the user's reduced P and f, or the
+   user's K reduced to the contact dofs (a Schur complement P, src/reduction/), or K itself on the whole body (the
+   reduction none). The reduction says which (SSStarReductionIsWholeBody()); the Newton step that fits A is chosen
+   here, by name.
+*/
+#include "ssstarimpl.h"
+
+/*
+   K from the user's Jacobian routine. Not SNESComputeJacobian(): it hands K to the SNES's KSP, which belongs to the
+   Newton system here.
+*/
+static PetscErrorCode ComputeK(SNES snes, Mat *K)
+{
+  Mat   A, B;
+  void *ctx;
+  PetscErrorCode (*jac)(SNES, Vec, Mat, Mat, void *);
+
+  PetscFunctionBegin;
+  PetscCall(SNESGetJacobian(snes, &A, &B, &jac, &ctx));
+  if (jac) {
+    PetscCall(PetscLogEventBegin(SNES_JacobianEval, snes, snes->vec_sol, A, B));
+    PetscCallBack("SNES callback Jacobian", (*jac)(snes, snes->vec_sol, A, B, ctx));
+    PetscCall(PetscLogEventEnd(SNES_JacobianEval, snes, snes->vec_sol, A, B));
+  }
+  *K = A;
+  PetscFunctionReturn(0);
+}
+
+/* The mean diagonal entry of the contact rows of K and their largest sum |K_ij| (the scaling's data, section 6) */
+static PetscErrorCode ContactRowStatistics(SSStarContact *ct, SSStarProblem *pb, Mat K)
+{
+  PetscInt           n, rstart, ncols;
+  const PetscInt    *rows = NULL, *cols;
+  const PetscScalar *vals;
+  PetscReal          sums[2] = {0, 0}, rowmax = 0;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
+  if (ct->isC) {
+    PetscCall(ISGetLocalSize(ct->isC, &n));
+    PetscCall(ISGetIndices(ct->isC, &rows));
+  } else PetscCall(MatGetLocalSize(K, &n, NULL));
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt row = rows ? rows[k] : rstart + k;
+    PetscReal      sum = 0;
+
+    PetscCall(MatGetRow(K, row, &ncols, &cols, &vals));
+    for (PetscInt j = 0; j < ncols; j++) {
+      sum += PetscAbsScalar(vals[j]);
+      if (cols[j] == row) sums[0] += PetscRealPart(vals[j]);
+    }
+    PetscCall(MatRestoreRow(K, row, &ncols, &cols, &vals));
+    rowmax = PetscMax(rowmax, sum);
+  }
+  if (rows) PetscCall(ISRestoreIndices(ct->isC, &rows));
+  sums[1] = n;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)K)));
+  PetscCall(MPIU_Allreduce(&rowmax, &pb->maxRowSum, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)K)));
+  pb->meanDiag = sums[1] > 0 ? sums[0] / sums[1] : 0;
+  PetscFunctionReturn(0);
+}
+
+/* Where the contact dofs sit in A's vectors: 3 i + k in a reduced space, their own offsets on the whole body */
+static PetscErrorCode BuildLayout(SSStarContact *ct, SSStarProblem *pb)
+{
+  PetscInt        rstart, nlocal, *mark;
+  const PetscInt *idx;
+
+  PetscFunctionBegin;
+  PetscCall(PetscFree(pb->layoutDofs));
+  PetscCall(PetscFree(pb->free));
+  pb->nfree = 0;
+  PetscCall(PetscMalloc1(3 * ct->nnodes, &pb->layoutDofs));
+  if (!pb->wholeBody) {
+    for (PetscInt k = 0; k < 3 * ct->nnodes; k++) pb->layoutDofs[k] = k;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatGetOwnershipRange(pb->A, &rstart, NULL));
+  PetscCall(MatGetLocalSize(pb->A, &nlocal, NULL));
+  PetscCall(ISGetIndices(ct->isC, &idx));
+  PetscCall(PetscCalloc1(nlocal, &mark));
+  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
+    pb->layoutDofs[k]     = idx[k] - rstart;
+    mark[idx[k] - rstart] = 1;
+  }
+  PetscCall(ISRestoreIndices(ct->isC, &idx));
+  pb->nfree = nlocal - 3 * ct->nnodes;
+  PetscCall(PetscMalloc1(pb->nfree, &pb->free));
+  for (PetscInt j = 0, a = 0; j < nlocal; j++)
+    if (!mark[j]) pb->free[a++] = j;
+  PetscCall(PetscFree(mark));
+  PetscFunctionReturn(0);
+}
+
+/* The Newton step that fits A: the whole body's, else by P's storage */
+static PetscErrorCode ChooseNewton(SSStarProblem *pb)
+{
+  PetscBool dense;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pb->A, &dense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
+  pb->newtonType = pb->wholeBody ? SSSTARNEWTONFULL : dense ? SSSTARNEWTONDENSE : SSSTARNEWTONSPARSE;
+  PetscFunctionReturn(0);
+}
+
+/* The reduction of K (in the points' variables) to the contact dofs, with the SNES's options prefix for its solvers */
+static PetscErrorCode CreateReduction(SNES snes, SSStarContact *ct, SSStarProblem *pb)
+{
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(SSStarReductionCreate(PetscObjectComm((PetscObject)snes), &pb->reduction));
+  PetscCall(SSStarReductionSetType(pb->reduction, pb->reductionType));
+  PetscCall(SSStarReductionSetOptionsPrefix(pb->reduction, prefix));
+  PetscCall(SSStarReductionSetMemoryLimit(pb->reduction, pb->memoryLimit));
+  PetscCall(SSStarReductionSetUp(pb->reduction, pb->Kw, ct->isC, ct->isI));
+  PetscCall(SSStarReductionGetOperator(pb->reduction, &pb->A));
+  PetscCall(PetscObjectReference((PetscObject)pb->A));
+  PetscCall(SSStarReductionIsWholeBody(pb->reduction, &pb->wholeBody));
+  PetscFunctionReturn(0);
+}
+
+/*
+   A and f for the current K, load and declaration (SSStarContactSetUp() first): the Jacobian is evaluated once (c is
+   affine), b = -F(0), and in the whole-body use K is reduced to the contact dofs, or kept (reduction none), again only
+   when K or the declaration changed.
+*/
+PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *pb)
+{
+  Mat              K = NULL;
+  PetscObjectState state;
+  Vec              zero, bC;
+  PetscInt         nI = 0;
+
+  PetscFunctionBegin;
+  PetscCall(ComputeK(snes, &K));
+  PetscCall(PetscObjectStateGet((PetscObject)K, &state));
+  if (K != pb->K || state != pb->Kstate || !pb->A || pb->built != ct->built) {
+    PetscCall(SSStarProblemReset(pb));
+    PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
+    PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
+    if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
+    pb->wholeBody = PETSC_FALSE;
+    if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb));
+    else if (ct->dofs) { /* every dof a contact dof, in another order */
+      PetscCall(MatCreateSubMatrix(pb->Kw, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &pb->A));
+    } else {
+      PetscCall(PetscObjectReference((PetscObject)K));
+      pb->A = K;
+    }
+    PetscCall(ChooseNewton(pb));
+    PetscCall(BuildLayout(ct, pb));
+    PetscCall(MatCreateVecs(pb->A, &pb->f, NULL));
+    pb->K      = K;
+    pb->Kstate = state;
+    pb->built  = ct->built;
+  }
+  if (!pb->b) PetscCall(VecDuplicate(snes->vec_func, &pb->b));
+  PetscCall(VecDuplicate(snes->vec_sol, &zero));
+  PetscCall(VecZeroEntries(zero));
+  PetscCall(SNESComputeFunction(snes, zero, pb->b));
+  PetscCall(VecDestroy(&zero));
+  PetscCall(VecScale(pb->b, -1.0));
+  PetscCall(VecDestroy(&pb->bw));
+  if (ct->T) { /* the load in the points' variables: T^T b */
+    PetscCall(VecDuplicate(pb->b, &pb->bw));
+    PetscCall(MatMultTranspose(ct->T, pb->b, pb->bw));
+  } else {
+    PetscCall(PetscObjectReference((PetscObject)pb->b));
+    pb->bw = pb->b;
+  }
+  if (pb->reduction) PetscCall(SSStarReductionReduceLoad(pb->reduction, pb->bw, pb->f));
+  else if (ct->dofs) {
+    PetscCall(VecGetSubVector(pb->bw, ct->isC, &bC));
+    PetscCall(VecCopy(bC, pb->f));
+    PetscCall(VecRestoreSubVector(pb->bw, ct->isC, &bC));
+  } else PetscCall(VecCopy(pb->b, pb->f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarProblemGetLayout(SSStarContact *ct, SSStarProblem *pb, SSStarContactLayout *layout)
+{
+  PetscFunctionBegin;
+  layout->nnodes = ct->nnodes;
+  layout->dofs   = pb->layoutDofs;
+  layout->frames = ct->frames;
+  PetscFunctionReturn(0);
+}
+
+/* u, the solver's unknown, from the SNES vector x (in the points' variables, T^-1 x) */
+PetscErrorCode SSStarProblemGetInitialGuess(SSStarContact *ct, SSStarProblem *pb, Vec x, Vec u)
+{
+  Vec v, vC;
+
+  PetscFunctionBegin;
+  if (!ct->dofs) {
+    PetscCall(VecCopy(x, u));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecDuplicate(x, &v));
+  PetscCall(SSStarContactToPointVariables(ct, x, v));
+  if (pb->wholeBody) PetscCall(VecCopy(v, u));
+  else {
+    PetscCall(VecGetSubVector(v, ct->isC, &vC));
+    PetscCall(VecCopy(vC, u));
+    PetscCall(VecRestoreSubVector(v, ct->isC, &vC));
+  }
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The SNES vector x from the solution u and its contact force c = A u - f: in the whole-body use v = K^-1 (b + E_C c)
+   (or u itself on the whole body), in the points' variables, and x = T v
+*/
+PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Vec u, Vec c, Vec x)
+{
+  Vec v;
+
+  PetscFunctionBegin;
+  if (!ct->dofs) {
+    PetscCall(VecCopy(u, x));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecDuplicate(x, &v));
+  if (pb->reduction) PetscCall(SSStarReductionRecover(pb->reduction, pb->bw, u, c, v));
+  else PetscCall(VecISCopy(v, ct->isC, SCATTER_FORWARD, u));
+  if (ct->T) PetscCall(MatMult(ct->T, v, x));
+  else PetscCall(VecCopy(v, x));
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+/* A registered reduction or auto; the next solve sets the problem up again */
+PetscErrorCode SSStarProblemSetReductionType(SSStarProblem *pb, const char type[])
+{
+  PetscBool same, isauto;
+  PetscErrorCode (*create)(SSStarReduction, Mat) = NULL;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrcmp(type, SSSTARREDUCTIONAUTO, &isauto));
+  if (!isauto) PetscCall(PetscFunctionListFind(SSStarReductionList, type, &create));
+  PetscCheck(isauto || create, PETSC_COMM_SELF, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown reduction type %s", type);
+  PetscCall(PetscStrcmp(type, pb->reductionType, &same));
+  if (same) PetscFunctionReturn(0);
+  PetscCall(PetscStrncpy(pb->reductionType, type, sizeof(pb->reductionType)));
+  PetscCall(MatDestroy(&pb->A));
+  PetscFunctionReturn(0);
+}
+
+/* The reduction of the last solve (auto resolved), or the one set before the first */
+PetscErrorCode SSStarProblemGetReductionType(SSStarProblem *pb, const char *type[])
+{
+  PetscFunctionBegin;
+  *type = pb->reductionType;
+  if (pb->reduction) PetscCall(SSStarReductionGetType(pb->reduction, type));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscViewer viewer)
+{
+  PetscBool isauto;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrcmp(pb->reductionType, SSSTARREDUCTIONAUTO, &isauto));
+  if (ct->dofs && pb->reduction) {
+    const char *type;
+
+    PetscCall(SSStarReductionGetType(pb->reduction, &type));
+    if (pb->wholeBody) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: solved on the whole body, P never formed (reduction %s%s)\n", type, isauto ? " (chosen by auto)" : ""));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", type, isauto ? " (chosen by auto)" : ""));
+  } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
+  PetscFunctionReturn(0);
+}
+
+/* Drops what was derived from K and the declaration (the settings stay) */
+PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarReductionDestroy(&pb->reduction));
+  PetscCall(MatDestroy(&pb->A));
+  PetscCall(MatDestroy(&pb->Kw));
+  PetscCall(VecDestroy(&pb->f));
+  PetscCall(VecDestroy(&pb->b));
+  PetscCall(VecDestroy(&pb->bw));
+  PetscCall(PetscFree(pb->layoutDofs));
+  PetscCall(PetscFree(pb->free));
+  pb->nfree     = 0;
+  pb->K         = NULL;
+  pb->built     = -1;
+  pb->wholeBody = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,264 @@
+/*
+   What the SNES type "ssstar" reads from the options database and prints: SNESSetFromOptions() (the options of the
+   friction laws and the reductions from their tables), -snes_view, the line of -snes_converged_reason and the state
+   monitor.
+*/
+#include "ssstarimpl.h"
+#include "laws/lawimpl.h"
+
+/*
+   A value of a list option that is not in the list, refused here with PETSc's message: PETSc 3.18's
+   PetscOptionsEList() writes one byte past its buffer when it refuses a value and the names fill the buffer exactly
+   (as "none tresca coulomb orthotropic " and "direct mumps explicit none auto " do)
+*/
+static PetscErrorCode RefuseUnknownChoice(PetscOptionItems *PetscOptionsObject, const char opt[], const char *const list[], PetscInt n)
+{
+  char      given[256], names[512] = "";
+  PetscBool set, found = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, given, sizeof(given), &set));
+  if (!set) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < n && !found; k++) PetscCall(PetscStrcasecmp(given, list[k], &found));
+  if (found) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(PetscStrlcat(names, list[k], sizeof(names)));
+    PetscCall(PetscStrlcat(names, " ", sizeof(names)));
+  }
+  SETERRQ(PETSC_COMM_SELF, PETSC_ERR_USER, "Unknown option %s for -%s%s. Available options: %s", given, PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", opt + 1, names);
+}
+
+/* -snes_ssstar_friction_law and -snes_ssstar_<parameter> for every parameter of the registered laws */
+static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
+{
+  SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt           nlaws, law = ct->law->index;
+  const char *const *names;
+  PetscBool          set;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarLawGetNames(&nlaws, &names));
+  PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_friction_law", names, nlaws));
+  PetscCall(PetscOptionsEList("-snes_ssstar_friction_law", "Friction law of the contact nodes (the table of laws)", "SNESSSStarSetFrictionLaw", names, nlaws, names[law], &law, &set));
+  if (set) PetscCall(SNESSSStarSetFrictionLaw(snes, names[law]));
+  for (PetscInt l = 0; l < nlaws; l++) {
+    SSStarLaw lw;
+
+    PetscCall(SSStarLawGet(l, &lw));
+    for (PetscInt p = 0; p < lw->nparams; p++) {
+      const SSStarLawParameter *par = &lw->params[p];
+      char                      option[128], text[256];
+      PetscReal                 value[3];
+      PetscInt                  n;
+      PetscBool                 seen = PETSC_FALSE, given;
+
+      for (PetscInt e = 0; e < l && !seen; e++) { /* a name shared with an earlier law is one option */
+        SSStarLaw earlier;
+
+        PetscCall(SSStarLawGet(e, &earlier));
+        seen = (PetscBool)(SSStarLawFindParameter(earlier, par->name) >= 0);
+      }
+      if (seen) continue;
+      PetscCall(PetscSNPrintf(option, sizeof(option), "-snes_ssstar_%s", par->name));
+      PetscCall(SSStarContactGetParameter(ct, par->name, &n, value, &given));
+      PetscCall(PetscSNPrintf(text, sizeof(text), "The %s of every contact node without its own (law %s%s%s)", par->description, lw->name, par->kind == SSSTAR_LAW_DIRECTION ? "; x,y,z" : "", given ? "" : "; no default"));
+      if (par->kind == SSSTAR_LAW_DIRECTION) PetscCall(PetscOptionsRealArray(option, text, "SNESSSStarSetLawParameter", value, &n, &set));
+      else PetscCall(PetscOptionsReal(option, text, "SNESSSStarSetLawParameter", value[0], &value[0], &set));
+      if (set) PetscCall(SNESSSStarSetLawParameter(snes, par->name, n, value));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -snes_ssstar_reduction: a registered reduction or auto */
+static PetscErrorCode SetReductionFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
+{
+  SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
+  const char   **names, **choices;
+  int            n;
+  PetscInt       chosen = 0;
+  PetscBool      set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListGet(SSStarReductionList, &names, &n));
+  while (n > 0 && !names[n - 1]) n--; /* the list's own count includes its NULL end */
+  PetscCall(PetscMalloc1(n + 1, &choices));
+  for (int k = 0; k < n; k++) {
+    PetscBool same;
+
+    choices[k] = names[k];
+    PetscCall(PetscStrcmp(names[k], pb->reductionType, &same));
+    if (same) chosen = k;
+  }
+  choices[n] = SSSTARREDUCTIONAUTO;
+  PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_reduction", choices, n + 1));
+  PetscCall(PetscOptionsEList("-snes_ssstar_reduction", "Whole-body use: K reduced to the contact dofs (direct, mumps, explicit), or none (the whole body, P never formed), or auto", "SNESSSStarSetReductionType", choices, n + 1, pb->reductionType, &chosen, &set));
+  if (set) PetscCall(SNESSSStarSetReductionType(snes, choices[chosen]));
+  PetscCall(PetscFree(choices));
+  PetscCall(PetscFree(names));
+  PetscFunctionReturn(0);
+}
+
+/* -help: the options of the Newton step's GMRES (-snes_ssstar_newton_ksp_*), which the set-up creates */
+static PetscErrorCode HelpNewtonKSP(SNES snes)
+{
+  KSP         ksp;
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)snes), &ksp));
+  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
+  PetscCall(KSPSetOptionsPrefix(ksp, prefix));
+  PetscCall(KSPAppendOptionsPrefix(ksp, "snes_ssstar_newton_"));
+  PetscCall(KSPSetType(ksp, KSPGMRES));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(KSPDestroy(&ksp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptionsObject)
+{
+  SNES_SSStar  *ss = (SNES_SSStar *)snes->data;
+  PetscReal     value;
+  SSStarMethod  method;
+  PetscBool     set;
+  PetscInt      threads;
+
+  PetscFunctionBegin;
+  PetscOptionsHeadBegin(PetscOptionsObject, "SNES ssstar options (semismooth* Newton for contact with friction)");
+  PetscCall(SetLawsFromOptions(snes, PetscOptionsObject));
+  PetscCall(SetReductionFromOptions(snes, PetscOptionsObject));
+  PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ss->problem.memoryLimit, &value, &set));
+  if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));
+  if (set) PetscCall(SNESSSStarSetScaling(snes, value));
+  PetscCall(PetscOptionsEnum("-snes_ssstar_method", "The iteration: newton (semismooth*) or fixedpoint (u <- u + z, a first-order baseline)", "SNESSSStarSetMethod", SSStarMethods, (PetscEnum)ss->method, (PetscEnum *)&method, &set));
+  if (set) PetscCall(SNESSSStarSetMethod(snes, method));
+  PetscCall(PetscOptionsReal("-snes_ssstar_state_tol", "Relative tolerance tau of the contact-state classification", "SNESSSStarSetStateTolerance", ss->state_tol, &value, &set));
+  if (set) PetscCall(SNESSSStarSetStateTolerance(snes, value));
+  PetscCall(SSStarNewtonGetReuse(ss->newton, &value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_lu_reuse", "Solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (negative: a fresh LU at every step)", "SNESSSStarSetLUReuse", value, &value, &set));
+  if (set) PetscCall(SNESSSStarSetLUReuse(snes, value));
+  PetscCall(SSStarNewtonGetPCReuse(ss->newton, &value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_pc_reuse", "Whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows since it (negative: a new one every step)", "SNESSSStarSetPCReuse", value, &value, &set));
+  if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
+  if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
+  PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
+  PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
+  if (set) PetscCall(SNESSSStarSetLUThreads(snes, threads));
+  {
+    PetscBool on = ss->glob.on, setOn, setDamping, setStagnation;
+    PetscInt  its;
+
+    PetscCall(PetscOptionsBool("-snes_ssstar_globalization", "Damped steps on ||z|| and remedies (false: the plain iteration)", "SNESSSStarSetGlobalization", on, &on, &setOn));
+    PetscCall(PetscOptionsReal("-snes_ssstar_damping_min", "Smallest damping factor of the line search on ||z||", "SNESSSStarSetGlobalization", ss->glob.dampingMin, &value, &setDamping));
+    PetscCall(PetscOptionsInt("-snes_ssstar_stagnation_its", "Stop after this many iterations without a smaller ||z||", "SNESSSStarSetGlobalization", ss->glob.stagnationIts, &its, &setStagnation));
+    if (setOn || setDamping || setStagnation) PetscCall(SNESSSStarSetGlobalization(snes, on, setDamping ? value : PETSC_DEFAULT, setStagnation ? its : PETSC_DEFAULT));
+  }
+  PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state, and the remedies", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
+  PetscOptionsHeadEnd();
+  if (PetscOptionsObject->printhelp) PetscCall(HelpNewtonKSP(snes));
+  PetscFunctionReturn(0);
+}
+
+/* "L 14 M1 55 M2 0 M3+ 15 M3- 0 M4 0" (LS, a Tresca state, only when some node has it) */
+PetscErrorCode SNESSSStarFormatStateCounts(const PetscInt counts[], char buf[], size_t len)
+{
+  size_t used = 0;
+
+  PetscFunctionBegin;
+  buf[0] = 0;
+  for (PetscInt s = 0; s < SSSTAR_NUM_STATES; s++) {
+    if (s == SSSTAR_STATE_LS && !counts[s]) continue;
+    PetscCall(PetscSNPrintf(buf + used, len - used, "%s%s %" PetscInt_FMT, s ? " " : "", SSStarStateNames[s], counts[s]));
+    PetscCall(PetscStrlen(buf, &used));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscBool    isascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (!isascii) PetscFunctionReturn(0);
+  PetscCall(SSStarProblemView(&ss->contact, &ss->problem, viewer));
+  PetscCall(SSStarContactView(&ss->contact, viewer));
+  if (ss->method != SSSTAR_METHOD_NEWTON) PetscCall(PetscViewerASCIIPrintf(viewer, "  method: %s (u <- u + z, no Newton step)\n", SSStarMethods[ss->method]));
+  if (ss->scaling_user > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = %g\n", (double)ss->scaling_user));
+  else if (ss->method == SSSTAR_METHOD_FIXEDPOINT) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/(largest contact row sum of K)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag K_CC)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
+  if (snes->ops->converged == SNESConvergedSSStar) PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
+  PetscCall(SSStarNewtonView(ss->newton, viewer));
+  PetscCall(SSStarGlobalizationView(&ss->glob, viewer));
+  if (ss->reason != SSSTAR_REASON_ITERATING) {
+    char counts[256];
+
+    PetscCall(SNESSSStarFormatStateCounts(ss->counts, counts, sizeof(counts)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s after %" PetscInt_FMT " iterations, ||z|| = %g; contact states %s\n", SSStarReasons[ss->reason], snes->iter, (double)snes->norm, counts));
+    PetscCall(SSStarGlobalizationViewCounts(&ss->glob, viewer));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* With -snes_converged_reason, a line after PETSc's with the finer reason of ssstar */
+PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
+{
+  PetscViewer       viewer;
+  PetscViewerFormat format;
+  PetscBool         flg, isssstar;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (!isssstar) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsGetViewer(PetscObjectComm((PetscObject)snes), ((PetscObject)snes)->options, ((PetscObject)snes)->prefix, "-snes_converged_reason", &viewer, &format, &flg));
+  if (!flg) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g\n", SSStarReasons[((SNES_SSStar *)snes->data)->reason], (double)snes->norm));
+  PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarMonitorStates - prints, at every iteration, how many contact nodes are in each state of Table 1, with
+   the remedies that led to the iterate
+
+   Collective
+
+   Input Parameters:
++  snes  - the SNES
+.  its   - the iteration
+.  znorm - ||z||
+-  vf    - the viewer and its format
+
+   Options Database Key:
+.  -snes_ssstar_monitor_states - activates it
+
+   Level: intermediate
+
+.seealso: `SNESMonitorSet()`, `SNESSSStarGetStates()`
+@*/
+PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm, PetscViewerAndFormat *vf)
+{
+  SNES_SSStar *ss     = (SNES_SSStar *)snes->data;
+  PetscViewer  viewer = vf->viewer;
+  char         counts[256], events[512];
+  PetscInt     nlu, nreused, nkrylov;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerPushFormat(viewer, vf->format));
+  PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
+  PetscCall(SNESSSStarFormatStateCounts(ss->counts, counts, sizeof(counts)));
+  PetscCall(SSStarNewtonGetCounts(ss->newton, &nlu, &nreused, &nkrylov));
+  PetscCall(SSStarGlobalizationFormatEvents(&ss->glob, events, sizeof(events)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its)%s\n", its, counts, nlu, nreused, nkrylov, events));
+  PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
+  PetscCall(PetscViewerPopFormat(viewer));
+  PetscFunctionReturn(0);
+}
+

@@ -27,6 +27,8 @@ import subprocess
 import sys
 import time
 
+from table2 import level_list, mpiexec, yardstick  # the same runs and yardstick as Table 2
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "bench", "output")
 WORK = os.path.join(OUT, "levers")
@@ -131,10 +133,6 @@ def event_flops(log, name):
     return float(f[3]) * float(f[-1]) * 1e6
 
 
-def mpiexec(ranks):
-    return ["mpiexec", "--oversubscribe", "-n", str(ranks)]
-
-
 def displacement(h5):
     import h5py
     with h5py.File(h5, "r") as f:
@@ -159,21 +157,6 @@ def measure(level, ranks, name, options, h5):
         r[key] = event_time(p.stdout, event)
     r["snes_gflop"] = event_flops(p.stdout, "SNESSolve") / 1e9
     return r
-
-
-def yardstick(level, ranks):
-    cmd = mpiexec(ranks) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", "amg", "-options_file",
-                            os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level)]
-    m = AMG.search(subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout)
-    return float(m.group(2)) + float(m.group(3)) if m else math.nan
-
-
-def level_list(spec):
-    out = []
-    for part in spec.split(","):
-        lo, _, hi = part.partition("-")
-        out += list(range(int(lo), int(hi or lo) + 1))
-    return out
 
 
 def main():
@@ -207,7 +190,7 @@ def main():
         sticks = []
         reference = None
         for rep in range(args.repeat):
-            sticks.append(yardstick(level, args.ranks))
+            sticks.append(yardstick(level, args.ranks, "amg"))
             order = configs[rep % len(configs):] + configs[:rep % len(configs)]
             if rep == 0:  # the default first: the reference of the checks
                 order = configs

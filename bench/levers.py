@@ -108,7 +108,6 @@ SETS["round4"] = [
     ("coarse 1000 eq", "-pc_gamg_coarse_eq_limit 1000"),
 ]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
-AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
 KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \(\S+ per solve\), (\d+) preconditioner set-ups")
 # -log_view events: name, count, ratio, max time

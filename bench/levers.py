@@ -112,10 +112,14 @@ ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\
 KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \(\S+ per solve\), (\d+) preconditioner set-ups")
 # -log_view events: name, count, ratio, max time
 EVENTS = {"mesh": "SSStarMesh", "interpolate": "DMPlexInterp", "assembly": "SSStarAssembly", "snes": "SNESSolve",
-          "newton_matrix": "SSStarNSAssemble", "pc_setup": "SSStarNSFactor", "krylov": "SSStarNSKrylov", "output": "SSStarOutput"}
+          "newton_matrix": "SSStarNSAssemble", "pc_setup": "SSStarNSFactor", "krylov": "SSStarNSKrylov", "output": "SSStarOutput",
+          "mesh_gmsh": "SSStarMeshGmsh", "mesh_cache": "SSStarMeshCache", "mesh_build": "SSStarMeshBuild", "mesh_faces": "SSStarMeshFaces",
+          "mesh_label": "SSStarMeshLabel"}
+LINEAR = re.compile(r"Linear solve (?:converged|did not converge) due to \S+ iterations (\d+)")
 COLUMNS = ["level", "ranks", "config", "options", "runs", "whole", "rel_default", "cpu", "cpu_rel_default", "amg", "whole_per_amg", "mesh", "interpolate", "assembly",
            "snes", "snes_gflop", "newton_matrix", "pc_setup", "krylov", "output", "iters", "solves", "krylov_per_solve", "pc_setups", "peak_gb",
-           "converged", "same_states", "du_rel", "states", "reason"]
+           "converged", "same_states", "du_rel", "states", "reason", "mesh_gmsh", "mesh_cache", "mesh_build", "mesh_faces", "mesh_label",
+           "its_per_solve"]
 
 
 def event_time(log, name):
@@ -140,7 +144,7 @@ def displacement(h5):
 
 def measure(level, ranks, name, options, h5):
     cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", "none",
-                            "-summary_header", "0", "-memory_view", "-snes_view", "-log_view", "-o", h5] + options
+                            "-summary_header", "0", "-memory_view", "-snes_view", "-log_view", "-ksp_converged_reason", "-o", h5] + options
     t0, u0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     whole, u1 = time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -155,6 +159,7 @@ def measure(level, ranks, name, options, h5):
     for key, event in EVENTS.items():
         r[key] = event_time(p.stdout, event)
     r["snes_gflop"] = event_flops(p.stdout, "SNESSolve") / 1e9
+    r["its_per_solve"] = "/".join(LINEAR.findall(p.stdout))
     return r
 
 
@@ -224,6 +229,7 @@ def main():
                 print("%5d %-24s failed" % (level, name), flush=True)
                 continue
             row = {"level": level, "ranks": args.ranks, "config": name, "options": " ".join(options), "runs": len(rs), "amg": amg,
+                   "its_per_solve": rs[0]["its_per_solve"],
                    "iters": max(r["iters"] for r in rs), "states": rs[0]["states"], "reason": rs[0]["reason"],
                    "converged": all(r["converged"] for r in rs), "same_states": all(r["same_states"] for r in rs),
                    "du_rel": max(r["du_rel"] for r in rs)}

@@ -12,6 +12,7 @@
 #include <ssstar.h>
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output;
+PETSC_EXTERN PetscLogEvent SSSTAR_MeshGmsh, SSSTAR_MeshCache, SSSTAR_MeshBuild, SSSTAR_MeshFaces, SSSTAR_MeshLabel;
 
 /*
    A scene: the body, its material, supports and loads, and its contact groups, read from the options

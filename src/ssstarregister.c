@@ -13,6 +13,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES);
 PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSearch;
 PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output, SSSTAR_Schur, SSSTAR_Recovery;
+PetscLogEvent SSSTAR_MeshGmsh, SSSTAR_MeshCache, SSSTAR_MeshBuild, SSSTAR_MeshFaces, SSSTAR_MeshLabel;
 PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
@@ -71,6 +72,11 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(PetscLogEventRegister("SSStarNSFactor", SNES_CLASSID, &SSSTAR_NewtonFactor));
   PetscCall(PetscLogEventRegister("SSStarNSKrylov", SNES_CLASSID, &SSSTAR_NewtonKrylov));
   PetscCall(PetscLogEventRegister("SSStarMesh", DM_CLASSID, &SSSTAR_Mesh));
+  PetscCall(PetscLogEventRegister("SSStarMeshGmsh", DM_CLASSID, &SSSTAR_MeshGmsh));
+  PetscCall(PetscLogEventRegister("SSStarMeshCache", DM_CLASSID, &SSSTAR_MeshCache));
+  PetscCall(PetscLogEventRegister("SSStarMeshBuild", DM_CLASSID, &SSSTAR_MeshBuild));
+  PetscCall(PetscLogEventRegister("SSStarMeshFaces", DM_CLASSID, &SSSTAR_MeshFaces));
+  PetscCall(PetscLogEventRegister("SSStarMeshLabel", DM_CLASSID, &SSSTAR_MeshLabel));
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
   PetscCall(PetscLogEventRegister("SSStarOutput", DM_CLASSID, &SSSTAR_Output));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));

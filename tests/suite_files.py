@@ -31,8 +31,23 @@ def makefile_version():
 
 
 def msh41_nodes(path):
-    """The node coordinates of an ASCII msh 4.1 file, by ascending node tag"""
-    lines = open(path).read().split("\n")
+    """The node coordinates of an msh 4.1 file (ASCII or binary), by ascending node tag"""
+    data = open(path, "rb").read()
+    if data.split(b"\n")[1].split()[1] == b"1":  # binary: size_t and int in this machine's order
+        i = data.index(b"$Nodes\n") + 7
+        blocks = int(np.frombuffer(data, np.uint64, 1, i)[0])
+        i += 32
+        tags, xyz = [], []
+        for _ in range(blocks):
+            parametric = int(np.frombuffer(data, np.int32, 3, i)[2])
+            k = int(np.frombuffer(data, np.uint64, 1, i + 12)[0])
+            expect(parametric == 0, "parametric nodes in %s" % path)
+            i += 20
+            tags.append(np.frombuffer(data, np.uint64, k, i))
+            xyz.append(np.frombuffer(data, np.float64, 3 * k, i + 8 * k).reshape(k, 3))
+            i += 32 * k
+        return np.concatenate(xyz)[np.argsort(np.concatenate(tags))]
+    lines = data.decode().split("\n")
     i = lines.index("$Nodes")
     blocks = int(lines[i + 1].split()[0])
     i += 2

@@ -56,17 +56,11 @@ PetscErrorCode SSStarSceneFindBodies(SSStarScene scene)
   PetscCall(PetscMalloc4(vEnd - vStart, &parent, pEnd - pStart, &comp, pEnd - pStart, &copy, vEnd - vStart, &setMin));
   for (PetscInt v = 0; v < vEnd - vStart; v++) parent[v] = v;
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt *closure = NULL, nc, first = -1;
+    PetscInt v[4], first;
 
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &nc, &closure));
-    for (PetscInt k = 0; k < nc; k++) {
-      const PetscInt p = closure[2 * k];
-
-      if (p < vStart || p >= vEnd) continue;
-      if (first < 0) first = Find(parent, p - vStart);
-      else parent[Find(parent, p - vStart)] = first;
-    }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &nc, &closure));
+    PetscCall(SSStarMeshCellVertices(dm, c, v));
+    first = Find(parent, v[0] - vStart);
+    for (PetscInt k = 1; k < 4; k++) parent[Find(parent, v[k] - vStart)] = first;
   }
   PetscCall(VecGetArrayRead(scene->tags, &ta));
   for (PetscInt p = 0; p < pEnd - pStart; p++) comp[p] = PETSC_MAX_INT;
@@ -152,12 +146,10 @@ PetscErrorCode SSStarSceneFindBodies(SSStarScene scene)
     if (held) loc[3 * setMin[r] + 1] = 1;
   }
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt *closure = NULL, nc, e = -1;
+    PetscInt v[4], e;
 
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &nc, &closure));
-    for (PetscInt k = 0; k < nc && e < 0; k++)
-      if (closure[2 * k] >= vStart && closure[2 * k] < vEnd) e = setMin[Find(parent, closure[2 * k] - vStart)];
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &nc, &closure));
+    PetscCall(SSStarMeshCellVertices(dm, c, v));
+    e = setMin[Find(parent, v[0] - vStart)];
     for (PetscInt l = 0; l < nvol && e >= 0; l++) {
       PetscInt value;
 

@@ -180,22 +180,16 @@ static PetscErrorCode VertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscI
   PetscFunctionReturn(0);
 }
 
-/* The four vertices of every local cell (closure order, the order of its coordinates), numbered from vStart */
-static PetscErrorCode CellVertices(DM dm, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt vEnd, PetscInt **cv)
+/* The four vertices of every local cell, numbered from vStart */
+static PetscErrorCode CellVertices(DM dm, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt **cv)
 {
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(4 * (cEnd - cStart), cv));
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt *closure = NULL, n, k = 0;
+    PetscInt *v = &(*cv)[4 * (c - cStart)];
 
-    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &n, &closure));
-    for (PetscInt i = 0; i < 2 * n; i += 2)
-      if (closure[i] >= vStart && closure[i] < vEnd) {
-        PetscCheck(k < 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
-        (*cv)[4 * (c - cStart) + k++] = closure[i] - vStart;
-      }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &n, &closure));
-    PetscCheck(k == 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " is not a linear tetrahedron", c);
+    PetscCall(SSStarMeshCellVertices(dm, c, v));
+    for (PetscInt k = 0; k < 4; k++) v[k] -= vStart;
   }
   PetscFunctionReturn(0);
 }
@@ -307,7 +301,7 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(cEnd - cStart, &lame));
   PetscCall(CellMaterials(scene, cStart, cEnd, lame));
-  PetscCall(CellVertices(dm, cStart, cEnd, vStart, vEnd, &cv));
+  PetscCall(CellVertices(dm, cStart, cEnd, vStart, &cv));
   PetscCall(VertexBlocks(dm, vStart, vEnd, &blocks));
   PetscCall(DMGetGlobalVector(dm, &global));
   PetscCall(VecGetLocalSize(global, &n));

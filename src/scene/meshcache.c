@@ -12,10 +12,11 @@
      /faces_<k>    F_k x 3 the triangles of the k-th surface group, vertex indices
      /groups       G       names (fixed-length strings), with the attributes dims (2 or 3) and tags (gmsh's)
 
-   Read: rank r takes the cells [r C/p, (r+1) C/p) and the vertices [r N/p, (r+1) N/p), DMPlex builds and interpolates
-   the distributed mesh from them (DMPlexCreateFromCellListParallelPetsc), the volume groups label the local cells,
-   and the surface groups' triangles find their faces through a hash of their vertices (each triangle and each local
-   boundary face meet on the rank their vertex triple hashes to).
+   Read: rank r takes the cells [r C/p, (r+1) C/p) and the vertices [r N/p, (r+1) N/p), DMPlex builds the distributed
+   mesh from them (DMPlexCreateFromCellListParallelPetsc, not interpolated), ssstar adds the faces (no edges: nothing
+   uses them, and DMPlexInterpolate's faces and edges were most of the read's time at scale), the volume groups label
+   the local cells, and the surface groups' triangles find their faces through a hash of their vertices (each triangle
+   and each local boundary face meet on the rank their vertex triple hashes to).
 */
 #include "sceneimpl.h"
 #include <petscsf.h>
@@ -125,10 +126,11 @@ static void GroupElements(int dim, int tag, int type, const size_t sortedNodes[]
 }
 
 /*
-   Rank 0: reads msh with gmsh and writes the cache to a temporary name, renamed to cache when complete. *failure: 0,
-   or 1 (gmsh cannot read it), 2 (cannot write the cache), 3 (a volume element that is not a linear tetrahedron).
+   Rank 0: writes the cache of the mesh in gmsh's current model to a temporary name, renamed to cache when complete.
+   *failure: 0, or 1 (gmsh cannot give the mesh), 2 (cannot write the cache), 3 (a volume element that is not a
+   linear tetrahedron).
 */
-static PetscErrorCode WriteCache(const char msh[], const char cache[], const long long stamp[2], int *failure)
+static PetscErrorCode WriteCacheOfModel(const char cache[], const long long stamp[2], int *failure)
 {
   char       tmp[PETSC_MAX_PATH_LEN];
   size_t    *nodeTags = NULL, nn = 0, nc3 = 0, np = 0, *sorted = NULL, *byTag = NULL, ncells = 0, ndimTags = 0, ng = 0;
@@ -140,13 +142,9 @@ static PetscErrorCode WriteCache(const char msh[], const char cache[], const lon
 
   PetscFunctionBegin;
   *failure = 0;
-  gmshInitialize(0, NULL, 0, &ierr);
-  if (!ierr) gmshOptionSetNumber("General.Verbosity", 0, &ierr);
-  if (!ierr) gmshOpen(msh, &ierr);
-  if (!ierr) gmshModelMeshGetNodes(&nodeTags, &nn, &coord, &nc3, &param, &np, -1, -1, 0, 0, &ierr);
+  gmshModelMeshGetNodes(&nodeTags, &nn, &coord, &nc3, &param, &np, -1, -1, 0, 0, &ierr);
   if (ierr) {
     *failure = 1;
-    gmshFinalize(&ierr);
     PetscFunctionReturn(0);
   }
   /* the vertices by ascending node tag */
@@ -264,6 +262,20 @@ static PetscErrorCode WriteCache(const char msh[], const char cache[], const lon
   gmshFree(coord);
   gmshFree(param);
   gmshFree(dimTags);
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0: reads msh with gmsh and writes its cache (WriteCacheOfModel(); *failure 1 also when gmsh cannot read msh) */
+static PetscErrorCode WriteCache(const char msh[], const char cache[], const long long stamp[2], int *failure)
+{
+  int ierr = 0;
+
+  PetscFunctionBegin;
+  gmshInitialize(0, NULL, 0, &ierr);
+  if (!ierr) gmshOptionSetNumber("General.Verbosity", 0, &ierr);
+  if (!ierr) gmshOpen(msh, &ierr);
+  *failure = 1;
+  if (!ierr) PetscCall(WriteCacheOfModel(cache, stamp, failure));
   gmshFinalize(&ierr);
   PetscFunctionReturn(0);
 }
@@ -316,6 +328,25 @@ static PetscBool CacheCurrent(const char cache[], const long long stamp[2])
   }
   H5E_END_TRY;
   return (PetscBool)(ok >= 0 && meta[0] == SSSTAR_CACHE_VERSION && meta[1] == stamp[0] && meta[2] == stamp[1]);
+}
+
+/*
+   Rank 0, right after gmsh wrote msh from its current model: the cache of msh from that model, so that the first read
+   of msh does not parse it again (a failure here is left to SSStarMeshLoadCached(), which writes the cache itself)
+*/
+PetscErrorCode SSStarMeshCacheFromModel(const char msh[])
+{
+  char      cache[PETSC_MAX_PATH_LEN];
+  long long stamp[2];
+  int       failure;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshCache, 0, 0, 0, 0));
+  PetscCall(CacheName(msh, cache, sizeof(cache)));
+  FileStamp(msh, stamp);
+  PetscCall(WriteCacheOfModel(cache, stamp, &failure));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshCache, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
 }
 
 /* rows [start, start + count) of a dataset of cols columns into buf */
@@ -611,8 +642,193 @@ static PetscErrorCode GlobalVertexNumbers(MPI_Comm comm, PetscSF vsf, PetscInt N
   PetscFunctionReturn(0);
 }
 
+/* The four faces of a tetrahedron (local vertex indices), opposite its vertices 0, 1, 2, 3 */
+static const int TetFaces[4][3] = {
+  {1, 2, 3},
+  {0, 2, 3},
+  {0, 1, 3},
+  {0, 1, 2}
+};
+
 /*
-   SSStarMeshLoadCached - the distributed, interpolated DMPlex of a gmsh mesh through its cache (written first when
+   Faces shared with other ranks: each face of local support 1 meets its twin (same global vertex triple) on the rank
+   the triple hashes to; the lower rank owns it, the other gets a leaf. Appends the leaves (local face, owner's face)
+   to the n vertex leaves in ilocal, iremote (allocated for every face of support 1 beyond them).
+*/
+static PetscErrorCode ShareFaces(MPI_Comm comm, DM dm, const PetscInt gvertex[], PetscInt *n, PetscInt ilocal[], PetscSFNode iremote[])
+{
+  PetscMPIInt size, rank, *dest;
+  PetscInt    fStart, fEnd, vStart, nface = 0, *rec, nrecv, *recv, nback = 0, *back, nret, *ret;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (size == 1) PetscFunctionReturn(0);
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, NULL));
+  PetscCall(PetscMalloc2(fEnd - fStart + 1, &dest, 4 * (fEnd - fStart) + 1, &rec));
+  for (PetscInt f = fStart; f < fEnd; f++) {
+    const PetscInt *cone;
+    PetscInt        support;
+
+    PetscCall(DMPlexGetSupportSize(dm, f, &support));
+    if (support != 1) continue;
+    PetscCall(DMPlexGetCone(dm, f, &cone));
+    for (int k = 0; k < 3; k++) rec[4 * nface + k] = gvertex[cone[k] - vStart];
+    SortTriple(&rec[4 * nface]);
+    rec[4 * nface + 3] = rank + (PetscInt)size * f;
+    dest[nface]        = HomeRank(&rec[4 * nface], size);
+    nface++;
+  }
+  PetscCall(Exchange(comm, nface, dest, rec, &nrecv, &recv));
+  PetscCall(PetscFree2(dest, rec));
+  /* at home: twins are neighbours once sorted; the higher rank's face becomes a leaf of the lower rank's */
+  qsort(recv, nrecv, 4 * sizeof(PetscInt), CompareTriple);
+  PetscCall(PetscMalloc2(nrecv / 2 + 1, &dest, 4 * (nrecv / 2) + 1, &back));
+  for (PetscInt i = 0; i + 1 < nrecv; i++) {
+    const PetscInt *a = &recv[4 * i], *b = &recv[4 * i + 4];
+    PetscInt        ra = a[3] % size, rb = b[3] % size;
+
+    if (CompareTriple(a, b)) continue;
+    if (ra > rb) {
+      const PetscInt *t = a;
+
+      a  = b;
+      b  = t;
+      ra = rb;
+      rb = b[3] % size;
+    }
+    dest[nback]         = (PetscMPIInt)rb;
+    back[4 * nback]     = b[3] / size;
+    back[4 * nback + 1] = ra;
+    back[4 * nback + 2] = a[3] / size;
+    back[4 * nback + 3] = 0;
+    nback++;
+    i++;
+  }
+  PetscCall(PetscFree(recv));
+  PetscCall(Exchange(comm, nback, dest, back, &nret, &ret));
+  PetscCall(PetscFree2(dest, back));
+  for (PetscInt i = 0; i < nret; i++) {
+    ilocal[*n]        = ret[4 * i];
+    iremote[*n].rank  = ret[4 * i + 1];
+    iremote[*n].index = ret[4 * i + 2];
+    (*n)++;
+  }
+  PetscCall(PetscFree(ret));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The mesh with its faces but without edges (nothing here uses edges; DMPlex's interpolation makes both, most of the
+   read's time at scale): from the uninterpolated dm0 (cells [0, nc), vertices [nc, nc + nv)), cells -> 4 faces -> 3
+   vertices with the faces numbered after the vertices, dm0's coordinates, and dm0's vertex SF with the faces shared
+   with other ranks. The faces are found by their smallest vertex, then the other two.
+*/
+static PetscErrorCode AddFaces(DM dm0, const PetscInt gvertex[], DM *dm)
+{
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dm0);
+  PetscInt        cStart, cEnd, vStart, vEnd, nc, nv, nf = 0, *start, *fill, *slot, *faceOf, *faceCone, *first, nleaves, nroots, n = 0, *ilocal;
+  const PetscInt *leaves;
+  const PetscSFNode *remotes;
+  PetscSFNode    *iremote;
+  PetscSF         sf0, sf;
+  PetscSection    csec;
+  Vec             coordinates;
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetHeightStratum(dm0, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm0, 0, &vStart, &vEnd));
+  PetscCheck(cStart == 0 && vStart == cEnd, comm, PETSC_ERR_PLIB, "Unexpected point numbering of the uninterpolated mesh");
+  nc = cEnd;
+  nv = vEnd - vStart;
+  /* the (cell, face) slots in buckets by their smallest vertex */
+  PetscCall(PetscCalloc2(nv + 1, &start, nv, &fill));
+  PetscCall(PetscMalloc4(4 * nc, &slot, 4 * nc, &faceOf, 12 * nc, &faceCone, 4 * nc, &first));
+  for (PetscInt c = 0; c < nc; c++) {
+    const PetscInt *cone;
+
+    PetscCall(DMPlexGetCone(dm0, c, &cone));
+    for (int k = 0; k < 4; k++) {
+      PetscInt *t = &faceCone[3 * (4 * c + k)];
+
+      for (int j = 0; j < 3; j++) t[j] = cone[TetFaces[k][j]] - vStart;
+      SortTriple(t);
+      start[t[0] + 1]++;
+    }
+  }
+  for (PetscInt v = 0; v < nv; v++) start[v + 1] += start[v];
+  for (PetscInt s = 0; s < 4 * nc; s++) {
+    const PetscInt v = faceCone[3 * s];
+
+    slot[start[v] + fill[v]++] = s;
+  }
+  /* in each bucket, a slot whose other two vertices match an earlier slot's is the same face */
+  for (PetscInt v = 0; v < nv; v++)
+    for (PetscInt i = start[v]; i < start[v + 1]; i++) {
+      const PetscInt *t = &faceCone[3 * slot[i]];
+      PetscInt        j;
+
+      for (j = start[v]; j < i; j++) {
+        const PetscInt *u = &faceCone[3 * slot[j]];
+
+        if (u[1] == t[1] && u[2] == t[2]) break;
+      }
+      if (j < i) faceOf[slot[i]] = faceOf[slot[j]];
+      else {
+        first[nf]       = slot[i];
+        faceOf[slot[i]] = nf++;
+      }
+    }
+  PetscCall(DMPlexCreate(comm, dm));
+  PetscCall(DMSetDimension(*dm, 3));
+  PetscCall(DMPlexSetChart(*dm, 0, nc + nv + nf));
+  for (PetscInt c = 0; c < nc; c++) PetscCall(DMPlexSetConeSize(*dm, c, 4));
+  for (PetscInt f = 0; f < nf; f++) PetscCall(DMPlexSetConeSize(*dm, nc + nv + f, 3));
+  PetscCall(DMSetUp(*dm));
+  for (PetscInt c = 0; c < nc; c++) {
+    PetscInt cone[4];
+
+    for (int k = 0; k < 4; k++) cone[k] = nc + nv + faceOf[4 * c + k];
+    PetscCall(DMPlexSetCone(*dm, c, cone));
+  }
+  for (PetscInt f = 0; f < nf; f++) {
+    PetscInt cone[3];
+
+    for (int j = 0; j < 3; j++) cone[j] = vStart + faceCone[3 * first[f] + j];
+    PetscCall(DMPlexSetCone(*dm, nc + nv + f, cone));
+  }
+  PetscCall(PetscFree4(slot, faceOf, faceCone, first));
+  PetscCall(PetscFree2(start, fill));
+  PetscCall(DMPlexSymmetrize(*dm));
+  PetscCall(DMPlexStratify(*dm));
+
+  /* the point SF: dm0's vertex leaves (same point numbers) and the shared faces; then the coordinates */
+  PetscCall(DMGetPointSF(dm0, &sf0));
+  PetscCall(PetscSFGetGraph(sf0, NULL, &nleaves, &leaves, &remotes));
+  nleaves = PetscMax(nleaves, 0);
+  PetscCall(PetscMalloc1(nleaves + nf, &ilocal));
+  PetscCall(PetscMalloc1(nleaves + nf, &iremote));
+  for (PetscInt l = 0; l < nleaves; l++) {
+    ilocal[n]    = leaves ? leaves[l] : l;
+    iremote[n++] = remotes[l];
+  }
+  PetscCall(ShareFaces(comm, *dm, gvertex, &n, ilocal, iremote));
+  nroots = nc + nv + nf;
+  PetscCall(PetscSFCreate(comm, &sf));
+  PetscCall(PetscSFSetGraph(sf, nroots, n, ilocal, PETSC_OWN_POINTER, iremote, PETSC_OWN_POINTER));
+  PetscCall(DMSetPointSF(*dm, sf));
+  PetscCall(PetscSFDestroy(&sf));
+  PetscCall(DMSetCoordinateDim(*dm, 3));
+  PetscCall(DMGetCoordinateSection(dm0, &csec));
+  PetscCall(DMSetCoordinateSection(*dm, 3, csec));
+  PetscCall(DMGetCoordinatesLocal(dm0, &coordinates));
+  PetscCall(DMSetCoordinatesLocal(*dm, coordinates));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarMeshLoadCached - the distributed DMPlex of a gmsh mesh (cells, faces, vertices; no edges) through its cache (written first when
    missing or out of date), with a label per physical group (named after it, values its tag; the groups the scene
    uses completed with the closure of their faces and cells) and tags: each local vertex's index in the file's node
    order. Every rank reads its slice; none holds the whole mesh.
@@ -630,16 +846,19 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   long long   *cellGroups;
   PetscSF      vsf;
   PetscScalar *ta;
+  DM           dm0;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(CacheName(msh, cache, sizeof(cache)));
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshCache, 0, 0, 0, 0));
   if (rank == 0) {
     FileStamp(msh, stamp);
     if (!CacheCurrent(cache, stamp)) PetscCall(WriteCache(msh, cache, stamp, &failure));
   }
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, comm));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshCache, 0, 0, 0, 0));
   PetscCheck(failure != 1, comm, PETSC_ERR_FILE_UNEXPECTED, "Cannot read the mesh file %s (gmsh could not; is it a complete gmsh file?)", msh);
   PetscCheck(failure != 2, comm, PETSC_ERR_FILE_WRITE, "Cannot write the mesh cache %s of %s", cache, msh);
   PetscCheck(failure != 3, comm, PETSC_ERR_SUP, "The mesh file %s has volume elements that are not linear tetrahedra: ssstar's FEM is P1 on tetrahedra", msh);
@@ -649,6 +868,7 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   file = H5Fopen(cache, H5F_ACC_RDONLY, plist);
   PetscCallH5(H5Pclose(plist));
   PetscCheck(file >= 0, comm, PETSC_ERR_FILE_OPEN, "Cannot open the mesh cache %s of %s", cache, msh);
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshBuild, 0, 0, 0, 0));
   PetscCall(ReadGroups(file, &groups));
   PetscCall(CheckGroups(comm, msh, &groups, n, uses));
   PetscCall(DatasetRows(file, "cells", &NC));
@@ -663,11 +883,17 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   PetscCall(ReadRows(file, "vertices", H5T_NATIVE_DOUBLE, v0, nv, 3, coords));
   PetscCall(ReadRows(file, "cell_groups", H5T_NATIVE_LLONG, c0, nc, 1, cellGroups));
   for (PetscInt c = 0; c < nc; c++) PetscCall(DMPlexInvertCell(DM_POLYTOPE_TETRAHEDRON, &cells[4 * c])); /* gmsh's orientation to DMPlex's */
-  PetscCall(DMPlexCreateFromCellListParallelPetsc(comm, 3, nc, nv, NV, 4, PETSC_TRUE, cells, 3, coords, &vsf, NULL, dm));
+  PetscCall(DMPlexCreateFromCellListParallelPetsc(comm, 3, nc, nv, NV, 4, PETSC_FALSE, cells, 3, coords, &vsf, NULL, &dm0));
   PetscCall(GlobalVertexNumbers(comm, vsf, NV, &vadj)); /* (3.18 writes its verticesAdj through a NULL pointer) */
   PetscCall(PetscSFDestroy(&vsf));
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshFaces, 0, 0, 0, 0));
+  PetscCall(AddFaces(dm0, vadj, dm));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshFaces, 0, 0, 0, 0));
+  PetscCall(DMDestroy(&dm0));
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshBuild, 0, 0, 0, 0));
 
   /* the volume groups on the local cells, the surface groups on their faces */
+  PetscCall(PetscLogEventBegin(SSSTAR_MeshLabel, 0, 0, 0, 0));
   for (PetscInt k = 0, bit = 0; k < groups.n; k++) {
     PetscCall(DMCreateLabel(*dm, groups.names[k]));
     if (groups.dims[k] != 3) continue;
@@ -683,6 +909,7 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
     PetscCall(DMGetLabel(*dm, uses[u].group, &label));
     PetscCall(DMPlexLabelComplete(*dm, label));
   }
+  PetscCall(PetscLogEventEnd(SSSTAR_MeshLabel, 0, 0, 0, 0));
   /* tags: the file index of each local vertex */
   {
     PetscInt vStart, vEnd;

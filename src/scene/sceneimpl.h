@@ -103,6 +103,8 @@ struct _n_SSStarScene {
 
 PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarMeshLoadCached(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarMeshCacheFromModel(const char[]);
+PETSC_INTERN PetscErrorCode SSStarMeshCellVertices(DM, PetscInt, PetscInt[4]);
 PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, Mat *, Vec *);

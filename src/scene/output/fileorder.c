@@ -159,24 +159,18 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
   PetscCall(VecGetArrayRead(coordinates, &xa));
   PetscCall(VecGetArrayRead(scene->tags, &ta));
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt *closure = NULL, nclosure, nv = 0, *row = &rows[4 * ncells];
+    PetscInt  v[4], *row = &rows[4 * ncells];
     PetscReal x[4][3], e[3][3], volume;
 
     if (ghost[c - pStart]) continue;
-    PetscCall(DMPlexGetTransitiveClosure(scene->dm, c, PETSC_TRUE, &nclosure, &closure));
-    for (PetscInt i = 0; i < nclosure; i++) {
-      const PetscInt p = closure[2 * i];
+    PetscCall(SSStarMeshCellVertices(scene->dm, c, v));
+    for (PetscInt i = 0; i < 4; i++) {
+      PetscInt off;
 
-      if (p >= vStart && p < vEnd && nv < 4) {
-        PetscInt off;
-
-        PetscCall(PetscSectionGetOffset(csec, p, &off));
-        for (PetscInt k = 0; k < 3; k++) x[nv][k] = PetscRealPart(xa[off + k]);
-        row[nv++] = (PetscInt)PetscRealPart(ta[p - vStart]);
-      }
+      PetscCall(PetscSectionGetOffset(csec, v[i], &off));
+      for (PetscInt k = 0; k < 3; k++) x[i][k] = PetscRealPart(xa[off + k]);
+      row[i] = (PetscInt)PetscRealPart(ta[v[i] - vStart]);
     }
-    PetscCall(DMPlexRestoreTransitiveClosure(scene->dm, c, PETSC_TRUE, &nclosure, &closure));
-    PetscCheck(nv == 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices: the output writes tetrahedra", c, nv);
     /* VTK's (and XDMF's) orientation: (x1 - x0) x (x2 - x0) . (x3 - x0) > 0 */
     for (PetscInt i = 0; i < 3; i++)
       for (PetscInt k = 0; k < 3; k++) e[i][k] = x[i + 1][k] - x[0][k];

@@ -1,6 +1,7 @@
 """Load paths (issue 19): the incremental friction problem of docs/derivation.md sections 10-11 checked in numpy, and the
 load-history parser (include/ssstarhistory.h) on hand-computed cases and every refusal."""
 import os
+import re
 
 from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 
@@ -18,3 +19,16 @@ def loadpath_derivation():
 def history_parser():
     out = run([os.path.join(ROOT, "tests", "test_history")])
     expect("OK: 0 failures" in out, "tests/test_history", out)
+
+
+@test("the solver's offsets (SNESSSStarSetContactOffsets, tests/test_offsets): the whole body of loadpath_check.py's check 1 (tilted frames, gaps, a moving obstacle, pair points with master weights, Coulomb, Tresca and frictionless nodes; press, shear, release, reverse, release in 21 steps, each step's offsets (10.4) from the previous solution) equals numpy's answer to 1e-9 at every step (measured 5e-13) on the dense route (direct) and the whole body (none), 1, 2 and 3 ranks (one rank without contact points); the reduction is set up once for the whole path")
+def offsets_solver():
+    data = os.path.join(OUT, "loadpath_offsets.bin")
+    run([PYTHON, os.path.join(ROOT, "tests", "loadpath_check.py"), "--write", data])
+    for red in ("direct", "none"):
+        for ranks in (1, 2, 3):
+            out = run(mpiexec(ranks, os.path.join(ROOT, "tests", "test_offsets"), "-f", data, "-snes_ssstar_reduction", red, "-snes_rtol", "1e-13"))
+            m = re.search(r"max \|u - u_numpy\|/\|u_numpy\| = (\S+), set-ups of the reduction: (\d+)", out)
+            expect(m is not None, "%s on %d ranks: no result line" % (red, ranks), out)
+            expect(float(m.group(1)) <= 1e-9, "%s on %d ranks: the steps differ from numpy's by %s" % (red, ranks, m.group(1)), out)
+            expect(int(m.group(2)) == 1, "%s on %d ranks: the reduction was set up %s times for one path" % (red, ranks, m.group(2)), out)

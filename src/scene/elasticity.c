@@ -472,8 +472,9 @@ static PetscErrorCode SetRigidBodyModes(DM dm, Mat K)
 
 PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, Mat *K, Vec *b)
 {
-  DM  dm = scene->dm;
-  Vec Floc;
+  DM         dm = scene->dm;
+  PetscInt   nknots;
+  PetscReal *knots;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
@@ -483,13 +484,56 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, Mat *K, Vec *b)
 
   PetscCall(DMCreateGlobalVector(dm, b));
   PetscCall(PetscObjectSetName((PetscObject)*b, "load"));
+  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
+  PetscCall(SSStarAssembleLoad(scene, nknots ? knots[nknots - 1] : 0, *b)); /* the load at the last knot */
+  PetscCall(PetscFree(knots));
+  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The load b at the time t of the histories: the tractions and gravity evaluated at t (a surface and a volume loop) */
+PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
+{
+  DM        dm = scene->dm;
+  Vec       Floc;
+  PetscReal value[3];
+
+  PetscFunctionBegin;
   PetscCall(DMGetLocalVector(dm, &Floc));
   PetscCall(VecZeroEntries(Floc));
-  for (PetscInt t = 0; t < scene->nTractions; t++) PetscCall(SSStarAddTraction(dm, scene->tractions[t].name, scene->tractions[t].value, Floc));
-  if (scene->hasGravity) PetscCall(AddGravity(dm, scene->density, scene->gravity, Floc));
-  PetscCall(VecZeroEntries(*b));
-  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, *b));
+  for (PetscInt k = 0; k < scene->nTractions; k++) {
+    PetscCall(SSStarHistoryEvaluate(scene->tractions[k].history, t, value));
+    PetscCall(SSStarAddTraction(dm, scene->tractions[k].name, value, Floc));
+  }
+  if (scene->hasGravity) {
+    PetscCall(SSStarHistoryEvaluate(scene->gravityHistory, t, value));
+    PetscCall(AddGravity(dm, scene->density, value, Floc));
+  }
+  PetscCall(VecZeroEntries(b));
+  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
   PetscCall(DMRestoreLocalVector(dm, &Floc));
-  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The area of a surface group (all ranks) */
+PetscErrorCode SSStarGroupArea(DM dm, const char group[], PetscReal *area)
+{
+  IS              faces;
+  const PetscInt *f;
+  PetscInt        nf;
+
+  PetscFunctionBegin;
+  *area = 0;
+  PetscCall(GroupFaces(dm, group, &faces, &nf));
+  PetscCall(ISGetIndices(faces, &f));
+  for (PetscInt i = 0; i < nf; i++) {
+    PetscReal x[9], a;
+
+    PetscCall(BoundaryTriangle(dm, f[i], group, x, &a));
+    *area += a;
+  }
+  PetscCall(ISRestoreIndices(faces, &f));
+  PetscCall(ISDestroy(&faces));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, area, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
   PetscFunctionReturn(0);
 }

@@ -161,8 +161,8 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
 /*
    A load path (docs/load-paths.md): the steps at the times of -steps (default the knots of the histories), each from
    the solution of the step before with incremental friction; a step that does not converge is retried from there at
-   the midpoint, at most maxCuts halvings per step, then the path stops (failure->step >= 0). With out, every step into
-   the file.
+   the midpoint and goes on to its time in sub-steps of that size, at most maxCuts halvings per step, then the path
+   stops (failure->step >= 0). With out, every step (and sub-step) into the file.
 */
 static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, const char stepsText[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
 {
@@ -185,7 +185,7 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
   PetscCall(VecCopy(u, uAccepted));
   failure->step = -1;
   for (PetscInt k = 0; k < nsteps && failure->step < 0; k++) {
-    PetscReal t    = times[k];
+    PetscReal t    = times[k], dt = 0; /* dt: the sub-step after a cut, 0 before */
     PetscInt  cuts = 0;
 
     for (;;) {
@@ -208,15 +208,16 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
         tAccepted = t;
         accepted  = PETSC_TRUE;
         if (t == times[k]) break;
-        t = times[k]; /* on from the midpoint to the step's time */
+        t = PetscMin(t + dt, times[k]); /* on to the step's time in sub-steps of the cut size */
       } else {
         /* halve the step towards the last accepted time; the first step from its histories' start */
         const PetscReal from = accepted ? tAccepted : (nknots ? PetscMin(knots[0], t) : t);
 
         if (cuts < maxCuts && t > from) {
           cuts++;
-          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], (double)((from + t) / 2)));
-          t = (from + t) / 2;
+          dt = (t - from) / 2;
+          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], (double)(from + dt)));
+          t = from + dt;
           continue;
         }
         PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], cuts, maxCuts));

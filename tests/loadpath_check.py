@@ -32,7 +32,13 @@ import sys
 
 import numpy as np
 
-from derivation_check import problem as random_problem  # a random SPD P and a load that separates, slides, sticks
+
+
+def random_problem(*args, **kwargs):
+    """derivation_check's random SPD P and a load that separates, slides, sticks; imported here only, because
+    derivation_check initializes petsc4py (MPI), and a scene test that imports the closed forms below runs mpiexec"""
+    from derivation_check import problem
+    return problem(*args, **kwargs)
 
 STATES = ["L", "M1", "M2", "M3+", "M3-", "M4", "LS"]  # the codes of SSStarState
 RESULTS = []

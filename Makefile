@@ -39,7 +39,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-large bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test bench bench-large bench-scenes bench-loadpath scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -115,6 +115,10 @@ accuracy: all
 # what an effect costs: the prism scene with effects switched on and off (bench/output/scenes.csv)
 bench-scenes: all
 	$(PYTHON) bench/scenes.py
+
+# the Mindlin-Deresiewicz loop of a load path against its closed forms, levels 1 and 2 (bench/output/loadpath.csv)
+bench-loadpath: all
+	$(PYTHON) bench/loadpath.py --levels 1,2
 
 # every scene of scenes/ at its level: scenes/output/NAME.h5, .xmf and .png
 SCENES := $(basename $(notdir $(wildcard scenes/*.opts)))

@@ -659,6 +659,30 @@ def stick_radius_unloading(Q, Qstar, mu, P, a):
     return a * (1 - (Qstar - Q) / (2 * mu * P)) ** (1 / 3)
 
 
+# scenes/mindlin.opts as a load path (tests/suite_loadpath.py, bench/loadpath.py)
+def mindlin_scene_args(level, s, root, steps_per_branch=10):
+    """scenes/mindlin.opts as a path: P (t = 1), then Q: 0 -> -Q* (t = 2) -> Q* (3) -> -Q* (4), Q* = s phi P"""
+    q = s * 0.3 * 31416 / 400  # the traction on block_top (20 x 20)
+    times = [0, 1] + [1 + k / steps_per_branch for k in range(1, 3 * steps_per_branch + 1)]
+    return ["-options_file", root + "/scenes/mindlin.opts", "-level", str(level), "-traction_block_bottom", "0:0,0,0;1:0,0,78.54",
+            "-traction_block_top", "0:0,0,0;1:0,0,0;2:-%.10g,0,0;3:%.10g,0,0;4:-%.10g,0,0" % (q, q, q), "-steps", ",".join("%.10g" % t for t in times)]
+
+
+def mindlin_scene_loop(f):
+    """From the file (h5py) of mindlin_scene_args: the closed forms' inputs and the loop's measured figures over the cycle
+    t in [2, 4]: W by trapezoids of (Q, delta) (delta: the mean x displacement of block_top, where Q acts), D the
+    node-wise dissipation (10.9), the opening at Q = 0; Hertz and (11.9), (11.11) with the contact's normal force"""
+    st = f["steps"]
+    t, Q, delta, N, D = st["time"][:], -st["load"][:, 0], -st["groups/block_top/displacement"][:, 0], st["normal_force"][:], st["dissipation"][:]
+    E, nu, R, mu = 2.1e5, 0.3, 10.0, 0.3
+    i2, i25, i35, i4 = (int(np.argmin(abs(t - x))) for x in (2, 2.5, 3.5, 4))
+    P, Qs = N[i4], Q[i2]
+    a, K = hertz_radius(P, R, E, nu, E, nu), mindlin_compliance(E, nu, E, nu)
+    return {"s": Qs / (mu * P), "W": np.trapz(Q[i2:i4 + 1], delta[i2:i4 + 1]), "W_closed": mindlin_dissipation(Qs, mu, P, a, K),
+            "D": D[i4] - D[i2], "opening": delta[i25] - delta[i35], "opening_closed": mindlin_opening(Qs, mu, P, a, K),
+            "a": a, "P": P, "Qs": Qs}
+
+
 def check_mindlin():
     mu, P, R, E, nu = 0.3, 31416.0, 10.0, 2.1e5, 0.3
     a = hertz_radius(P, R, E, nu, E, nu)

@@ -72,28 +72,7 @@ def path_run(args, name, ranks=1, expect_rc=0, extra=()):
     return out, h5py.File(h5(name), "r")
 
 
-def mindlin_args(level, s, steps_per_branch=10):
-    """scenes/mindlin.opts as a path: P (t = 1), then Q: 0 -> -Q* (t = 2) -> Q* (3) -> -Q* (4), Q* = s phi P"""
-    q = s * 0.3 * 31416 / 400  # the traction on block_top (20 x 20)
-    times = [0, 1] + [1 + k / steps_per_branch for k in range(1, 3 * steps_per_branch + 1)]
-    return ["-options_file", os.path.join(ROOT, "scenes", "mindlin.opts"), "-level", str(level), "-traction_block_bottom", "0:0,0,0;1:0,0,78.54",
-            "-traction_block_top", "0:0,0,0;1:0,0,0;2:-%.10g,0,0;3:%.10g,0,0;4:-%.10g,0,0" % (q, q, q), "-steps", ",".join("%.10g" % t for t in times)]
-
-
-def mindlin_loop(f):
-    """From the file of mindlin_args: the closed forms' inputs and the loop's measured figures (the cycle t in [2, 4])"""
-    st = f["steps"]
-    t, Q, delta, N, D = st["time"][:], -st["load"][:, 0], -st["groups/block_top/displacement"][:, 0], st["normal_force"][:], st["dissipation"][:]
-    E, nu, R, mu = 2.1e5, 0.3, 10.0, 0.3
-    i2, i25, i35, i4 = (int(np.argmin(abs(t - x))) for x in (2, 2.5, 3.5, 4))
-    P, Qs = N[i4], Q[i2]
-    a, K = closed.hertz_radius(P, R, E, nu, E, nu), closed.mindlin_compliance(E, nu, E, nu)
-    return {"s": Qs / (mu * P), "W": np.trapz(Q[i2:i4 + 1], delta[i2:i4 + 1]), "W_closed": closed.mindlin_dissipation(Qs, mu, P, a, K),
-            "D": D[i4] - D[i2], "opening": delta[i25] - delta[i35], "opening_closed": closed.mindlin_opening(Qs, mu, P, a, K),
-            "a": a, "P": P, "Qs": Qs}
-
-
-@test("the block on a spring (docs/derivation.md (11.1)-(11.2), examples/contact): a nearly rigid block (E = 2e7) pressed by P = 10, held sideways by a spring k = 1000, sheared by Q = 7.5 > phi P = 5 (-traction_top with knots), released, sheared back, released, in 25 steps (-steps 25): the mean u_x of its top follows (11.1) at every step to 1e-3 (Q - phi P)/k (measured 2.4e-4: the block's compliance): no motion up to Q = phi P, none on the releases, reverse sliding from Q = 2 phi P - Q; it stays at (Q - phi P)/k = 2.5e-3 after the first release and at -2.5e-3 after the second; the dissipation is phi P times the slip (5 x 2.5e-3, then 5 x 5e-3); direct and none, 1 and 2 ranks")
+@test("the block on a spring (docs/derivation.md (11.1)-(11.2), examples/contact): a nearly rigid block (E = 2e7) pressed by P = 10, held sideways by a spring k = 1000, sheared by Q = 7.5 > phi P = 5 (-traction_top with knots), released, sheared back, released, in 25 steps (-steps 25): the mean u_x of its top follows (11.1) at every step to 1e-3 (Q - phi P)/k (measured 3e-4: the block's compliance): no motion up to Q = phi P, none on the releases, reverse sliding from Q = 2 phi P - Q; it stays at (Q - phi P)/k = 2.5e-3 after the first release and at -2.5e-3 after the second; the dissipation is phi P times the slip (5 x 2.5e-3, then 5 x 5e-3); direct and none, 1 and 2 ranks")
 def loadpath_block_on_spring():
     phi, P, k = 0.5, 10.0, 1000.0
     for red, ranks in PATHS:
@@ -115,7 +94,7 @@ def loadpath_block_on_spring():
         expect(abs(D[at[3]] - 5 * 2.5e-3) <= 1e-3 * 0.0125 and abs(D[at[5]] - D[at[3]] - 5 * 5e-3) <= 1e-3 * 0.025, "%s %d: dissipation %s" % (red, ranks, D[[at[3], at[5]]]))
 
 
-@test("displacement-controlled sliding (docs/derivation.md (11.3)): a rigid plane (-obstacle_bottom_motion) pushed 0.001 into a block held at its top, then moved 0.02 along x in 10 steps: once every node slides the tangential force on the block is phi times the normal force to 1e-6 (measured 3e-7), along the motion; moved back by 1e-4 every node sticks but those at the rim (measured: 1 of 80 slides), the force drops below phi N; the Coulomb law holds at every node for the slip increment of the last step (tests/check_solution.py, 1e-8); direct and none, 1 and 2 ranks agree to 1e-8")
+@test("displacement-controlled sliding (docs/derivation.md (11.3)): a rigid plane (-obstacle_bottom_motion) pushed 0.001 into a block held at its top, then moved 0.02 along x in 10 steps: once every node slides the tangential force on the block is phi times the normal force to 1e-6 (measured 8e-16 direct, 2e-11 none), along the motion; moved back by 1e-4 every node sticks but those at the rim (measured: 1 of 80 slides), the force drops below phi N (to 0.896 phi N); the Coulomb law holds at every node for the slip increment of the last step (tests/check_solution.py, 1e-8); direct and none, 1 and 2 ranks agree to 1e-8")
 def loadpath_displacement_sliding():
     ref = None
     for red, ranks in PATHS:
@@ -145,8 +124,8 @@ MINDLIN_TOL = 0.25
 def loadpath_mindlin():
     ref = None
     for red, ranks in (("direct", 1), ("direct", 2)):
-        out, f = path_run(mindlin_args(1, 0.5) + ["-snes_ssstar_reduction", red], "loadpath_mindlin_%s_%d.h5" % (red, ranks), ranks)
-        m = mindlin_loop(f)
+        out, f = path_run(closed.mindlin_scene_args(1, 0.5, ROOT) + ["-snes_ssstar_reduction", red], "loadpath_mindlin_%s_%d.h5" % (red, ranks), ranks)
+        m = closed.mindlin_scene_loop(f)
         expect(abs(m["s"] - 0.5) <= 0.01, "%s %d: Q*/(phi P) = %.4f" % (red, ranks, m["s"]))
         for what in ("W", "opening"):
             err = m[what] / m[what + "_closed"] - 1
@@ -220,7 +199,7 @@ def loadpath_step_cutting():
     expect(f.attrs["converged_reason"] in ("DIVERGED_MAX_IT", b"DIVERGED_MAX_IT"), "converged_reason %s" % f.attrs["converged_reason"])
 
 
-@test("a monotone proportional path without gaps gives the static answers (docs/derivation.md (10.8)): scenes/shear.opts (the block on the plane z = 0, gap 0) with -traction_top 0:0,0,0;1:3.5,0,-10 in 4 steps equals, at every step, the static solve of that load to 1e-8 (measured 1e-11; -snes_rtol 1e-12)")
+@test("a monotone proportional path without gaps gives the static answers (docs/derivation.md (10.8)): scenes/shear.opts (the block on the plane z = 0, gap 0) with -traction_top 0:0,0,0;1:3.5,0,-10 in 4 steps equals, at every step, the static solve of that load to 1e-8 (measured 1e-12; -snes_rtol 1e-12)")
 def loadpath_proportional_static():
     base = ["-options_file", os.path.join(ROOT, "scenes", "shear.opts"), "-level", "2", "-snes_rtol", "1e-12"]
     out, f = path_run(base + ["-traction_top", "0:0,0,0;1:3.5,0,-10", "-steps", "4"], "loadpath_proportional.h5")

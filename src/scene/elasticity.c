@@ -375,27 +375,39 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscFunctionReturn(0);
 }
 
-/* Adds the consistent load of a constant traction t on the triangles of group: area/3 t per vertex. */
-PetscErrorCode SSStarAddTraction(DM dm, const char group[], const PetscReal t[3], Vec Floc)
+/* Adds the consistent load of a constant traction t on the triangles of group, area/3 t per vertex, to Floc (if not
+   NULL); area (if not NULL): the group's area on this rank */
+static PetscErrorCode TractionLoad(DM dm, const char group[], const PetscReal t[3], Vec Floc, PetscReal *area)
 {
   IS              faces;
   const PetscInt *f;
   PetscInt        nf;
 
   PetscFunctionBegin;
+  if (area) *area = 0;
   PetscCall(GroupFaces(dm, group, &faces, &nf));
   PetscCall(ISGetIndices(faces, &f));
   for (PetscInt i = 0; i < nf; i++) {
     PetscScalar load[9];
-    PetscReal   x[9], area;
+    PetscReal   x[9], a;
 
-    PetscCall(BoundaryTriangle(dm, f[i], group, x, &area));
+    PetscCall(BoundaryTriangle(dm, f[i], group, x, &a));
+    if (area) *area += a;
+    if (!Floc) continue;
     for (PetscInt v = 0; v < 3; v++)
-      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = area / 3.0 * t[k];
+      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = a / 3.0 * t[k];
     PetscCall(DMPlexVecSetClosure(dm, NULL, Floc, f[i], load, ADD_VALUES));
   }
   PetscCall(ISRestoreIndices(faces, &f));
   PetscCall(ISDestroy(&faces));
+  PetscFunctionReturn(0);
+}
+
+/* Adds the consistent load of a constant traction t on the triangles of group: area/3 t per vertex. */
+PetscErrorCode SSStarAddTraction(DM dm, const char group[], const PetscReal t[3], Vec Floc)
+{
+  PetscFunctionBegin;
+  PetscCall(TractionLoad(dm, group, t, Floc, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -518,22 +530,8 @@ PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
 /* The area of a surface group (all ranks) */
 PetscErrorCode SSStarGroupArea(DM dm, const char group[], PetscReal *area)
 {
-  IS              faces;
-  const PetscInt *f;
-  PetscInt        nf;
-
   PetscFunctionBegin;
-  *area = 0;
-  PetscCall(GroupFaces(dm, group, &faces, &nf));
-  PetscCall(ISGetIndices(faces, &f));
-  for (PetscInt i = 0; i < nf; i++) {
-    PetscReal x[9], a;
-
-    PetscCall(BoundaryTriangle(dm, f[i], group, x, &a));
-    *area += a;
-  }
-  PetscCall(ISRestoreIndices(faces, &f));
-  PetscCall(ISDestroy(&faces));
+  PetscCall(TractionLoad(dm, group, NULL, NULL, area));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, area, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
   PetscFunctionReturn(0);
 }

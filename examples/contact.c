@@ -242,7 +242,7 @@ int main(int argc, char **argv)
   Vec                 b, load; /* the load b of the scene, and the one of a step: a fraction of b, or b(t) of a path */
   SNES                snes;
   Vec                 u, r = NULL;
-  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
   PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE;
   char                out[PETSC_MAX_PATH_LEN] = "", stepsText[4096] = "";
@@ -318,6 +318,7 @@ int main(int argc, char **argv)
   }
   PetscCall(VecZeroEntries(u));
 
+  nLoadSteps = steps.n; /* steps.n: the steps solved */
   PetscCall(PetscMalloc4(steps.n, &steps.factor, steps.n, &steps.area, steps.n, &steps.normal_force, steps.n, &steps.iterations));
   PetscCall(PetscTime(&t0));
   if (path) PetscCall(SolvePath(scene, snes, load, u, hasSteps ? stepsText : NULL, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
@@ -336,7 +337,7 @@ int main(int argc, char **argv)
   if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s\n", nodes, ncontact, (double)t_assembly,
                         (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)"));
-  if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, steps.n > 1 ? WriteLoadSteps : NULL, &steps));
+  if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nLoadSteps > 1 ? WriteLoadSteps : NULL, &steps));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));

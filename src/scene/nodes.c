@@ -19,6 +19,20 @@ PetscErrorCode SSStarSceneContactTolerance(SSStarScene scene, PetscReal *tol)
   PetscFunctionReturn(0);
 }
 
+/* A Vec of bs values per owned contact node, in their order (the per-node vectors of the SNES) */
+PetscErrorCode SSStarSceneNodeVec(SSStarScene scene, PetscInt bs, const PetscReal values[], Vec *v)
+{
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecCreateMPI(scene->comm, bs * scene->n, PETSC_DETERMINE, v));
+  if (bs > 1) PetscCall(VecSetBlockSize(*v, bs));
+  PetscCall(VecGetArrayWrite(*v, &a));
+  for (PetscInt i = 0; i < bs * scene->n; i++) a[i] = values[i];
+  PetscCall(VecRestoreArrayWrite(*v, &a));
+  PetscFunctionReturn(0);
+}
+
 /* Tributary area of every local vertex on the contact groups (a third of each adjacent face), in the x-dofs of a global vector */
 static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
 {

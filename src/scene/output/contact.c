@@ -5,41 +5,6 @@
 */
 #include "outputimpl.h"
 
-PetscErrorCode SSStarNodeFrictionGet(SSStarScene scene, SNES snes, SSStarNodeFriction *nf)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &nf->known));
-  PetscCall(PetscMalloc3(scene->n + 1, &nf->law, scene->n + 1, &nf->phi, scene->n + 1, &nf->bound));
-  if (nf->known) {
-    PetscCall(SNESSSStarGetNodeFrictionLaws(snes, scene->n, nf->law));
-    PetscCall(SNESSSStarGetNodeLawParameter(snes, "friction", scene->n, nf->phi));
-    PetscCall(SNESSSStarGetNodeLawParameter(snes, "slip_bound", scene->n, nf->bound));
-  } else
-    for (PetscInt i = 0; i < scene->n; i++) { /* the scene's own description */
-      const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-
-      nf->law[i]   = cg->law;
-      nf->phi[i]   = cg->phi;
-      nf->bound[i] = cg->bound;
-    }
-  for (PetscInt i = 0; i < scene->n; i++) {
-    PetscBool friction, bound;
-
-    PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
-    PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
-    if (!friction) nf->phi[i] = 0;
-    if (!bound) nf->bound[i] = 0;
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *nf)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFree3(nf->law, nf->phi, nf->bound));
-  PetscFunctionReturn(0);
-}
-
 /* "<prefix>/contact/<name>" */
 static PetscErrorCode ContactPath(const char prefix[], const char name[], char path[], size_t len)
 {
@@ -79,7 +44,7 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
 {
   MPI_Comm           comm = scene->comm;
   PetscInt           p, n = scene->n, *pos, *all;
-  PetscReal         *ul, *rl, *sl, *gl, *ll;
+  PetscReal         *ul, *rl, *sl, *gl;
   const PetscScalar *ua, *ra;
   Vec                uC, rC;
   char               names[1024], path[PETSC_MAX_PATH_LEN];
@@ -87,7 +52,6 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc5(n + 1, &pos, 3 * n + 1, &ul, 3 * n + 1, &rl, n + 1, &sl, n + 1, &gl));
-  PetscCall(PetscMalloc1(n + 1, &ll));
   PetscCall(SSStarFileOrder(comm, n, scene->tag, &p, &all, pos));
   PetscCall(PetscFree(all));
   PetscCall(VecGetSubVector(u, scene->isC, &uC));
@@ -106,13 +70,11 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
   PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
   {
-    const char      *vnames[] = {"displacement", "reaction", "coordinates", "normal", "gap", "area", "friction", "slip_bound"};
-    const PetscReal *values[] = {ul, rl, scene->coords, scene->normal, scene->gap, scene->area, nf ? nf->phi : NULL, nf ? nf->bound : NULL};
-    const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1, 1, 1};
+    const char      *vnames[] = {"displacement", "reaction", "coordinates", "normal", "gap", "area"};
+    const PetscReal *values[] = {ul, rl, scene->coords, scene->normal, scene->gap, scene->area};
+    const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1};
 
-    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) {
-      if (k >= 2 && !nf) break;              /* a step: the solution's fields */
-      if (k >= 6 && !nf->known) continue; /* the friction the solver used, if it is an ssstar */
+    for (size_t k = 0; k < (nf ? PETSC_STATIC_ARRAY_LENGTH(vnames) : 2); k++) { /* a step: the solution's fields */
       PetscCall(ContactPath(prefix, vnames[k], path, sizeof(path)));
       PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, bs[k], values[k], PETSC_FALSE));
     }
@@ -120,7 +82,6 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
   for (PetscInt i = 0; i < n; i++) {
     sl[i] = states ? (PetscReal)states[i] : -1;
     gl[i] = (PetscReal)scene->group[i];
-    ll[i] = nf ? (PetscReal)nf->law[i] : 0;
   }
   PetscCall(ContactPath(prefix, "state", path, sizeof(path)));
   PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, 1, sl, PETSC_TRUE));
@@ -141,9 +102,9 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
   if (scene->stepped) PetscCall(WritePathFields(scene, file, prefix, p, pos));
   if (!nf) {
     PetscCall(PetscFree5(pos, ul, rl, sl, gl));
-    PetscCall(PetscFree(ll));
     PetscFunctionReturn(0);
   }
+  PetscCall(SSStarNodeFrictionWrite(comm, file, "/contact", nf, p, pos)); /* friction_law and the laws' parameters */
   PetscCall(SSStarWriteNodeField(comm, file, "/contact/group", p, n, pos, 1, gl, PETSC_TRUE));
   names[0] = 0;
   for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -155,17 +116,7 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
     }
   }
   PetscCall(SSStarH5ObjectAttrString(file, "/contact/group", "names", names));
-  PetscCall(SSStarWriteNodeField(comm, file, "/contact/friction_law", p, n, pos, 1, ll, PETSC_TRUE));
-  {
-    PetscInt           nlaws;
-    const char *const *laws;
-
-    PetscCall(SSStarLawGetNames(&nlaws, &laws));
-    PetscCall(SSStarJoinNames(nlaws, laws, names, sizeof(names)));
-  }
-  PetscCall(SSStarH5ObjectAttrString(file, "/contact/friction_law", "names", names));
   PetscCall(PetscFree5(pos, ul, rl, sl, gl));
-  PetscCall(PetscFree(ll));
   PetscFunctionReturn(0);
 }
 

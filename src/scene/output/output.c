@@ -404,7 +404,14 @@ static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SN
   PetscFunctionBegin;
   PetscCall(SSStarWriteMesh(scene, out->file, u));
   PetscCall(SSStarWriteRun(scene, out->file, snes));
-  PetscCall(SSStarNodeFrictionGet(scene, snes, &nf));
+  {
+    PetscInt *laws; /* the groups' laws, for an SNES that is no ssstar */
+
+    PetscCall(PetscMalloc1(scene->n + 1, &laws));
+    for (PetscInt i = 0; i < scene->n; i++) laws[i] = scene->contact[scene->group[i]].law;
+    PetscCall(SSStarNodeFrictionGet(scene->comm, snes, scene->n, laws, &nf));
+    PetscCall(PetscFree(laws));
+  }
   PetscCall(SSStarWriteScene(scene, out->file, &nf));
   if (scene->nContact) {
     PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
@@ -497,9 +504,10 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
    The file is the same on any number of ranks: the vertices in the mesh file's node order (/geometry/vertices,
    /fields/displacement with the held nodes), the tetrahedra by their vertices' numbers in a canonical order
    (/viz/topology/cells), the contact nodes in file order (/contact: coordinates, displacement, reaction K u - b,
-   normal, gap, area, friction_law, friction, slip_bound, state, group (a contact pair named slave->master), and at the
-   solution final_gap, pressure, traction, slip against the plane or the master surface; after a step of a load path
-   slip_increment, slip_path, dissipation), the contact faces with their point fields
+   normal, gap, area, friction_law and one dataset per parameter of the laws in use (friction, slip_bound, friction_1,
+   friction_2, friction_direction: 0 where a node's law has no such parameter), state, group (a contact pair named
+   slave->master), and at the solution final_gap, pressure, traction, slip against the plane or the master surface;
+   after a step of a load path slip_increment, slip_path, dissipation), the contact faces with their point fields
    (/contact_faces: vertices, triangles, state, pressure, tangential_traction, slip, gap, displacement), the scene
    (/scene: mesh, material, loads, contact groups with their laws) and, as attributes of /, the run: ssstar_version,
    petsc_version, command_line, ranks, snes_type, converged_reason, converged_reason_code, iterations, residual_norm
@@ -510,7 +518,7 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
 
    Level: beginner
 
-.seealso: `SSStarSceneSetContact()`, `SNESSSStarGetStates()`, `SNESSSStarGetNodeFriction()`, `SSStarCheckOutputFile()`,
+.seealso: `SSStarSceneSetContact()`, `SNESSSStarGetStates()`, `SSStarWriteNodeFriction()`, `SSStarCheckOutputFile()`,
           `SSStarSceneOutputBegin()`
 @*/
 PetscErrorCode SSStarSceneWriteSolution(SSStarScene scene, SNES snes, const char file[], Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx)

@@ -482,11 +482,9 @@ static PetscErrorCode SetRigidBodyModes(DM dm, Mat K)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, Mat *K, Vec *b)
+PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, PetscReal t, Mat *K, Vec *b)
 {
-  DM         dm = scene->dm;
-  PetscInt   nknots;
-  PetscReal *knots;
+  DM dm = scene->dm;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
@@ -496,9 +494,7 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, Mat *K, Vec *b)
 
   PetscCall(DMCreateGlobalVector(dm, b));
   PetscCall(PetscObjectSetName((PetscObject)*b, "load"));
-  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
-  PetscCall(SSStarAssembleLoad(scene, nknots ? knots[nknots - 1] : 0, *b)); /* the load at the last knot */
-  PetscCall(PetscFree(knots));
+  PetscCall(SSStarAssembleLoad(scene, t, *b));
   PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -200,7 +200,8 @@ PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt 
 
    Output Parameters:
 +  K - the stiffness (the caller destroys it); the rigid-body modes are its near-null space
--  b - the load (the caller destroys it)
+-  b - the load (the caller destroys it); of load histories, their value at the last knot (SSStarSceneAssembleLoad()
+       gives it at any time)
 
    Level: beginner
 
@@ -208,8 +209,13 @@ PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt 
 @*/
 PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
 {
+  PetscInt   nknots;
+  PetscReal *knots;
+
   PetscFunctionBegin;
-  PetscCall(SSStarAssembleElasticity(scene, K, b));
+  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
+  PetscCall(SSStarAssembleElasticity(scene, nknots ? knots[nknots - 1] : 0, K, b)); /* the load at the last knot */
+  PetscCall(PetscFree(knots));
   PetscFunctionReturn(0);
 }
 

@@ -130,7 +130,7 @@ PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, con
 PETSC_INTERN PetscErrorCode SSStarMeshLoadCached(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, Mat *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, PetscReal, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
 PETSC_INTERN PetscErrorCode SSStarAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_INTERN PetscErrorCode SSStarGroupArea(DM, const char[], PetscReal *);

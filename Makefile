@@ -19,7 +19,7 @@ LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator \
-            tests/test_geometry tests/test_collective tests/test_history
+            tests/test_geometry tests/test_collective tests/test_history tests/test_offsets
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -39,7 +39,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-large bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test bench bench-large bench-scenes bench-loadpath scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -59,7 +59,7 @@ examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_collective tests/test_history: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_collective tests/test_history tests/test_offsets: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
@@ -115,6 +115,10 @@ accuracy: all
 # what an effect costs: the prism scene with effects switched on and off (bench/output/scenes.csv)
 bench-scenes: all
 	$(PYTHON) bench/scenes.py
+
+# the Mindlin-Deresiewicz loop of a load path against its closed forms, levels 1 and 2 (bench/output/loadpath.csv)
+bench-loadpath: all
+	$(PYTHON) bench/loadpath.py --levels 1,2
 
 # every scene of scenes/ at its level: scenes/output/NAME.h5, .xmf and .png
 SCENES := $(basename $(notdir $(wildcard scenes/*.opts)))

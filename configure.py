@@ -50,6 +50,26 @@ def install_missing():
         sys.exit("configure: still missing after apt-get: " + " ".join(still))
 
 
+def has_xdmf_reader(python):
+    return python and subprocess.call([python, "-c", "import vtk; vtk.vtkXdmfReader"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) == 0
+
+
+def install_vtk():
+    """VTK with the XDMF reader ParaView uses, for the test that reads the XDMF of a load path (tests/xdmf_check.py):
+    Debian's python3-vtk9 has none, PyPI's vtk has; pip installs it for the first python3 on the PATH"""
+    candidates = [shutil.which("python3"), DEBIAN_PYTHON]
+    if any(has_xdmf_reader(py) for py in candidates):
+        return
+    python = candidates[0] or DEBIAN_PYTHON
+    cmd = [python, "-m", "pip", "install", "vtk"] + (["--break-system-packages"] if python == DEBIAN_PYTHON else [])
+    if os.geteuid() != 0:
+        print("configure: no Python with VTK's vtkXdmfReader (a test reads the XDMF files with it); run:\n  " + " ".join(cmd))
+        return
+    print("configure: installing VTK for %s (pip install vtk)" % python, flush=True)
+    if subprocess.call(cmd + ["-q"]) != 0 or not has_xdmf_reader(python):
+        print("configure: pip could not install vtk; the test of the XDMF files of load paths will fail")
+
+
 def find_petsc():
     petsc_dir = os.environ.get("PETSC_DIR", "/usr/lib/petsc")
     petsc_arch = os.environ.get("PETSC_ARCH", "")
@@ -83,6 +103,7 @@ def find_petsc():
 
 def main():
     install_missing()
+    install_vtk()
     petsc_dir, petsc_arch, version = find_petsc()
     gmsh = shutil.which("gmsh")
     os.makedirs("config", exist_ok=True)

@@ -4,15 +4,21 @@ describe, and only what they name (no contact group: one linear solve; frictionl
 A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
-  -load_steps <1>                 solve at the loads k/N of the given ones, k = 1..N (the last is written)\n\
-  -o <file.h5>                    write the solution (HDF5 + XDMF)\n\
+  -load_steps <1>                 solve at the loads k/N of the given constant ones, k = 1..N (the last is written)\n\
+  -steps <t1,t2,...|N>            a load path (histories -traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion):\n\
+                                  the times solved, or N equal steps from the first knot to the last (default: the\n\
+                                  knots), each from the step before with incremental friction (docs/load-paths.md)\n\
+  -steps_max_cuts <4>             a step that does not converge is halved and retried, at most this many times\n\
+  -o <file.h5>                    write the solution (HDF5 + XDMF; on a load path every step, /steps)\n\
 The solver's options (-snes_ssstar_*) apply. An option nothing reads is refused before any work. Exit status 0 when every\n\
 solve converged, 2 when one did not (the load steps stop there; the -o file holds that step's iterate and says so:\n\
-attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input (one\n\
-line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
+attributes converged_reason, residual_norm, iterations of \"/\", and on a load path failed_step, failed_time),\n\
+PETSc's error code for bad input (one line naming the option or file; -ssstar_traceback adds PETSc's report). -help\n\
+lists the options and does nothing else.\n";
 
 #include <ssstar.h>
 #include <ssstarscene.h>
+#include <ssstarhistory.h>
 #include <petscviewerhdf5.h>
 
 /* What each load step gave, for the output file */
@@ -48,6 +54,59 @@ static PetscErrorCode WriteLoadSteps(PetscViewer viewer, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Where a load path stopped: the attributes failed_step (the index in /steps) and failed_time of "/" */
+typedef struct {
+  PetscInt  step;
+  PetscReal time;
+} PathFailure;
+
+static PetscErrorCode WriteFailure(PetscViewer viewer, void *ctx)
+{
+  PathFailure *f = (PathFailure *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "failed_step", PETSC_INT, &f->step));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "failed_time", PETSC_REAL, &f->time));
+  PetscFunctionReturn(0);
+}
+
+/* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion */
+static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscInt n, PetscReal t, PetscInt cuts, Vec load, PetscBool hasContact)
+{
+  SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
+  PetscReal           R[3], T;
+  PetscInt            its, ngroups;
+  Vec                 r;
+  const SSStarState  *states;
+  char                motion[512] = "", cut[32] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetLoadResultant(scene, load, R));
+  PetscCall(SNESGetIterationNumber(snes, &its));
+  if (hasContact) {
+    PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
+    PetscCall(SNESSSStarGetStates(snes, &states, NULL));
+    PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
+  }
+  PetscCall(SSStarSceneGetContactGroupCount(scene, &ngroups));
+  for (PetscInt g = 0; g < ngroups; g++) { /* the moving obstacles */
+    const char *name;
+    PetscReal   d[3];
+    PetscBool   moving;
+    char        item[256];
+
+    PetscCall(SSStarSceneGetMotion(scene, g, &name, d, &moving));
+    if (!moving) continue;
+    PetscCall(PetscSNPrintf(item, sizeof(item), ", obstacle of %s at (%.6g, %.6g, %.6g)", name, (double)d[0], (double)d[1], (double)d[2]));
+    PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+  }
+  T = PetscSqrtReal(res.tangential_force[0] * res.tangential_force[0] + res.tangential_force[1] * res.tangential_force[1] + res.tangential_force[2] * res.tangential_force[2]);
+  if (cuts) PetscCall(PetscSNPrintf(cut, sizeof(cut), " (halved %" PetscInt_FMT "x)", cuts));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g%s: load (%.6g, %.6g, %.6g) normal force %.6g tangential force %.6g (%.6g, %.6g, %.6g) area %.6g sliding %" PetscInt_FMT " of %" PetscInt_FMT " touching, %" PetscInt_FMT " iterations%s\n", k + 1, n, (double)t, cut, (double)R[0], (double)R[1], (double)R[2], (double)res.normal_force, (double)T,
+                        (double)res.tangential_force[0], (double)res.tangential_force[1], (double)res.tangential_force[2], (double)res.area, res.sliding, res.sliding + res.sticking, its, motion));
+  PetscFunctionReturn(0);
+}
+
 /* Time spent in a log event, max over the ranks */
 static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
 {
@@ -59,21 +118,138 @@ static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
   PetscFunctionReturn(0);
 }
 
+/* -load_steps N: static solves at the loads k/N of the constant ones, each from the previous solution (continuation) */
+static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec load, Vec u, PetscBool hasContact, LoadSteps *steps, PetscInt *its, SNESConvergedReason *reason)
+{
+  PetscInt nsteps = steps->n, ncontact;
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetSizes(scene, NULL, &ncontact));
+  steps->n = 0;
+  for (PetscInt k = 1; k <= nsteps; k++) {
+    const PetscReal     factor = (PetscReal)k / nsteps;
+    PetscInt            stepIts;
+    SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
+
+    PetscCall(VecCopy(b, load));
+    PetscCall(VecScale(load, factor));
+    PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
+    PetscCall(SNESGetConvergedReason(snes, reason));
+    PetscCall(SNESGetIterationNumber(snes, &stepIts));
+    *its += hasContact ? stepIts : 0;
+    if (hasContact) {
+      Vec                r;
+      const SSStarState *states;
+
+      PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
+      PetscCall(SNESSSStarGetStates(snes, &states, NULL));
+      PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
+    }
+    steps->factor[k - 1]       = factor;
+    steps->area[k - 1]         = res.area;
+    steps->normal_force[k - 1] = res.normal_force;
+    steps->iterations[k - 1]   = hasContact ? stepIts : 0;
+    steps->n                   = k;
+    if (nsteps > 1)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)factor, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
+                            (double)res.normal_force, *reason > 0 ? "" : ", not converged: ", *reason > 0 ? "" : SNESConvergedReasons[*reason]));
+    if (*reason <= 0) break; /* the next steps would start from a point that is no solution */
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+   A load path (docs/load-paths.md): the steps at the times of -steps (default the knots of the histories), each from
+   the solution of the step before with incremental friction; a step that does not converge is retried from there at
+   the midpoint and goes on to its time in sub-steps of that size, at most maxCuts halvings per step, then the path
+   stops (failure->step >= 0). With out, every step (and sub-step) into the file.
+*/
+static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, const char stepsText[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
+{
+  PetscInt   nknots, nsteps, written = 0;
+  PetscReal *knots, *times, tAccepted = 0;
+  PetscBool  accepted = PETSC_FALSE;
+  Vec        uAccepted, r;
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
+  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_WORLD, "-steps", stepsText, nknots, knots, &nsteps, &times));
+  if (!nsteps) { /* constant loads and motions: one step */
+    PetscCall(PetscFree(times));
+    PetscCall(PetscMalloc1(1, &times));
+    times[0] = 0;
+    nsteps   = 1;
+  }
+  if (out) PetscCall(SSStarSceneOutputBegin(scene, out));
+  PetscCall(VecDuplicate(u, &uAccepted));
+  PetscCall(VecCopy(u, uAccepted));
+  failure->step = -1;
+  for (PetscInt k = 0; k < nsteps && failure->step < 0; k++) {
+    PetscReal t    = times[k], dt = 0; /* dt: the sub-step after a cut, 0 before */
+    PetscInt  cuts = 0;
+
+    for (;;) {
+      PetscInt stepIts;
+
+      PetscCall(SSStarSceneAssembleLoad(scene, t, load));
+      PetscCall(SSStarSceneSetStep(scene, snes, t));
+      PetscCall(VecCopy(uAccepted, u));
+      PetscCall(SNESSolve(snes, NULL, u));
+      PetscCall(SNESGetConvergedReason(snes, reason));
+      PetscCall(SNESGetIterationNumber(snes, &stepIts));
+      *its += hasContact ? stepIts : 0;
+      if (*reason > 0) {
+        PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
+        PetscCall(SSStarSceneAcceptStep(scene, u, r));
+        PetscCall(StepLine(scene, snes, k, nsteps, t, cuts, load, hasContact));
+        if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts));
+        written++;
+        PetscCall(VecCopy(u, uAccepted));
+        tAccepted = t;
+        accepted  = PETSC_TRUE;
+        if (t == times[k]) break;
+        t = PetscMin(t + dt, times[k]); /* on to the step's time in sub-steps of the cut size */
+      } else {
+        /* halve the step towards the last accepted time; the first step from its histories' start */
+        const PetscReal from = accepted ? tAccepted : (nknots ? PetscMin(knots[0], t) : t);
+
+        if (cuts < maxCuts && t > from) {
+          cuts++;
+          dt = (t - from) / 2;
+          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], (double)(from + dt)));
+          t = from + dt;
+          continue;
+        }
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], cuts, maxCuts));
+        if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts)); /* its last iterate */
+        failure->step = written;
+        failure->time = t;
+        break;
+      }
+    }
+  }
+  if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, failure->step >= 0 ? WriteFailure : NULL, failure));
+  PetscCall(VecDestroy(&uAccepted));
+  PetscCall(PetscFree(knots));
+  PetscCall(PetscFree(times));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   SSStarScene         scene;
   Mat                 K;
-  Vec                 b, load; /* the load b of the scene, and the one of a load step, a fraction of it */
-  PetscReal           factor = 1.0;
+  Vec                 b, load; /* the load b of the scene, and the one of a step: a fraction of b, or b(t) of a path */
   SNES                snes;
   Vec                 u, r = NULL;
-  PetscInt            nsteps = 1, nodes, ncontact, its = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
-  PetscBool           hasOut, hasContact, hasHelp;
-  char                out[PETSC_MAX_PATH_LEN] = "";
+  PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE;
+  char                out[PETSC_MAX_PATH_LEN] = "", stepsText[4096] = "";
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   const SSStarState  *states = NULL;
-  LoadSteps           steps;
+  LoadSteps           steps = {1, NULL, NULL, NULL, NULL};
+  PathFailure         failure = {-1, 0};
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
@@ -82,15 +258,23 @@ int main(int argc, char **argv)
 
   /* every option, before any work: the program's, the scene's, the solver's */
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Contact driver", "ssstar");
-  PetscCall(PetscOptionsInt("-load_steps", "Solve at the loads k/N of the given ones, k = 1..N", NULL, nsteps, &nsteps, NULL));
+  PetscCall(PetscOptionsInt("-load_steps", "Solve at the loads k/N of the given constant ones, k = 1..N", NULL, steps.n, &steps.n, &hasLoadSteps));
+  PetscCall(PetscOptionsString("-steps", "A load path: the times t1,t2,... solved, or N equal steps from the first knot to the last (default: the knots of the histories)", NULL, stepsText, stepsText, sizeof(stepsText), &hasSteps));
+  PetscCall(PetscOptionsInt("-steps_max_cuts", "Halvings of a step of a load path that does not converge before the path stops", NULL, maxCuts, &maxCuts, NULL));
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
   PetscOptionsEnd();
-  PetscCheck(nsteps >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-load_steps %" PetscInt_FMT ": needs at least one step", nsteps);
+  PetscCheck(steps.n >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-load_steps %" PetscInt_FMT ": needs at least one step", steps.n);
+  PetscCheck(maxCuts >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-steps_max_cuts %" PetscInt_FMT ": must be >= 0", maxCuts);
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetFromOptions(scene));
   PetscCall(SSStarSceneHasContact(scene, &hasContact));
   PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
+  if (!hasHelp) {
+    PetscCall(SSStarSceneHasPath(scene, &path));
+    path = (PetscBool)(path || hasSteps);
+    PetscCheck(!(path && hasLoadSteps), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Option -load_steps scales the constant loads of a static problem; a load path is -steps with histories (-traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion): give one of them");
+  }
   /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   if (hasContact || hasHelp) PetscCall(SNESSetType(snes, SNESSSSTAR));
@@ -134,34 +318,14 @@ int main(int argc, char **argv)
   }
   PetscCall(VecZeroEntries(u));
 
-  steps.n = 0;
-  PetscCall(PetscMalloc4(nsteps, &steps.factor, nsteps, &steps.area, nsteps, &steps.normal_force, nsteps, &steps.iterations));
+  nLoadSteps = steps.n; /* steps.n: the steps solved */
+  PetscCall(PetscMalloc4(steps.n, &steps.factor, steps.n, &steps.area, steps.n, &steps.normal_force, steps.n, &steps.iterations));
   PetscCall(PetscTime(&t0));
-  for (PetscInt k = 1; k <= nsteps; k++) {
-    PetscInt            stepIts;
-    SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}};
-
-    factor = (PetscReal)k / nsteps;
-    PetscCall(VecCopy(b, load));
-    PetscCall(VecScale(load, factor));
-    PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
-    PetscCall(SNESGetConvergedReason(snes, &reason));
-    PetscCall(SNESGetIterationNumber(snes, &stepIts));
-    its += hasContact ? stepIts : 0;
-    if (hasContact) {
-      PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
-      PetscCall(SNESSSStarGetStates(snes, &states, counts));
-      PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
-    }
-    steps.factor[k - 1]       = factor;
-    steps.area[k - 1]         = res.area;
-    steps.normal_force[k - 1] = res.normal_force;
-    steps.iterations[k - 1]   = hasContact ? stepIts : 0;
-    steps.n                   = k;
-    if (nsteps > 1)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)factor, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
-                            (double)res.normal_force, reason > 0 ? "" : ", not converged: ", reason > 0 ? "" : SNESConvergedReasons[reason]));
-    if (reason <= 0) break; /* the next steps would start from a point that is no solution */
+  if (path) PetscCall(SolvePath(scene, snes, load, u, hasSteps ? stepsText : NULL, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
+  else PetscCall(SolveLoadSteps(scene, snes, b, load, u, hasContact, &steps, &its, &reason));
+  if (hasContact) {
+    PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
+    PetscCall(SNESSSStarGetStates(snes, &states, counts));
   }
   PetscCall(PetscTimeSubtract(&t0));
   if (hasContact) {
@@ -173,7 +337,7 @@ int main(int argc, char **argv)
   if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s\n", nodes, ncontact, (double)t_assembly,
                         (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)"));
-  if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nsteps > 1 ? WriteLoadSteps : NULL, &steps));
+  if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nLoadSteps > 1 ? WriteLoadSteps : NULL, &steps));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Picture of the contact faces of a solution file (examples/contact or examples/prism, -o file.h5).
 
-  examples/plot_contact.py file.h5 [-o file.png]
+  examples/plot_contact.py file.h5 [-o file.png] [--history file_history.png]
 
 One row per contact group or pair (a pair, named slave->master, is drawn on its slave face), drawn in the
 coordinates (t1, t2) of its plane (the frame the solver uses, so any plane works; for a curved obstacle or a pair, the
@@ -13,7 +13,17 @@ says, not as a slide); no arrows where nothing slips. Right: the contact pressur
 over its tributary area). With -load_steps, a last panel shows the contact area against the load factor. Legends sit
 below their panels.
 
-As a module: draw(read(file)) returns the matplotlib figure."""
+A load path (a file with /steps, examples/contact with histories or moving obstacles) gets a second figure,
+FILE_history.png: its history step by step, (i) the tangential force against the tangential displacement -- the
+applied tangential load against the mean displacement of the traction group that carries it (weighted like its load,
+so that the loop's area is the work, the energy friction dissipates over a cycle), or the friction force on the body
+against a moving obstacle's translation -- the loop closing for a cycle; (ii) the normal force against the indentation
+(the normal displacement of the group that carries the normal load, or of the moving obstacle); (iii) the contact area
+and the sliding nodes against the time; (iv) the loop of (i) less its linear elastic part (the displacement less the
+force times the slope fitted through the loop: the bodies' compliance, which adds no area), where the slip shows. The
+contact faces are drawn at the last step.
+
+As a module: draw(read(file)) returns the matplotlib figure, draw_history(read(file)) the history's (or None)."""
 import argparse
 
 import h5py
@@ -48,7 +58,125 @@ def read(name):
     data["names"] = (names.decode() if isinstance(names, bytes) else str(names)).split(",")
     data["slip"] = c["slip"][:] if "slip" in c else None
     data["steps"] = {k: f["load_steps"][k][:] for k in f["load_steps"]} if "load_steps" in f else None
+    data["path"] = read_path(f) if "steps" in f else None
     return data
+
+
+def read_path(f):
+    """The table /steps of a load path, with the histories of the tractions and the motions of the obstacles"""
+    st = f["steps"]
+    path = {k: st[k][:] for k in st if isinstance(st[k], h5py.Dataset)}
+    path["groups"] = {g: st["groups"][g]["displacement"][:] for g in st["groups"]} if "groups" in st else {}
+    path["motion"] = {g: st["motion"][g][:] for g in st["motion"]} if "motion" in st else {}
+    path["tractions"] = {}
+    if "scene/traction" in f:
+        for g, grp in f["scene/traction"].items():
+            path["tractions"][g] = history_values(grp.attrs.get("history"), grp.attrs["traction"])
+    normals = f["contact/normal"][:] if "contact/normal" in f else np.array([[0.0, 0.0, 1.0]])
+    mean = normals.sum(axis=0)
+    path["normal"] = mean / np.linalg.norm(mean) if np.linalg.norm(mean) > 1e-12 else np.array([0.0, 0.0, 1.0])
+    return path
+
+
+def history_values(text, constant):
+    """The knots' values of a history "t:x,y,z;..." as rows (a constant: one row)"""
+    if text is None:
+        return np.atleast_2d(constant)
+    text = text.decode() if isinstance(text, bytes) else str(text)
+    return np.array([[float(v) for v in knot.split(":")[1].split(",")] for knot in text.split(";")])
+
+
+def tangential_axis(path):
+    """The global axis (0, 1, 2) off the contact normal along which the applied load or a motion varies most"""
+    n = path["normal"]
+    spans = np.zeros(3)
+    for values in [path["load"]] + list(path["motion"].values()):
+        t = values - np.outer(values @ n, n)  # tangential parts
+        spans = np.maximum(spans, np.ptp(t, axis=0))
+    return int(np.argmax(spans))
+
+
+def loaded_group(path, direction):
+    """The traction group whose history varies along direction (a unit vector), or None"""
+    best, span = None, 0.0
+    for g, values in path["tractions"].items():
+        s = np.ptp(values @ direction)
+        if g in path["groups"] and s > span:
+            best, span = g, s
+    return best
+
+
+def draw_history(d):
+    """The figure of a load path (read(); None without /steps): force against displacement, tangential and normal,
+    and the contact area and sliding nodes against the time"""
+    path = d["path"]
+    if path is None:
+        return None
+    fig, grid = plt.subplots(2, 2, figsize=(13, 9.5), layout="constrained")
+    axes = [grid[0, 0], grid[1, 0], grid[1, 1], grid[0, 1]]
+    n, axis = path["normal"], tangential_axis(path)
+    e = np.eye(3)[axis]
+    label = "xyz"[axis]
+    # (i) tangential force against tangential displacement
+    moving = next(iter(path["motion"]), None)
+    group = loaded_group(path, e)
+    if moving is not None:
+        x, y = path["motion"][moving][:, axis], path["tangential_force"][:, axis]
+        axes[0].set_xlabel("translation of the obstacle of %s along %s" % (moving, label))
+        axes[0].set_ylabel("friction force on the body along %s" % label)
+    else:
+        x = path["groups"][group][:, axis] if group else np.zeros(len(path["time"]))
+        y = path["load"][:, axis]
+        axes[0].set_xlabel("mean displacement of %s along %s (weighted like its load)" % (group, label))
+        axes[0].set_ylabel("applied load along %s" % label)
+    axes[0].plot(x, y, "o-", ms=3, lw=1.2, color="tab:blue")
+    axes[0].plot(x[:1], y[:1], "s", color="tab:green", label="first step")
+    axes[0].plot(x[-1:], y[-1:], "D", color="tab:red", label="last step")
+    axes[0].set_title("tangential force against displacement (friction dissipated %.4g in all)" % path["dissipation"][-1])
+    # the same without its linear elastic part (the bodies' compliance, a straight line with no area): the hysteresis
+    slope = np.polyfit(y, x, 1)[0] if np.ptp(y) > 0 else 0.0
+    axes[3].plot(x - slope * y, y, "o-", ms=3, lw=1.2, color="tab:blue")
+    axes[3].plot((x - slope * y)[:1], y[:1], "s", color="tab:green", label="first step")
+    axes[3].plot((x - slope * y)[-1:], y[-1:], "D", color="tab:red", label="last step")
+    axes[3].set_xlabel("the same displacement less %.4g times the force (its linear elastic part)" % slope)
+    axes[3].set_ylabel(axes[0].get_ylabel())
+    axes[3].set_title("the loop without the elastic compliance: slip and hysteresis")
+    axes[3].grid(True)
+    axes[3].axhline(0, color="0.7", lw=0.8)
+    axes[3].legend(fontsize=8, loc="best")
+    # (ii) normal force against indentation
+    if moving is not None:
+        delta, what = path["motion"][moving] @ n, "translation of the obstacle of %s" % moving
+    else:
+        normal_group = loaded_group(path, n)
+        delta = path["groups"][normal_group] @ n if normal_group else np.zeros(len(path["time"]))
+        what = "normal displacement of %s" % normal_group
+    N = path["normal_force"]
+    if np.ptp(delta) > 0 and np.corrcoef(delta, N)[0, 1] < 0:
+        delta = -delta  # the indentation grows with the normal force
+    axes[1].plot(delta, N, "o-", ms=3, lw=1.2, color="tab:purple")
+    axes[1].set_xlabel("indentation: %s" % what)
+    axes[1].set_ylabel("normal force")
+    axes[1].set_title("normal force against indentation")
+    # (iii) contact area and sliding nodes against the time
+    t = path["time"]
+    axes[2].plot(t, path["area"], "o-", ms=3, color="tab:blue", label="contact area")
+    axes[2].set_xlabel("time (of the histories)")
+    axes[2].set_ylabel("contact area")
+    twin = axes[2].twinx()
+    twin.plot(t, path["sliding"], "s--", ms=3, color="tab:red", label="sliding nodes")
+    twin.plot(t, path["sliding"] + path["sticking"], ":", color="0.4", label="touching nodes")
+    twin.set_ylabel("nodes")
+    axes[2].set_title("contact area and sliding nodes")
+    lines = axes[2].get_legend_handles_labels()
+    more = twin.get_legend_handles_labels()
+    axes[2].legend(lines[0] + more[0], lines[1] + more[1], fontsize=8, loc="center right")
+    for ax in axes[:2]:
+        ax.grid(True)
+        ax.axhline(0, color="0.7", lw=0.8)
+    axes[0].legend(fontsize=8, loc="best")
+    axes[2].grid(True)
+    return fig
 
 
 def group_frame(n):
@@ -165,11 +293,18 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file")
     parser.add_argument("-o", "--output", help="PNG file (default: FILE with .png)")
+    parser.add_argument("--history", help="PNG file of a load path's history (default: FILE_history.png; with /steps)")
     args = parser.parse_args()
-    fig = draw(read(args.file))
+    data = read(args.file)
+    fig = draw(data)
     out = args.output or args.file.rsplit(".", 1)[0] + ".png"
     fig.savefig(out, dpi=110, bbox_inches="tight")
     print("wrote " + out)
+    fig = draw_history(data)
+    if fig is not None:
+        out = args.history or args.file.rsplit(".", 1)[0] + "_history.png"
+        fig.savefig(out, dpi=110, bbox_inches="tight")
+        print("wrote " + out)
 
 
 if __name__ == "__main__":

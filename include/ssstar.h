@@ -115,6 +115,8 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetLinearProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetContactNodes(SNES, PetscInt *, IS *, Vec *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactOperator(SNES, IS, Mat, Vec);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetContactOffsets(SNES, Vec);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetContactOffsets(SNES, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReductionType(SNES, SSStarReductionType *);

@@ -43,9 +43,28 @@ typedef struct {
   PetscReal area;                                /* tributary area of the nodes in contact               */
   PetscReal normal_force;                        /* sum of r.n, the force of the plane(s) on the body    */
   PetscReal force[3];                            /* sum of r in global axes                              */
+  PetscReal tangential_force[3];                 /* sum of r - (r.n) n, the friction forces              */
+  PetscReal dissipation;                         /* energy dissipated by friction along a load path      */
 } SSStarContactResult;
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactResult(SSStarScene, PetscInt, Vec, const SSStarState[], SSStarContactResult *);
 PETSC_EXTERN PetscErrorCode SSStarSceneContactView(SSStarScene, Vec, const SSStarState[], PetscViewer);
+
+/*
+   Load paths (docs/load-paths.md): the loads as histories of a pseudo-time (-traction_<G>, -gravity), moving obstacles
+   (-obstacle_<G>_motion), the steps solved with incremental friction (SNESSSStarSetContactOffsets()), and a file that
+   holds every step.
+*/
+PETSC_EXTERN PetscErrorCode SSStarSceneGetKnots(SSStarScene, PetscInt *, PetscReal *[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneHasPath(SSStarScene, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneAssembleLoad(SSStarScene, PetscReal, Vec);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene, Vec, PetscReal[3]);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetStep(SSStarScene, SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SSStarSceneAcceptStep(SSStarScene, Vec, Vec);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene, PetscInt *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetMotion(SSStarScene, PetscInt, const char *[], PetscReal[3], PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneOutputBegin(SSStarScene, const char[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneOutputStep(SSStarScene, SNES, Vec, PetscInt);
+PETSC_EXTERN PetscErrorCode SSStarSceneOutputEnd(SSStarScene, SNES, Vec, PetscErrorCode (*)(PetscViewer, void *), void *);
 
 /*
    Output: HDF5 + XDMF, the same file on any number of ranks (the mesh file's node order), with what was solved and how

@@ -16,7 +16,8 @@
       w is the node's relative displacement: the normal gap and the slip at the solution the file records
       (/contact/final_gap, /contact/slip: against the rigid obstacle, or for a contact pair the slave node against
       the master surface), else u.n + gap and u - (u.n) n from /contact/displacement and the initial gap
-      /contact/gap (default 0), as examples/generic writes. r is the force on the node (/contact/reaction: the
+      /contact/gap (default 0), as examples/generic writes; on a load path (/contact/slip_increment) the tangential
+      law holds for the slip increment of the last step (docs/derivation.md (10.2)). r is the force on the node (/contact/reaction: the
       pressure and traction times the node's area). The law of each node is /contact/friction_law, by the names of
       its attribute names (the table of laws; without it none, tresca, coulomb), and its parameters are the datasets
       /contact/<parameter> (written by the scenes and by examples/generic); a law this script does not know fails the
@@ -70,6 +71,9 @@ def coulomb(args):
             print("/contact/final_gap or /contact/slip: not one finite value (3 for the slip) per contact node")
             return False
         print("kinematics: /contact/final_gap and /contact/slip (relative to the obstacle or the master surface)")
+        if "slip_increment" in c:  # a load path: the law of its last step holds for the slip increment (10.2)
+            ut = c["slip_increment"][:]
+            print("tangential law on /contact/slip_increment (the last step of a load path, docs/derivation.md (10.2))")
     else:
         un = np.einsum("ij,ij->i", u, normal) + gap
         ut = u - (un - gap)[:, None] * normal

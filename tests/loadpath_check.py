@@ -5,7 +5,7 @@ its known answers) in dense numpy, independently of the C code.
   tests/loadpath_check.py [--seed 5]
 
 Each check prints one line "PASS name: figures" or "FAIL name: figures"; the exit status is 1 if one fails.
-  1. offset = incremental law: a whole body (random SPD K, 20 nodes) with 8 nodes against obstacles (tilted frames,
+  1. offset = incremental law (--write FILE: its problem and answers for tests/test_offsets.c): a whole body (random SPD K, 20 nodes) with 8 nodes against obstacles (tilted frames,
      gaps, one obstacle moving) and 3 points of a contact pair (master weights), Coulomb, Tresca and frictionless
      nodes, loaded by press -> shear -> release -> reverse -> release: the semismooth* iteration on the reduced
      problem with the offsets o^k of (10.4), and on the whole body (the contact rows in place of K's rows), both
@@ -32,7 +32,13 @@ import sys
 
 import numpy as np
 
-from derivation_check import problem as random_problem  # a random SPD P and a load that separates, slides, sticks
+
+
+def random_problem(*args, **kwargs):
+    """derivation_check's random SPD P and a load that separates, slides, sticks; imported here only, because
+    derivation_check initializes petsc4py (MPI), and a scene test that imports the closed forms below runs mpiexec"""
+    from derivation_check import problem
+    return problem(*args, **kwargs)
 
 STATES = ["L", "M1", "M2", "M3+", "M3-", "M4", "LS"]  # the codes of SSStarState
 RESULTS = []
@@ -330,7 +336,30 @@ def whole_body_operator(pb):
     return T, T.T @ pb["K"] @ T
 
 
-def check_offsets(seed):
+def write_petsc_binary(path, header, mats, vecs_before, steps):
+    """PETSc's binary format (big-endian): the header (int32s), the matrices (AIJ), the per-point vectors, then per step
+    its vectors, for tests/test_offsets.c (MatLoad, VecLoad, PetscViewerBinaryRead)"""
+    def vec(f, v):
+        f.write(np.array([1211214, len(v)], ">i4").tobytes() + np.asarray(v, ">f8").tobytes())
+
+    def mat(f, A):
+        rows, cols = np.nonzero(A)
+        lengths = np.bincount(rows, minlength=A.shape[0])
+        f.write(np.array([1211216, A.shape[0], A.shape[1], len(rows)], ">i4").tobytes() + lengths.astype(">i4").tobytes()
+                + cols.astype(">i4").tobytes() + A[rows, cols].astype(">f8").tobytes())
+
+    with open(path, "wb") as f:
+        f.write(np.array(header, ">i4").tobytes())
+        for A in mats:
+            mat(f, A)
+        for v in vecs_before:
+            vec(f, v)
+        for step in steps:
+            for v in step:
+                vec(f, v)
+
+
+def check_offsets(seed, write=None):
     pb = body_problem(seed)
     p, K, B, frames = pb["p"], pb["K"], pb["B"], pb["frames"]
     P, reduce_load = reduced_operator(pb)
@@ -340,7 +369,7 @@ def check_offsets(seed):
     lam, wt_dual = np.zeros(3 * p), np.zeros((p, 2))
     wt_newton = np.zeros((p, 2))
     worst = {"reduced": 0.0, "whole": 0.0}
-    seen, its = set(), []
+    seen, its, written = set(), [], []
     for t in pb["steps"]:
         bvec, d = pb["load"](t), pb["motion"](t)
         g_minus_Rd = np.zeros((p, 3))
@@ -366,6 +395,12 @@ def check_offsets(seed):
         scale = max(np.abs(u_ind).max(), 1e-300)
         worst["reduced"] = max(worst["reduced"], np.abs(u_red - u_ind).max() / scale)
         worst["whole"] = max(worst["whole"], np.abs(u_whole - u_ind).max() / scale)
+        written.append((bvec, -g_minus_Rd.ravel() + np.outer(pb["gaps"], [0, 0, 1]).ravel(), u_red))
+    if write:  # the problem and numpy's answer of every step, for the library's own solve (tests/test_offsets.c)
+        codes = {"none": 0, "tresca": 1, "coulomb": 2}
+        per_point = [pb["gaps"], [codes[law[0]] for law in pb["laws"]], [law[1] if law[0] == "coulomb" else 0 for law in pb["laws"]],
+                     [law[1] if law[0] == "tresca" else 0 for law in pb["laws"]]]
+        write_petsc_binary(write, [pb["n"], p, len(written)], [K, B], per_point, written)
     ok_r, ok_w = worst["reduced"] <= 1e-10, worst["whole"] <= 1e-10
     kinds = "/".join(s for s in STATES if s in seen)
     report("offset (10.4) = incremental law, reduced P", ok_r and {"L", "M1", "M3+"} <= seen,
@@ -624,6 +659,30 @@ def stick_radius_unloading(Q, Qstar, mu, P, a):
     return a * (1 - (Qstar - Q) / (2 * mu * P)) ** (1 / 3)
 
 
+# scenes/mindlin.opts as a load path (tests/suite_loadpath.py, bench/loadpath.py)
+def mindlin_scene_args(level, s, root, steps_per_branch=10):
+    """scenes/mindlin.opts as a path: P (t = 1), then Q: 0 -> -Q* (t = 2) -> Q* (3) -> -Q* (4), Q* = s phi P"""
+    q = s * 0.3 * 31416 / 400  # the traction on block_top (20 x 20)
+    times = [0, 1] + [1 + k / steps_per_branch for k in range(1, 3 * steps_per_branch + 1)]
+    return ["-options_file", root + "/scenes/mindlin.opts", "-level", str(level), "-traction_block_bottom", "0:0,0,0;1:0,0,78.54",
+            "-traction_block_top", "0:0,0,0;1:0,0,0;2:-%.10g,0,0;3:%.10g,0,0;4:-%.10g,0,0" % (q, q, q), "-steps", ",".join("%.10g" % t for t in times)]
+
+
+def mindlin_scene_loop(f):
+    """From the file (h5py) of mindlin_scene_args: the closed forms' inputs and the loop's measured figures over the cycle
+    t in [2, 4]: W by trapezoids of (Q, delta) (delta: the mean x displacement of block_top, where Q acts), D the
+    node-wise dissipation (10.9), the opening at Q = 0; Hertz and (11.9), (11.11) with the contact's normal force"""
+    st = f["steps"]
+    t, Q, delta, N, D = st["time"][:], -st["load"][:, 0], -st["groups/block_top/displacement"][:, 0], st["normal_force"][:], st["dissipation"][:]
+    E, nu, R, mu = 2.1e5, 0.3, 10.0, 0.3
+    i2, i25, i35, i4 = (int(np.argmin(abs(t - x))) for x in (2, 2.5, 3.5, 4))
+    P, Qs = N[i4], Q[i2]
+    a, K = hertz_radius(P, R, E, nu, E, nu), mindlin_compliance(E, nu, E, nu)
+    return {"s": Qs / (mu * P), "W": np.trapz(Q[i2:i4 + 1], delta[i2:i4 + 1]), "W_closed": mindlin_dissipation(Qs, mu, P, a, K),
+            "D": D[i4] - D[i2], "opening": delta[i25] - delta[i35], "opening_closed": mindlin_opening(Qs, mu, P, a, K),
+            "a": a, "P": P, "Qs": Qs}
+
+
 def check_mindlin():
     mu, P, R, E, nu = 0.3, 31416.0, 10.0, 2.1e5, 0.3
     a = hertz_radius(P, R, E, nu, E, nu)
@@ -658,8 +717,9 @@ def check_mindlin():
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seed", type=int, default=5)
+    parser.add_argument("--write", metavar="FILE", help="write check 1's problem and answers for tests/test_offsets.c (PETSc binary)")
     args = parser.parse_args()
-    check_offsets(args.seed)
+    check_offsets(args.seed, args.write)
     check_block_on_spring()
     check_displacement_sliding()
     check_proportional(args.seed)

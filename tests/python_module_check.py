@@ -129,6 +129,17 @@ def main():
     counted.setValues(list(range(nlaws)), np.bincount(law_codes, minlength=nlaws).astype(float), addv=PETSc.InsertMode.ADD_VALUES)
     counted.assemble()
     global_law_counts = [int(round(x)) for x in counted.getArray()] if rank == 0 else []
+    # a load path's next step with the same load (set_contact_offsets, (10.4)): the solution is its own next step,
+    # every node in contact keeps its place (the incremental law holds with a zero increment)
+    offsets = np.zeros_like(ua)
+    offsets[:, :2] = -ua[:, :2]
+    ssstar.set_contact_offsets(snes, offsets)
+    expect(np.array_equal(ssstar.get_contact_offsets(snes), offsets.reshape(-1)), "get_contact_offsets")
+    previous = u.copy()
+    snes.solve(None, u)
+    expect(snes.getConvergedReason() > 0 and np.abs(u.getArray() - previous.getArray()).max() <= 1e-10, "a step with an unchanged load moved the solution")
+    ssstar.set_contact_offsets(snes, None)
+    expect(ssstar.get_contact_offsets(snes) is None, "set_contact_offsets(None) kept the offsets")
     a, b, c = ssstar.get_newton_step_counts(snes)
     remedies = ssstar.get_remedy_counts(snes)
     expect(set(remedies) == set(ssstar.REMEDIES) and min(a, b, c) >= 0, "remedy or Newton step counts")

@@ -37,6 +37,7 @@ from petsc4py import PETSc
 
 __all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
            "set_linear_problem", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
+           "set_contact_offsets", "get_contact_offsets",
            "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
            "law_parameters", "set_law_parameter", "set_friction", "get_friction", "set_node_law_parameter",
            "set_node_friction_laws", "get_node_friction_laws", "get_node_law_parameter", "set_scaling", "get_scaling", "set_state_tolerance", "set_method", "get_method",
@@ -115,6 +116,8 @@ _C = {name: _declare(name, *args) for name, args in {
     "SNESSSStarSetContactNodes": (_Handle, _Handle, _Handle, _Handle),
     "SNESSSStarGetContactNodes": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Handle), ctypes.POINTER(_Handle), ctypes.POINTER(_Handle)),
     "SNESSSStarSetContactOperator": (_Handle, _Handle, _Handle, _Handle),
+    "SNESSSStarSetContactOffsets": (_Handle, _Handle),
+    "SNESSSStarGetContactOffsets": (_Handle, ctypes.POINTER(_Handle)),
     "SNESSSStarSetLinearProblem": (_Handle, _Handle, _Handle),
     "SNESSSStarSetReductionType": (_Handle, ctypes.c_char_p),
     "SNESSSStarGetReductionType": (_Handle, ctypes.POINTER(ctypes.c_char_p)),
@@ -224,6 +227,20 @@ def set_contact_operator(snes, dofs, B, gaps=None):
     """SNESSSStarSetContactOperator(): contact points by an operator B (a petsc4py Mat, 3 rows per point)"""
     is_ = _dofs_is(snes, dofs)
     _call(_C["SNESSSStarSetContactOperator"], _h(snes), _h(is_), _h(B), _h(_node_vec(snes, gaps, 1, "gaps")))
+
+
+def set_contact_offsets(snes, offsets):
+    """SNESSSStarSetContactOffsets(): the offsets of a load path's step, w = R u + o instead of R u + g e3
+    (docs/derivation.md (10.4)); 3 per local contact point in its frame (Vec or array), or None: back to the gaps. Read
+    at every solve: the reduction is kept"""
+    _call(_C["SNESSSStarSetContactOffsets"], _h(snes), _h(_node_vec(snes, offsets, 3, "offsets")))
+
+
+def get_contact_offsets(snes):
+    """SNESSSStarGetContactOffsets(): the offsets in use as a numpy array (3 per local contact point), or None"""
+    h = _Handle()
+    _call(_C["SNESSSStarGetContactOffsets"], _h(snes), ctypes.byref(h))
+    return None if not h.value else _borrowed_array(h.value, PETSc.Vec)
 
 
 def set_linear_problem(snes, K, b):

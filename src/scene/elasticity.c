@@ -369,27 +369,39 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscFunctionReturn(0);
 }
 
-/* Adds the consistent load of a constant traction t on the triangles of group: area/3 t per vertex. */
-PetscErrorCode SSStarAddTraction(DM dm, const char group[], const PetscReal t[3], Vec Floc)
+/* Adds the consistent load of a constant traction t on the triangles of group, area/3 t per vertex, to Floc (if not
+   NULL); area (if not NULL): the group's area on this rank */
+static PetscErrorCode TractionLoad(DM dm, const char group[], const PetscReal t[3], Vec Floc, PetscReal *area)
 {
   IS              faces;
   const PetscInt *f;
   PetscInt        nf;
 
   PetscFunctionBegin;
+  if (area) *area = 0;
   PetscCall(GroupFaces(dm, group, &faces, &nf));
   PetscCall(ISGetIndices(faces, &f));
   for (PetscInt i = 0; i < nf; i++) {
     PetscScalar load[9];
-    PetscReal   x[9], area;
+    PetscReal   x[9], a;
 
-    PetscCall(BoundaryTriangle(dm, f[i], group, x, &area));
+    PetscCall(BoundaryTriangle(dm, f[i], group, x, &a));
+    if (area) *area += a;
+    if (!Floc) continue;
     for (PetscInt v = 0; v < 3; v++)
-      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = area / 3.0 * t[k];
+      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = a / 3.0 * t[k];
     PetscCall(DMPlexVecSetClosure(dm, NULL, Floc, f[i], load, ADD_VALUES));
   }
   PetscCall(ISRestoreIndices(faces, &f));
   PetscCall(ISDestroy(&faces));
+  PetscFunctionReturn(0);
+}
+
+/* Adds the consistent load of a constant traction t on the triangles of group: area/3 t per vertex. */
+PetscErrorCode SSStarAddTraction(DM dm, const char group[], const PetscReal t[3], Vec Floc)
+{
+  PetscFunctionBegin;
+  PetscCall(TractionLoad(dm, group, t, Floc, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -464,10 +476,9 @@ static PetscErrorCode SetRigidBodyModes(DM dm, Mat K)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, Mat *K, Vec *b)
+PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, PetscReal t, Mat *K, Vec *b)
 {
-  DM  dm = scene->dm;
-  Vec Floc;
+  DM dm = scene->dm;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
@@ -477,13 +488,40 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, Mat *K, Vec *b)
 
   PetscCall(DMCreateGlobalVector(dm, b));
   PetscCall(PetscObjectSetName((PetscObject)*b, "load"));
+  PetscCall(SSStarAssembleLoad(scene, t, *b));
+  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The load b at the time t of the histories: the tractions and gravity evaluated at t (a surface and a volume loop) */
+PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
+{
+  DM        dm = scene->dm;
+  Vec       Floc;
+  PetscReal value[3];
+
+  PetscFunctionBegin;
   PetscCall(DMGetLocalVector(dm, &Floc));
   PetscCall(VecZeroEntries(Floc));
-  for (PetscInt t = 0; t < scene->nTractions; t++) PetscCall(SSStarAddTraction(dm, scene->tractions[t].name, scene->tractions[t].value, Floc));
-  if (scene->hasGravity) PetscCall(AddGravity(dm, scene->density, scene->gravity, Floc));
-  PetscCall(VecZeroEntries(*b));
-  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, *b));
+  for (PetscInt k = 0; k < scene->nTractions; k++) {
+    PetscCall(SSStarHistoryEvaluate(scene->tractions[k].history, t, value));
+    PetscCall(SSStarAddTraction(dm, scene->tractions[k].name, value, Floc));
+  }
+  if (scene->hasGravity) {
+    PetscCall(SSStarHistoryEvaluate(scene->gravityHistory, t, value));
+    PetscCall(AddGravity(dm, scene->density, value, Floc));
+  }
+  PetscCall(VecZeroEntries(b));
+  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
   PetscCall(DMRestoreLocalVector(dm, &Floc));
-  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The area of a surface group (all ranks) */
+PetscErrorCode SSStarGroupArea(DM dm, const char group[], PetscReal *area)
+{
+  PetscFunctionBegin;
+  PetscCall(TractionLoad(dm, group, NULL, NULL, area));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, area, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
   PetscFunctionReturn(0);
 }

@@ -18,7 +18,8 @@
 -  states - the states of the owned contact nodes (SNESSSStarGetStates())
 
    Output Parameter:
-.  res - the nodes per kind of state, the area of the nodes in contact, the normal force and the force
+.  res - the nodes per kind of state, the area of the nodes in contact, the normal force, the force, its tangential part
+         and, on a load path, the energy friction dissipated since its start (SSStarSceneAcceptStep())
 
    Level: intermediate
 
@@ -28,14 +29,15 @@ PetscErrorCode SSStarSceneGetContactResult(SSStarScene scene, PetscInt g, Vec r,
 {
   Vec                rC;
   const PetscScalar *ra;
-  PetscReal          sums[5] = {0, 0, 0, 0, 0};
+  PetscReal          sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; /* area, normal force, force, tangential force, dissipation */
   PetscInt           counts[4] = {0, 0, 0, 0};
 
   PetscFunctionBegin;
   PetscCall(VecGetSubVector(r, scene->isC, &rC));
   PetscCall(VecGetArrayRead(rC, &ra));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarState s = states[i];
+    const SSStarState s  = states[i];
+    PetscReal         rn = 0;
     PetscBool         touching;
 
     if (g >= 0 && scene->group[i] != g) continue;
@@ -46,13 +48,16 @@ PetscErrorCode SSStarSceneGetContactResult(SSStarScene scene, PetscInt g, Vec r,
     touching = (PetscBool)(s != SSSTAR_STATE_L && s != SSSTAR_STATE_LS);
     if (touching) sums[0] += scene->area[i];
     for (PetscInt k = 0; k < 3; k++) {
-      sums[1] += PetscRealPart(ra[3 * i + k]) * scene->normal[3 * i + k];
+      rn += PetscRealPart(ra[3 * i + k]) * scene->normal[3 * i + k];
       sums[2 + k] += PetscRealPart(ra[3 * i + k]);
     }
+    sums[1] += rn;
+    for (PetscInt k = 0; k < 3; k++) sums[5 + k] += PetscRealPart(ra[3 * i + k]) - rn * scene->normal[3 * i + k];
+    if (scene->stepped) sums[8] += scene->dissipation[i];
   }
   PetscCall(VecRestoreArrayRead(rC, &ra));
   PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 5, MPIU_REAL, MPIU_SUM, scene->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 9, MPIU_REAL, MPIU_SUM, scene->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 4, MPIU_INT, MPI_SUM, scene->comm));
   res->nodes        = counts[0];
   res->separated    = counts[1];
@@ -60,7 +65,11 @@ PetscErrorCode SSStarSceneGetContactResult(SSStarScene scene, PetscInt g, Vec r,
   res->sticking     = counts[3];
   res->area         = sums[0];
   res->normal_force = sums[1];
-  for (PetscInt k = 0; k < 3; k++) res->force[k] = sums[2 + k];
+  for (PetscInt k = 0; k < 3; k++) {
+    res->force[k]            = sums[2 + k];
+    res->tangential_force[k] = sums[5 + k];
+  }
+  res->dissipation = sums[8];
   PetscFunctionReturn(0);
 }
 
@@ -95,18 +104,18 @@ PetscErrorCode SSStarSceneContactView(SSStarScene scene, Vec r, const SSStarStat
    The contact kinematics and tractions of every contact node at the solution u (r = K u - b), for /contact: gap (the
    normal gap w_n at the solution), pressure (r.n / area), traction (the tangential traction, global axes, 3 per node)
    and slip (the tangential relative displacement w_t: the slave node against the master surface, or against the
-   rigid obstacle; global axes, 3 per node), in the order of the contact nodes.
+   rigid obstacle where it is in the step set last; global axes, 3 per node), in the order of the contact nodes.
 */
 PetscErrorCode SSStarSceneContactKinematics(SSStarScene scene, Vec u, Vec r, PetscReal gap[], PetscReal pressure[], PetscReal traction[], PetscReal slip[])
 {
   const PetscInt     n = scene->n;
-  const PetscScalar *wa, *ra;
-  Vec                w, rC;
+  const PetscScalar *ra;
+  PetscReal         *wa;
+  Vec                rC;
 
   PetscFunctionBegin;
-  PetscCall(MatCreateVecs(scene->B, NULL, &w));
-  PetscCall(MatMult(scene->B, u, w)); /* w - g: the relative displacement in the frames */
-  PetscCall(VecGetArrayRead(w, &wa));
+  PetscCall(PetscMalloc1(3 * n + 1, &wa));
+  PetscCall(SSStarSceneRelativeDisplacement(scene, u, wa));
   PetscCall(VecGetSubVector(r, scene->isC, &rC));
   PetscCall(VecGetArrayRead(rC, &ra));
   for (PetscInt i = 0; i < n; i++) {
@@ -114,7 +123,7 @@ PetscErrorCode SSStarSceneContactKinematics(SSStarScene scene, Vec u, Vec r, Pet
     const PetscReal *R  = &scene->frame[9 * i];
     PetscReal        rn = 0, d[3], dn = 0;
 
-    for (PetscInt k = 0; k < 3; k++) d[k] = R[k] * PetscRealPart(wa[3 * i]) + R[3 + k] * PetscRealPart(wa[3 * i + 1]) + R[6 + k] * PetscRealPart(wa[3 * i + 2]); /* R^T w: global axes */
+    for (PetscInt k = 0; k < 3; k++) d[k] = R[k] * wa[3 * i] + R[3 + k] * wa[3 * i + 1] + R[6 + k] * wa[3 * i + 2]; /* R^T w: global axes */
     for (PetscInt k = 0; k < 3; k++) {
       rn += PetscRealPart(ra[3 * i + k]) * nn[k];
       dn += d[k] * nn[k];
@@ -128,7 +137,29 @@ PetscErrorCode SSStarSceneContactKinematics(SSStarScene scene, Vec u, Vec r, Pet
   }
   PetscCall(VecRestoreArrayRead(rC, &ra));
   PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
-  PetscCall(VecRestoreArrayRead(w, &wa));
-  PetscCall(VecDestroy(&w));
+  PetscCall(PetscFree(wa));
+  PetscFunctionReturn(0);
+}
+
+/*
+   w - g e3 of every contact node at u, in its frame (3 per node): B u, less R d for a node whose obstacle has moved by d
+   in the step set last (docs/derivation.md (10.1)); w_t is the slip relative to the obstacle or master surface
+*/
+PetscErrorCode SSStarSceneRelativeDisplacement(SSStarScene scene, Vec u, PetscReal w[])
+{
+  const PetscScalar *wa;
+  Vec                Bu;
+
+  PetscFunctionBegin;
+  PetscCall(MatCreateVecs(scene->B, NULL, &Bu));
+  PetscCall(MatMult(scene->B, u, Bu));
+  PetscCall(VecGetArrayRead(Bu, &wa));
+  for (PetscInt i = 0; i < scene->n; i++) {
+    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
+
+    for (PetscInt k = 0; k < 3; k++) w[3 * i + k] = PetscRealPart(wa[3 * i + k]) - (cg->motion ? SSStarDot3(&scene->frame[9 * i + 3 * k], cg->d) : 0);
+  }
+  PetscCall(VecRestoreArrayRead(Bu, &wa));
+  PetscCall(VecDestroy(&Bu));
   PetscFunctionReturn(0);
 }

@@ -52,11 +52,15 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   if (!s) PetscFunctionReturn(0);
   for (PetscInt g = 0; g < s->nDirichlet; g++) PetscCall(PetscFree(s->dirichlet[g]));
   PetscCall(PetscFree(s->dirichlet));
+  for (PetscInt t = 0; t < s->nTractions; t++) PetscCall(SSStarHistoryDestroy(&s->tractions[t].history));
   PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
+  PetscCall(SSStarHistoryDestroy(&s->gravityHistory));
   for (PetscInt g = 0; g < s->nContact; g++) {
     PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
+    PetscCall(SSStarHistoryDestroy(&s->contact[g].motion));
     PetscCall(SSStarGroupLawDestroy(&s->contact[g]));
   }
+  PetscCall(SSStarScenePathDestroy(s));
   PetscCall(PetscFree(s->contact));
   PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
   PetscCall(PetscFree2(s->gap, s->area));
@@ -196,7 +200,8 @@ PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt 
 
    Output Parameters:
 +  K - the stiffness (the caller destroys it); the rigid-body modes are its near-null space
--  b - the load (the caller destroys it)
+-  b - the load (the caller destroys it); of load histories, their value at the last knot (SSStarSceneAssembleLoad()
+       gives it at any time)
 
    Level: beginner
 
@@ -204,8 +209,13 @@ PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt 
 @*/
 PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
 {
+  PetscInt   nknots;
+  PetscReal *knots;
+
   PetscFunctionBegin;
-  PetscCall(SSStarAssembleElasticity(scene, K, b));
+  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
+  PetscCall(SSStarAssembleElasticity(scene, nknots ? knots[nknots - 1] : 0, K, b)); /* the load at the last knot */
+  PetscCall(PetscFree(knots));
   PetscFunctionReturn(0);
 }
 
@@ -287,6 +297,22 @@ PetscErrorCode SSStarSceneGetContactNodes(SSStarScene scene, PetscInt *n, const 
   PetscFunctionReturn(0);
 }
 
+/* A history as the view shows it: "(x, y, z)" for a constant, else "history t:x,y,z;..." */
+static PetscErrorCode HistoryText(SSStarHistory h, char text[], size_t len)
+{
+  PetscInt         n;
+  const PetscReal *v;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarHistoryGetKnots(h, &n, NULL, &v));
+  if (!n) PetscCall(PetscSNPrintf(text, len, "(%g, %g, %g)", (double)v[0], (double)v[1], (double)v[2]));
+  else {
+    PetscCall(PetscStrncpy(text, "history ", len));
+    PetscCall(SSStarHistoryDescribe(h, text + 8, len - 8));
+  }
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarSceneView - what the scene simulates: the body, its material, supports and loads, its contact groups, and
    the line "active effects"
@@ -303,7 +329,7 @@ PetscErrorCode SSStarSceneGetContactNodes(SSStarScene scene, PetscInt *n, const 
 @*/
 PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 {
-  char effects[512] = "elasticity";
+  char effects[512] = "elasticity", text[1024];
 
   PetscFunctionBegin;
   PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
@@ -312,8 +338,14 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   for (PetscInt m = 0; m < scene->nMaterials; m++) PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g\n", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
   for (PetscInt g = 0; g < scene->nDirichlet; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "held fixed: %s\n", scene->dirichlet[g]));
   for (PetscInt s = 0; s < scene->nSprings; s++) PetscCall(PetscViewerASCIIPrintf(viewer, "spring on %s: k = %g per unit area, every direction\n", scene->springs[s].name, (double)scene->springs[s].value[0]));
-  for (PetscInt t = 0; t < scene->nTractions; t++) PetscCall(PetscViewerASCIIPrintf(viewer, "traction on %s: (%g, %g, %g)\n", scene->tractions[t].name, (double)scene->tractions[t].value[0], (double)scene->tractions[t].value[1], (double)scene->tractions[t].value[2]));
-  if (scene->hasGravity) PetscCall(PetscViewerASCIIPrintf(viewer, "gravity: (%g, %g, %g), density %g\n", (double)scene->gravity[0], (double)scene->gravity[1], (double)scene->gravity[2], (double)scene->density));
+  for (PetscInt t = 0; t < scene->nTractions; t++) {
+    PetscCall(HistoryText(scene->tractions[t].history, text, sizeof(text)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "traction on %s: %s\n", scene->tractions[t].name, text));
+  }
+  if (scene->hasGravity) {
+    PetscCall(HistoryText(scene->gravityHistory, text, sizeof(text)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "gravity: %s, density %g\n", text, (double)scene->density));
+  }
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      obstacle[PETSC_MAX_PATH_LEN + 128];
@@ -324,6 +356,10 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
       PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax));
     }
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
+    if (cg->motion) {
+      PetscCall(HistoryText(cg->motion, text, sizeof(text)));
+      PetscCall(PetscViewerASCIIPrintf(viewer, ", moving by %s", text));
+    }
     PetscCall(SSStarGroupLawView(cg, viewer)); /* ", friction coulomb, phi = 0.5" */
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
@@ -333,6 +369,12 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->nSprings) PetscCall(PetscStrlcat(effects, ", springs", sizeof(effects)));
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
+  {
+    PetscBool path; /* histories with knots or moving obstacles */
+
+    PetscCall(SSStarSceneHasPath(scene, &path));
+    if (path) PetscCall(PetscStrlcat(effects, ", load path (incremental friction)", sizeof(effects)));
+  }
   if (scene->nContact) {
     PetscInt nlaws;
 

@@ -2,10 +2,13 @@
 #define SSSTARSCENEIMPL_H
 
 #include <ssstarscene.h>
+#include <ssstarhistory.h>
 #include "obstacle.h"
 #include <ssstargeometry.h>
 
 #define SSSTAR_GROUP_NAME_LEN 128
+
+typedef struct _n_SSStarSceneOutput *SSStarSceneOutput; /* output/outputimpl.h */
 
 /* The kind of physical group an option needs */
 typedef enum {
@@ -21,10 +24,14 @@ typedef struct {
   SSStarGroupKind kind;
 } SSStarGroupUse;
 
-/* A group with a vector of values: -traction_<G> (3), -material_<G> E,nu (2), -spring_<G> k (1) */
+/*
+   A group with a vector of values: -traction_<G> (3), -material_<G> E,nu (2), -spring_<G> k (1). A traction is a load
+   history (a constant without knots; docs/load-paths.md), value its value at the last knot.
+*/
 typedef struct {
-  char      name[SSSTAR_GROUP_NAME_LEN];
-  PetscReal value[3];
+  char          name[SSSTAR_GROUP_NAME_LEN];
+  PetscReal     value[3];
+  SSStarHistory history; /* a traction's; NULL for the others */
 } SSStarGroupValues;
 
 /* A parameter of a contact group's friction law, given as -<parameter>_<G> (a name of SSStarLawGetParameterNames()) */
@@ -45,6 +52,8 @@ typedef struct {
   PetscInt          nodes;              /* contact nodes of the group (global)                  */
   PetscReal         gapMin, gapMax;     /* initial gaps of its nodes                            */
   char              master[SSSTAR_GROUP_NAME_LEN]; /* -contact_pair_<G> H: the master surface (empty: an obstacle) */
+  SSStarHistory     motion;             /* -obstacle_<G>_motion: the obstacle's translation history, or NULL */
+  PetscReal         d[3], dPrev[3];     /* its translation in the step being solved, and after the last accepted one */
 } SSStarContactGroup;
 
 /* How a pair's slave nodes are compared with the master surface (-pair_discretization) */
@@ -68,7 +77,8 @@ struct _n_SSStarScene {
   char             **dirichlet;
   SSStarContactGroup *contact;
   PetscBool          hasGravity;
-  PetscReal          gravity[3], density;
+  PetscReal          gravity[3], density; /* gravity: its value at the last knot of its history */
+  SSStarHistory      gravityHistory;
 
   /* set up */
   DM       dm;
@@ -99,6 +109,21 @@ struct _n_SSStarScene {
   PetscInt  *masterDof;    /* the x-dof of a master vertex m_j (y, z follow); none for a rigid obstacle */
   PetscReal *masterWeight; /* w_ij                                                                 */
   Mat        B;
+
+  /* a load path (path.c, docs/derivation.md section 10): the step being solved and what the accepted steps left */
+  PetscReal  stepTime;      /* the time of the step SSStarSceneSetStep() set                         */
+  PetscReal  load[3];       /* the resultant of the load SSStarSceneAssembleLoad() assembled last       */
+  PetscBool  stepped;       /* a step was accepted: the arrays below hold its kinematics              */
+  PetscReal *slipPrev;      /* w_t after the last accepted step, 2 per node (frame)                   */
+  PetscReal *slipIncrement; /* its increment in that step, 2 per node (frame)                         */
+  PetscReal *slipPath;      /* the length of the slip path, per node                                  */
+  PetscReal *dissipation;   /* the energy friction dissipated, per node (10.9)                        */
+  Vec        offsets;       /* the offsets (10.4) handed to the SNES                                  */
+  PetscInt   nSurfaces;     /* named surface groups whose mean displacement the output follows       */
+  char     **surfaces;
+  Vec       *surfaceWeights; /* per surface: its consistent load of a unit traction (area / 3 per node) */
+  PetscReal *surfaceAreas;
+  SSStarSceneOutput output; /* a file being written step by step, or NULL */
 };
 
 PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
@@ -107,8 +132,10 @@ PETSC_INTERN PetscErrorCode SSStarMeshCacheFromModel(const char[]);
 PETSC_INTERN PetscErrorCode SSStarMeshCellVertices(DM, PetscInt, PetscInt[4]);
 PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
-PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, Mat *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, PetscReal, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
+PETSC_INTERN PetscErrorCode SSStarAssembleLoad(SSStarScene, PetscReal, Vec);
+PETSC_INTERN PetscErrorCode SSStarGroupArea(DM, const char[], PetscReal *);
 
 /* What a contact source adds to the rows of B: the masters of its nodes (node, x-dof, weight), in any order */
 typedef struct {
@@ -158,5 +185,8 @@ PETSC_INTERN PetscErrorCode SSStarGroupLawHelp(char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarGroupLawView(const SSStarContactGroup *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarSceneSetContactLaws(SSStarScene, SNES);
 PETSC_INTERN PetscErrorCode SSStarSceneContactKinematics(SSStarScene, Vec, Vec, PetscReal[], PetscReal[], PetscReal[], PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarSceneRelativeDisplacement(SSStarScene, Vec, PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarSceneSurfaceDisplacements(SSStarScene, Vec, PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarScenePathDestroy(SSStarScene);
 
 #endif

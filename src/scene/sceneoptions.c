@@ -158,8 +158,8 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   PetscFunctionReturn(0);
 }
 
-/* The contact group G of a -obstacle_G, -friction_law_G, -<parameter>_G or -contact_pair_G (which must be in -contact) */
-static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const char option[], SSStarContactGroup **cg)
+/* The contact group named group, or NULL */
+static PetscErrorCode FindContactGroup(SSStarScene scene, const char group[], SSStarContactGroup **cg)
 {
   PetscBool same;
 
@@ -169,7 +169,43 @@ static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const 
     PetscCall(PetscStrcmp(group, scene->contact[g].name, &same));
     if (same) *cg = &scene->contact[g];
   }
+  PetscFunctionReturn(0);
+}
+
+/* The contact group G of a -obstacle_G, -friction_law_G, -<parameter>_G or -contact_pair_G (which must be in -contact) */
+static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const char option[], SSStarContactGroup **cg)
+{
+  PetscFunctionBegin;
+  PetscCall(FindContactGroup(scene, group, cg));
   PetscCheck(*cg, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: \"%s\" is not a contact group (not in -contact)", option, group);
+  PetscFunctionReturn(0);
+}
+
+/* The contact group G of a rest "G_motion" of -obstacle_G_motion, or NULL (a group named "x_motion" is looked up first) */
+static PetscErrorCode MotionGroup(SSStarScene scene, const char rest[], SSStarContactGroup **cg)
+{
+  const char suffix[] = "_motion";
+  size_t     len;
+  char       stem[SSSTAR_GROUP_NAME_LEN];
+
+  PetscFunctionBegin;
+  *cg = NULL;
+  PetscCall(PetscStrlen(rest, &len));
+  if (len <= sizeof(suffix) - 1 || strcmp(rest + len - (sizeof(suffix) - 1), suffix)) PetscFunctionReturn(0);
+  PetscCall(PetscStrncpy(stem, rest, PetscMin(sizeof(stem), len - (sizeof(suffix) - 1) + 1)));
+  PetscCall(FindContactGroup(scene, stem, cg));
+  PetscFunctionReturn(0);
+}
+
+/* The value of a history at its last knot (a constant's value) */
+static PetscErrorCode LastValue(SSStarHistory h, PetscReal value[3])
+{
+  PetscInt         n;
+  const PetscReal *times;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarHistoryGetKnots(h, &n, &times, NULL));
+  PetscCall(SSStarHistoryEvaluate(h, n ? times[n - 1] : 0, value));
   PetscFunctionReturn(0);
 }
 
@@ -182,16 +218,30 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   PetscFunctionBegin;
   switch (kind) {
   case OPT_MATERIAL:
-  case OPT_TRACTION:
   case OPT_SPRING:
-    gv = kind == OPT_MATERIAL ? &scene->materials[scene->nMaterials++] : kind == OPT_TRACTION ? &scene->tractions[scene->nTractions++] : &scene->springs[scene->nSprings++];
+    gv = kind == OPT_MATERIAL ? &scene->materials[scene->nMaterials++] : &scene->springs[scene->nSprings++];
     PetscCall(PetscStrncpy(gv->name, group, sizeof(gv->name)));
-    PetscCall(GetFiniteArray(scene->comm, option, kind == OPT_MATERIAL ? 2 : kind == OPT_TRACTION ? 3 : 1, kind == OPT_MATERIAL ? "E,nu" : kind == OPT_TRACTION ? "x,y,z" : "k", gv->value, &set));
+    PetscCall(GetFiniteArray(scene->comm, option, kind == OPT_MATERIAL ? 2 : 1, kind == OPT_MATERIAL ? "E,nu" : "k", gv->value, &set));
     PetscCheck(kind != OPT_SPRING || gv->value[0] > 0, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the spring stiffness must be positive", option, (double)gv->value[0]);
+    break;
+  case OPT_TRACTION: /* a load history, or a constant */
+    gv = &scene->tractions[scene->nTractions++];
+    PetscCall(PetscStrncpy(gv->name, group, sizeof(gv->name)));
+    PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &gv->history, &set));
+    PetscCall(LastValue(gv->history, gv->value));
     break;
   case OPT_OBSTACLE: {
     char spec[PETSC_MAX_PATH_LEN + 8] = "";
 
+    PetscCall(FindContactGroup(scene, group, &cg));
+    if (!cg) { /* -obstacle_<G>_motion: a translation history */
+      PetscCall(MotionGroup(scene, group, &cg));
+      if (cg) {
+        PetscCall(SSStarHistoryDestroy(&cg->motion));
+        PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &cg->motion, &set));
+        break;
+      }
+    }
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(PetscOptionsGetString(NULL, NULL, option, spec, sizeof(spec), &set));
     PetscCall(SSStarObstacleDestroy(&cg->obstacle));
@@ -237,10 +287,13 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
 static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G\n\
-  -traction_<G> <x,y,z>: constant traction on surface group G (global axes)\n\
+  -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
+      t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
-  -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
+  -gravity <gx,gy,gz>: gravity, with -density (only when given); a constant or a history t:gx,gy,gz;...\n\
   -contact <G1,G2,...>: the contact groups (without -contact: no contact at all)\n\
+  -obstacle_<G>_motion <t:x,y,z;...>: the translation history of G's rigid obstacle (indentation, sliding); with\n\
+      histories or -steps the scene is a load path with incremental friction (docs/load-paths.md)\n\
   -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
   -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
 
@@ -306,12 +359,13 @@ PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[],
 .  -nu <nu> - Poisson's ratio of those cells
 .  -material_<G> <E,nu> - the material of volume group G
 .  -dirichlet <G1,G2> - groups held fixed
-.  -traction_<G> <x,y,z> - traction on surface group G
+.  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
-.  -gravity <gx,gy,gz> - gravity, with -density
+.  -gravity <gx,gy,gz> - gravity, with -density: a constant, or a history t:gx,gy,gz;...
 .  -density <rho> - the mass density
 .  -contact <G1,G2> - the contact groups
 .  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
+.  -obstacle_<G>_motion <t:x,y,z;...> - the translation history of G's obstacle
 .  -friction_law_<G> <coulomb> - a law of the table: none, tresca, coulomb or orthotropic
 .  -<parameter>_<G> <value> - every parameter of the laws (SSStarLawGetParameterNames()): -friction_<G> (the Coulomb
    coefficient of G; default the solver's), -slip_bound_<G> (the Tresca bound), -friction_1_<G>, -friction_2_<G>,
@@ -365,7 +419,8 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCheck(!scene->hasE || (scene->E > 0 && !PetscIsInfOrNanReal(scene->E)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be a positive number", (double)scene->E);
   PetscCheck(!scene->hasNu || (scene->nu > -1 && scene->nu < 0.5), comm, PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
 
-  PetscCall(GetFiniteArray(comm, "-gravity", 3, "gx,gy,gz", scene->gravity, &scene->hasGravity));
+  PetscCall(SSStarHistoryCreateFromOptions(comm, NULL, "-gravity", 3, &scene->gravityHistory, &scene->hasGravity));
+  if (scene->hasGravity) PetscCall(LastValue(scene->gravityHistory, scene->gravity));
   PetscCheck(scene->hasGravity == hasDensity, comm, PETSC_ERR_ARG_WRONG, "Incomplete body force: %s needs %s", scene->hasGravity ? "-gravity" : "-density", scene->hasGravity ? "-density" : "-gravity");
   PetscCheck(!hasDensity || (scene->density >= 0 && !PetscIsInfOrNanReal(scene->density)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-density %g: the density must be a number >= 0", (double)scene->density);
 
@@ -395,7 +450,12 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
   }
-  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(SSStarGroupLawCheck(scene, &scene->contact[g]));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    const SSStarContactGroup *cg = &scene->contact[g];
+
+    PetscCall(SSStarGroupLawCheck(scene, &scene->contact[g]));
+    PetscCheck(!cg->motion || !cg->master[0], comm, PETSC_ERR_ARG_WRONG, "Options -obstacle_%s_motion and -contact_pair_%s contradict each other: a pair's master surface moves with its body (load that body)", cg->name, cg->name);
+  }
   PetscFunctionReturn(0);
 }
 

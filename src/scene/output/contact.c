@@ -5,15 +5,49 @@
 */
 #include "outputimpl.h"
 
-/* The datasets of /contact: per contact node, in the order of the mesh file */
-PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, const SSStarState states[], const SSStarNodeFriction *nf)
+/* "<prefix>/contact/<name>" */
+static PetscErrorCode ContactPath(const char prefix[], const char name[], char path[], size_t len)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(path, len, "%s/contact/%s", prefix, name));
+  PetscFunctionReturn(0);
+}
+
+/* On a load path (SSStarSceneAcceptStep()): the slip increment of the last step (global axes), the slip path, the dissipation */
+static PetscErrorCode WritePathFields(SSStarScene scene, hid_t file, const char prefix[], PetscInt p, const PetscInt pos[])
+{
+  PetscReal *inc;
+  char       path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(3 * scene->n + 1, &inc));
+  for (PetscInt i = 0; i < scene->n; i++) {
+    const PetscReal *R = &scene->frame[9 * i];
+
+    for (PetscInt k = 0; k < 3; k++) inc[3 * i + k] = R[k] * scene->slipIncrement[2 * i] + R[3 + k] * scene->slipIncrement[2 * i + 1]; /* R_t^T dw_t */
+  }
+  PetscCall(ContactPath(prefix, "slip_increment", path, sizeof(path)));
+  PetscCall(SSStarWriteNodeField(scene->comm, file, path, p, scene->n, pos, 3, inc, PETSC_FALSE));
+  PetscCall(ContactPath(prefix, "slip_path", path, sizeof(path)));
+  PetscCall(SSStarWriteNodeField(scene->comm, file, path, p, scene->n, pos, 1, scene->slipPath, PETSC_FALSE));
+  PetscCall(ContactPath(prefix, "dissipation", path, sizeof(path)));
+  PetscCall(SSStarWriteNodeField(scene->comm, file, path, p, scene->n, pos, 1, scene->dissipation, PETSC_FALSE));
+  PetscCall(PetscFree(inc));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The datasets of <prefix>/contact: per contact node, in the order of the mesh file. With nf, what was declared too
+   (the top level); without, the solution's fields alone (a step of a load path, prefix /steps/<k>).
+*/
+PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char prefix[], Vec u, Vec r, const SSStarState states[], const SSStarNodeFriction *nf)
 {
   MPI_Comm           comm = scene->comm;
   PetscInt           p, n = scene->n, *pos, *all;
   PetscReal         *ul, *rl, *sl, *gl;
   const PetscScalar *ua, *ra;
   Vec                uC, rC;
-  char               names[1024];
+  char               names[1024], path[PETSC_MAX_PATH_LEN];
   hid_t              group;
 
   PetscFunctionBegin;
@@ -32,23 +66,45 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, c
   PetscCall(VecRestoreArrayRead(uC, &ua));
   PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
   PetscCall(VecRestoreSubVector(u, scene->isC, &uC));
-  PetscCall(SSStarH5GroupOpen(file, "/contact", &group));
+  PetscCall(ContactPath(prefix, "", path, sizeof(path)));
+  PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
   {
-    const char      *vnames[] = {"/contact/coordinates", "/contact/displacement", "/contact/reaction", "/contact/normal", "/contact/gap", "/contact/area"};
-    const PetscReal *values[] = {scene->coords, ul, rl, scene->normal, scene->gap, scene->area};
+    const char      *vnames[] = {"displacement", "reaction", "coordinates", "normal", "gap", "area"};
+    const PetscReal *values[] = {ul, rl, scene->coords, scene->normal, scene->gap, scene->area};
     const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1};
 
-    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) PetscCall(SSStarWriteNodeField(comm, file, vnames[k], p, n, pos, bs[k], values[k], PETSC_FALSE));
+    for (size_t k = 0; k < (nf ? PETSC_STATIC_ARRAY_LENGTH(vnames) : 2); k++) { /* a step: the solution's fields */
+      PetscCall(ContactPath(prefix, vnames[k], path, sizeof(path)));
+      PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, bs[k], values[k], PETSC_FALSE));
+    }
   }
-  PetscCall(SSStarNodeFrictionWrite(comm, file, "/contact", nf, p, pos)); /* friction_law and the laws' parameters */
   for (PetscInt i = 0; i < n; i++) {
     sl[i] = states ? (PetscReal)states[i] : -1;
     gl[i] = (PetscReal)scene->group[i];
   }
-  PetscCall(SSStarWriteNodeField(comm, file, "/contact/state", p, n, pos, 1, sl, PETSC_TRUE));
+  PetscCall(ContactPath(prefix, "state", path, sizeof(path)));
+  PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, 1, sl, PETSC_TRUE));
   PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
-  PetscCall(SSStarH5ObjectAttrString(file, "/contact/state", "names", names));
+  PetscCall(SSStarH5ObjectAttrString(file, path, "names", names));
+  { /* at the solution: the gap, pressure, tangential traction and slip (against the plane or the master surface) */
+    PetscReal  *kin[4];
+    const char *knames[4] = {"final_gap", "pressure", "traction", "slip"};
+
+    PetscCall(PetscMalloc4(n + 1, &kin[0], n + 1, &kin[1], 3 * n + 1, &kin[2], 3 * n + 1, &kin[3]));
+    PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3]));
+    for (PetscInt k = 0; k < 4; k++) {
+      PetscCall(ContactPath(prefix, knames[k], path, sizeof(path)));
+      PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, k < 2 ? 1 : 3, kin[k], PETSC_FALSE));
+    }
+    PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
+  }
+  if (scene->stepped) PetscCall(WritePathFields(scene, file, prefix, p, pos));
+  if (!nf) {
+    PetscCall(PetscFree5(pos, ul, rl, sl, gl));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SSStarNodeFrictionWrite(comm, file, "/contact", nf, p, pos)); /* friction_law and the laws' parameters */
   PetscCall(SSStarWriteNodeField(comm, file, "/contact/group", p, n, pos, 1, gl, PETSC_TRUE));
   names[0] = 0;
   for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -60,17 +116,6 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, c
     }
   }
   PetscCall(SSStarH5ObjectAttrString(file, "/contact/group", "names", names));
-  { /* at the solution: the gap, pressure, tangential traction and slip (against the plane or the master surface) */
-    PetscReal *kin[4];
-
-    PetscCall(PetscMalloc4(n + 1, &kin[0], n + 1, &kin[1], 3 * n + 1, &kin[2], 3 * n + 1, &kin[3]));
-    PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3]));
-    PetscCall(SSStarWriteNodeField(comm, file, "/contact/final_gap", p, n, pos, 1, kin[0], PETSC_FALSE));
-    PetscCall(SSStarWriteNodeField(comm, file, "/contact/pressure", p, n, pos, 1, kin[1], PETSC_FALSE));
-    PetscCall(SSStarWriteNodeField(comm, file, "/contact/traction", p, n, pos, 3, kin[2], PETSC_FALSE));
-    PetscCall(SSStarWriteNodeField(comm, file, "/contact/slip", p, n, pos, 3, kin[3], PETSC_FALSE));
-    PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
-  }
   PetscCall(PetscFree5(pos, ul, rl, sl, gl));
   PetscFunctionReturn(0);
 }
@@ -94,7 +139,8 @@ static PetscErrorCode PointGroup(SSStarScene scene, const DMLabel labels[], Pets
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec r, const SSStarState states[], PetscInt *nvertices, PetscInt *ntriangles)
+/* <prefix>/contact_faces: the point fields, and with geometry the vertices and triangles (the top level) */
+PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char prefix[], PetscBool geometry, Vec u, Vec r, const SSStarState states[], PetscInt *nvertices, PetscInt *ntriangles)
 {
   MPI_Comm           comm = scene->comm;
   DM                 dm   = scene->dm, cdm;
@@ -107,6 +153,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec
   const PetscScalar *ta, *xa, *ua, *ra;
   PetscMPIInt        rank, size;
   hid_t              group;
+  char               path[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -164,6 +211,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec
       st[nq] = -1;
       pr[nq] = 0;
       PetscCall(SSStarObstacleGap(scene->contact[g].obstacle, xv, 0, &gp[nq], n));
+      if (scene->contact[g].motion) gp[nq] -= SSStarDot3(n, scene->contact[g].d); /* the obstacle moved by d */
       for (PetscInt k = 0; k < 3; k++) du[3 * nq + k] = tt[3 * nq + k] = sl[3 * nq + k] = 0;
     }
     nq++;
@@ -229,15 +277,20 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec
   PetscCall(VecRestoreArrayRead(coordinates, &xa));
   PetscCall(VecRestoreArrayRead(scene->tags, &ta));
 
-  PetscCall(SSStarH5GroupOpen(file, "/contact_faces", &group));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact_faces", prefix));
+  PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
   {
-    const char      *vnames[] = {"/contact_faces/vertices", "/contact_faces/displacement", "/contact_faces/pressure", "/contact_faces/tangential_traction", "/contact_faces/slip", "/contact_faces/gap"};
+    const char      *vnames[] = {"vertices", "displacement", "pressure", "tangential_traction", "slip", "gap"};
     const PetscReal *values[] = {x, du, pr, tt, sl, gp};
     const PetscInt   bs[]     = {3, 3, 1, 3, 3, 1};
 
-    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) PetscCall(SSStarWriteNodeField(comm, file, vnames[k], q, nq, pos, bs[k], values[k], PETSC_FALSE));
-    PetscCall(SSStarWriteNodeField(comm, file, "/contact_faces/state", q, nq, pos, 1, st, PETSC_TRUE));
+    for (size_t k = geometry ? 0 : 1; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) {
+      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact_faces/%s", prefix, vnames[k]));
+      PetscCall(SSStarWriteNodeField(comm, file, path, q, nq, pos, bs[k], values[k], PETSC_FALSE));
+    }
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact_faces/state", prefix));
+    PetscCall(SSStarWriteNodeField(comm, file, path, q, nq, pos, 1, st, PETSC_TRUE));
   }
   /* the triangles: on rank 0, each rotated to start at its smallest vertex, sorted */
   {
@@ -257,7 +310,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec
       for (PetscInt k = 0; k < 3; k++) row[k] = rot[k];
     }
     if (total > 1) PetscCall(PetscTimSort(total, alltri, 3 * sizeof(PetscInt), SSStarCompareRows, &three));
-    PetscCall(SSStarH5WriteRows(comm, file, "/contact_faces/triangles", total, 3, NULL, alltri));
+    if (geometry) PetscCall(SSStarH5WriteRows(comm, file, "/contact_faces/triangles", total, 3, NULL, alltri));
     PetscCallMPI(MPI_Bcast(&total, 1, MPIU_INT, 0, comm));
     *ntriangles = total;
     PetscCall(PetscFree(alltri));
@@ -267,7 +320,8 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, Vec u, Vec
     char names[256];
 
     PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
-    PetscCall(SSStarH5ObjectAttrString(file, "/contact_faces/state", "names", names));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact_faces/state", prefix));
+    PetscCall(SSStarH5ObjectAttrString(file, path, "names", names));
   }
   *nvertices = q;
   PetscCall(PetscFree(tri));

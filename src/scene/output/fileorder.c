@@ -223,11 +223,38 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
   PetscFunctionReturn(0);
 }
 
+/* <prefix>/fields/displacement: the displacement with the held dofs (0: DMGlobalToLocal leaves the constrained dofs as they are) */
+PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
+{
+  PetscSection sec;
+  PetscBool   *ghost;
+  Vec          ul, nat;
+  hid_t        group;
+  char         path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
+  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields", prefix));
+  PetscCall(SSStarH5GroupOpen(file, path, &group));
+  PetscCallH5(H5Gclose(group));
+  PetscCall(DMGetLocalSection(scene->dm, &sec));
+  PetscCall(DMGetLocalVector(scene->dm, &ul));
+  PetscCall(VecZeroEntries(ul));
+  PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, ul));
+  PetscCall(VertexFieldInFileOrder(scene, ghost, 3, ul, sec, &nat));
+  PetscCall(DMRestoreLocalVector(scene->dm, &ul));
+  PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
+  PetscCall(WriteVec(file, path, 3, nat));
+  PetscCall(VecDestroy(&nat));
+  PetscCall(PetscFree(ghost));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
 {
   DM           cdm;
-  PetscSection csec, sec;
-  Vec          coordinates, ul, nat;
+  PetscSection csec;
+  Vec          coordinates, nat;
   PetscBool   *ghost;
   PetscInt     ncells, *cells;
   hid_t        group;
@@ -243,17 +270,7 @@ PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
   PetscCall(WriteVec(file, "/geometry/vertices", 3, nat));
   PetscCall(VecDestroy(&nat));
 
-  /* the displacement with the held dofs (0: DMGlobalToLocal leaves the constrained dofs as they are) */
-  PetscCall(SSStarH5GroupOpen(file, "/fields", &group));
-  PetscCallH5(H5Gclose(group));
-  PetscCall(DMGetLocalSection(scene->dm, &sec));
-  PetscCall(DMGetLocalVector(scene->dm, &ul));
-  PetscCall(VecZeroEntries(ul));
-  PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, ul));
-  PetscCall(VertexFieldInFileOrder(scene, ghost, 3, ul, sec, &nat));
-  PetscCall(DMRestoreLocalVector(scene->dm, &ul));
-  PetscCall(WriteVec(file, "/fields/displacement", 3, nat));
-  PetscCall(VecDestroy(&nat));
+  PetscCall(SSStarWriteDisplacement(scene, file, "", u));
 
   PetscCall(CellsInFileOrder(scene, ghost, &ncells, &cells));
   PetscCall(SSStarH5GroupOpen(file, "/viz/topology", &group));

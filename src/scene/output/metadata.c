@@ -61,6 +61,20 @@ static PetscErrorCode AttributeString(void *ctx, const char name[], const char v
   PetscFunctionReturn(0);
 }
 
+/* A load history with knots as the text of its option ("t:x,y,z;..."; nothing for a constant) */
+static PetscErrorCode HistoryAttribute(hid_t obj, const char name[], SSStarHistory h)
+{
+  PetscInt n;
+  char     text[4096];
+
+  PetscFunctionBegin;
+  PetscCall(SSStarHistoryGetKnots(h, &n, NULL, NULL));
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(SSStarHistoryDescribe(h, text, sizeof(text)));
+  PetscCall(SSStarH5AttrString(obj, name, text));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeFriction *nf)
 {
   hid_t group, sub;
@@ -77,6 +91,7 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
   if (scene->hasGravity) {
     PetscCall(SSStarH5AttrReals(group, "gravity", 3, scene->gravity));
     PetscCall(SSStarH5AttrReal(group, "density", scene->density));
+    PetscCall(HistoryAttribute(group, "gravity_history", scene->gravityHistory));
   }
   PetscCall(SSStarJoinNames(scene->nDirichlet, (const char *const *)scene->dirichlet, list, sizeof(list)));
   PetscCall(SSStarH5AttrString(group, "dirichlet", list));
@@ -98,6 +113,7 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
     PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/traction/%s", scene->tractions[t].name));
     PetscCall(SSStarH5GroupOpen(file, path, &sub));
     PetscCall(SSStarH5AttrReals(sub, "traction", 3, scene->tractions[t].value));
+    PetscCall(HistoryAttribute(sub, "history", scene->tractions[t].history));
     PetscCallH5(H5Gclose(sub));
   }
   for (PetscInt s = 0; s < scene->nSprings; s++) {
@@ -134,6 +150,7 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
       PetscCall(SSStarObstacleDescribe(cg->obstacle, text, sizeof(text)));
       PetscCall(SSStarH5AttrString(sub, "obstacle", text));
       PetscCall(SSStarObstacleWriteAttributes(cg->obstacle, &writer));
+      if (cg->motion) PetscCall(HistoryAttribute(sub, "motion", cg->motion));
     }
     PetscCall(SSStarH5AttrInt(sub, "nodes", cg->nodes));
     PetscCall(SSStarH5AttrReal(sub, "gap_min", cg->gapMin));

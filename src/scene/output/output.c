@@ -38,17 +38,64 @@ static PetscErrorCode XDMFAttribute(FILE *fp, const char base[], const char name
   PetscFunctionReturn(0);
 }
 
+/* The grid "mesh" at one state: the tetrahedra with the displacement at <prefix>/fields/displacement */
+static PetscErrorCode XDMFMeshGrid(SSStarScene scene, FILE *fp, const char base[], const char prefix[], const char time[])
+{
+  const PetscInt N = scene->nodesGlobal, C = scene->cellsGlobal;
+  char           path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
+  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp,
+                         "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n%s"
+                         "   <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n"
+                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 4\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n"
+                         "   </Topology>\n"
+                         "   <Geometry GeometryType=\"XYZ\">\n"
+                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n"
+                         "   </Geometry>\n",
+                         time, C, C, base, N, base));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/displacement", prefix));
+  PetscCall(XDMFAttribute(fp, base, "displacement", path, N, 3, PETSC_FALSE));
+  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
+  PetscFunctionReturn(0);
+}
+
+/* The grid "contact" at one state: the contact faces' triangles with the point fields at <prefix>/contact_faces */
+static PetscErrorCode XDMFContactGrid(FILE *fp, const char base[], const char prefix[], const char time[], PetscInt q, PetscInt ntriangles)
+{
+  const char    *names[] = {"state", "pressure", "tangential_traction", "slip", "gap", "displacement"};
+  const PetscInt cols[]  = {0, 0, 3, 3, 0, 3};
+  char           path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
+  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp,
+                         "  <Grid Name=\"contact\" GridType=\"Uniform\">\n%s"
+                         "   <Topology TopologyType=\"Triangle\" NumberOfElements=\"%" PetscInt_FMT "\">\n"
+                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/contact_faces/triangles</DataItem>\n"
+                         "   </Topology>\n"
+                         "   <Geometry GeometryType=\"XYZ\">\n"
+                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/contact_faces/vertices</DataItem>\n"
+                         "   </Geometry>\n",
+                         time, ntriangles, ntriangles, base, q, base));
+  for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(names); k++) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact_faces/%s", prefix, names[k]));
+    PetscCall(XDMFAttribute(fp, base, names[k], path, q, cols[k], (PetscBool)(k == 0)));
+  }
+  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
+  PetscFunctionReturn(0);
+}
+
 /*
    Writes xmf (rank 0): the grid "mesh" (tetrahedra, displacement) and, with contact, the grid "contact" (the contact
    faces' triangles with the state, pressure, tangential traction, slip, gap and displacement of their vertices), both
-   naming the HDF5 file h5 without its folder (they sit side by side)
+   naming the HDF5 file h5 without its folder (they sit side by side). Along a load path (nsteps > 0 at the times
+   times) each is a temporal collection of one grid per step (/steps/<k>), which ParaView animates.
 */
-static PetscErrorCode WriteXDMF(SSStarScene scene, const char h5[], const char xmf[], PetscInt nfaceVertices, PetscInt ntriangles)
+static PetscErrorCode WriteXDMF(SSStarScene scene, const char h5[], const char xmf[], PetscInt nfaceVertices, PetscInt ntriangles, PetscInt nsteps, const PetscReal times[])
 {
   PetscMPIInt rank;
   const char *base;
   FILE       *fp;
-  const PetscInt N = scene->nodesGlobal, C = scene->cellsGlobal;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
@@ -57,36 +104,19 @@ static PetscErrorCode WriteXDMF(SSStarScene scene, const char h5[], const char x
   base = base ? base + 1 : h5;
   PetscCall(PetscFOpen(PETSC_COMM_SELF, xmf, "w", &fp));
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"));
-  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp,
-                         "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n"
-                         "   <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n"
-                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 4\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n"
-                         "   </Topology>\n"
-                         "   <Geometry GeometryType=\"XYZ\">\n"
-                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n"
-                         "   </Geometry>\n",
-                         C, C, base, N, base));
-  PetscCall(XDMFAttribute(fp, base, "displacement", "/fields/displacement", N, 3, PETSC_FALSE));
-  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
-  if (scene->nContact) {
-    const PetscInt q = nfaceVertices;
+  for (PetscInt grid = 0; grid < (scene->nContact ? 2 : 1); grid++) {
+    if (nsteps) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grid ? "contact" : "mesh"));
+    for (PetscInt k = 0; k < PetscMax(nsteps, 1); k++) {
+      char prefix[64] = "", time[96] = "";
 
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp,
-                           "  <Grid Name=\"contact\" GridType=\"Uniform\">\n"
-                           "   <Topology TopologyType=\"Triangle\" NumberOfElements=\"%" PetscInt_FMT "\">\n"
-                           "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/contact_faces/triangles</DataItem>\n"
-                           "   </Topology>\n"
-                           "   <Geometry GeometryType=\"XYZ\">\n"
-                           "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/contact_faces/vertices</DataItem>\n"
-                           "   </Geometry>\n",
-                           ntriangles, ntriangles, base, q, base));
-    PetscCall(XDMFAttribute(fp, base, "state", "/contact_faces/state", q, 0, PETSC_TRUE));
-    PetscCall(XDMFAttribute(fp, base, "pressure", "/contact_faces/pressure", q, 0, PETSC_FALSE));
-    PetscCall(XDMFAttribute(fp, base, "tangential_traction", "/contact_faces/tangential_traction", q, 3, PETSC_FALSE));
-    PetscCall(XDMFAttribute(fp, base, "slip", "/contact_faces/slip", q, 3, PETSC_FALSE));
-    PetscCall(XDMFAttribute(fp, base, "gap", "/contact_faces/gap", q, 0, PETSC_FALSE));
-    PetscCall(XDMFAttribute(fp, base, "displacement", "/contact_faces/displacement", q, 3, PETSC_FALSE));
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
+      if (nsteps) {
+        PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "/steps/%" PetscInt_FMT, k));
+        PetscCall(PetscSNPrintf(time, sizeof(time), "   <Time Value=\"%.17g\"/>\n", (double)times[k]));
+      }
+      if (grid) PetscCall(XDMFContactGrid(fp, base, prefix, time, nfaceVertices, ntriangles));
+      else PetscCall(XDMFMeshGrid(scene, fp, base, prefix, time));
+    }
+    if (nsteps) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
   }
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, " </Domain>\n</Xdmf>\n"));
   PetscCall(PetscFClose(PETSC_COMM_SELF, fp));
@@ -125,22 +155,255 @@ PetscErrorCode SSStarCheckOutputFile(MPI_Comm comm, const char file[])
   PetscFunctionReturn(0);
 }
 
-/* Everything into the temporary files h5 and xmf, xmf naming the HDF5 file final */
-static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], const char xmf[], const char final[], Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx)
+/* The columns of the table of the steps (/steps/<name>): 1 or 3 values per step, integers or reals */
+typedef struct {
+  const char *name;
+  PetscInt    width;
+  PetscBool   integer;
+} StepColumn;
+
+static const StepColumn StepColumns[] = {
+  {"time", 1, PETSC_FALSE},         {"iterations", 1, PETSC_TRUE},   {"reason", 1, PETSC_TRUE}, {"residual_norm", 1, PETSC_FALSE}, {"cuts", 1, PETSC_TRUE},
+  {"load", 3, PETSC_FALSE},         {"normal_force", 1, PETSC_FALSE}, {"tangential_force", 3, PETSC_FALSE}, {"area", 1, PETSC_FALSE},
+  {"sliding", 1, PETSC_TRUE},       {"sticking", 1, PETSC_TRUE},     {"separated", 1, PETSC_TRUE}, {"dissipation", 1, PETSC_FALSE},
+};
+
+/* The moving obstacles' contact groups (their columns /steps/motion/<G> follow the fixed ones), then the surfaces */
+static PetscInt MovingGroups(SSStarScene scene)
 {
-  PetscViewer        viewer;
-  hid_t              file;
-  Vec                r     = NULL;
-  const SSStarState *states = NULL;
-  PetscBool          isssstar;
-  PetscInt           nfaceVertices = 0, ntriangles = 0;
-  SSStarNodeFriction nf;
+  PetscInt n = 0;
+
+  for (PetscInt g = 0; g < scene->nContact; g++) n += scene->contact[g].motion ? 1 : 0;
+  return n;
+}
+
+/* A temporary file beside file: file.<pid>.tmp (the same name on every rank) */
+static PetscErrorCode TemporaryNames(SSStarScene scene, SSStarSceneOutput out, const char file[])
+{
+  int pid = (int)getpid();
 
   PetscFunctionBegin;
-  PetscCall(PetscViewerHDF5Open(scene->comm, h5, FILE_MODE_WRITE, &viewer));
-  PetscCall(PetscViewerHDF5GetFileId(viewer, &file));
-  PetscCall(SSStarWriteMesh(scene, file, u));
-  PetscCall(SSStarWriteRun(scene, file, snes));
+  PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, scene->comm));
+  PetscCall(PetscStrncpy(out->final, file, sizeof(out->final)));
+  PetscCall(XDMFName(file, out->xmf, sizeof(out->xmf)));
+  PetscCall(PetscSNPrintf(out->tmpH5, sizeof(out->tmpH5), "%s.%d.tmp", file, pid));
+  PetscCall(PetscSNPrintf(out->tmpXmf, sizeof(out->tmpXmf), "%s.%d.tmp", out->xmf, pid));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneOutputBegin - opens the output file of a load path, written step by step (SSStarSceneOutputStep()) and
+   completed by SSStarSceneOutputEnd()
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetUp()
+-  file  - the HDF5 file (an XDMF file is written beside it: x.h5 -> x.xmf)
+
+   Notes:
+   The file is written to a temporary name and renamed by SSStarSceneOutputEnd(): a run that stops before leaves no
+   file of that name. Memory holds one step's fields at a time.
+
+   Level: intermediate
+
+.seealso: `SSStarSceneOutputStep()`, `SSStarSceneOutputEnd()`, `SSStarSceneWriteSolution()`
+@*/
+PetscErrorCode SSStarSceneOutputBegin(SSStarScene scene, const char file[])
+{
+  SSStarSceneOutput out;
+
+  PetscFunctionBegin;
+  PetscCheck(!scene->output, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "SSStarSceneOutputBegin: the scene is writing %s already", scene->output->final);
+  PetscCall(SSStarCheckOutputFile(scene->comm, file));
+  PetscCall(PetscNew(&out));
+  PetscCall(TemporaryNames(scene, out, file));
+  out->ncols = 3 * MovingGroups(scene);
+  for (size_t c = 0; c < PETSC_STATIC_ARRAY_LENGTH(StepColumns); c++) out->ncols += StepColumns[c].width;
+  PetscCall(PetscViewerHDF5Open(scene->comm, out->tmpH5, FILE_MODE_WRITE, &out->viewer));
+  PetscCall(PetscViewerHDF5GetFileId(out->viewer, &out->file));
+  scene->output = out;
+  PetscFunctionReturn(0);
+}
+
+/* The table's row of a step: what the step was and what it gave (the columns of StepColumns, the motions, the surfaces) */
+static PetscErrorCode StepRow(SSStarScene scene, SNES snes, Vec u, PetscInt cuts, PetscReal row[])
+{
+  SSStarSceneOutput   out = scene->output;
+  SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
+  SNESConvergedReason reason;
+  PetscInt            its, c = 0;
+  PetscReal           norm, load[3];
+  Vec                 r, zero, b;
+  const SSStarState  *states = NULL;
+  PetscBool           isssstar;
+
+  PetscFunctionBegin;
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, &its));
+  PetscCall(SNESGetFunctionNorm(snes, &norm));
+  PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
+  PetscCall(VecDuplicate(u, &zero));                  /* b = -F(0), the step's load */
+  PetscCall(VecDuplicate(u, &b));
+  PetscCall(VecZeroEntries(zero));
+  PetscCall(SNESComputeFunction(snes, zero, b));
+  PetscCall(VecScale(b, -1.0));
+  PetscCall(SSStarSceneGetLoadResultant(scene, b, load));
+  PetscCall(VecDestroy(&zero));
+  PetscCall(VecDestroy(&b));
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (scene->nContact && isssstar) {
+    PetscCall(SNESSSStarGetStates(snes, &states, NULL));
+    PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
+  }
+  row[c++] = scene->stepTime;
+  row[c++] = its;
+  row[c++] = reason;
+  row[c++] = norm;
+  row[c++] = cuts;
+  for (PetscInt k = 0; k < 3; k++) row[c++] = load[k];
+  row[c++] = res.normal_force;
+  for (PetscInt k = 0; k < 3; k++) row[c++] = res.tangential_force[k];
+  row[c++] = res.area;
+  row[c++] = res.sliding;
+  row[c++] = res.sticking;
+  row[c++] = res.separated;
+  row[c++] = res.dissipation;
+  for (PetscInt g = 0; g < scene->nContact; g++)
+    if (scene->contact[g].motion)
+      for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].d[k];
+  PetscCheck(c == out->ncols, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the row of a step has %" PetscInt_FMT " columns, not %" PetscInt_FMT, c, out->ncols);
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneOutputStep - appends a step of a load path to the file opened by SSStarSceneOutputBegin(): its fields
+   (/steps/<k>/fields/displacement, /steps/<k>/contact/..., /steps/<k>/contact_faces/...) and its row of the table
+   /steps (time, iterations, reason, residual_norm, cuts, load, normal_force, tangential_force, area, sliding,
+   sticking, separated, dissipation, motion/<G>, groups/<G>/displacement)
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetStep() and the step's solve (and SSStarSceneAcceptStep() if it converged)
+.  snes  - the SNES that solved the step
+.  u     - the step's solution (or the last iterate of a step that failed)
+-  cuts  - how many times the step was halved before it converged (a caller's count; 0 without step cutting)
+
+   Notes:
+   k counts the steps written, from 0. The step's time is the one of SSStarSceneSetStep(); its load the SNES's, b =
+   -F(0); /steps/groups/<G>/displacement the mean displacement of every traction, spring and contact group (weighted
+   like a uniform traction's load, so that the work of a uniform traction on G is its force times this).
+
+   Level: intermediate
+
+.seealso: `SSStarSceneOutputBegin()`, `SSStarSceneOutputEnd()`, `SSStarSceneSetStep()`, `SSStarSceneAcceptStep()`
+@*/
+PetscErrorCode SSStarSceneOutputStep(SSStarScene scene, SNES snes, Vec u, PetscInt cuts)
+{
+  SSStarSceneOutput  out = scene->output;
+  char               prefix[64];
+  Vec                r;
+  const SSStarState *states = NULL;
+  PetscBool          isssstar;
+  PetscInt           nv, nt;
+  hid_t              group;
+
+  PetscFunctionBegin;
+  PetscCheck(out, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "SSStarSceneOutputStep: call SSStarSceneOutputBegin() first");
+  PetscCall(PetscLogEventBegin(SSSTAR_Output, 0, 0, 0, 0));
+  if (out->nsteps == out->maxSteps) {
+    out->maxSteps = PetscMax(16, 2 * out->maxSteps);
+    PetscCall(PetscRealloc(sizeof(PetscReal) * out->maxSteps * out->ncols, &out->table));
+  }
+  PetscCall(StepRow(scene, snes, u, cuts, &out->table[out->nsteps * out->ncols]));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "/steps/%" PetscInt_FMT, out->nsteps));
+  PetscCall(SSStarH5GroupOpen(out->file, prefix, &group));
+  PetscCall(SSStarH5AttrReal(group, "time", scene->stepTime));
+  PetscCallH5(H5Gclose(group));
+  PetscCall(SSStarWriteDisplacement(scene, out->file, prefix, u));
+  if (scene->nContact) {
+    PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+    if (isssstar) PetscCall(SNESSSStarGetStates(snes, &states, NULL));
+    PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
+    PetscCall(SSStarWriteContact(scene, out->file, prefix, u, r, states, NULL));
+    PetscCall(SSStarWriteContactFaces(scene, out->file, prefix, PETSC_FALSE, u, r, states, &nv, &nt));
+  }
+  { /* the surfaces' mean displacements: 3 per surface and step */
+    PetscReal *mean;
+
+    PetscCall(PetscMalloc1(3 * (scene->nTractions + scene->nSprings + scene->nContact) + 1, &mean));
+    PetscCall(SSStarSceneSurfaceDisplacements(scene, u, mean));
+    PetscCall(PetscRealloc(sizeof(PetscReal) * (out->nsteps + 1) * 3 * scene->nSurfaces + 1, &out->surfaces));
+    PetscCall(PetscArraycpy(&out->surfaces[3 * scene->nSurfaces * out->nsteps], mean, 3 * scene->nSurfaces));
+    PetscCall(PetscFree(mean));
+  }
+  out->nsteps++;
+  PetscCall(PetscLogEventEnd(SSSTAR_Output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The table /steps (rank 0 writes the rows), /steps/motion/<G>, /steps/groups/<G>/displacement */
+static PetscErrorCode WriteStepTable(SSStarScene scene, SSStarSceneOutput out)
+{
+  PetscMPIInt rank;
+  PetscInt    first = 0, n;
+  PetscReal  *column;
+  PetscInt   *ints;
+  char        path[PETSC_MAX_PATH_LEN];
+  hid_t       group;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
+  n = rank ? 0 : out->nsteps;
+  PetscCall(PetscMalloc2(3 * out->nsteps + 1, &column, out->nsteps + 1, &ints));
+  for (PetscInt c = 0; c < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns) + MovingGroups(scene) + scene->nSurfaces; c++) {
+    const PetscBool fixed = (PetscBool)(c < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns));
+    const PetscInt  width = fixed ? StepColumns[c].width : 3;
+
+    if (fixed) PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/%s", StepColumns[c].name));
+    else if (c < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns) + MovingGroups(scene)) {
+      PetscInt m = c - (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns), g = 0;
+
+      for (PetscInt moving = -1; g < scene->nContact; g++)
+        if (scene->contact[g].motion && ++moving == m) break;
+      PetscCall(SSStarH5GroupOpen(out->file, "/steps/motion", &group));
+      PetscCallH5(H5Gclose(group));
+      PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/motion/%s", scene->contact[g].name));
+    } else {
+      const PetscInt s = c - (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns) - MovingGroups(scene);
+
+      PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/groups/%s", scene->surfaces[s]));
+      PetscCall(SSStarH5GroupOpen(out->file, path, &group));
+      PetscCallH5(H5Gclose(group));
+      PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
+      for (PetscInt k = 0; k < out->nsteps; k++)
+        for (PetscInt j = 0; j < 3; j++) column[3 * k + j] = out->surfaces[3 * scene->nSurfaces * k + 3 * s + j];
+      PetscCall(SSStarH5WriteRows(scene->comm, out->file, path, n, 3, column, NULL));
+      continue;
+    }
+    for (PetscInt k = 0; k < out->nsteps; k++)
+      for (PetscInt j = 0; j < width; j++) column[width * k + j] = out->table[out->ncols * k + first + j];
+    for (PetscInt k = 0; k < out->nsteps; k++) ints[k] = (PetscInt)column[k]; /* the integer columns have width 1 */
+    PetscCall(SSStarH5WriteRows(scene->comm, out->file, path, n, width > 1 ? width : 0, fixed && StepColumns[c].integer ? NULL : column, fixed && StepColumns[c].integer ? ints : NULL));
+    first += width;
+  }
+  PetscCall(PetscFree2(column, ints));
+  PetscFunctionReturn(0);
+}
+
+/* The top level (the state u with what the SNES did), the table of the steps, the caller's extra, into the open file */
+static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SNES snes, Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx, PetscInt *nfaceVertices, PetscInt *ntriangles)
+{
+  Vec                r      = NULL;
+  const SSStarState *states = NULL;
+  PetscBool          isssstar;
+  SSStarNodeFriction nf;
+  hid_t              group;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarWriteMesh(scene, out->file, u));
+  PetscCall(SSStarWriteRun(scene, out->file, snes));
   {
     PetscInt *laws; /* the groups' laws, for an SNES that is no ssstar */
 
@@ -149,18 +412,77 @@ static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], 
     PetscCall(SSStarNodeFrictionGet(scene->comm, snes, scene->n, laws, &nf));
     PetscCall(PetscFree(laws));
   }
-  PetscCall(SSStarWriteScene(scene, file, &nf));
+  PetscCall(SSStarWriteScene(scene, out->file, &nf));
   if (scene->nContact) {
     PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
     if (isssstar) PetscCall(SNESSSStarGetStates(snes, &states, NULL));
     PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
-    PetscCall(SSStarWriteContact(scene, file, u, r, states, &nf));
-    PetscCall(SSStarWriteContactFaces(scene, file, u, r, states, &nfaceVertices, &ntriangles));
+    PetscCall(SSStarWriteContact(scene, out->file, "", u, r, states, &nf));
+    PetscCall(SSStarWriteContactFaces(scene, out->file, "", PETSC_TRUE, u, r, states, nfaceVertices, ntriangles));
   }
   PetscCall(SSStarNodeFrictionDestroy(&nf));
-  if (extra) PetscCall((*extra)(viewer, ctx));
-  PetscCall(PetscViewerDestroy(&viewer));
-  PetscCall(WriteXDMF(scene, final, xmf, nfaceVertices, ntriangles));
+  if (out->nsteps) {
+    PetscCall(SSStarH5GroupOpen(out->file, "/steps", &group));
+    PetscCall(SSStarH5AttrInt(group, "count", out->nsteps));
+    PetscCallH5(H5Gclose(group));
+    PetscCall(WriteStepTable(scene, out));
+  }
+  if (extra) PetscCall((*extra)(out->viewer, ctx));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneOutputEnd - completes the file opened by SSStarSceneOutputBegin(): the top-level datasets and
+   attributes of the state u (those of SSStarSceneWriteSolution(), README "Output"), the table of the steps, the
+   caller's datasets, and the XDMF file (temporal collections of the steps when there are steps); then renames both
+   files to their names
+
+   Collective
+
+   Input Parameters:
++  scene - the scene
+.  snes  - the SNES of the last solve
+.  u     - the last state (the last step's solution, or the iterate of the step that failed)
+.  extra - NULL, or a function adding the caller's datasets to the open file
+-  ctx   - its context
+
+   Level: intermediate
+
+.seealso: `SSStarSceneOutputBegin()`, `SSStarSceneOutputStep()`, `SSStarSceneWriteSolution()`
+@*/
+PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx)
+{
+  SSStarSceneOutput out = scene->output;
+  PetscMPIInt       rank, failure = 0;
+  PetscInt          nfaceVertices = 0, ntriangles = 0;
+  PetscReal        *times;
+  PetscErrorCode    ierr;
+
+  PetscFunctionBegin;
+  PetscCheck(out, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "SSStarSceneOutputEnd: call SSStarSceneOutputBegin() first");
+  PetscCall(PetscLogEventBegin(SSSTAR_Output, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
+  scene->output = NULL;
+  PetscCall(PetscMalloc1(out->nsteps + 1, &times));
+  for (PetscInt k = 0; k < out->nsteps; k++) times[k] = out->table[out->ncols * k];
+  ierr = WriteTopLevel(scene, out, snes, u, extra, ctx, &nfaceVertices, &ntriangles);
+  if (!ierr) ierr = PetscViewerDestroy(&out->viewer);
+  if (!ierr) ierr = WriteXDMF(scene, out->final, out->tmpXmf, nfaceVertices, ntriangles, out->nsteps, times);
+  if (rank == 0) {
+    if (ierr) {
+      (void)remove(out->tmpH5);
+      (void)remove(out->tmpXmf);
+    } else failure = rename(out->tmpH5, out->final) || rename(out->tmpXmf, out->xmf);
+  }
+  PetscCall(PetscFree(times));
+  if (out->viewer) PetscCall(PetscViewerDestroy(&out->viewer));
+  PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, scene->comm));
+  PetscCheck(!failure, scene->comm, PETSC_ERR_FILE_WRITE, "Cannot rename the written files to %s and %s", out->final, out->xmf);
+  PetscCall(PetscFree(out->table));
+  PetscCall(PetscFree(out->surfaces));
+  PetscCall(PetscFree(out));
+  PetscCall(ierr);
+  PetscCall(PetscLogEventEnd(SSSTAR_Output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -183,45 +505,26 @@ static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], 
    /fields/displacement with the held nodes), the tetrahedra by their vertices' numbers in a canonical order
    (/viz/topology/cells), the contact nodes in file order (/contact: coordinates, displacement, reaction K u - b,
    normal, gap, area, friction_law and one dataset per parameter of the laws in use (friction, slip_bound, friction_1,
-   friction_2, friction_direction: 0 where a node's law has no such parameter), state, group (a contact pair named slave->master), and at the
-   solution final_gap, pressure, traction, slip against the plane or the master surface), the contact faces with their point fields
+   friction_2, friction_direction: 0 where a node's law has no such parameter), state, group (a contact pair named
+   slave->master), and at the solution final_gap, pressure, traction, slip against the plane or the master surface;
+   after a step of a load path slip_increment, slip_path, dissipation), the contact faces with their point fields
    (/contact_faces: vertices, triangles, state, pressure, tangential_traction, slip, gap, displacement), the scene
    (/scene: mesh, material, loads, contact groups with their laws) and, as attributes of /, the run: ssstar_version,
    petsc_version, command_line, ranks, snes_type, converged_reason, converged_reason_code, iterations, residual_norm
    (||z|| for ssstar), rtol, atol, max_it and, for ssstar, sub_reason, tolerance, scaling, reduction, state_counts,
-   state_names. README "Output" lists them all.
+   state_names. README "Output" lists them all. It is SSStarSceneOutputBegin() and SSStarSceneOutputEnd() without steps.
 
    Both files are written to temporary names and renamed when complete: a failure leaves no file behind.
 
    Level: beginner
 
-.seealso: `SSStarSceneSetContact()`, `SNESSSStarGetStates()`, `SSStarWriteNodeFriction()`, `SSStarCheckOutputFile()`
+.seealso: `SSStarSceneSetContact()`, `SNESSSStarGetStates()`, `SSStarWriteNodeFriction()`, `SSStarCheckOutputFile()`,
+          `SSStarSceneOutputBegin()`
 @*/
 PetscErrorCode SSStarSceneWriteSolution(SSStarScene scene, SNES snes, const char file[], Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx)
 {
-  char           xmf[PETSC_MAX_PATH_LEN], tmpH5[PETSC_MAX_PATH_LEN], tmpXmf[PETSC_MAX_PATH_LEN];
-  int            pid = (int)getpid();
-  PetscMPIInt    rank, failure = 0;
-  PetscErrorCode ierr;
-
   PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(SSSTAR_Output, 0, 0, 0, 0));
-  PetscCall(SSStarCheckOutputFile(scene->comm, file));
-  PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
-  PetscCallMPI(MPI_Bcast(&pid, 1, MPI_INT, 0, scene->comm));
-  PetscCall(XDMFName(file, xmf, sizeof(xmf)));
-  PetscCall(PetscSNPrintf(tmpH5, sizeof(tmpH5), "%s.%d.tmp", file, pid));
-  PetscCall(PetscSNPrintf(tmpXmf, sizeof(tmpXmf), "%s.%d.tmp", xmf, pid));
-  ierr = WriteFiles(scene, snes, tmpH5, tmpXmf, file, u, extra, ctx);
-  if (rank == 0) {
-    if (ierr) {
-      (void)remove(tmpH5);
-      (void)remove(tmpXmf);
-    } else failure = rename(tmpH5, file) || rename(tmpXmf, xmf);
-  }
-  PetscCall(ierr);
-  PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, scene->comm));
-  PetscCheck(!failure, scene->comm, PETSC_ERR_FILE_WRITE, "Cannot rename the written files to %s and %s", file, xmf);
-  PetscCall(PetscLogEventEnd(SSSTAR_Output, 0, 0, 0, 0));
+  PetscCall(SSStarSceneOutputBegin(scene, file));
+  PetscCall(SSStarSceneOutputEnd(scene, snes, u, extra, ctx));
   PetscFunctionReturn(0);
 }

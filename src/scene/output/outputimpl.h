@@ -24,6 +24,7 @@ PETSC_INTERN PetscErrorCode SSStarJoinNames(PetscInt, const char *const[], char[
 PETSC_INTERN PetscErrorCode SSStarGhostPoints(DM, PetscBool **);
 PETSC_INTERN int            SSStarCompareRows(const void *, const void *, void *);
 PETSC_INTERN PetscErrorCode SSStarWriteMesh(SSStarScene, hid_t, Vec);
+PETSC_INTERN PetscErrorCode SSStarWriteDisplacement(SSStarScene, hid_t, const char[], Vec);
 PETSC_INTERN PetscErrorCode SSStarFileOrder(MPI_Comm, PetscInt, const PetscInt[], PetscInt *, PetscInt **, PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], PetscInt, PetscInt, const PetscInt[], PetscInt, const PetscReal[], PetscBool);
 
@@ -41,9 +42,23 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionGet(MPI_Comm, SNES, PetscInt, const PetscInt[], SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionWrite(MPI_Comm, hid_t, const char[], const SSStarNodeFriction *, PetscInt, const PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *);
-PETSC_INTERN PetscErrorCode SSStarWriteContact(SSStarScene, hid_t, Vec, Vec, const SSStarState[], const SSStarNodeFriction *);
-PETSC_INTERN PetscErrorCode SSStarWriteContactFaces(SSStarScene, hid_t, Vec, Vec, const SSStarState[], PetscInt *, PetscInt *);
+PETSC_INTERN PetscErrorCode SSStarWriteContact(SSStarScene, hid_t, const char[], Vec, Vec, const SSStarState[], const SSStarNodeFriction *);
+PETSC_INTERN PetscErrorCode SSStarWriteContactFaces(SSStarScene, hid_t, const char[], PetscBool, Vec, Vec, const SSStarState[], PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarWriteScene(SSStarScene, hid_t, const SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarWriteRun(SSStarScene, hid_t, SNES);
+
+/*
+   A file written step by step along a load path (output.c: SSStarSceneOutputBegin(), SSStarSceneOutputStep(),
+   SSStarSceneOutputEnd()): open on its temporary name, each step's fields written as it comes, the table of the steps
+   (one row per step, the columns of StepColumn) kept on every rank and written at the end with the top level
+*/
+struct _n_SSStarSceneOutput {
+  PetscViewer viewer;
+  hid_t       file;
+  char        final[PETSC_MAX_PATH_LEN], xmf[PETSC_MAX_PATH_LEN], tmpH5[PETSC_MAX_PATH_LEN], tmpXmf[PETSC_MAX_PATH_LEN];
+  PetscInt    nsteps, maxSteps, ncols; /* the table: nsteps rows of ncols */
+  PetscReal  *table;
+  PetscReal  *surfaces; /* per step, the mean displacement of each followed surface (3 per surface) */
+};
 
 #endif

@@ -174,6 +174,13 @@ static PetscErrorCode SNESSSStarGetContactNodes_SSStar(SNES snes, PetscInt *n, I
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarGetContactOffsets_SSStar(SNES snes, Vec *offsets)
+{
+  PetscFunctionBegin;
+  *offsets = ((SNES_SSStar *)snes->data)->contact.offsets;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarGetTolerance_SSStar(SNES snes, PetscReal *tol)
 {
   PetscFunctionBegin;
@@ -247,6 +254,8 @@ static const struct {
     {"SNESSSStarGetReason_C", (PetscVoidFunction)SNESSSStarGetReason_SSStar},
     {"SNESSSStarGetTolerance_C", (PetscVoidFunction)SNESSSStarGetTolerance_SSStar},
     {"SNESSSStarGetContactNodes_C", (PetscVoidFunction)SNESSSStarGetContactNodes_SSStar},
+    {"SNESSSStarSetContactOffsets_C", (PetscVoidFunction)SNESSSStarSetContactOffsets_SSStar},
+    {"SNESSSStarGetContactOffsets_C", (PetscVoidFunction)SNESSSStarGetContactOffsets_SSStar},
     {"SNESSSStarGetReducedProblem_C", (PetscVoidFunction)SNESSSStarGetReducedProblem_SSStar},
     {"SNESSSStarSetGlobalization_C", (PetscVoidFunction)SNESSSStarSetGlobalization_SSStar},
     {"SNESSSStarGetRemedyCounts_C", (PetscVoidFunction)SNESSSStarGetRemedyCounts_SSStar},

@@ -232,6 +232,58 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, const
   PetscFunctionReturn(0);
 }
 
+/*
+   The offsets of a load path's step (docs/derivation.md (10.4)): data of the next solves, not of the declaration, so
+   that the per-node data and the reduction (P) stay. Checked here where the node count is known, again at each solve.
+*/
+PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES snes, Vec offsets)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+  PetscInt       n;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarContactGetNodeCount(snes, ct, &n));
+  if (offsets) PetscCall(CheckNodeVector(PetscObjectComm((PetscObject)snes), offsets, n, 3, "SNESSSStarSetContactOffsets: the offsets"));
+  PetscCall(ReplaceVec(&ct->offsets, offsets));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The offsets of this solve in the solver's order, as the kernels see them (o_i / d_i, like the gaps), and the norm of
+   their tangential parts (the displacement scale of a step whose solution may be u = 0, docs/derivation.md section
+   10, "Scaling"); none without offsets (then the gaps: (0, 0, g_i / d_i))
+*/
+PetscErrorCode SSStarContactSetUpOffsets(MPI_Comm comm, SSStarContact *ct, PetscReal *tangentNorm)
+{
+  const PetscScalar *a;
+  PetscReal          sum = 0;
+  char               msg[SSSTAR_MESSAGE_LEN] = "";
+
+  PetscFunctionBegin;
+  PetscCall(PetscFree(ct->offset));
+  *tangentNorm = 0;
+  if (!ct->offsets) PetscFunctionReturn(0);
+  PetscCall(CheckNodeVector(comm, ct->offsets, ct->nnodes, 3, "SNESSSStarSetContactOffsets: the offsets"));
+  PetscCall(PetscMalloc1(3 * ct->nnodes, &ct->offset));
+  PetscCall(VecGetArrayRead(ct->offsets, &a));
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const PetscInt j = ct->order[i];
+
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscReal o = PetscRealPart(a[3 * j + k]);
+
+      if (PetscIsInfOrNanReal(o) && !msg[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactOffsets: offset %" PetscInt_FMT " of contact node %" PetscInt_FMT " is %g", k, j, (double)o));
+      ct->offset[3 * i + k] = ct->pointScale ? o / ct->pointScale[i] : o;
+    }
+    sum += PetscSqr(ct->offset[3 * i]) + PetscSqr(ct->offset[3 * i + 1]);
+  }
+  PetscCall(VecRestoreArrayRead(ct->offsets, &a));
+  PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_OUTOFRANGE, msg));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, comm));
+  *tangentNorm = PetscSqrtReal(sum);
+  PetscFunctionReturn(0);
+}
+
 /* The solver's node order: the user's nodes sorted by their first dof, so that P's rows follow the dofs. */
 static PetscErrorCode BuildOrder(MPI_Comm comm, SSStarContact *ct)
 {
@@ -588,6 +640,7 @@ PetscErrorCode SSStarContactReset(SSStarContact *ct)
   PetscCall(PetscFree(ct->order));
   PetscCall(PetscFree(ct->frames));
   PetscCall(PetscFree(ct->gap));
+  PetscCall(PetscFree(ct->offset));
   PetscCall(PetscFree(ct->pointScale));
   PetscCall(MatDestroy(&ct->T));
   PetscCall(PetscFree(ct->nodeFriction));
@@ -607,6 +660,7 @@ PetscErrorCode SSStarContactDestroy(SSStarContact *ct)
   PetscCall(MatDestroy(&ct->B));
   PetscCall(VecDestroy(&ct->normals));
   PetscCall(VecDestroy(&ct->gaps));
+  PetscCall(VecDestroy(&ct->offsets));
   for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(VecDestroy(&ct->settings[s].perNode));
   PetscCall(PetscFree(ct->settings));
   ct->nsettings = 0;

@@ -202,6 +202,70 @@ PetscErrorCode SNESSSStarSetContactOperator(SNES snes, IS dofs, Mat B, Vec gaps)
 }
 
 /*@
+   SNESSSStarSetContactOffsets - the offsets of a step of a load path: each contact point's relative displacement is
+   w = R u + o instead of R u + g e_3 (docs/derivation.md (10.4)-(10.5)), so that the tangential law holds for the slip
+   increment of the step and the normal law on the current gap
+
+   Logically Collective
+
+   Input Parameters:
++  snes    - the SNES
+-  offsets - 3 entries per contact point of this rank, in the order and layout of the declaration (as the normals of
+             SNESSSStarSetContactNodes(); in the reduced use, as the SNES vector), in the point's frame (t1, t2, n); or
+             NULL: back to the declared gaps, (0, 0, g)
+
+   Notes:
+   Step k of a quasi-static load path solves 0 in P u - f^k + Q(R u + o^k): for a node against a rigid obstacle that
+   has moved by the translation d^k, o^k = (-R_t u^(k-1) - R_t (d^k - d^(k-1)), g - n.d^k) with u^(k-1) the solution
+   of the step before; for a point of SNESSSStarSetContactOperator(), o^k = (-(B u^(k-1))_t, g) with B's rows. A
+   sticking node then keeps its position relative to the obstacle, a sliding one is resisted against the direction of
+   its increment. (0, 0, g) is the static problem.
+
+   The values are read at every SNESSolve() (change the Vec's entries, or set another Vec, between the steps); unlike
+   a new declaration they keep the reduction: P is computed once for the whole path. The stopping rule's displacement
+   scale includes the norm of the tangential offsets (SNESConvergedSSStar()). The SNES keeps a reference to offsets.
+   Wrong sizes and NaN or Inf are refused on every rank, naming the node.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetContactOffsets()`, `SNESSSStarSetContactNodes()`, `SNESSSStarSetContactOperator()`,
+          `SSStarSceneSetStep()`
+@*/
+PetscErrorCode SNESSSStarSetContactOffsets(SNES snes, Vec offsets)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  if (offsets) PetscValidHeaderSpecific(offsets, VEC_CLASSID, 2);
+  PetscTryMethod(snes, "SNESSSStarSetContactOffsets_C", (SNES, Vec), (snes, offsets));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetContactOffsets - the offsets set by SNESSSStarSetContactOffsets(), or NULL
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  offsets - the Vec (owned by the SNES), or NULL when the declared gaps are in use (or the SNES is of another type)
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactOffsets()`
+@*/
+PetscErrorCode SNESSSStarGetContactOffsets(SNES snes, Vec *offsets)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidPointer(offsets, 2);
+  *offsets = NULL;
+  PetscTryMethod(snes, "SNESSSStarGetContactOffsets_C", (SNES, Vec *), (snes, offsets));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
    order of the contact nodes sorted by their first dof)
 

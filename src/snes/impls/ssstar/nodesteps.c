@@ -28,11 +28,14 @@ void SNESSSStarNodeRotate(const SSStarContact *ct, const SSStarProblem *pb, Pets
   for (PetscInt k = 0; k < 3; k++) y[k] = R ? R[3 * k] * PetscRealPart(a[dof[0]]) + R[3 * k + 1] * PetscRealPart(a[dof[1]]) + R[3 * k + 2] * PetscRealPart(a[dof[2]]) : PetscRealPart(a[dof[k]]);
 }
 
-/* v_i = R_i u_i + g_i e3: the iterate in node i's frame, with the gap */
+/* v_i = R_i u_i + o_i: the iterate in node i's frame, with its offset (docs/derivation.md (10.5)), o_i = g_i e3 unless
+   a load path's step set the offsets */
 static void NodeIterate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *ua, PetscReal v[3])
 {
   SNESSSStarNodeRotate(ct, pb, i, ua, v);
-  if (ct->gap) v[2] += ct->gap[i];
+  if (ct->offset)
+    for (PetscInt k = 0; k < 3; k++) v[k] += ct->offset[3 * i + k];
+  else if (ct->gap) v[2] += ct->gap[i];
 }
 
 /* c = A u - f */
@@ -166,7 +169,7 @@ PetscErrorCode SNESSSStarSetLinearTolerances(SNES snes, PetscReal znorm, PetscRe
   PetscFunctionBegin;
   if (!ss->problem.wholeBody) PetscFunctionReturn(0); /* the steps on P are solved exactly (dense or sparse LU) */
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
-  threshold = PetscMax(snes->abstol, snes->rtol * PetscMax(unorm, ss->scale));
+  threshold = PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale));
   PetscCall(SSStarNewtonSetTolerances(ss->newton, 0.0, PetscMax(rtol * znorm, 0.1 * threshold) / ss->scaling));
   PetscFunctionReturn(0);
 }

@@ -232,6 +232,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
 
   PetscFunctionBegin;
   PetscCall(SSStarProblemSetUp(snes, ct, pb));
+  PetscCall(SSStarContactSetUpOffsets(PetscObjectComm((PetscObject)snes), ct, &ss->offsetScale));
   PetscCall(CreateWorkVectors(snes));
   PetscCall(SNESSSStarComputeScaling(snes));
   PetscCall(SSStarProblemGetLayout(ct, pb, &layout));
@@ -253,7 +254,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
   SSStarContact *ct = &ss->contact;
   SSStarProblem *pb = &ss->problem;
-  PetscReal      znorm, unorm, dunorm = 0, z0 = 0;
+  PetscReal      znorm, unorm, xnorm, dunorm = 0, z0 = 0;
   PetscBool      solved;
 
   PetscFunctionBegin;
@@ -282,8 +283,9 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     if (k == 0) z0 = znorm;
     PetscCall(SNESLogConvergenceHistory(snes, znorm, snes->linear_its));
     PetscCall(SNESMonitor(snes, k, znorm));
-    ss->tolerance = PetscMax(snes->abstol, snes->rtol * PetscMax(unorm, ss->scale));
-    PetscUseTypeMethod(snes, converged, k, PetscMax(unorm, ss->scale), dunorm, znorm, &snes->reason, snes->cnvP);
+    xnorm         = PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale);
+    ss->tolerance = PetscMax(snes->abstol, snes->rtol * xnorm);
+    PetscUseTypeMethod(snes, converged, k, xnorm, dunorm, znorm, &snes->reason, snes->cnvP);
     if (snes->reason) {
       ss->reason = SubReason(snes);
       break;
@@ -366,15 +368,16 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
 /*@C
    SNESConvergedSSStar - the default convergence test of ssstar: converged when ||z|| <= atol (CONVERGED_FNORM_ABS)
-   or ||z|| <= rtol max(||u||, ||gamma f||) (CONVERGED_FNORM_RELATIVE), with z the approximation step, gamma f the
-   reduced load in displacement units (docs/derivation.md section 6) and atol, rtol from SNESSetTolerances()
+   or ||z|| <= rtol max(||u||, ||gamma f||, ||o_t||) (CONVERGED_FNORM_RELATIVE), with z the approximation step, gamma f
+   the reduced load in displacement units (docs/derivation.md section 6), o_t the tangential contact offsets of a load
+   path's step (SNESSSStarSetContactOffsets(); 0 without) and atol, rtol from SNESSetTolerances()
 
    Collective
 
    Input Parameters:
 +  snes  - the SNES
 .  it    - iteration
-.  xnorm - max(||u||, ||gamma f||): the displacement scale of the problem
+.  xnorm - max(||u||, ||gamma f||, ||o_t||): the displacement scale of the problem
 .  snorm - ||du|| of the last Newton step
 .  fnorm - ||z||
 -  ctx   - unused

@@ -77,6 +77,7 @@ typedef struct {
   Vec               normals;   /* 3 per node, or NULL for (0, 0, 1) (without B)                         */
   Mat               B;         /* the contact operator given, or NULL: built from the normals           */
   Vec               gaps;      /* 1 per node, or NULL for 0                                            */
+  Vec               offsets;   /* 3 per node, or NULL: a load path's step (read at every solve; not a declaration) */
   SSStarLaw         law;       /* of the nodes without a law of their own                              */
   PetscInt         *nodeLaws;  /* index into the table of laws per owned node, or NULL                   */
   PetscInt          nNodeLaws;
@@ -91,6 +92,7 @@ typedef struct {
   PetscInt        *order;       /* solver's node i is the user's node order[i]                          */
   PetscReal       *frames;      /* 9 per node (rows t1, t2, n), or NULL when every frame is the identity */
   PetscReal       *gap;         /* per node (g_i / d_i), or NULL                                        */
+  PetscReal       *offset;      /* 3 per node (o_i / d_i) of this solve, replacing (0, 0, gap), or NULL  */
   PetscReal       *pointScale;  /* d_i of each point (its block of B at its own dofs is d_i R_i)        */
   Mat              T;           /* with master dofs: u = T v, the change to the points' variables       */
   SSStarFriction  *nodeFriction; /* per node; forces as forces (the kernels see them times gamma)        */
@@ -115,6 +117,8 @@ PETSC_INTERN PetscErrorCode SNESSSStarSetNodeLawParameter_SSStar(SNES, const cha
 PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const PetscInt[]);
 PETSC_INTERN PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES, PetscInt, PetscInt[]);
 PETSC_INTERN PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES, const char[], PetscInt, PetscReal[]);
+PETSC_INTERN PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactSetUpOffsets(MPI_Comm, SSStarContact *, PetscReal *);
 /* operator.c: the frames and scales of the points from B, and the change of variables T */
 PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Mat, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
@@ -208,6 +212,7 @@ typedef struct {
   PetscReal    scaling;      /* gamma in use for the current solve                                    */
   PetscReal    state_tol;    /* tau of the classification (section 2)                                 */
   PetscReal    scale;        /* ||gamma f||: the problem's displacement scale in the stopping rule    */
+  PetscReal    offsetScale;  /* ||o_t||, the tangential offsets of a load path's step (10.4): part of that scale */
   PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
   PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
   SSStarReason reason;

@@ -21,7 +21,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateFromString(MPI_Comm, const char[], const char[], SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateDefault(SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleDestroy(SSStarObstacle *);
-PETSC_INTERN PetscErrorCode SSStarObstacleGap(SSStarObstacle, const PetscReal[3], PetscReal, PetscReal *, PetscReal[3]);
+PETSC_INTERN PetscErrorCode SSStarObstacleGaps(SSStarObstacle, PetscInt, const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarObstacleDescribe(SSStarObstacle, char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarObstacleWriteAttributes(SSStarObstacle, SSStarAttributeWriter *);
 PETSC_INTERN const char    *SSStarObstacleInsideHint(SSStarObstacle);

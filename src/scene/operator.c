@@ -11,18 +11,49 @@
 */
 #include "sceneimpl.h"
 
+/*
+   SSStarSceneObstacleGaps - the gaps and normals of n points against the obstacles of their contact groups (group[i]
+   < 0: none, left as they are). Collective: every rank asks each group's obstacle, with its points of the group (a
+   mesh obstacle's triangles are spread over the ranks).
+*/
+PetscErrorCode SSStarSceneObstacleGaps(SSStarScene scene, PetscInt n, const PetscInt group[], const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[])
+{
+  PetscInt  *at;
+  PetscReal *xg, *gg, *ng;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc4(n + 1, &at, 3 * n + 1, &xg, n + 1, &gg, 3 * n + 1, &ng));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    PetscInt m = 0;
+
+    for (PetscInt i = 0; i < n; i++)
+      if (group[i] == g) {
+        at[m] = i;
+        PetscCall(PetscArraycpy(&xg[3 * m++], &x[3 * i], 3));
+      }
+    PetscCall(SSStarObstacleGaps(scene->contact[g].obstacle, m, xg, tol, gg, ng));
+    for (PetscInt j = 0; j < m; j++) {
+      gap[at[j]] = gg[j];
+      PetscCall(PetscArraycpy(&normal[3 * at[j]], &ng[3 * j], 3));
+    }
+  }
+  PetscCall(PetscFree4(at, xg, gg, ng));
+  PetscFunctionReturn(0);
+}
+
 /* The rows of the nodes of rigid obstacles: gap and normal from the shape; refuses a node that starts inside it */
 static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
 {
   SSStarBadNode inside = {-1, -1, -1, {0, 0, 0}, 0};
   PetscBool     found;
+  PetscInt     *group;
 
   PetscFunctionBegin;
+  PetscCall(PetscMalloc1(scene->n + 1, &group));
+  for (PetscInt i = 0; i < scene->n; i++) group[i] = scene->contact[scene->group[i]].master[0] ? -1 : scene->group[i];
+  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, scene->coords, tol, scene->gap, scene->normal));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-
-    if (cg->master[0]) continue;
-    PetscCall(SSStarObstacleGap(cg->obstacle, &scene->coords[3 * i], tol, &scene->gap[i], &scene->normal[3 * i]));
+    if (group[i] < 0) continue;
     if (scene->gap[i] < -tol && inside.tag < 0) {
       inside.tag   = scene->tag[i];
       inside.group = scene->group[i];
@@ -31,6 +62,7 @@ static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
     }
     if (PetscAbsReal(scene->gap[i]) <= tol) scene->gap[i] = 0.0; /* on the obstacle up to round-off: touching */
   }
+  PetscCall(PetscFree(group));
   PetscCall(SSStarSceneShareBadNode(scene->comm, &inside, &found));
   PetscCheck(!found, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Mesh node %" PetscInt_FMT " (0-based, file order) of contact group \"%s\" at (%g, %g, %g) starts %g inside the obstacle of -obstacle_%s (%s)", inside.tag, scene->contact[inside.group].name, (double)inside.x[0], (double)inside.x[1], (double)inside.x[2], (double)-inside.gap, scene->contact[inside.group].name, SSStarObstacleInsideHint(scene->contact[inside.group].obstacle));
   PetscFunctionReturn(0);

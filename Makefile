@@ -39,7 +39,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-large bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test bench bench-large bench-search bench-scenes scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -107,6 +107,11 @@ bench: all
 # levels 24, 32, 40 on the whole body (2 ranks, one run each, with the AMG yardstick): about 30 minutes
 bench-large: all
 	$(PYTHON) bench/table2.py --large
+
+# the contact search on large inputs (a ball of 59 356 triangles on a 250 000-node block; a 330 000-dof pair): its
+# share of the whole run, 2 ranks, the whole body (bench/output/search.csv)
+bench-search: all
+	$(PYTHON) bench/search.py
 
 # the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
 accuracy: all

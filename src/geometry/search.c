@@ -95,27 +95,6 @@ static PetscErrorCode Exchange(SSStarSearch s, const PetscMPIInt count[], const 
   PetscFunctionReturn(0);
 }
 
-/* The items of the routes, record reals each (written by pack), sent to their ranks; what came back */
-static PetscErrorCode SendRoutes(SSStarSearch s, const Routes *routes, PetscInt record, void (*pack)(SSStarSearch, const void *, PetscInt, PetscReal[]), const void *ctx, PetscMPIInt rcount[], PetscReal **recv)
-{
-  PetscMPIInt *count, *at;
-  PetscReal   *send;
-
-  PetscFunctionBegin;
-  PetscCall(PetscCalloc2(s->size, &count, s->size, &at));
-  for (PetscInt j = 0; j < routes->n; j++) count[routes->rank[j]] += (PetscMPIInt)record;
-  for (PetscMPIInt r = 1; r < s->size; r++) at[r] = at[r - 1] + count[r - 1];
-  PetscCall(PetscMalloc1(record * routes->n + 1, &send));
-  for (PetscInt j = 0; j < routes->n; j++) {
-    (*pack)(s, ctx, routes->item[j], &send[at[routes->rank[j]]]);
-    at[routes->rank[j]] += (PetscMPIInt)record;
-  }
-  PetscCall(Exchange(s, count, send, rcount, recv));
-  PetscCall(PetscFree(send));
-  PetscCall(PetscFree2(count, at));
-  PetscFunctionReturn(0);
-}
-
 static void PackPoint(SSStarSearch s, const void *ctx, PetscInt i, PetscReal rec[])
 {
   const PetscReal *p = (const PetscReal *)ctx;
@@ -306,50 +285,94 @@ PetscErrorCode SSStarSearchDestroy(SSStarSearch *search)
   PetscFunctionReturn(0);
 }
 
-/* This rank's answers to the points asked: for each, its triangles within tol of its closest one (for tol = 0 the
-   closest alone, the least key among equally close ones) */
-static PetscErrorCode AnswerPoints(SSStarSearch s, const PetscMPIInt rcount[], const PetscReal asked[], PetscReal tol, PetscMPIInt count[], PetscReal **answer)
+/* A question's answers (question: index on the asking rank, then what it asks), appended to buf (max, used) */
+typedef PetscErrorCode (*Answer)(SSStarSearch, const PetscReal question[], PetscReal tol, PetscReal **buf, PetscInt *max, PetscInt *used);
+
+/* A point's: this rank's triangles within tol of its closest one (for tol = 0 the closest alone, the least key among
+   equally close ones) */
+static PetscErrorCode AnswerPoint(SSStarSearch s, const PetscReal question[], PetscReal tol, PetscReal **buf, PetscInt *max, PetscInt *used)
 {
-  const PetscInt record = HIT_RECORD(s->m);
-  PetscInt       used = 0, max = 0, j = 0;
+  const PetscInt   record = HIT_RECORD(s->m), asker = (PetscInt)question[0];
+  const PetscReal *p      = &question[1];
+  PetscInt         t, nf;
+  const PetscInt  *found;
+  PetscReal        d2, bound2, reach, box[6];
+  SSStarRegion     region;
 
   PetscFunctionBegin;
-  *answer = NULL;
-  for (PetscMPIInt r = 0; r < s->size; r++) {
+  PetscCall(SSStarTreeClosest(s->tree, p, &t, &d2));
+  if (t < 0) PetscFunctionReturn(0);
+  if (tol == 0) {
+    PetscCall(Reserve(buf, max, *used, record));
+    PackHit(s, asker, t, p, &(*buf)[*used]);
+    *used += record;
+    PetscFunctionReturn(0);
+  }
+  bound2 = Bound2(d2, tol);
+  reach  = PetscSqrtReal(bound2) + RoundOff(s, p);
+  for (PetscInt k = 0; k < 3; k++) {
+    box[k]     = p[k] - reach;
+    box[3 + k] = p[k] + reach;
+  }
+  SSStarRegionBox(box, &region);
+  PetscCall(SSStarTreeFindInRegion(s->tree, &region, &nf, &found));
+  for (PetscInt f = 0; f < nf; f++) {
+    PetscCall(Reserve(buf, max, *used, record));
+    PackHit(s, asker, found[f], p, &(*buf)[*used]);
+    if ((*buf)[*used + 1] <= bound2) *used += record;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A region's: this rank's triangles that meet it, without a closest point */
+static PetscErrorCode AnswerRegion(SSStarSearch s, const PetscReal question[], PetscReal tol, PetscReal **buf, PetscInt *max, PetscInt *used)
+{
+  const PetscInt  record = HIT_RECORD(s->m);
+  SSStarRegion    region;
+  PetscInt        nf;
+  const PetscInt *found;
+
+  PetscFunctionBegin;
+  UnpackRegion(question, &region);
+  PetscCall(SSStarTreeFindInRegion(s->tree, &region, &nf, &found));
+  PetscCall(Reserve(buf, max, *used, record * nf));
+  for (PetscInt f = 0; f < nf; f++, *used += record) PackHit(s, (PetscInt)question[0], found[f], NULL, &(*buf)[*used]);
+  PetscFunctionReturn(0);
+}
+
+/*
+   The questions of the routes (record reals each, written by pack) sent to their ranks; each rank's answers to what
+   it was asked (answer); the nback answers that came back here (HIT_RECORD each)
+*/
+static PetscErrorCode Ask(SSStarSearch s, const Routes *routes, PetscInt record, void (*pack)(SSStarSearch, const void *, PetscInt, PetscReal[]), const void *ctx, Answer answer, PetscReal tol, PetscInt *nback, PetscReal **back)
+{
+  PetscMPIInt *count, *at, *rcount;
+  PetscReal   *send, *asked, *buf = NULL;
+  PetscInt     max = 0, used = 0, j = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc3(s->size, &count, s->size, &at, s->size, &rcount));
+  for (PetscInt e = 0; e < routes->n; e++) count[routes->rank[e]] += (PetscMPIInt)record;
+  for (PetscMPIInt r = 1; r < s->size; r++) at[r] = at[r - 1] + count[r - 1];
+  PetscCall(PetscMalloc1(record * routes->n + 1, &send));
+  for (PetscInt e = 0; e < routes->n; e++) {
+    (*pack)(s, ctx, routes->item[e], &send[at[routes->rank[e]]]);
+    at[routes->rank[e]] += (PetscMPIInt)record;
+  }
+  PetscCall(Exchange(s, count, send, rcount, &asked));
+  PetscCall(PetscFree(send));
+  for (PetscMPIInt r = 0; r < s->size; r++) { /* the answers to each rank in turn */
     const PetscInt start = used;
 
-    for (PetscInt e = 0; e < rcount[r] / POINT_RECORD; e++, j++) {
-      const PetscReal *p = &asked[POINT_RECORD * j + 1];
-      const PetscInt   question = (PetscInt)asked[POINT_RECORD * j];
-      PetscInt         t, nf;
-      const PetscInt  *found;
-      PetscReal        d2, bound2, reach, box[6];
-      SSStarRegion     region;
-
-      PetscCall(SSStarTreeClosest(s->tree, p, &t, &d2));
-      if (t < 0) continue;
-      if (tol == 0) {
-        PetscCall(Reserve(answer, &max, used, record));
-        PackHit(s, question, t, p, &(*answer)[used]);
-        used += record;
-        continue;
-      }
-      bound2 = Bound2(d2, tol);
-      reach  = PetscSqrtReal(bound2) + RoundOff(s, p);
-      for (PetscInt k = 0; k < 3; k++) {
-        box[k]     = p[k] - reach;
-        box[3 + k] = p[k] + reach;
-      }
-      SSStarRegionBox(box, &region);
-      PetscCall(SSStarTreeFindInRegion(s->tree, &region, &nf, &found));
-      for (PetscInt f = 0; f < nf; f++) {
-        PetscCall(Reserve(answer, &max, used, record));
-        PackHit(s, question, found[f], p, &(*answer)[used]);
-        if ((*answer)[used + 1] <= bound2) used += record;
-      }
-    }
+    for (PetscInt e = 0; e < rcount[r] / record; e++, j++) PetscCall((*answer)(s, &asked[record * j], tol, &buf, &max, &used));
     count[r] = (PetscMPIInt)(used - start);
   }
+  PetscCall(Exchange(s, count, buf, rcount, back));
+  *nback = 0;
+  for (PetscMPIInt r = 0; r < s->size; r++) *nback += rcount[r] / HIT_RECORD(s->m);
+  PetscCall(PetscFree(buf));
+  PetscCall(PetscFree(asked));
+  PetscCall(PetscFree3(count, at, rcount));
   PetscFunctionReturn(0);
 }
 
@@ -381,13 +404,12 @@ static PetscErrorCode AnswerPoints(SSStarSearch s, const PetscMPIInt rcount[], c
 
 .seealso: `SSStarSearchCreate()`, `SSStarTreeClosest()`, `SSStarSearchFindInRegions()`
 @*/
-PetscErrorCode SSStarSearchClosest(SSStarSearch s, PetscInt np, const PetscReal p[], PetscReal tol, SSStarSearchHit hit[], PetscReal data[])
+PetscErrorCode SSStarSearchClosest(SSStarSearch search, PetscInt np, const PetscReal p[], PetscReal tol, SSStarSearchHit hit[], PetscReal data[])
 {
-  const PetscInt record = HIT_RECORD(s->m);
+  const PetscInt record = HIT_RECORD(search->m);
   Routes         routes = {0, 0, NULL, NULL};
-  PetscMPIInt   *rcount, *count, *acount;
-  PetscReal     *asked, *answer, *back, *d2min;
-  PetscInt       nback = 0;
+  PetscReal     *back, *d2min;
+  PetscInt       nback;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Search, 0, 0, 0, 0));
@@ -396,31 +418,27 @@ PetscErrorCode SSStarSearchClosest(SSStarSearch s, PetscInt np, const PetscReal 
     PetscReal        d2 = PETSC_MAX_REAL, reach;
     PetscInt         t  = -1;
 
-    if (s->n) PetscCall(SSStarTreeClosest(s->tree, x, &t, &d2));
+    if (search->n) PetscCall(SSStarTreeClosest(search->tree, x, &t, &d2));
     reach = t >= 0 ? PetscSqrtReal(d2) : PETSC_MAX_REAL;
-    for (PetscInt b = 0; b < s->boxStart[s->size]; b++) reach = PetscMin(reach, PetscSqrtReal(SSStarBoxFarthest2(x, &s->boxes[6 * b])));
+    for (PetscInt b = 0; b < search->boxStart[search->size]; b++) reach = PetscMin(reach, PetscSqrtReal(SSStarBoxFarthest2(x, &search->boxes[6 * b])));
     if (reach == PETSC_MAX_REAL) continue; /* no triangle anywhere */
-    reach += tol + 2 * RoundOff(s, x);
-    for (PetscMPIInt r = 0; r < s->size; r++)
-      for (PetscInt b = s->boxStart[r]; b < s->boxStart[r + 1]; b++)
-        if (SSStarBoxDistance2(x, &s->boxes[6 * b]) <= PetscSqr(reach)) {
+    reach += tol + 2 * RoundOff(search, x);
+    for (PetscMPIInt r = 0; r < search->size; r++)
+      for (PetscInt b = search->boxStart[r]; b < search->boxStart[r + 1]; b++)
+        if (SSStarBoxDistance2(x, &search->boxes[6 * b]) <= PetscSqr(reach)) {
           PetscCall(RoutesAdd(&routes, r, i));
           break;
         }
   }
-  PetscCall(PetscMalloc3(s->size, &rcount, s->size, &count, s->size, &acount));
-  PetscCall(SendRoutes(s, &routes, POINT_RECORD, PackPoint, p, rcount, &asked));
+  PetscCall(Ask(search, &routes, POINT_RECORD, PackPoint, p, AnswerPoint, tol, &nback, &back));
   PetscCall(RoutesDestroy(&routes));
-  PetscCall(AnswerPoints(s, rcount, asked, tol, count, &answer));
-  PetscCall(Exchange(s, count, answer, acount, &back));
-  for (PetscMPIInt r = 0; r < s->size; r++) nback += acount[r] / record;
   PetscCall(PetscMalloc1(np + 1, &d2min));
   for (PetscInt i = 0; i < np; i++) {
     d2min[i] = PETSC_MAX_REAL;
     PetscCall(PetscMemzero(&hit[i], sizeof(hit[i])));
     hit[i].key[0] = hit[i].key[1] = hit[i].key[2] = -1;
     hit[i].d2                                     = PETSC_MAX_REAL;
-    for (PetscInt k = 0; k < s->m; k++) data[s->m * i + k] = 0;
+    for (PetscInt k = 0; k < search->m; k++) data[search->m * i + k] = 0;
   }
   for (PetscInt e = 0; e < nback; e++) {
     const PetscInt i = (PetscInt)back[record * e];
@@ -431,13 +449,10 @@ PetscErrorCode SSStarSearchClosest(SSStarSearch s, PetscInt np, const PetscReal 
     const PetscReal *rec = &back[record * e];
     const PetscInt   i   = (PetscInt)rec[0], key[3] = {(PetscInt)rec[2], (PetscInt)rec[3], (PetscInt)rec[4]};
 
-    if (rec[1] <= Bound2(d2min[i], tol) && (hit[i].key[0] < 0 || CompareKeys(key, hit[i].key) < 0)) UnpackHit(s->m, rec, &hit[i], &data[s->m * i]);
+    if (rec[1] <= Bound2(d2min[i], tol) && (hit[i].key[0] < 0 || CompareKeys(key, hit[i].key) < 0)) UnpackHit(search->m, rec, &hit[i], &data[search->m * i]);
   }
   PetscCall(PetscFree(d2min));
   PetscCall(PetscFree(back));
-  PetscCall(PetscFree(answer));
-  PetscCall(PetscFree(asked));
-  PetscCall(PetscFree3(rcount, count, acount));
   PetscCall(PetscLogEventEnd(SSSTAR_Search, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -465,47 +480,28 @@ PetscErrorCode SSStarSearchClosest(SSStarSearch s, PetscInt np, const PetscReal 
 
 .seealso: `SSStarSearchCreate()`, `SSStarTreeFindInRegion()`, `SSStarRegionBox()`, `SSStarSearchClosest()`
 @*/
-PetscErrorCode SSStarSearchFindInRegions(SSStarSearch s, PetscInt nr, const SSStarRegion regions[], PetscInt *offset[], SSStarSearchHit *hit[], PetscReal *data[])
+PetscErrorCode SSStarSearchFindInRegions(SSStarSearch search, PetscInt nr, const SSStarRegion regions[], PetscInt *offset[], SSStarSearchHit *hit[], PetscReal *data[])
 {
-  const PetscInt record = HIT_RECORD(s->m);
+  const PetscInt record = HIT_RECORD(search->m);
   Routes         routes = {0, 0, NULL, NULL};
-  PetscMPIInt   *rcount, *count, *acount;
-  PetscReal     *asked, *answer = NULL, *back;
-  PetscInt       used = 0, max = 0, j = 0, nback = 0, *at;
+  PetscReal     *back;
+  PetscInt       nback, *at;
   Keyed         *order;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Search, 0, 0, 0, 0));
   for (PetscInt i = 0; i < nr; i++)
-    for (PetscMPIInt r = 0; r < s->size; r++)
-      for (PetscInt b = s->boxStart[r]; b < s->boxStart[r + 1]; b++)
-        if (SSStarBoxMeetsRegion(&s->boxes[6 * b], &regions[i], s->scale)) {
+    for (PetscMPIInt r = 0; r < search->size; r++)
+      for (PetscInt b = search->boxStart[r]; b < search->boxStart[r + 1]; b++)
+        if (SSStarBoxMeetsRegion(&search->boxes[6 * b], &regions[i], search->scale)) {
           PetscCall(RoutesAdd(&routes, r, i));
           break;
         }
-  PetscCall(PetscMalloc3(s->size, &rcount, s->size, &count, s->size, &acount));
-  PetscCall(SendRoutes(s, &routes, REGION_RECORD, PackRegion, regions, rcount, &asked));
+  PetscCall(Ask(search, &routes, REGION_RECORD, PackRegion, regions, AnswerRegion, 0, &nback, &back));
   PetscCall(RoutesDestroy(&routes));
-  for (PetscMPIInt r = 0; r < s->size; r++) { /* the answers: the triangles found, without a closest point */
-    const PetscInt start = used;
-
-    for (PetscInt e = 0; e < rcount[r] / REGION_RECORD; e++, j++) {
-      SSStarRegion    region;
-      PetscInt        nf;
-      const PetscInt *found;
-
-      UnpackRegion(&asked[REGION_RECORD * j], &region);
-      PetscCall(SSStarTreeFindInRegion(s->tree, &region, &nf, &found));
-      PetscCall(Reserve(&answer, &max, used, record * nf));
-      for (PetscInt f = 0; f < nf; f++, used += record) PackHit(s, (PetscInt)asked[REGION_RECORD * j], found[f], NULL, &answer[used]);
-    }
-    count[r] = (PetscMPIInt)(used - start);
-  }
-  PetscCall(Exchange(s, count, answer, acount, &back));
-  for (PetscMPIInt r = 0; r < s->size; r++) nback += acount[r] / record;
   PetscCall(PetscCalloc1(nr + 1, offset));
   PetscCall(PetscMalloc1(nback + 1, hit));
-  PetscCall(PetscMalloc1(s->m * nback + 1, data));
+  PetscCall(PetscMalloc1(search->m * nback + 1, data));
   PetscCall(PetscMalloc1(nback + 1, &order));
   PetscCall(PetscMalloc1(nr + 1, &at));
   for (PetscInt e = 0; e < nback; e++) (*offset)[(PetscInt)back[record * e] + 1]++;
@@ -521,13 +517,10 @@ PetscErrorCode SSStarSearchFindInRegions(SSStarSearch s, PetscInt nr, const SSSt
     o->at = e;
   }
   for (PetscInt i = 0; i < nr; i++) qsort(&order[(*offset)[i]], (size_t)((*offset)[i + 1] - (*offset)[i]), sizeof(Keyed), CompareKeyed);
-  for (PetscInt e = 0; e < nback; e++) UnpackHit(s->m, &back[record * order[e].at], &(*hit)[e], &(*data)[s->m * e]);
+  for (PetscInt e = 0; e < nback; e++) UnpackHit(search->m, &back[record * order[e].at], &(*hit)[e], &(*data)[search->m * e]);
   PetscCall(PetscFree(at));
   PetscCall(PetscFree(order));
   PetscCall(PetscFree(back));
-  PetscCall(PetscFree(answer));
-  PetscCall(PetscFree(asked));
-  PetscCall(PetscFree3(rcount, count, acount));
   PetscCall(PetscLogEventEnd(SSSTAR_Search, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -549,15 +542,15 @@ PetscErrorCode SSStarSearchFindInRegions(SSStarSearch s, PetscInt nr, const SSSt
 
 .seealso: `SSStarSearchCreate()`, `SSStarTreeGetSize()`
 @*/
-PetscErrorCode SSStarSearchGetSize(SSStarSearch s, PetscInt *n, PetscInt *N, size_t *bytes)
+PetscErrorCode SSStarSearchGetSize(SSStarSearch search, PetscInt *n, PetscInt *N, size_t *bytes)
 {
   size_t tree;
 
   PetscFunctionBegin;
-  if (n) *n = s->n;
-  if (N) *N = s->N;
-  PetscCall(SSStarTreeGetSize(s->tree, NULL, NULL, &tree));
-  if (bytes) *bytes = sizeof(*s) + tree + (size_t)s->n * (3 * sizeof(PetscInt) + s->m * sizeof(PetscReal)) + (size_t)(s->size + 1) * sizeof(PetscInt) + (size_t)(6 * s->boxStart[s->size]) * sizeof(PetscReal);
+  if (n) *n = search->n;
+  if (N) *N = search->N;
+  PetscCall(SSStarTreeGetSize(search->tree, NULL, NULL, &tree));
+  if (bytes) *bytes = sizeof(*search) + tree + (size_t)search->n * (3 * sizeof(PetscInt) + search->m * sizeof(PetscReal)) + (size_t)(search->size + 1) * sizeof(PetscInt) + (size_t)(6 * search->boxStart[search->size]) * sizeof(PetscReal);
   PetscFunctionReturn(0);
 }
 

@@ -180,6 +180,7 @@ PetscErrorCode SSStarTreeCreate(PetscInt n, const PetscReal x[], SSStarTree *tre
   if (n > 0) {
     t->nnodes = 1;
     PetscCall(Build(t, 0, 0, n, centroid, work));
+    PetscCall(PetscRealloc(t->nnodes * sizeof(SSStarTreeNode), &t->node)); /* fewer than n of the 2 n reserved */
   }
   PetscCall(PetscFree2(centroid, work));
   *tree = t;
@@ -418,6 +419,6 @@ PetscErrorCode SSStarTreeGetSize(SSStarTree tree, PetscInt *n, PetscInt *nnodes,
   PetscFunctionBegin;
   if (n) *n = tree->n;
   if (nnodes) *nnodes = tree->nnodes;
-  if (bytes) *bytes = sizeof(*tree) + (size_t)tree->n * (9 * sizeof(PetscReal) + sizeof(PetscInt)) + (size_t)(2 * tree->n + 1) * sizeof(SSStarTreeNode) + (size_t)tree->maxfound * sizeof(PetscInt);
+  if (bytes) *bytes = sizeof(*tree) + (size_t)tree->n * (9 * sizeof(PetscReal) + sizeof(PetscInt)) + (size_t)tree->nnodes * sizeof(SSStarTreeNode) + (size_t)tree->maxfound * sizeof(PetscInt);
   PetscFunctionReturn(0);
 }

@@ -11,7 +11,7 @@ Options:\n\
   -obstacle_point <0,0,-0.002>    a point of the rigid plane\n\
   -obstacle_normal <0,0,1>        its normal, pointing into the body (normalized here)\n\
   -o <file.h5>                    write the contact nodes' coordinates, displacement, reaction (K u - b), normal, gap\n\
-                                  and, for ssstar, the friction law, coefficient and slip bound of each\n\
+                                  and, for ssstar, the friction law of each and the values of its parameters\n\
 An option nothing reads is refused before any work. Exit status 0 when the solve converged, 2 when it did not (the -o\n\
 file says so: attributes converged_reason, residual_norm, iterations of \"/\"), PETSc's error code for bad input (one\n\
 line naming the option or file; -ssstar_traceback adds PETSc's report). -help lists the options and does nothing else.\n";
@@ -20,6 +20,7 @@ line naming the option or file; -ssstar_traceback adds PETSc's report). -help li
 #include <petscsnes.h>
 #include <petscviewerhdf5.h>
 #include <ssstar.h>
+#include <ssstarscene.h> /* SSStarWriteNodeFriction() */
 
 /* Stiffness of a trilinear brick h[0] x h[1] x h[2] (2x2x2 Gauss points); node a = di + 2 dj + 4 dk */
 static void BrickStiffness(const PetscReal h[3], PetscReal lambda, PetscReal mu, PetscScalar Ke[24 * 24])
@@ -206,57 +207,6 @@ static PetscErrorCode Report(Vec u, Vec r, IS dofs, Vec normals, Vec gaps)
   PetscFunctionReturn(0);
 }
 
-/* The friction law the solver used at each node, /contact/friction_law (its index in the table of laws), and the value
-   of every parameter of the laws, /contact/<parameter> (0 where the node's law has no such parameter): friction,
-   slip_bound, friction_1, friction_2, friction_direction (tests/check_solution.py reads friction_law, friction and
-   slip_bound) */
-static PetscErrorCode WriteFriction(PetscViewer viewer, SNES snes, Vec gaps)
-{
-  PetscInt           n, nlaws;
-  PetscInt          *codes;
-  const char *const *laws;
-  IS                 is;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(gaps, &n));
-  PetscCall(PetscMalloc1(n, &codes));
-  PetscCall(SNESSSStarGetNodeFrictionLaws(snes, n, codes));
-  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)gaps), n, codes, PETSC_OWN_POINTER, &is));
-  PetscCall(PetscObjectSetName((PetscObject)is, "friction_law"));
-  PetscCall(ISView(is, viewer));
-  PetscCall(ISDestroy(&is));
-  PetscCall(SSStarLawGetNames(&nlaws, &laws));
-  for (PetscInt l = 0; l < nlaws; l++) {
-    PetscInt           nparams;
-    const char *const *params;
-
-    PetscCall(SSStarLawGetInfo(l, NULL, NULL, &nparams, &params));
-    for (PetscInt p = 0; p < nparams; p++) {
-      PetscBool    written = PETSC_FALSE;
-      PetscReal   *values;
-      PetscScalar *a;
-      Vec          v;
-      PetscInt     size;
-
-      for (PetscInt e = 0; e < l && !written; e++) PetscCall(SSStarLawHasParameter(e, params[p], &written)); /* shared */
-      if (written) continue;
-      PetscCall(SSStarLawGetParameterSize(params[p], &size));
-      PetscCall(PetscMalloc1(size * n + 1, &values));
-      PetscCall(SNESSSStarGetNodeLawParameter(snes, params[p], n, values));
-      PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)gaps), size * n, PETSC_DETERMINE, &v));
-      if (size > 1) PetscCall(VecSetBlockSize(v, size));
-      PetscCall(VecGetArrayWrite(v, &a));
-      for (PetscInt k = 0; k < size * n; k++) a[k] = values[k];
-      PetscCall(VecRestoreArrayWrite(v, &a));
-      PetscCall(PetscObjectSetName((PetscObject)v, params[p]));
-      PetscCall(VecView(v, viewer));
-      PetscCall(VecDestroy(&v));
-      PetscCall(PetscFree(values));
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode WriteContactNodes(const char file[], SNES snes, Vec u, Vec r, IS dofs, Vec normals, Vec gaps, Vec coords)
 {
   PetscViewer viewer;
@@ -283,7 +233,7 @@ static PetscErrorCode WriteContactNodes(const char file[], SNES snes, Vec u, Vec
   PetscCall(VecRestoreSubVector(r, dofs, &rC));
   PetscCall(VecRestoreSubVector(u, dofs, &uC));
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
-  if (isssstar) PetscCall(WriteFriction(viewer, snes, gaps));
+  if (isssstar) PetscCall(SSStarWriteNodeFriction(snes, viewer, "/contact")); /* friction_law and the laws' parameters, as the scenes write them */
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(SSStarWriteOutcome(snes, viewer)); /* how the solve ended */
   PetscCall(PetscViewerDestroy(&viewer));

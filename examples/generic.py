@@ -143,7 +143,6 @@ def main():
     states, counts = ssstar.get_states(snes)
     forces = ssstar.get_contact_forces(snes)
     laws = ssstar.get_node_friction_laws(snes)
-    phis, bounds = ssstar.get_node_law_parameter(snes, "friction"), ssstar.get_node_law_parameter(snes, "slip_bound")
     ua = u.getArray(readonly=True)[dofs - rstart].reshape(n, 3) if n else np.zeros((0, 3))
     worst = minimum(comm, float((ua.dot(normal) + gaps).min()) if n else np.inf)
     force = total(comm, [forces.dot(normal).sum()])[0]
@@ -152,7 +151,7 @@ def main():
                     % (names.get(reason, reason), ssstar.get_reason(snes), snes.getIterationNumber(),
                        "/".join(str(c) for c in counts), worst, force, "/".join(str(c) for c in lawcounts)), comm=comm)
     if out:
-        write(out, comm, X, ua, forces, normals, gaps, laws, phis, bounds)
+        write(out, snes, X, ua, forces, normals, gaps)
 
 
 def minimum(comm, value):
@@ -174,24 +173,22 @@ def total(comm, values):
     return w.getArray().copy()
 
 
-def write(path, comm, X, u, r, normals, gaps, laws, phi, bounds):
-    """The layout of examples/generic.c's -o file: /contact/{coordinates, displacement, reaction, normal, gap, friction,
-    slip_bound, friction_law}, each rank's nodes after those of the lower ranks"""
+def write(path, snes, X, u, r, normals, gaps):
+    """The layout of examples/generic.c's -o file: /contact/{coordinates, displacement, reaction, normal, gap}, each
+    rank's nodes after those of the lower ranks, and the friction of each node as the library writes it
+    (write_node_friction: friction_law and the parameters of the laws in use)"""
+    comm = snes.getComm()
     viewer = PETSc.ViewerHDF5().createHDF5(path, "w", comm=comm)
     viewer.pushGroup("/contact")
-    for name, values, bs in (("coordinates", X, 3), ("displacement", u, 3), ("reaction", r, 3), ("normal", normals, 3),
-                             ("gap", gaps, 1), ("friction", phi, 1), ("slip_bound", bounds, 1)):
+    for name, values, bs in (("coordinates", X, 3), ("displacement", u, 3), ("reaction", r, 3), ("normal", normals, 3), ("gap", gaps, 1)):
         a = np.ascontiguousarray(np.asarray(values, dtype=PETSc.ScalarType).reshape(-1))
         v = PETSc.Vec().createMPI((a.size, PETSc.DECIDE), bsize=bs, comm=comm)
         v.setArray(a)
         v.setName(name)
         v.view(viewer)
         v.destroy()
-    iset = PETSc.IS().createGeneral(np.asarray(laws, dtype=PETSc.IntType), comm=comm)
-    iset.setName("friction_law")
-    iset.view(viewer)
-    iset.destroy()
     viewer.popGroup()
+    ssstar.write_node_friction(snes, viewer, "/contact")
     viewer.destroy()
 
 

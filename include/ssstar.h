@@ -49,6 +49,13 @@ PETSC_EXTERN const char *const SSStarStateNames[];
 #define SSSTARLAWCOULOMB     "coulomb"     /* |r_t| <= phi r_n                                                       */
 #define SSSTARLAWORTHOTROPIC "orthotropic" /* |M^-1/2 r_t| <= r_n: phi_1 along a given direction, phi_2 across it   */
 typedef struct _n_SSStarLaw *SSStarLaw;
+/* What a law's parameter is: a coefficient (a number >= 0), a force (>= 0) or a direction (x, y, z in global axes) */
+typedef enum {
+  SSSTAR_LAW_COEFFICIENT,
+  SSSTAR_LAW_FORCE,
+  SSSTAR_LAW_DIRECTION
+} SSStarLawParameterKind;
+PETSC_EXTERN const char *const SSStarLawParameterKinds[];
 PETSC_EXTERN PetscErrorCode SSStarLawRegister(const char[], PetscErrorCode (*)(SSStarLaw));
 PETSC_EXTERN PetscErrorCode SSStarLawRegisterAll(void);
 PETSC_EXTERN PetscErrorCode SSStarLawGetNames(PetscInt *, const char *const *[]);
@@ -56,6 +63,8 @@ PETSC_EXTERN PetscErrorCode SSStarLawGetIndex(const char[], PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarLawGetInfo(PetscInt, const char *[], const char *[], PetscInt *, const char *const *[]);
 PETSC_EXTERN PetscErrorCode SSStarLawHasParameter(PetscInt, const char[], PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarLawGetParameterSize(const char[], PetscInt *);
+PETSC_EXTERN PetscErrorCode SSStarLawGetParameterNames(PetscInt *, const char *const *[]);
+PETSC_EXTERN PetscErrorCode SSStarLawGetParameterInfo(const char[], SSStarLawParameterKind *, PetscInt *, const char *[], const char *[], PetscBool *, PetscReal *);
 
 /* Why an ssstar solve stopped, finer than SNESConvergedReason. */
 typedef enum {

@@ -32,6 +32,7 @@ typedef struct _n_SSStarReduction *SSStarReduction;
 PETSC_EXTERN PetscFunctionList SSStarReductionList;
 PETSC_EXTERN PetscErrorCode    SSStarReductionRegister(const char[], PetscErrorCode (*)(SSStarReduction, Mat));
 PETSC_EXTERN PetscErrorCode    SSStarReductionRegisterAll(void);
+PETSC_EXTERN PetscErrorCode    SSStarReductionGetNames(PetscInt *, const char *const *[]);
 PETSC_EXTERN PetscErrorCode    SSStarReductionCreate(MPI_Comm, SSStarReduction *);
 PETSC_EXTERN PetscErrorCode    SSStarReductionSetType(SSStarReduction, SSStarReductionType);
 PETSC_EXTERN PetscErrorCode    SSStarReductionSetOptionsPrefix(SSStarReduction, const char[]);

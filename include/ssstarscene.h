@@ -16,8 +16,9 @@ PETSC_EXTERN PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output;
 /*
    A scene: the body, its material, supports and loads, and its contact groups, read from the options
    (README "Scenes": -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -traction_<G>, -spring_<G>, -gravity,
-   -density, -contact, -obstacle_<G>, -friction_law_<G>, -friction_<G>, -slip_bound_<G>, -mesh_scale; two bodies:
-   -contact_pair_<G> H, -pair_discretization).
+   -density, -contact, -obstacle_<G>, -friction_law_<G> and -<parameter>_<G> for every parameter of the table of laws
+   (-friction_<G>, -slip_bound_<G>, -friction_1_<G>, ...), -mesh_scale; two bodies: -contact_pair_<G> H,
+   -pair_discretization).
 */
 typedef struct _n_SSStarScene *SSStarScene;
 
@@ -52,6 +53,8 @@ PETSC_EXTERN PetscErrorCode SSStarSceneContactView(SSStarScene, Vec, const SSSta
 */
 PETSC_EXTERN PetscErrorCode SSStarCheckOutputFile(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneWriteSolution(SSStarScene, SNES, const char[], Vec, PetscErrorCode (*)(PetscViewer, void *), void *);
+/* The friction of each contact node of an ssstar SNES (group/friction_law, group/<parameter>), as the scenes write it */
+PETSC_EXTERN PetscErrorCode SSStarWriteNodeFriction(SNES, PetscViewer, const char[]);
 
 /* The pieces a scene is made of, for programs of their own */
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);

@@ -1,17 +1,26 @@
 #!/usr/bin/python3
 """Independent checks of an ssstar solution file (HDF5 written by examples/prism -o).
 
-  check_solution.py coulomb FILE.h5 [--phi PHI] [--tol 1e-8]
+  check_solution.py coulomb FILE.h5 [--phi PHI] [--tol 1e-8]      (or: check_solution.py law FILE.h5)
       the friction law of every contact node, relative to max|w| and max|r|, in the node's frame built from
-      /contact/normal (default (0, 0, 1)): w_n >= 0, r_n = r.n >= 0, w_n r_n = 0, |r_t| <= bound,
-      r_t = -bound w_t/|w_t| where w_t != 0, with bound = phi r_n (Coulomb), s (Tresca) or 0 (frictionless); no NaN
-      or Inf. w is the node's relative displacement: the normal gap and the slip at the solution the file records
+      /contact/normal (default (0, 0, 1)): w_n >= 0, r_n = r.n >= 0, w_n r_n = 0, "|r_t| <= bound": r_t in the node's
+      friction set (no farther out than its boundary in the direction of r_t), and "r_t = -bound w_t/|w_t|": on a
+      sliding node (w_t != 0) r_t the force of maximum dissipation, r_t = -F(w_t); no NaN or Inf. The laws
+      (docs/derivation.md sections 0 and 9):
+        none         r_t = 0
+        tresca       |r_t| <= s;  F(w_t) = s w_t/|w_t|                          (/contact/slip_bound)
+        coulomb      |r_t| <= phi r_n;  F(w_t) = phi r_n w_t/|w_t|              (/contact/friction)
+        orthotropic  |M^-1/2 r_t| <= r_n;  F(w_t) = r_n M w_t/|M^1/2 w_t|, M = phi_1^2 a a^T + phi_2^2 a' a'^T, a the
+                     friction direction projected onto the tangent plane, a' = n x a  (/contact/friction_1,
+                     friction_2, friction_direction)
+      w is the node's relative displacement: the normal gap and the slip at the solution the file records
       (/contact/final_gap, /contact/slip: against the rigid obstacle, or for a contact pair the slave node against
       the master surface), else u.n + gap and u - (u.n) n from /contact/displacement and the initial gap
       /contact/gap (default 0), as examples/generic writes. r is the force on the node (/contact/reaction: the
-      pressure and traction times the node's area). The law, phi and s of each node are read from the file
-      (/contact/friction_law, /contact/friction, /contact/slip_bound, written by the scenes and by
-      examples/generic); --phi gives a Coulomb coefficient for every node of a file without them.
+      pressure and traction times the node's area). The law of each node is /contact/friction_law, by the names of
+      its attribute names (the table of laws; without it none, tresca, coulomb), and its parameters are the datasets
+      /contact/<parameter> (written by the scenes and by examples/generic); a law this script does not know fails the
+      check. --phi gives a Coulomb coefficient for every node of a file without them.
       For a file with a mesh, the XDMF file beside it names datasets of the right shapes.
   check_solution.py compare A.h5 B.h5 [--tol 1e-10]
       the contact displacement and reaction of two runs agree (relative to their max norms), and so do the
@@ -49,8 +58,8 @@ def coulomb(args):
     if not np.isfinite(u).all() or not np.isfinite(r).all():
         print("NaN or Inf in the solution")
         return False
-    law, phi, bound = friction(c, p, args.phi)
-    if law is None:
+    laws = friction(c, p, args.phi)
+    if laws is None:
         return False
     # the law in each node's frame, built here from the normal: w_n, w_t the relative displacement (the file's final
     # gap and slip, against the obstacle or the master surface; else from u: u.n + gap, u - (u.n) n), r_n, r_t
@@ -68,16 +77,19 @@ def coulomb(args):
     umax, rmax = max(np.abs(u).max(), np.abs(un).max(), np.abs(ut).max()), np.abs(r).max()
     utn, rtn = np.linalg.norm(ut, axis=1), np.linalg.norm(rt, axis=1)
     sliding = utn > args.tol * umax
-    unit = np.zeros_like(ut)
-    unit[sliding] = ut[sliding] / utn[sliding, None]
-    # the largest tangential force of each node: phi r_n (Coulomb), s (Tresca), 0 (frictionless)
-    limit = np.where(law == COULOMB, phi * rn, np.where(law == TRESCA, bound, 0.0))
+    # each node's friction set: how far r_t lies beyond its boundary (radially), and the force of maximum
+    # dissipation -F(w_t) a sliding node must have
+    excess, dissipative = np.zeros(p), np.zeros((p, 3))
+    for law, nodes in laws:
+        excess[nodes] = law.excess(nodes, rn[nodes], rt[nodes], normal[nodes])
+        slide = nodes[sliding[nodes]]
+        dissipative[slide] = -law.force(slide, rn[slide], ut[slide], normal[slide])
     violations = {
         "w_n >= 0": np.max(-un) / umax,
         "r_n >= 0": np.max(-rn) / rmax,
         "w_n r_n = 0": np.max(np.abs(un * rn)) / (umax * rmax),
-        "|r_t| <= bound": np.max(rtn - limit) / rmax,
-        "r_t = -bound w_t/|w_t|": np.max(np.abs(rt[sliding] + limit[sliding, None] * unit[sliding])) / rmax if sliding.any() else 0.0,
+        "|r_t| <= bound": np.max(excess) / rmax,
+        "r_t = -bound w_t/|w_t|": np.max(np.abs(rt[sliding] - dissipative[sliding])) / rmax if sliding.any() else 0.0,
     }
     ok = True
     for name, v in violations.items():
@@ -93,29 +105,98 @@ def coulomb(args):
     return ok
 
 
-NONE, TRESCA, COULOMB = 0, 1, 2
+class Isotropic:
+    """none, tresca, coulomb: the friction set is the disc of radius limit (0, s, phi r_n)"""
+    def __init__(self, name, c, p):
+        self.name, self.parameter = name, {"none": None, "tresca": "slip_bound", "coulomb": "friction"}[name]
+        self.values = None if self.parameter is None else c[self.parameter][:].reshape(p)
+
+    def limit(self, nodes, rn):
+        return np.zeros(len(nodes)) if self.values is None else self.values[nodes] * (rn if self.name == "coulomb" else 1.0)
+
+    def excess(self, nodes, rn, rt, normal):
+        return np.linalg.norm(rt, axis=1) - self.limit(nodes, rn)
+
+    def force(self, nodes, rn, wt, normal):
+        return self.limit(nodes, rn)[:, None] * wt / np.linalg.norm(wt, axis=1)[:, None]
+
+    def describe(self, nodes):
+        label = {"none": "frictionless", "tresca": "Tresca (s %s)", "coulomb": "Coulomb (phi %s)"}[self.name]
+        return "%d %s" % (len(nodes), label if self.values is None else label % describe(self.values[nodes]))
+
+
+class Orthotropic:
+    """|M^-1/2 r_t| <= r_n, M = phi_1^2 a a^T + phi_2^2 a' a'^T in the tangent plane (docs/derivation.md section 9)"""
+    name = "orthotropic"
+
+    def __init__(self, name, c, p):
+        self.phi1, self.phi2 = c["friction_1"][:].reshape(p), c["friction_2"][:].reshape(p)
+        self.direction = c["friction_direction"][:].reshape(p, 3)
+
+    def axes(self, nodes, normal):
+        """a, a' (unit, in the tangent plane) and phi_1, phi_2 of the nodes"""
+        a = self.direction[nodes] - np.einsum("ij,ij->i", self.direction[nodes], normal)[:, None] * normal
+        a /= np.linalg.norm(a, axis=1)[:, None]
+        return a, np.cross(normal, a), self.phi1[nodes], self.phi2[nodes]
+
+    def excess(self, nodes, rn, rt, normal):
+        """|r_t| minus the radius of the ellipse r_n E in the direction of r_t"""
+        a, b, phi1, phi2 = self.axes(nodes, normal)
+        size = np.linalg.norm(rt, axis=1)
+        e = rt / np.where(size > 0, size, 1.0)[:, None]
+        gauge = np.hypot(np.einsum("ij,ij->i", e, a) / phi1, np.einsum("ij,ij->i", e, b) / phi2)
+        return np.where(size > 0, size - rn / np.where(size > 0, gauge, 1.0), -rn)
+
+    def force(self, nodes, rn, wt, normal):
+        """r_n M w_t / |M^1/2 w_t|"""
+        a, b, phi1, phi2 = self.axes(nodes, normal)
+        wa, wb = np.einsum("ij,ij->i", wt, a), np.einsum("ij,ij->i", wt, b)
+        sigma = np.hypot(phi1 * wa, phi2 * wb)
+        return (rn / sigma)[:, None] * ((phi1 ** 2 * wa)[:, None] * a + (phi2 ** 2 * wb)[:, None] * b)
+
+    def describe(self, nodes):
+        return "%d orthotropic (phi_1 %s, phi_2 %s)" % (len(nodes), describe(self.phi1[nodes]), describe(self.phi2[nodes]))
+
+
+LAWS = {"none": Isotropic, "tresca": Isotropic, "coulomb": Isotropic, "orthotropic": Orthotropic}
 
 
 def friction(c, p, phi):
-    """The law, Coulomb coefficient and Tresca bound of each node: from the file, else Coulomb with --phi."""
-    if "friction_law" in c and "friction" in c:
-        law, coefficient = c["friction_law"][:].ravel(), c["friction"][:].ravel()  # (p, 1) when written by ISView
-        bound = c["slip_bound"][:].ravel() if "slip_bound" in c else np.zeros(p)
-        if law.shape != (p,) or coefficient.shape != (p,) or bound.shape != (p,):
-            print("/contact/friction_law, friction or slip_bound do not have one entry per contact node")
-            return None, None, None
-        if phi is not None and np.any((law == COULOMB) & (coefficient != phi)):
-            print("--phi %g differs from the file's coefficients %s" % (phi, np.unique(coefficient[law == COULOMB])))
-            return None, None, None
-        print("laws (file): %d frictionless, %d Tresca (s %s), %d Coulomb (phi %s)" % (
-            (law == NONE).sum(), (law == TRESCA).sum(), describe(bound[law == TRESCA]), (law == COULOMB).sum(),
-            describe(coefficient[law == COULOMB])))
-        return law, coefficient, bound
+    """[(law, its nodes)] from the file's /contact/friction_law and parameters, else Coulomb with --phi for every node"""
+    if "friction_law" in c:
+        codes = c["friction_law"][:].ravel()  # (p, 1) when written by ISView
+        names = text(c["friction_law"].attrs["names"]).split(",") if "names" in c["friction_law"].attrs else ["none", "tresca", "coulomb"]
+        if codes.shape != (p,):
+            print("/contact/friction_law does not have one entry per contact node")
+            return None
+        laws = []
+        for code in np.unique(codes):
+            name = names[code] if 0 <= code < len(names) else "code %d" % code
+            if name not in LAWS:
+                print("the law %s of %d nodes is not one this check knows (%s)" % (name, (codes == code).sum(), ", ".join(LAWS)))
+                return None
+            try:
+                law = LAWS[name](name, c, p)
+            except (KeyError, ValueError) as e:
+                print("the parameters of the law %s are not in the file with one entry per node (%s)" % (name, e))
+                return None
+            if name == "coulomb" and phi is not None and np.any(law.values[codes == code] != phi):
+                print("--phi %g differs from the file's coefficients %s" % (phi, np.unique(law.values[codes == code])))
+                return None
+            laws.append((law, np.flatnonzero(codes == code)))
+        print("laws (file): " + ", ".join(law.describe(nodes) for law, nodes in laws))
+        return laws
     if phi is None:
-        print("the file has no /contact/friction_law and /contact/friction: give --phi")
-        return None, None, None
+        print("the file has no /contact/friction_law: give --phi")
+        return None
     print("laws (--phi): %d Coulomb (phi %g)" % (p, phi))
-    return np.full(p, COULOMB), np.full(p, phi), np.zeros(p)
+    law = Isotropic.__new__(Isotropic)
+    law.name, law.parameter, law.values = "coulomb", "friction", np.full(p, phi)
+    return [(law, np.arange(p))]
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
 
 
 def describe(values):
@@ -177,7 +258,7 @@ def compare(args):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="cmd", required=True)
-    c = sub.add_parser("coulomb")
+    c = sub.add_parser("coulomb", aliases=["law"])
     c.add_argument("file")
     c.add_argument("--phi", type=float, default=None, help="Coulomb coefficient of every node, for files without /contact/friction")
     c.add_argument("--tol", type=float, default=1e-8)
@@ -186,7 +267,7 @@ def main():
     m.add_argument("b")
     m.add_argument("--tol", type=float, default=1e-10)
     args = parser.parse_args()
-    ok = coulomb(args) if args.cmd == "coulomb" else compare(args)
+    ok = coulomb(args) if args.cmd in ("coulomb", "law") else compare(args)
     sys.exit(0 if ok else 1)
 
 

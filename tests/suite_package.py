@@ -128,3 +128,24 @@ def derivation_checks():
     expect(len(cited) >= 5, "the code cites docs/derivation.md in %d files" % len(cited))
     out = run([PYTHON, os.path.join(ROOT, "tests", "derivation_check.py")])
     expect("FAILED" not in out and "quadratic" in out, "derivation checks", out)
+
+
+@test("the layout holds (issue 17): tests/layout_check.py finds no call circle between the C files of src/ (from their function definitions and calls), no include circle and no file over 800 lines in src/, include/, examples/, python/; and it does find them in a small tree made with a call circle through three files, an include circle and a long file")
+def layout_no_circles():
+    out = run([PYTHON, os.path.join(ROOT, "tests", "layout_check.py")])
+    expect(re.search(r": 0 call circles, 0 include circles, 0 files over 800 lines$", out.strip()) is not None and int(out.split()[0]) >= 50, "the layout check", out)
+    tree = os.path.join(OUT, "layout_tree")
+    shutil.rmtree(tree, ignore_errors=True)
+    os.makedirs(os.path.join(tree, "src", "x"))
+    os.makedirs(os.path.join(tree, "include"))
+    files = {"src/a.c": '#include "a.h"\nint A(void)\n{\n  return B() + Helper(); /* C() in a comment */\n}\nstatic int Helper(void)\n{\n  return 1;\n}\n',
+             "src/x/b.c": "int B(void)\n{\n  return C(1);\n}\n",
+             "src/x/c.c": 'int C(int k)\n{\n  if (k) return A();\n  return printf("B()");\n}\n',
+             "src/d.c": "int D(void)\n{\n  return A();\n}\n" + "/* a long file */\n" * 801,
+             "src/a.h": '#include "b.h"\n', "src/b.h": '#include "a.h"\n'}
+    for name, text in files.items():
+        with open(os.path.join(tree, name), "w") as f:
+            f.write(text)
+    out = run([PYTHON, os.path.join(ROOT, "tests", "layout_check.py"), "--root", tree], expect_rc=1)
+    expect("call circle: src/a.c (A calls B) -> src/x/b.c (B calls C) -> src/x/c.c (C calls A) -> src/a.c" in out, "the made call circle is not found", out)
+    expect("include circle: src/a.h -> src/b.h -> src/a.h" in out and "over 800 lines: src/d.c (805)" in out and ": 1 call circles, 1 include circles, 1 files over 800 lines" in out, "the made include circle or long file is not found", out)

@@ -17,8 +17,9 @@ the C API of include/ssstar.h with their handles (README "Python", docs/manual.m
     forces = ssstar.get_contact_forces(snes)     # K u - b at each local contact node (global axes), n x 3
 
 The friction laws are those of the library's table (FRICTION_LAWS, read from it at import: none, tresca, coulomb,
-orthotropic); each has named parameters (set_law_parameter, set_node_law_parameter: "friction", "slip_bound",
-"friction_1", "friction_2", "friction_direction").
+orthotropic); each has named parameters (LAW_PARAMETERS; set_law_parameter, set_node_law_parameter: "friction",
+"slip_bound", "friction_1", "friction_2", "friction_direction"). The reductions (REDUCTION_TYPES) and the names of the
+states, reasons, methods and remedies are read from the library too.
 
 Arguments that are arrays per local contact node (dofs, normals, gaps, parameter values) may be given as
 numpy arrays (or sequences): the module makes the IS or Vec on the SNES's communicator, and the library checks them
@@ -34,13 +35,13 @@ import os
 import numpy as np
 from petsc4py import PETSc
 
-__all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
+__all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
            "set_linear_problem", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
            "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
            "law_parameters", "set_law_parameter", "set_friction", "get_friction", "set_node_law_parameter",
            "set_node_friction_laws", "get_node_friction_laws", "get_node_law_parameter", "set_scaling", "get_scaling", "set_state_tolerance", "set_method", "get_method",
            "set_lu_reuse", "set_globalization", "get_states", "get_reason", "get_tolerance", "get_remedy_counts",
-           "get_newton_step_counts", "get_condition_estimate", "get_contact_forces"]
+           "get_newton_step_counts", "get_condition_estimate", "get_contact_forces", "write_node_friction"]
 
 SNESSSSTAR = "ssstar"
 
@@ -69,10 +70,14 @@ _Handle = ctypes.c_void_p
 _Enum = ctypes.c_int
 
 
-def _names(symbol, count):
-    """The first count names of one of ssstar's name tables (const char *const[])"""
-    table = (ctypes.c_char_p * count).in_dll(_lib, symbol)
-    return [table[i].decode() for i in range(count)]
+def _enum_names(symbol):
+    """The names of one of ssstar's enums, from its name table (const char *const[] in PETSc's form: the names, the
+    enum's name, its prefix, NULL)"""
+    table = ctypes.cast(ctypes.addressof(ctypes.c_void_p.in_dll(_lib, symbol)), ctypes.POINTER(ctypes.c_char_p))
+    names = []
+    while table[len(names)] is not None:
+        names.append(table[len(names)].decode())
+    return names[:-2]
 
 
 def _declare(name, *argtypes):
@@ -90,19 +95,20 @@ def _call(f, *args):
 
 _call(_declare("SSStarInitializePackage"))  # registers the SNES type "ssstar"
 
-def _laws():
-    """The names of the table of friction laws (their indices are the codes of get_node_friction_laws())"""
+def _listed(function):
+    """The names a function of the library lists as (n, names): SSStarLawGetNames() and the like"""
     n, names = _Int(), ctypes.POINTER(ctypes.c_char_p)()
-    _call(_declare("SSStarLawGetNames", ctypes.POINTER(_Int), ctypes.POINTER(ctypes.POINTER(ctypes.c_char_p))), ctypes.byref(n), ctypes.byref(names))
+    _call(_declare(function, ctypes.POINTER(_Int), ctypes.POINTER(ctypes.POINTER(ctypes.c_char_p))), ctypes.byref(n), ctypes.byref(names))
     return [names[i].decode() for i in range(n.value)]
 
 
-STATE_NAMES = _names("SSStarStateNames", 7)  # L, M1, M2, M3+, M3-, M4, LS: the codes of get_states()
-FRICTION_LAWS = _laws()  # the library's table: none, tresca, coulomb, orthotropic
-REASONS = _names("SSStarReasons", 9)
-REDUCTION_TYPES = ["direct", "mumps", "explicit", "none", "auto"]  # the registered reductions, and auto
-METHODS = _names("SSStarMethods", 2)
-REMEDIES = _names("SSStarRemedies", 5)
+STATE_NAMES = _enum_names("SSStarStateNames")  # L, M1, M2, M3+, M3-, M4, LS: the codes of get_states()
+FRICTION_LAWS = _listed("SSStarLawGetNames")  # the library's table: none, tresca, coulomb, orthotropic
+LAW_PARAMETERS = _listed("SSStarLawGetParameterNames")  # their parameters: friction, slip_bound, friction_1, ...
+REASONS = _enum_names("SSStarReasons")
+REDUCTION_TYPES = _listed("SSStarReductionGetNames")  # the registered reductions, then auto
+METHODS = _enum_names("SSStarMethods")
+REMEDIES = _enum_names("SSStarRemedies")
 _NUM_STATES, _NUM_REMEDIES = len(STATE_NAMES), len(REMEDIES)
 
 _C = {name: _declare(name, *args) for name, args in {
@@ -124,6 +130,7 @@ _C = {name: _declare(name, *args) for name, args in {
     "SNESSSStarGetNodeLawParameter": (_Handle, ctypes.c_char_p, _Int, ctypes.POINTER(_Real)),
     "SSStarLawGetInfo": (_Int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(_Int), ctypes.POINTER(ctypes.POINTER(ctypes.c_char_p))),
     "SSStarLawGetParameterSize": (ctypes.c_char_p, ctypes.POINTER(_Int)),
+    "SSStarWriteNodeFriction": (_Handle, _Handle, ctypes.c_char_p),
     "SNESSSStarSetScaling": (_Handle, _Real),
     "SNESSSStarGetScaling": (_Handle, ctypes.POINTER(_Real)),
     "SNESSSStarSetStateTolerance": (_Handle, _Real),
@@ -420,3 +427,10 @@ def get_contact_forces(snes):
         return np.array(a, dtype=PETSc.RealType).reshape(-1, 3)
     start = r.getOwnershipRange()[0]
     return np.array(a[dofs - start], dtype=PETSc.RealType).reshape(n, 3)
+
+
+def write_node_friction(snes, viewer, group="/contact"):
+    """SSStarWriteNodeFriction(): the law of each contact node (group/friction_law, codes into FRICTION_LAWS, with their
+    names as an attribute) and one dataset per parameter of the laws in use (group/friction, ...), as the scenes' files
+    have them, into an open petsc4py HDF5 viewer"""
+    _call(_C["SSStarWriteNodeFriction"], _h(snes), _h(viewer), group.encode())

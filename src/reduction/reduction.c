@@ -13,6 +13,38 @@
 #include <stdio.h>
 
 PetscFunctionList SSStarReductionList = NULL;
+static char     **ReductionNames      = NULL; /* the registered types in their order, then auto; NULL-terminated */
+static PetscInt   NumReductionNames   = 0;
+
+static PetscErrorCode ReductionNamesDestroy(void)
+{
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < NumReductionNames; k++) PetscCall(PetscFree(ReductionNames[k]));
+  PetscCall(PetscFree(ReductionNames));
+  NumReductionNames = 0;
+  PetscFunctionReturn(0);
+}
+
+/* name into the list of names before auto, unless it is there */
+static PetscErrorCode ReductionNamesAdd(const char name[])
+{
+  PetscBool seen = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  if (!ReductionNames) {
+    PetscCall(PetscCalloc1(2, &ReductionNames));
+    PetscCall(PetscStrallocpy(SSSTARREDUCTIONAUTO, &ReductionNames[0]));
+    NumReductionNames = 1;
+    PetscCall(PetscRegisterFinalize(ReductionNamesDestroy));
+  }
+  for (PetscInt k = 0; k < NumReductionNames && !seen; k++) PetscCall(PetscStrcmp(name, ReductionNames[k], &seen));
+  if (seen) PetscFunctionReturn(0);
+  PetscCall(PetscRealloc(sizeof(char *) * (NumReductionNames + 2), &ReductionNames));
+  ReductionNames[NumReductionNames]     = ReductionNames[NumReductionNames - 1]; /* auto stays last */
+  PetscCall(PetscStrallocpy(name, &ReductionNames[NumReductionNames - 1]));
+  ReductionNames[++NumReductionNames] = NULL;
+  PetscFunctionReturn(0);
+}
 
 /*@C
    SSStarReductionRegister - adds a reduction type
@@ -31,6 +63,33 @@ PetscErrorCode SSStarReductionRegister(const char name[], PetscErrorCode (*creat
 {
   PetscFunctionBegin;
   PetscCall(PetscFunctionListAdd(&SSStarReductionList, name, create));
+  PetscCall(ReductionNamesAdd(name));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarReductionGetNames - the choices of SSStarReductionSetType(): the registered reduction types in the order of
+   their registration, then auto
+
+   Not Collective
+
+   Output Parameters:
++  n     - the number of names (auto included), or pass NULL
+-  names - the names, NULL-terminated (owned by ssstar), or pass NULL
+
+   Notes:
+   After SSStarInitializePackage(): direct, mumps, explicit, none, auto. auto is no type: direct where the dense
+   route is the faster one and P fits, else none.
+
+   Level: intermediate
+
+.seealso: `SSStarReductionRegister()`, `SSStarReductionSetType()`, `SNESSSStarSetReductionType()`
+@*/
+PetscErrorCode SSStarReductionGetNames(PetscInt *n, const char *const *names[])
+{
+  PetscFunctionBegin;
+  if (n) *n = NumReductionNames;
+  if (names) *names = (const char *const *)ReductionNames;
   PetscFunctionReturn(0);
 }
 

@@ -19,6 +19,20 @@ PetscErrorCode SSStarSceneContactTolerance(SSStarScene scene, PetscReal *tol)
   PetscFunctionReturn(0);
 }
 
+/* A Vec of bs values per owned contact node, in their order (the per-node vectors of the SNES) */
+PetscErrorCode SSStarSceneNodeVec(SSStarScene scene, PetscInt bs, const PetscReal values[], Vec *v)
+{
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecCreateMPI(scene->comm, bs * scene->n, PETSC_DETERMINE, v));
+  if (bs > 1) PetscCall(VecSetBlockSize(*v, bs));
+  PetscCall(VecGetArrayWrite(*v, &a));
+  for (PetscInt i = 0; i < bs * scene->n; i++) a[i] = values[i];
+  PetscCall(VecRestoreArrayWrite(*v, &a));
+  PetscFunctionReturn(0);
+}
+
 /* Tributary area of every local vertex on the contact groups (a third of each adjacent face), in the x-dofs of a global vector */
 static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
 {
@@ -33,6 +47,36 @@ static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
   PetscCall(VecZeroEntries(*areas));
   PetscCall(DMLocalToGlobal(scene->dm, loc, ADD_VALUES, *areas));
   PetscCall(DMRestoreLocalVector(scene->dm, &loc));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarSceneObstacleGaps - the gaps and normals of n points against the obstacles of their contact groups (group[i]
+   < 0: none, left as they are). Collective: every rank asks each group's obstacle, with its points of the group (a
+   mesh obstacle's triangles are spread over the ranks).
+*/
+PetscErrorCode SSStarSceneObstacleGaps(SSStarScene scene, PetscInt n, const PetscInt group[], const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[])
+{
+  PetscInt  *at;
+  PetscReal *xg, *gg, *ng;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc4(n + 1, &at, 3 * n + 1, &xg, n + 1, &gg, 3 * n + 1, &ng));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    PetscInt m = 0;
+
+    for (PetscInt i = 0; i < n; i++)
+      if (group[i] == g) {
+        at[m] = i;
+        PetscCall(PetscArraycpy(&xg[3 * m++], &x[3 * i], 3));
+      }
+    PetscCall(SSStarObstacleGaps(scene->contact[g].obstacle, m, xg, tol, gg, ng));
+    for (PetscInt j = 0; j < m; j++) {
+      gap[at[j]] = gg[j];
+      PetscCall(PetscArraycpy(&normal[3 * at[j]], &ng[3 * j], 3));
+    }
+  }
+  PetscCall(PetscFree4(at, xg, gg, ng));
   PetscFunctionReturn(0);
 }
 

@@ -4,8 +4,9 @@
    numbers alone: a plane). For each contact node the obstacle gives its initial gap and the unit normal of its frame,
    pointing out of the obstacle into the body. Small deformation: both at the reference configuration.
 
-   A new shape is a file obstacles/<shape>.c with its SSStarObstacleCreate_<Shape>() and one line in
-   SSStarObstacleRegisterAll().
+   A new shape is a file obstacles/<shape>.c with its SSStarObstacleCreate_<Shape>() and its registration in
+   obstacles/register.c (a declaration and one line in SSStarObstacleRegisterAll()): the option, its refusals, -help,
+   the scene's view and the output's attributes follow from the shape's ops.
 */
 #include "obstacleimpl.h"
 
@@ -36,6 +37,17 @@ PetscErrorCode SSStarObstacleCreateFromString(MPI_Comm comm, const char option[]
   PetscCall(PetscStrncpy((*ob)->type, name, sizeof((*ob)->type)));
   PetscCall((*create)(*ob));
   PetscCall((*(*ob)->ops.setfromstring)(*ob, comm, option, value, numbers));
+  PetscFunctionReturn(0);
+}
+
+/* SSStarObstacleHelp - the line of -help for -obstacle_<G>, with the forms of the registered shapes */
+PetscErrorCode SSStarObstacleHelp(char text[], size_t len)
+{
+  const char *forms, *last;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarObstacleForms(&forms, &last));
+  PetscCall(PetscSNPrintf(text, len, "  -obstacle_<G> <0,0,0,0,0,1>: the rigid obstacle of G (its normal out of it, into the body), a registered shape:\n      %s or %s\n", forms, last));
   PetscFunctionReturn(0);
 }
 

@@ -20,6 +20,7 @@ typedef struct {
 
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateFromString(MPI_Comm, const char[], const char[], SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateDefault(SSStarObstacle *);
+PETSC_INTERN PetscErrorCode SSStarObstacleHelp(char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarObstacleDestroy(SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleGaps(SSStarObstacle, PetscInt, const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarObstacleDescribe(SSStarObstacle, char[], size_t);

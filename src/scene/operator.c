@@ -11,36 +11,6 @@
 */
 #include "sceneimpl.h"
 
-/*
-   SSStarSceneObstacleGaps - the gaps and normals of n points against the obstacles of their contact groups (group[i]
-   < 0: none, left as they are). Collective: every rank asks each group's obstacle, with its points of the group (a
-   mesh obstacle's triangles are spread over the ranks).
-*/
-PetscErrorCode SSStarSceneObstacleGaps(SSStarScene scene, PetscInt n, const PetscInt group[], const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[])
-{
-  PetscInt  *at;
-  PetscReal *xg, *gg, *ng;
-
-  PetscFunctionBegin;
-  PetscCall(PetscMalloc4(n + 1, &at, 3 * n + 1, &xg, n + 1, &gg, 3 * n + 1, &ng));
-  for (PetscInt g = 0; g < scene->nContact; g++) {
-    PetscInt m = 0;
-
-    for (PetscInt i = 0; i < n; i++)
-      if (group[i] == g) {
-        at[m] = i;
-        PetscCall(PetscArraycpy(&xg[3 * m++], &x[3 * i], 3));
-      }
-    PetscCall(SSStarObstacleGaps(scene->contact[g].obstacle, m, xg, tol, gg, ng));
-    for (PetscInt j = 0; j < m; j++) {
-      gap[at[j]] = gg[j];
-      PetscCall(PetscArraycpy(&normal[3 * at[j]], &ng[3 * j], 3));
-    }
-  }
-  PetscCall(PetscFree4(at, xg, gg, ng));
-  PetscFunctionReturn(0);
-}
-
 /* The rows of the nodes of rigid obstacles: gap and normal from the shape; refuses a node that starts inside it */
 static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
 {
@@ -186,19 +156,6 @@ PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene)
   PetscFunctionReturn(0);
 }
 
-/* A per-node Vec of the owned contact nodes */
-static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal values[], Vec *v)
-{
-  PetscScalar *a;
-
-  PetscFunctionBegin;
-  PetscCall(VecCreateMPI(scene->comm, bs * scene->n, PETSC_DETERMINE, v));
-  PetscCall(VecGetArrayWrite(*v, &a));
-  for (PetscInt i = 0; i < bs * scene->n; i++) a[i] = values[i];
-  PetscCall(VecRestoreArrayWrite(*v, &a));
-  PetscFunctionReturn(0);
-}
-
 /*@C
    SSStarSceneSetContact - declares the contact of the scene to an "ssstar" SNES: the contact operator B of every
    contact node (SNESSSStarSetContactOperator(): a rigid obstacle's node in the frame of the obstacle's normal, a pair's
@@ -212,9 +169,10 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 -  snes  - an SNES of type ssstar
 
    Notes:
-   A group's -friction_<G> gives its nodes their own coefficient; the nodes of Coulomb groups without one keep the
-   solver's (SNESSSStarSetFriction(), -snes_ssstar_friction), whether it is set before or after this call (their
-   entries are PETSC_DEFAULT in SNESSSStarSetNodeLawParameter()). One law for all groups is set with
+   A group's -<parameter>_<G> (-friction_<G>, -slip_bound_<G>, -friction_1_<G>, ...: every parameter of the table of
+   laws) gives its nodes their own value (SNESSSStarSetNodeLawParameter()); the nodes of groups without one keep the
+   solver's (SNESSSStarSetLawParameter(), -snes_ssstar_<parameter>: coulomb's friction 0.3 by default), whether it is
+   set before or after this call (their entries are PETSC_DEFAULT). One law for all groups is set with
    SNESSSStarSetFrictionLaw(), several with SNESSSStarSetNodeFrictionLaws().
 
    Level: beginner
@@ -223,50 +181,17 @@ static PetscErrorCode NodeVec(SSStarScene scene, PetscInt bs, const PetscReal va
 @*/
 PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
 {
-  Vec        gaps = NULL, v;
-  PetscBool   anyGap = PETSC_FALSE, anyPhi = PETSC_FALSE, anyBound = PETSC_FALSE, anyLaw = PETSC_FALSE, oneLaw = PETSC_TRUE, bound;
-  PetscReal  *values;
-  const char *law;
+  Vec       gaps = NULL;
+  PetscBool anyGap = PETSC_FALSE;
 
   PetscFunctionBegin;
   PetscCheck(scene->nContact > 0, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The scene has no contact group (-contact): solve K u = b without ssstar");
   for (PetscInt i = 0; i < scene->n; i++)
     if (scene->gap[i] != 0) anyGap = PETSC_TRUE;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &anyGap, 1, MPIU_BOOL, MPI_LOR, scene->comm));
-  for (PetscInt g = 0; g < scene->nContact; g++) {
-    anyPhi   = (PetscBool)(anyPhi || scene->contact[g].phiSet);
-    PetscCall(SSStarLawHasParameter(scene->contact[g].law, "slip_bound", &bound));
-    anyBound = (PetscBool)(anyBound || bound);
-    anyLaw   = (PetscBool)(anyLaw || scene->contact[g].lawSet);
-    oneLaw   = (PetscBool)(oneLaw && scene->contact[g].law == scene->contact[0].law);
-  }
-  if (anyGap) PetscCall(NodeVec(scene, 1, scene->gap, &gaps));
+  if (anyGap) PetscCall(SSStarSceneNodeVec(scene, 1, scene->gap, &gaps));
   PetscCall(SNESSSStarSetContactOperator(snes, scene->isC, scene->B, gaps));
   PetscCall(VecDestroy(&gaps));
-
-  PetscCall(SSStarLawGetInfo(scene->contact[0].law, &law, NULL, NULL, NULL));
-  if (anyLaw && oneLaw) PetscCall(SNESSSStarSetFrictionLaw(snes, law));
-  else if (!oneLaw) {
-    PetscInt *laws;
-
-    PetscCall(PetscMalloc1(scene->n, &laws));
-    for (PetscInt i = 0; i < scene->n; i++) laws[i] = scene->contact[scene->group[i]].law;
-    PetscCall(SNESSSStarSetNodeFrictionLaws(snes, scene->n, laws));
-    PetscCall(PetscFree(laws));
-  }
-  PetscCall(PetscMalloc1(scene->n, &values));
-  if (anyPhi) { /* the groups without -friction_<G> keep the solver's coefficient, whenever it is set */
-    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].phiSet ? scene->contact[scene->group[i]].phi : (PetscReal)PETSC_DEFAULT;
-    PetscCall(NodeVec(scene, 1, values, &v));
-    PetscCall(SNESSSStarSetNodeLawParameter(snes, "friction", v));
-    PetscCall(VecDestroy(&v));
-  }
-  if (anyBound) {
-    for (PetscInt i = 0; i < scene->n; i++) values[i] = scene->contact[scene->group[i]].boundSet ? scene->contact[scene->group[i]].bound : 0.0;
-    PetscCall(NodeVec(scene, 1, values, &v));
-    PetscCall(SNESSSStarSetNodeLawParameter(snes, "slip_bound", v));
-    PetscCall(VecDestroy(&v));
-  }
-  PetscCall(PetscFree(values));
+  PetscCall(SSStarSceneSetContactLaws(scene, snes)); /* grouplaws.c */
   PetscFunctionReturn(0);
 }

@@ -104,16 +104,6 @@ static PetscErrorCode MasterSearch(SSStarScene scene, PetscInt g, SSStarSearch *
   PetscFunctionReturn(0);
 }
 
-/* SSStarMasterTriangleFromHit - the master triangle a search found (its data: the normal, the x-dofs) */
-void SSStarMasterTriangleFromHit(const SSStarSearchHit *hit, const PetscReal data[], SSStarMasterTriangle *t)
-{
-  for (PetscInt k = 0; k < 9; k++) t->x[k] = hit->x[k];
-  for (PetscInt k = 0; k < 3; k++) {
-    t->n[k]   = data[k];
-    t->dof[k] = (PetscInt)data[3 + k];
-  }
-}
-
 /* The body of each owned contact node, through its file index */
 static PetscErrorCode NodeBodies(SSStarScene scene, PetscInt **nodeBody)
 {

@@ -12,7 +12,16 @@ typedef struct {
 
 #define SSSTAR_MASTER_DATA 6 /* what a master triangle carries in the search: its normal (3), its x-dofs (3) */
 
-PETSC_INTERN void           SSStarMasterTriangleFromHit(const SSStarSearchHit *, const PetscReal[], SSStarMasterTriangle *);
+/* The master triangle a search found (its data: the normal, the x-dofs) */
+static inline void SSStarMasterTriangleFromHit(const SSStarSearchHit *hit, const PetscReal data[], SSStarMasterTriangle *t)
+{
+  for (PetscInt k = 0; k < 9; k++) t->x[k] = hit->x[k];
+  for (PetscInt k = 0; k < 3; k++) {
+    t->n[k]   = data[k];
+    t->dof[k] = (PetscInt)data[3 + k];
+  }
+}
+
 PETSC_INTERN PetscErrorCode SSStarMortarRows(SSStarScene, PetscInt, SSStarSearch, PetscReal, PetscBool[], SSStarMasters *);
 
 #endif

@@ -53,7 +53,10 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   for (PetscInt g = 0; g < s->nDirichlet; g++) PetscCall(PetscFree(s->dirichlet[g]));
   PetscCall(PetscFree(s->dirichlet));
   PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
-  for (PetscInt g = 0; g < s->nContact; g++) PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
+  for (PetscInt g = 0; g < s->nContact; g++) {
+    PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
+    PetscCall(SSStarGroupLawDestroy(&s->contact[g]));
+  }
   PetscCall(PetscFree(s->contact));
   PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
   PetscCall(PetscFree2(s->gap, s->area));
@@ -314,21 +317,14 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
     char                      obstacle[PETSC_MAX_PATH_LEN + 128];
-    const char               *law;
-    PetscBool                 friction, bound;
 
-    PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
-    PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
-    PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
-    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g, friction %s", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax, law));
+    if (cg->master[0]) PetscCall(PetscViewerASCIIPrintf(viewer, "contact pair %s -> %s: %" PetscInt_FMT " slave nodes of %s against the master surface %s of another body (%s), initial gaps %g .. %g", cg->name, cg->master, cg->nodes, cg->name, cg->master, scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR ? "dual mortar" : "node-to-surface", (double)cg->gapMin, (double)cg->gapMax));
     else {
       PetscCall(SSStarObstacleDescribe(cg->obstacle, obstacle, sizeof(obstacle)));
-      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g, friction %s", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax, law));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax));
     }
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
-    if (friction && cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi = %g", (double)cg->phi));
-    if (friction && !cg->phiSet) PetscCall(PetscViewerASCIIPrintf(viewer, ", phi of the solver (-snes_ssstar_friction)"));
-    if (bound) PetscCall(PetscViewerASCIIPrintf(viewer, ", slip bound %g per node", (double)cg->bound));
+    PetscCall(SSStarGroupLawView(cg, viewer)); /* ", friction coulomb, phi = 0.5" */
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
   }

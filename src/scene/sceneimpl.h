@@ -27,13 +27,21 @@ typedef struct {
   PetscReal value[3];
 } SSStarGroupValues;
 
+/* A parameter of a contact group's friction law, given as -<parameter>_<G> (a name of SSStarLawGetParameterNames()) */
+typedef struct {
+  char      name[64];
+  PetscInt  size;     /* its values: 1, or 3 for a direction */
+  PetscReal value[3];
+} SSStarGroupParameter;
+
 /* A contact group: its contact source (a rigid obstacle, or the master surface of a pair) and its friction law */
 typedef struct {
   char              name[SSSTAR_GROUP_NAME_LEN];
   SSStarObstacle    obstacle;           /* -obstacle_<G>: a registered shape (obstacle.c, obstacles/)   */
   PetscInt          law;                /* its friction law: an index of the table of laws (SSStarLawGetNames()) */
-  PetscBool         lawSet, phiSet, boundSet; /* -friction_law_<G>, -friction_<G>, -slip_bound_<G> given */
-  PetscReal         phi, bound;         /* Coulomb coefficient, Tresca slip bound (a force)      */
+  PetscBool         lawSet;             /* -friction_law_<G> given                              */
+  PetscInt          nparams;            /* the parameters given for G (grouplaws.c); the others are the solver's */
+  SSStarGroupParameter *params;
   PetscInt          nodes;              /* contact nodes of the group (global)                  */
   PetscReal         gapMin, gapMax;     /* initial gaps of its nodes                            */
   char              master[SSSTAR_GROUP_NAME_LEN]; /* -contact_pair_<G> H: the master surface (empty: an obstacle) */
@@ -138,6 +146,16 @@ PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairRows(SSStarScene, PetscInt, SSStarMasters *);
+PETSC_INTERN PetscErrorCode SSStarSceneNodeVec(SSStarScene, PetscInt, const PetscReal[], Vec *);
+
+/* The friction law of a contact group (grouplaws.c) */
+PETSC_INTERN PetscErrorCode SSStarGroupLawRead(SSStarScene, SSStarContactGroup *, const char[]);
+PETSC_INTERN PetscErrorCode SSStarGroupLawReadParameter(SSStarScene, SSStarContactGroup *, const char[], const char[]);
+PETSC_INTERN PetscErrorCode SSStarGroupLawCheck(SSStarScene, const SSStarContactGroup *);
+PETSC_INTERN PetscErrorCode SSStarGroupLawDestroy(SSStarContactGroup *);
+PETSC_INTERN PetscErrorCode SSStarGroupLawHelp(char[], size_t);
+PETSC_INTERN PetscErrorCode SSStarGroupLawView(const SSStarContactGroup *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarSceneSetContactLaws(SSStarScene, SNES);
 PETSC_INTERN PetscErrorCode SSStarSceneContactKinematics(SSStarScene, Vec, Vec, PetscReal[], PetscReal[], PetscReal[], PetscReal[]);
 
 #endif

@@ -61,45 +61,89 @@ static PetscErrorCode FindName(const char name[], PetscInt n, char *const names[
   PetscFunctionReturn(0);
 }
 
-/* The options that carry a group name: -<prefix><G> */
+/* The options that carry a group name: -<prefix><G>, and -<parameter>_<G> for every parameter of the friction laws */
 typedef enum {
   OPT_MATERIAL,
   OPT_TRACTION,
   OPT_SPRING,
   OPT_OBSTACLE,
   OPT_FRICTION_LAW,
-  OPT_FRICTION,
-  OPT_SLIP_BOUND,
   OPT_CONTACT_PAIR,
-  OPT_COUNT
+  OPT_LAW_PARAMETER
 } GroupOption;
-/* friction_law_ before friction_: the longer prefix is tried first */
-static const char *const GroupOptionPrefix[OPT_COUNT] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-friction_", "-slip_bound_", "-contact_pair_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_"};
+
+static PetscBool IsContactGroup(SSStarScene scene, const char name[])
+{
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    PetscBool same;
+
+    if (!PetscStrcmp(name, scene->contact[g].name, &same) && same) return PETSC_TRUE;
+  }
+  return PETSC_FALSE;
+}
+
+/*
+   Which group option token is, and where its group starts: the longest prefix it starts with, unless that one leaves
+   no contact group and a shorter one does (-friction_1_top: the friction_1 of the group top, or with no contact group
+   top the friction of a group 1_top; -friction_law_top: the law of top, not the friction of law_top)
+*/
+static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], GroupOption *kind, size_t *prefixLen, PetscBool *found)
+{
+  PetscInt           nparams;
+  const char *const *params;
+  size_t             best = 0, bestContact = 0;
+  GroupOption        bestKind = OPT_MATERIAL, bestContactKind = OPT_MATERIAL;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarLawGetParameterNames(&nparams, &params));
+  for (PetscInt k = 0; k < OPT_LAW_PARAMETER + nparams; k++) {
+    const GroupOption option = k < OPT_LAW_PARAMETER ? (GroupOption)k : OPT_LAW_PARAMETER;
+    char              prefix[80];
+    size_t            len;
+    PetscBool         match;
+
+    if (k < OPT_LAW_PARAMETER) PetscCall(PetscStrncpy(prefix, GroupOptionPrefix[k], sizeof(prefix)));
+    else PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "-%s_", params[k - OPT_LAW_PARAMETER]));
+    PetscCall(PetscStrlen(prefix, &len));
+    PetscCall(PetscStrncmp(token, prefix, len, &match));
+    if (!match || !token[len]) continue;
+    if (len > best) {
+      best     = len;
+      bestKind = option;
+    }
+    if (option >= OPT_OBSTACLE && len > bestContact && IsContactGroup(scene, token + len)) {
+      bestContact     = len;
+      bestContactKind = option;
+    }
+  }
+  *found = (PetscBool)(best > 0);
+  if (bestKind >= OPT_OBSTACLE && bestContact && !IsContactGroup(scene, token + best)) {
+    best     = bestContact;
+    bestKind = bestContactKind;
+  }
+  *kind      = bestKind;
+  *prefixLen = best;
+  PetscFunctionReturn(0);
+}
 
 /* Calls found(scene, kind, group, option) for every option of the database with a group prefix */
 static PetscErrorCode ForEachGroupOption(SSStarScene scene, PetscErrorCode (*found)(SSStarScene, GroupOption, const char[], const char[]))
 {
-  char  *all, *token, *save = NULL;
+  char *all, *token, *save = NULL;
 
   PetscFunctionBegin;
   PetscCall(PetscOptionsGetAll(NULL, &all));
   for (token = strtok_r(all, " ", &save); token; token = strtok_r(NULL, " ", &save)) {
-    for (PetscInt k = 0; k < OPT_COUNT; k++) {
-      size_t    len;
-      PetscBool match;
+    GroupOption kind  = OPT_MATERIAL;
+    size_t      len   = 0, glen;
+    PetscBool   match = PETSC_FALSE;
 
-      PetscCall(PetscStrlen(GroupOptionPrefix[k], &len));
-      PetscCall(PetscStrncmp(token, GroupOptionPrefix[k], len, &match));
-      if (!match) continue;
-      if (token[len]) {
-        size_t glen;
-
-        PetscCall(PetscStrlen(token + len, &glen));
-        PetscCheck(glen < SSSTAR_GROUP_NAME_LEN, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: the group name is longer than %d characters", token, SSSTAR_GROUP_NAME_LEN - 1);
-        PetscCall(found(scene, (GroupOption)k, token + len, token));
-      }
-      break;
-    }
+    PetscCall(MatchGroupOption(scene, token, &kind, &len, &match));
+    if (!match) continue;
+    PetscCall(PetscStrlen(token + len, &glen));
+    PetscCheck(glen < SSSTAR_GROUP_NAME_LEN, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: the group name is longer than %d characters", token, SSSTAR_GROUP_NAME_LEN - 1);
+    PetscCall(found(scene, kind, token + len, token));
   }
   PetscCall(PetscFree(all));
   PetscFunctionReturn(0);
@@ -114,7 +158,7 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   PetscFunctionReturn(0);
 }
 
-/* The contact group G of a -obstacle_G, -friction_law_G, -friction_G or -slip_bound_G (which must be in -contact) */
+/* The contact group G of a -obstacle_G, -friction_law_G, -<parameter>_G or -contact_pair_G (which must be in -contact) */
 static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const char option[], SSStarContactGroup **cg)
 {
   PetscBool same;
@@ -134,9 +178,6 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   SSStarContactGroup *cg;
   SSStarGroupValues  *gv;
   PetscBool           set;
-  PetscInt            nlaws;
-  const char *const  *laws;
-  char                name[64], known[256] = "";
 
   PetscFunctionBegin;
   switch (kind) {
@@ -158,28 +199,18 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   } break;
   case OPT_FRICTION_LAW:
     PetscCall(ContactGroup(scene, group, option, &cg));
-    PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
-    PetscCall(SSStarLawGetIndex(name, &cg->law));
-    PetscCall(SSStarLawGetNames(&nlaws, &laws));
-    for (PetscInt l = 0; l < nlaws && cg->law < 0; l++) { /* the message names the laws of the table */
-      PetscCall(PetscStrlcat(known, l ? ", " : "", sizeof(known)));
-      PetscCall(PetscStrlcat(known, laws[l], sizeof(known)));
-    }
-    PetscCheck(cg->law >= 0, scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown option %s for %s: the friction laws are %s", name, option, known);
-    cg->lawSet = PETSC_TRUE;
+    PetscCall(SSStarGroupLawRead(scene, cg, option)); /* grouplaws.c */
     break;
-  case OPT_FRICTION:
+  case OPT_LAW_PARAMETER: {
+    char   parameter[64];
+    size_t len, glen;
+
     PetscCall(ContactGroup(scene, group, option, &cg));
-    PetscCall(PetscOptionsGetReal(NULL, NULL, option, &cg->phi, &set));
-    PetscCheck(cg->phi >= 0 && !PetscIsInfOrNanReal(cg->phi), scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the friction coefficient must be a number >= 0", option, (double)cg->phi);
-    cg->phiSet = PETSC_TRUE;
-    break;
-  case OPT_SLIP_BOUND:
-    PetscCall(ContactGroup(scene, group, option, &cg));
-    PetscCall(PetscOptionsGetReal(NULL, NULL, option, &cg->bound, &set));
-    PetscCheck(cg->bound >= 0 && !PetscIsInfOrNanReal(cg->bound), scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the slip bound must be a number >= 0 (a force per contact node)", option, (double)cg->bound);
-    cg->boundSet = PETSC_TRUE;
-    break;
+    PetscCall(PetscStrlen(option, &len));
+    PetscCall(PetscStrlen(group, &glen));
+    PetscCall(PetscStrncpy(parameter, option + 1, PetscMin(sizeof(parameter), len - glen - 1))); /* -<parameter>_<G> */
+    PetscCall(SSStarGroupLawReadParameter(scene, cg, parameter, option));
+  } break;
   case OPT_CONTACT_PAIR:
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(SSStarPairsReadOption(scene, cg, option));
@@ -187,22 +218,6 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   default:
     break;
   }
-  PetscFunctionReturn(0);
-}
-
-/* Contradictory and incomplete entries of a contact group */
-static PetscErrorCode CheckContactGroup(SSStarScene scene, const SSStarContactGroup *cg)
-{
-  const char *law;
-  PetscBool   friction, bound;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarLawGetInfo(cg->law, &law, NULL, NULL, NULL));
-  PetscCall(SSStarLawHasParameter(cg->law, "friction", &friction));
-  PetscCall(SSStarLawHasParameter(cg->law, "slip_bound", &bound));
-  PetscCheck(!cg->phiSet || friction, scene->comm, PETSC_ERR_ARG_WRONG, "Options -friction_%s and -friction_law_%s %s contradict each other: a friction coefficient is for the coulomb law", cg->name, cg->name, law);
-  PetscCheck(!cg->boundSet || bound, scene->comm, PETSC_ERR_ARG_WRONG, "Options -slip_bound_%s and -friction_law_%s %s contradict each other: a slip bound is for the tresca law", cg->name, cg->name, law);
-  PetscCheck(cg->boundSet || !bound, scene->comm, PETSC_ERR_ARG_WRONG, "Option -friction_law_%s tresca needs -slip_bound_%s (the Tresca bound, a force per contact node)", cg->name, cg->name);
   PetscFunctionReturn(0);
 }
 
@@ -217,7 +232,8 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
   PetscFunctionReturn(0);
 }
 
-/* The options -help lists for the groups (read below by name, so PetscOptions* does not list them itself) */
+/* The options -help lists for the groups (read below by name, so PetscOptions* does not list them itself); those of
+   the obstacles and the friction laws come from their registries (GroupHelp()) */
 static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G\n\
@@ -225,14 +241,22 @@ static const char SceneGroupHelp[] = "\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
   -gravity <gx,gy,gz>: gravity, with -density (only when given)\n\
   -contact <G1,G2,...>: the contact groups (without -contact: no contact at all)\n\
-  -obstacle_<G> <0,0,0,0,0,1>: the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers: a point and\n\
-      the normal into the body), sphere:cx,cy,cz,R (a ball touched from outside), cylinder:px,py,pz,ax,ay,az,R\n\
-      (infinite, axis through p along a) or mesh:FILE.msh (a rigid body bounded by gmsh triangles, normals out of it)\n\
-  -friction_law_<G> <coulomb>: none, tresca or coulomb\n\
-  -friction_<G> <phi>: Coulomb coefficient of G (default: the solver's, -snes_ssstar_friction)\n\
-  -slip_bound_<G> <s>: Tresca slip bound of G, a force per contact node\n\
   -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
   -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
+
+/* The group options of -help: the fixed ones, -obstacle_<G> with the registered shapes, the friction laws' */
+static PetscErrorCode GroupHelp(char text[], size_t len)
+{
+  char line[1024];
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrncpy(text, SceneGroupHelp, len));
+  PetscCall(SSStarObstacleHelp(line, sizeof(line)));
+  PetscCall(PetscStrlcat(text, line, len));
+  PetscCall(SSStarGroupLawHelp(line, sizeof(line)));
+  PetscCall(PetscStrlcat(text, line, len));
+  PetscFunctionReturn(0);
+}
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
 static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density";
@@ -255,9 +279,11 @@ static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -de
 @*/
 PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[], SNES snes)
 {
-  const char *known[4] = {help ? help : "", SceneOptionNames, SceneGroupHelp, NULL};
+  char        groups[8192];
+  const char *known[4] = {help ? help : "", SceneOptionNames, groups, NULL};
 
   PetscFunctionBegin;
+  PetscCall(GroupHelp(groups, sizeof(groups)));
   PetscCall(SSStarCheckOptionsUsed(scene->comm, known, snes));
   PetscFunctionReturn(0);
 }
@@ -286,13 +312,21 @@ PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[],
 .  -density <rho> - the mass density
 .  -contact <G1,G2> - the contact groups
 .  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
-.  -friction_law_<G> <coulomb> - none, tresca or coulomb
-.  -friction_<G> <phi> - the Coulomb coefficient of G
--  -slip_bound_<G> <s> - the Tresca bound of G
+.  -friction_law_<G> <coulomb> - a law of the table: none, tresca, coulomb or orthotropic
+.  -<parameter>_<G> <value> - every parameter of the laws (SSStarLawGetParameterNames()): -friction_<G> (the Coulomb
+   coefficient of G; default the solver's), -slip_bound_<G> (the Tresca bound), -friction_1_<G>, -friction_2_<G>,
+   -friction_direction_<G> x,y,z (orthotropic)
+.  -contact_pair_<G> <H> - G meets the surface group H of another body
+-  -pair_discretization <node_to_surface> - node_to_surface or dual_mortar
 
    Notes:
    With -help it lists the scene's options and reads no further (no check, no group): a program prints its options
    with -help and stops, with or without a scene.
+
+   A group option is matched by its longest prefix: -friction_1_top is the friction_1 of the group top, unless top is
+   no contact group and 1_top is (then it is the friction of 1_top). A parameter the group's law does not have is
+   refused naming both options; one the law needs that has no default (tresca's slip_bound, the orthotropic law's) is
+   required.
 
    Level: beginner
 
@@ -314,7 +348,12 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
-  if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) PetscCall((*PetscHelpPrintf)(comm, "%s", SceneGroupHelp));
+  if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
+    char groups[8192];
+
+    PetscCall(GroupHelp(groups, sizeof(groups)));
+    PetscCall((*PetscHelpPrintf)(comm, "%s", groups));
+  }
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (help) PetscFunctionReturn(0); /* the options are listed: the drivers stop here, with or without a scene */
@@ -356,7 +395,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
   }
-  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(CheckContactGroup(scene, &scene->contact[g]));
+  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(SSStarGroupLawCheck(scene, &scene->contact[g]));
   PetscFunctionReturn(0);
 }
 

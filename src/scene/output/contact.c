@@ -5,47 +5,12 @@
 */
 #include "outputimpl.h"
 
-PetscErrorCode SSStarNodeFrictionGet(SSStarScene scene, SNES snes, SSStarNodeFriction *nf)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &nf->known));
-  PetscCall(PetscMalloc3(scene->n + 1, &nf->law, scene->n + 1, &nf->phi, scene->n + 1, &nf->bound));
-  if (nf->known) {
-    PetscCall(SNESSSStarGetNodeFrictionLaws(snes, scene->n, nf->law));
-    PetscCall(SNESSSStarGetNodeLawParameter(snes, "friction", scene->n, nf->phi));
-    PetscCall(SNESSSStarGetNodeLawParameter(snes, "slip_bound", scene->n, nf->bound));
-  } else
-    for (PetscInt i = 0; i < scene->n; i++) { /* the scene's own description */
-      const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-
-      nf->law[i]   = cg->law;
-      nf->phi[i]   = cg->phi;
-      nf->bound[i] = cg->bound;
-    }
-  for (PetscInt i = 0; i < scene->n; i++) {
-    PetscBool friction, bound;
-
-    PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
-    PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
-    if (!friction) nf->phi[i] = 0;
-    if (!bound) nf->bound[i] = 0;
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *nf)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFree3(nf->law, nf->phi, nf->bound));
-  PetscFunctionReturn(0);
-}
-
 /* The datasets of /contact: per contact node, in the order of the mesh file */
 PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, const SSStarState states[], const SSStarNodeFriction *nf)
 {
   MPI_Comm           comm = scene->comm;
   PetscInt           p, n = scene->n, *pos, *all;
-  PetscReal         *ul, *rl, *sl, *gl, *ll;
+  PetscReal         *ul, *rl, *sl, *gl;
   const PetscScalar *ua, *ra;
   Vec                uC, rC;
   char               names[1024];
@@ -53,7 +18,6 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, c
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc5(n + 1, &pos, 3 * n + 1, &ul, 3 * n + 1, &rl, n + 1, &sl, n + 1, &gl));
-  PetscCall(PetscMalloc1(n + 1, &ll));
   PetscCall(SSStarFileOrder(comm, n, scene->tag, &p, &all, pos));
   PetscCall(PetscFree(all));
   PetscCall(VecGetSubVector(u, scene->isC, &uC));
@@ -71,19 +35,16 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, c
   PetscCall(SSStarH5GroupOpen(file, "/contact", &group));
   PetscCallH5(H5Gclose(group));
   {
-    const char      *vnames[] = {"/contact/coordinates", "/contact/displacement", "/contact/reaction", "/contact/normal", "/contact/gap", "/contact/area", "/contact/friction", "/contact/slip_bound"};
-    const PetscReal *values[] = {scene->coords, ul, rl, scene->normal, scene->gap, scene->area, nf->phi, nf->bound};
-    const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1, 1, 1};
+    const char      *vnames[] = {"/contact/coordinates", "/contact/displacement", "/contact/reaction", "/contact/normal", "/contact/gap", "/contact/area"};
+    const PetscReal *values[] = {scene->coords, ul, rl, scene->normal, scene->gap, scene->area};
+    const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1};
 
-    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) {
-      if (k >= 6 && !nf->known) continue; /* the friction the solver used, if it is an ssstar */
-      PetscCall(SSStarWriteNodeField(comm, file, vnames[k], p, n, pos, bs[k], values[k], PETSC_FALSE));
-    }
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) PetscCall(SSStarWriteNodeField(comm, file, vnames[k], p, n, pos, bs[k], values[k], PETSC_FALSE));
   }
+  PetscCall(SSStarNodeFrictionWrite(comm, file, "/contact", nf, p, pos)); /* friction_law and the laws' parameters */
   for (PetscInt i = 0; i < n; i++) {
     sl[i] = states ? (PetscReal)states[i] : -1;
     gl[i] = (PetscReal)scene->group[i];
-    ll[i] = (PetscReal)nf->law[i];
   }
   PetscCall(SSStarWriteNodeField(comm, file, "/contact/state", p, n, pos, 1, sl, PETSC_TRUE));
   PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
@@ -110,17 +71,7 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, Vec u, Vec r, c
     PetscCall(SSStarWriteNodeField(comm, file, "/contact/slip", p, n, pos, 3, kin[3], PETSC_FALSE));
     PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
   }
-  PetscCall(SSStarWriteNodeField(comm, file, "/contact/friction_law", p, n, pos, 1, ll, PETSC_TRUE));
-  {
-    PetscInt           nlaws;
-    const char *const *laws;
-
-    PetscCall(SSStarLawGetNames(&nlaws, &laws));
-    PetscCall(SSStarJoinNames(nlaws, laws, names, sizeof(names)));
-  }
-  PetscCall(SSStarH5ObjectAttrString(file, "/contact/friction_law", "names", names));
   PetscCall(PetscFree5(pos, ul, rl, sl, gl));
-  PetscCall(PetscFree(ll));
   PetscFunctionReturn(0);
 }
 

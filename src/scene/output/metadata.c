@@ -1,6 +1,44 @@
 /* What was simulated (/scene) and how the run went (the attributes of /) */
 #include "outputimpl.h"
 
+/* The parameters of the laws the solver used at the group's nodes, as attributes of /scene/contact/<G>: each that has
+   one value at every node of the group whose law has it (friction 0.45; friction_direction 1,0,0) */
+static PetscErrorCode WriteGroupParameters(SSStarScene scene, PetscInt g, const SSStarNodeFriction *nf, hid_t sub)
+{
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < nf->nparams; k++) {
+    /* range[2c], range[2c + 1]: min and -max of the component c over the nodes; range[6]: 0 once a node has it */
+    PetscReal      range[7] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL};
+    const PetscInt size = nf->size[k];
+
+    for (PetscInt i = 0; i < scene->n; i++) {
+      PetscBool has;
+
+      if (scene->group[i] != g) continue;
+      PetscCall(SSStarLawHasParameter(nf->law[i], nf->param[k], &has));
+      if (!has) continue;
+      range[6] = 0;
+      for (PetscInt c = 0; c < size; c++) {
+        range[2 * c]     = PetscMin(range[2 * c], nf->value[k][size * i + c]);
+        range[2 * c + 1] = PetscMin(range[2 * c + 1], -nf->value[k][size * i + c]);
+      }
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 7, MPIU_REAL, MPIU_MIN, scene->comm));
+    if (range[6] != 0) continue; /* no node of the group has it */
+    {
+      PetscBool uniform = PETSC_TRUE;
+      PetscReal v[3];
+
+      for (PetscInt c = 0; c < size; c++) {
+        uniform = (PetscBool)(uniform && range[2 * c] == -range[2 * c + 1]);
+        v[c]    = range[2 * c];
+      }
+      if (uniform) PetscCall(SSStarH5AttrReals(sub, nf->param[k], size, v));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* An obstacle's attributes (SSStarObstacleWriteAttributes()) on the HDF5 group *ctx */
 static PetscErrorCode AttributeReals(void *ctx, const char name[], PetscInt n, const PetscReal v[])
 {
@@ -70,33 +108,14 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
-    PetscInt                 *laws, nlaws, law = -1, with[2] = {0, 0}; /* nodes per law; nodes with a friction, a slip bound */
-    PetscReal                 range[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* min phi, -max phi, min s, -max s */
+    PetscInt                 *laws, nlaws, law = -1;
     const char               *name = "mixed";
 
     PetscCall(SSStarLawGetNames(&nlaws, NULL));
     PetscCall(PetscCalloc1(nlaws, &laws));
-    for (PetscInt i = 0; i < scene->n; i++) {
-      PetscBool friction, bound;
-
-      if (scene->group[i] != g) continue;
-      laws[nf->law[i]]++;
-      PetscCall(SSStarLawHasParameter(nf->law[i], "friction", &friction));
-      PetscCall(SSStarLawHasParameter(nf->law[i], "slip_bound", &bound));
-      if (friction) {
-        with[0]++;
-        range[0] = PetscMin(range[0], nf->phi[i]);
-        range[1] = PetscMin(range[1], -nf->phi[i]);
-      }
-      if (bound) {
-        with[1]++;
-        range[2] = PetscMin(range[2], nf->bound[i]);
-        range[3] = PetscMin(range[3], -nf->bound[i]);
-      }
-    }
+    for (PetscInt i = 0; i < scene->n; i++)
+      if (scene->group[i] == g) laws[nf->law[i]]++;
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, laws, nlaws, MPIU_INT, MPI_SUM, scene->comm));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, with, 2, MPIU_INT, MPI_SUM, scene->comm));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 4, MPIU_REAL, MPIU_MIN, scene->comm));
     for (PetscInt k = 0; k < nlaws; k++)
       if (laws[k] == cg->nodes) law = k;
     PetscCall(PetscFree(laws));
@@ -104,8 +123,7 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
     PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/contact/%s", cg->name));
     PetscCall(SSStarH5GroupOpen(file, path, &sub));
     PetscCall(SSStarH5AttrString(sub, "law", name));
-    if (nf->known && with[0] && range[0] == -range[1]) PetscCall(SSStarH5AttrReal(sub, "friction", range[0]));
-    if (nf->known && with[1] && range[2] == -range[3]) PetscCall(SSStarH5AttrReal(sub, "slip_bound", range[2]));
+    PetscCall(WriteGroupParameters(scene, g, nf, sub));
     if (cg->master[0]) { /* a contact pair: its master surface and discretization, no obstacle */
       PetscCall(SSStarH5AttrString(sub, "master", cg->master));
       PetscCall(SSStarH5AttrString(sub, "discretization", SSStarPairDiscretizations[scene->pairMethod]));

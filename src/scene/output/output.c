@@ -134,14 +134,21 @@ static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], 
   const SSStarState *states = NULL;
   PetscBool          isssstar;
   PetscInt           nfaceVertices = 0, ntriangles = 0;
-  SSStarNodeFriction       nf;
+  SSStarNodeFriction nf;
 
   PetscFunctionBegin;
   PetscCall(PetscViewerHDF5Open(scene->comm, h5, FILE_MODE_WRITE, &viewer));
   PetscCall(PetscViewerHDF5GetFileId(viewer, &file));
   PetscCall(SSStarWriteMesh(scene, file, u));
   PetscCall(SSStarWriteRun(scene, file, snes));
-  PetscCall(SSStarNodeFrictionGet(scene, snes, &nf));
+  {
+    PetscInt *laws; /* the groups' laws, for an SNES that is no ssstar */
+
+    PetscCall(PetscMalloc1(scene->n + 1, &laws));
+    for (PetscInt i = 0; i < scene->n; i++) laws[i] = scene->contact[scene->group[i]].law;
+    PetscCall(SSStarNodeFrictionGet(scene->comm, snes, scene->n, laws, &nf));
+    PetscCall(PetscFree(laws));
+  }
   PetscCall(SSStarWriteScene(scene, file, &nf));
   if (scene->nContact) {
     PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
@@ -175,7 +182,8 @@ static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], 
    The file is the same on any number of ranks: the vertices in the mesh file's node order (/geometry/vertices,
    /fields/displacement with the held nodes), the tetrahedra by their vertices' numbers in a canonical order
    (/viz/topology/cells), the contact nodes in file order (/contact: coordinates, displacement, reaction K u - b,
-   normal, gap, area, friction_law, friction, slip_bound, state, group (a contact pair named slave->master), and at the
+   normal, gap, area, friction_law and one dataset per parameter of the laws in use (friction, slip_bound, friction_1,
+   friction_2, friction_direction: 0 where a node's law has no such parameter), state, group (a contact pair named slave->master), and at the
    solution final_gap, pressure, traction, slip against the plane or the master surface), the contact faces with their point fields
    (/contact_faces: vertices, triangles, state, pressure, tangential_traction, slip, gap, displacement), the scene
    (/scene: mesh, material, loads, contact groups with their laws) and, as attributes of /, the run: ssstar_version,
@@ -187,7 +195,7 @@ static PetscErrorCode WriteFiles(SSStarScene scene, SNES snes, const char h5[], 
 
    Level: beginner
 
-.seealso: `SSStarSceneSetContact()`, `SNESSSStarGetStates()`, `SNESSSStarGetNodeFriction()`, `SSStarCheckOutputFile()`
+.seealso: `SSStarSceneSetContact()`, `SNESSSStarGetStates()`, `SSStarWriteNodeFriction()`, `SSStarCheckOutputFile()`
 @*/
 PetscErrorCode SSStarSceneWriteSolution(SSStarScene scene, SNES snes, const char file[], Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx)
 {

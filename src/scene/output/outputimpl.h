@@ -27,14 +27,19 @@ PETSC_INTERN PetscErrorCode SSStarWriteMesh(SSStarScene, hid_t, Vec);
 PETSC_INTERN PetscErrorCode SSStarFileOrder(MPI_Comm, PetscInt, const PetscInt[], PetscInt *, PetscInt **, PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], PetscInt, PetscInt, const PetscInt[], PetscInt, const PetscReal[], PetscBool);
 
-/* What the solver used at each contact node: law, coefficient, bound (from the SNES when it is an ssstar) */
+/* What the solver used at each contact node (friction.c): the law and the parameters of the laws in use */
 typedef struct {
-  PetscBool  known; /* the SNES is an ssstar: the laws below are the solver's */
-  PetscInt  *law;   /* indices of the table of laws */
-  PetscReal *phi, *bound;
+  PetscBool          known;   /* the SNES is an ssstar: the laws and values are the solver's         */
+  PetscInt           n;       /* local contact nodes                                                 */
+  PetscInt          *law;     /* per node: its index in the table of laws                            */
+  PetscInt           nparams; /* the parameters of the laws in use on any rank, in the table's order */
+  const char       **param;   /* their names (the table's)                                           */
+  PetscInt          *size;    /* their values per node: 1, or 3 for a direction                      */
+  PetscReal        **value;   /* size values per node, 0 where the node's law has no such parameter  */
 } SSStarNodeFriction;
 
-PETSC_INTERN PetscErrorCode SSStarNodeFrictionGet(SSStarScene, SNES, SSStarNodeFriction *);
+PETSC_INTERN PetscErrorCode SSStarNodeFrictionGet(MPI_Comm, SNES, PetscInt, const PetscInt[], SSStarNodeFriction *);
+PETSC_INTERN PetscErrorCode SSStarNodeFrictionWrite(MPI_Comm, hid_t, const char[], const SSStarNodeFriction *, PetscInt, const PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarWriteContact(SSStarScene, hid_t, Vec, Vec, const SSStarState[], const SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarWriteContactFaces(SSStarScene, hid_t, Vec, Vec, const SSStarState[], PetscInt *, PetscInt *);

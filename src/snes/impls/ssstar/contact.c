@@ -94,14 +94,22 @@ static PetscErrorCode CheckValues(const SSStarLawParameter *par, const PetscReal
   PetscFunctionReturn(0);
 }
 
+/* Coulomb, and the parameters of the laws with a default at it (the table's: coulomb's friction 0.3) */
 PetscErrorCode SSStarContactInitialize(SSStarContact *ct)
 {
-  const PetscReal friction = 0.3;
+  PetscInt           nparams;
+  const char *const *names;
 
   PetscFunctionBegin;
   ct->built = -1;
   PetscCall(SSStarContactSetLaw(ct, SSSTARLAWCOULOMB));
-  PetscCall(SSStarContactSetParameter(PETSC_COMM_SELF, ct, "friction", 1, &friction));
+  PetscCall(SSStarLawGetParameterNames(&nparams, &names));
+  for (PetscInt p = 0; p < nparams; p++) {
+    const SSStarLawParameter *par;
+
+    PetscCall(SSStarLawGetParameter(names[p], &par));
+    if (par->hasDefault) PetscCall(SSStarContactSetParameter(PETSC_COMM_SELF, ct, par->name, 1, &par->defaultValue));
+  }
   PetscFunctionReturn(0);
 }
 

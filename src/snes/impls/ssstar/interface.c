@@ -553,7 +553,8 @@ PetscErrorCode SNESSSStarGetNodeFrictionLaws(SNES snes, PetscInt n, PetscInt law
             were declared; 0 at the nodes whose law has no such parameter
 
    Notes:
-   The output files of the scenes record "friction" and "slip_bound" (/contact/friction, /contact/slip_bound).
+   The output files of the scenes and SSStarWriteNodeFriction() record every parameter of the laws in use
+   (/contact/<parameter>: friction, slip_bound, friction_1, friction_2, friction_direction).
 
    Level: intermediate
 

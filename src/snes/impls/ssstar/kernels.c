@@ -171,6 +171,37 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
   return k;
 }
 
+/*
+   The blocks (G, H) of (3.2) and (S, T) of (5.1)-(5.2) share their pattern: per tangential direction the identity of
+   a free or a stuck one, W of a sliding node, and the normal row of a node in contact or not; they differ in where
+   the normal-tangential coupling k of a sliding node in contact goes: -k into H's normal column, +k into S's.
+*/
+static void Blocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscBool reduced, PetscReal A[9], PetscReal B[9])
+{
+  const BlockKind k = GetBlockKind(state, fr);
+  PetscReal       W[4], kk[2];
+
+  SetDiagonal(A, 1.0, 1.0, k.closed ? 0.0 : 1.0);
+  SetDiagonal(B, 0.0, 0.0, k.closed ? 1.0 : 0.0);
+  if (!k.tangent) return;
+  if (k.slides) {
+    fr->law->ops.sliding(fr, d, b, W, kk);
+    B[0] = W[0];
+    B[1] = W[1];
+    B[3] = W[2];
+    B[4] = W[3];
+    if (k.closed) {
+      PetscReal *coupled = reduced ? A : B;
+
+      coupled[2] = reduced ? kk[0] : -kk[0];
+      coupled[5] = reduced ? kk[1] : -kk[1];
+    }
+  } else {
+    A[0] = A[4] = 0.0;
+    B[0] = B[4] = 1.0;
+  }
+}
+
 /*@C
    SSStarTangentBlocks - G and H with range [G; H] the tangent space of gph Q at (d, b) for a node in the given state
    (docs/derivation.md section 3, with the corrected sign of omega, (3.2))
@@ -193,26 +224,7 @@ static BlockKind GetBlockKind(SSStarState state, const SSStarFriction *fr)
 @*/
 void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal G[9], PetscReal H[9])
 {
-  const BlockKind k = GetBlockKind(state, fr);
-  PetscReal       W[4], kk[2];
-
-  SetDiagonal(G, 1.0, 1.0, k.closed ? 0.0 : 1.0);
-  SetDiagonal(H, 0.0, 0.0, k.closed ? 1.0 : 0.0);
-  if (!k.tangent) return;
-  if (k.slides) {
-    fr->law->ops.sliding(fr, d, b, W, kk);
-    H[0] = W[0];
-    H[1] = W[1];
-    H[3] = W[2];
-    H[4] = W[3];
-    if (k.closed) {
-      H[2] = -kk[0];
-      H[5] = -kk[1];
-    }
-  } else {
-    G[0] = G[4] = 0.0;
-    H[0] = H[4] = 1.0;
-  }
+  Blocks(state, fr, d, b, PETSC_FALSE, G, H);
 }
 
 /*@C
@@ -237,26 +249,7 @@ void SSStarTangentBlocks(SSStarState state, const SSStarFriction *fr, const Pets
 @*/
 void SSStarReducedBlocks(SSStarState state, const SSStarFriction *fr, const PetscReal d[3], const PetscReal b[3], PetscReal S[9], PetscReal T[9])
 {
-  const BlockKind k = GetBlockKind(state, fr);
-  PetscReal       W[4], kk[2];
-
-  SetDiagonal(S, 1.0, 1.0, k.closed ? 0.0 : 1.0);
-  SetDiagonal(T, 0.0, 0.0, k.closed ? 1.0 : 0.0);
-  if (!k.tangent) return;
-  if (k.slides) {
-    fr->law->ops.sliding(fr, d, b, W, kk);
-    T[0] = W[0];
-    T[1] = W[1];
-    T[3] = W[2];
-    T[4] = W[3];
-    if (k.closed) {
-      S[2] = kk[0];
-      S[5] = kk[1];
-    }
-  } else {
-    S[0] = S[4] = 0.0;
-    T[0] = T[4] = 1.0;
-  }
+  Blocks(state, fr, d, b, PETSC_TRUE, S, T);
 }
 
 /*@C

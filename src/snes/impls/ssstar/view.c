@@ -32,8 +32,8 @@ static PetscErrorCode RefuseUnknownChoice(PetscOptionItems *PetscOptionsObject, 
 static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
 {
   SSStarContact     *ct = &((SNES_SSStar *)snes->data)->contact;
-  PetscInt           nlaws, law = ct->law->index;
-  const char *const *names;
+  PetscInt           nlaws, law = ct->law->index, nparams;
+  const char *const *names, *const *params;
   PetscBool          set;
 
   PetscFunctionBegin;
@@ -41,31 +41,28 @@ static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptio
   PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_friction_law", names, nlaws));
   PetscCall(PetscOptionsEList("-snes_ssstar_friction_law", "Friction law of the contact nodes (the table of laws)", "SNESSSStarSetFrictionLaw", names, nlaws, names[law], &law, &set));
   if (set) PetscCall(SNESSSStarSetFrictionLaw(snes, names[law]));
-  for (PetscInt l = 0; l < nlaws; l++) {
-    SSStarLaw lw;
+  PetscCall(SSStarLawGetParameterNames(&nparams, &params));
+  for (PetscInt p = 0; p < nparams; p++) {
+    const SSStarLawParameter *par;
+    const char               *owner = NULL;
+    char                      option[128], text[256];
+    PetscReal                 value[3];
+    PetscInt                  n;
+    PetscBool                 given;
 
-    PetscCall(SSStarLawGet(l, &lw));
-    for (PetscInt p = 0; p < lw->nparams; p++) {
-      const SSStarLawParameter *par = &lw->params[p];
-      char                      option[128], text[256];
-      PetscReal                 value[3];
-      PetscInt                  n;
-      PetscBool                 seen = PETSC_FALSE, given;
+    PetscCall(SSStarLawGetParameter(params[p], &par));
+    for (PetscInt l = 0; l < nlaws && !owner; l++) { /* the first law that has it, for the help text */
+      SSStarLaw lw;
 
-      for (PetscInt e = 0; e < l && !seen; e++) { /* a name shared with an earlier law is one option */
-        SSStarLaw earlier;
-
-        PetscCall(SSStarLawGet(e, &earlier));
-        seen = (PetscBool)(SSStarLawFindParameter(earlier, par->name) >= 0);
-      }
-      if (seen) continue;
-      PetscCall(PetscSNPrintf(option, sizeof(option), "-snes_ssstar_%s", par->name));
-      PetscCall(SSStarContactGetParameter(ct, par->name, &n, value, &given));
-      PetscCall(PetscSNPrintf(text, sizeof(text), "The %s of every contact node without its own (law %s%s%s)", par->description, lw->name, par->kind == SSSTAR_LAW_DIRECTION ? "; x,y,z" : "", given ? "" : "; no default"));
-      if (par->kind == SSSTAR_LAW_DIRECTION) PetscCall(PetscOptionsRealArray(option, text, "SNESSSStarSetLawParameter", value, &n, &set));
-      else PetscCall(PetscOptionsReal(option, text, "SNESSSStarSetLawParameter", value[0], &value[0], &set));
-      if (set) PetscCall(SNESSSStarSetLawParameter(snes, par->name, n, value));
+      PetscCall(SSStarLawGet(l, &lw));
+      if (SSStarLawFindParameter(lw, par->name) >= 0) owner = lw->name;
     }
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-snes_ssstar_%s", par->name));
+    PetscCall(SSStarContactGetParameter(ct, par->name, &n, value, &given));
+    PetscCall(PetscSNPrintf(text, sizeof(text), "The %s of every contact node without its own (law %s%s%s)", par->description, owner, par->kind == SSSTAR_LAW_DIRECTION ? "; x,y,z" : "", given ? "" : "; no default"));
+    if (par->kind == SSSTAR_LAW_DIRECTION) PetscCall(PetscOptionsRealArray(option, text, "SNESSSStarSetLawParameter", value, &n, &set));
+    else PetscCall(PetscOptionsReal(option, text, "SNESSSStarSetLawParameter", value[0], &value[0], &set));
+    if (set) PetscCall(SNESSSStarSetLawParameter(snes, par->name, n, value));
   }
   PetscFunctionReturn(0);
 }
@@ -73,29 +70,22 @@ static PetscErrorCode SetLawsFromOptions(SNES snes, PetscOptionItems *PetscOptio
 /* -snes_ssstar_reduction: a registered reduction or auto */
 static PetscErrorCode SetReductionFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
 {
-  SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
-  const char   **names, **choices;
-  int            n;
-  PetscInt       chosen = 0;
-  PetscBool      set;
+  SSStarProblem     *pb = &((SNES_SSStar *)snes->data)->problem;
+  const char *const *choices;
+  PetscInt           n, chosen = 0;
+  PetscBool          set;
 
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListGet(SSStarReductionList, &names, &n));
-  while (n > 0 && !names[n - 1]) n--; /* the list's own count includes its NULL end */
-  PetscCall(PetscMalloc1(n + 1, &choices));
-  for (int k = 0; k < n; k++) {
+  PetscCall(SSStarReductionGetNames(&n, &choices));
+  for (PetscInt k = 0; k < n; k++) {
     PetscBool same;
 
-    choices[k] = names[k];
-    PetscCall(PetscStrcmp(names[k], pb->reductionType, &same));
+    PetscCall(PetscStrcmp(choices[k], pb->reductionType, &same));
     if (same) chosen = k;
   }
-  choices[n] = SSSTARREDUCTIONAUTO;
-  PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_reduction", choices, n + 1));
-  PetscCall(PetscOptionsEList("-snes_ssstar_reduction", "Whole-body use: K reduced to the contact dofs (direct, mumps, explicit), or none (the whole body, P never formed), or auto", "SNESSSStarSetReductionType", choices, n + 1, pb->reductionType, &chosen, &set));
+  PetscCall(RefuseUnknownChoice(PetscOptionsObject, "-snes_ssstar_reduction", choices, n));
+  PetscCall(PetscOptionsEList("-snes_ssstar_reduction", "Whole-body use: K reduced to the contact dofs (direct, mumps, explicit), or none (the whole body, P never formed), or auto", "SNESSSStarSetReductionType", choices, n, pb->reductionType, &chosen, &set));
   if (set) PetscCall(SNESSSStarSetReductionType(snes, choices[chosen]));
-  PetscCall(PetscFree(choices));
-  PetscCall(PetscFree(names));
   PetscFunctionReturn(0);
 }
 

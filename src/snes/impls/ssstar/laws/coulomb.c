@@ -37,6 +37,8 @@ PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
   law->params[0].description = "friction coefficient";
   law->params[0].symbol      = "phi";
   law->params[0].kind        = SSSTAR_LAW_COEFFICIENT;
+  law->params[0].hasDefault  = PETSC_TRUE;
+  law->params[0].defaultValue = 0.3;
   law->coupled               = PETSC_TRUE;
   law->separate              = PETSC_FALSE;
   law->ops.tangential        = Tangential_Coulomb;

@@ -6,9 +6,13 @@
 */
 #include "lawimpl.h"
 
-static SSStarLaw   *Laws     = NULL; /* the table, in the order of registration */
-static PetscInt     NumLaws  = 0;
-static const char **LawNames = NULL; /* their names, NULL-terminated            */
+static SSStarLaw   *Laws       = NULL; /* the table, in the order of registration                        */
+static PetscInt     NumLaws    = 0;
+static const char **LawNames   = NULL; /* their names, NULL-terminated                                   */
+static const char **ParamNames = NULL; /* the names of their parameters, each once, NULL-terminated      */
+static PetscInt     NumParams  = 0;
+
+const char *const SSStarLawParameterKinds[] = {"coefficient", "force", "direction", "SSStarLawParameterKind", "SSSTAR_LAW_", NULL};
 
 PetscInt SSStarLawParameterSize(SSStarLawParameterKind kind)
 {
@@ -35,6 +39,27 @@ static const SSStarLawParameter *FindParameter(const char name[])
   return NULL;
 }
 
+/* The parameter names of the table, each once in the order the laws name them */
+static PetscErrorCode ListParameters(void)
+{
+  PetscInt total = 0;
+
+  PetscFunctionBegin;
+  for (PetscInt l = 0; l < NumLaws; l++) total += Laws[l]->nparams;
+  PetscCall(PetscFree(ParamNames));
+  PetscCall(PetscMalloc1(total + 1, &ParamNames));
+  NumParams = 0;
+  for (PetscInt l = 0; l < NumLaws; l++)
+    for (PetscInt p = 0; p < Laws[l]->nparams; p++) {
+      PetscBool seen = PETSC_FALSE;
+
+      for (PetscInt q = 0; q < NumParams && !seen; q++) PetscCall(PetscStrcmp(ParamNames[q], Laws[l]->params[p].name, &seen));
+      if (!seen) ParamNames[NumParams++] = Laws[l]->params[p].name;
+    }
+  ParamNames[NumParams] = NULL;
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarLawRegister - adds a friction law to the table of ssstar's laws
 
@@ -46,8 +71,12 @@ static const SSStarLawParameter *FindParameter(const char name[])
 
    Notes:
    The law gets the next index of the table (SSStarLawGetNames()). Registering a name again replaces that law in its
-   place. A parameter name used by several laws must be of the same kind in each (it is one setting of the solver,
-   SNESSSStarSetLawParameter()). A law is one file plus one line in SSStarLawRegisterAll().
+   place. A parameter name used by several laws must be of the same kind and default in each (it is one setting of the
+   solver, SNESSSStarSetLawParameter()). A law of ssstar is one file in src/snes/impls/ssstar/laws/ plus its
+   registration in lawregall.c (its declaration and one line in SSStarLawRegisterAll()); the solver's and the scenes'
+   options (-snes_ssstar_<parameter>, -friction_law_<G>, -<parameter>_<G>), their checks, -help, the views, the output
+   (/contact/friction_law, /contact/<parameter>) and the Python module follow from the table (README "Adding a friction
+   law").
 
    Level: advanced
 
@@ -72,9 +101,10 @@ PetscErrorCode SSStarLawRegister(const char name[], PetscErrorCode (*create)(SSS
   PetscCheck(law->nparams >= 0 && law->nparams <= SSSTAR_LAW_MAX_PARAMETERS && law->ops.tangential && law->ops.margin && law->ops.sliding && law->ops.frictionless, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Friction law %s: %" PetscInt_FMT " parameters (at most %d) or a kernel missing", name, law->nparams, SSSTAR_LAW_MAX_PARAMETERS);
   PetscCheck(SSStarLawParameterOffset(law, law->nparams) <= SSSTAR_LAW_MAX_VALUES, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Friction law %s: more than %d values per node", name, SSSTAR_LAW_MAX_VALUES);
   for (PetscInt p = 0; p < law->nparams; p++) {
-    const SSStarLawParameter *earlier = FindParameter(law->params[p].name);
+    const SSStarLawParameter *par = &law->params[p], *earlier = FindParameter(par->name);
 
-    PetscCheck(!earlier || earlier->kind == law->params[p].kind, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Friction law %s: its parameter %s is of another kind in an earlier law", name, law->params[p].name);
+    PetscCheck(!earlier || (earlier->kind == par->kind && earlier->hasDefault == par->hasDefault && (!par->hasDefault || earlier->defaultValue == par->defaultValue)), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Friction law %s: its parameter %s is of another kind or default in an earlier law", name, par->name);
+    PetscCheck(!par->hasDefault || (par->kind != SSSTAR_LAW_DIRECTION && par->defaultValue >= 0), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Friction law %s: the default of %s must be a number >= 0 (a direction has none)", name, par->name);
   }
   if (index < NumLaws) {
     PetscCall(PetscFree(Laws[index]->name));
@@ -87,6 +117,7 @@ PetscErrorCode SSStarLawRegister(const char name[], PetscErrorCode (*create)(SSS
   Laws[index]       = law;
   LawNames[index]   = law->name;
   LawNames[NumLaws] = NULL;
+  PetscCall(ListParameters());
   PetscFunctionReturn(0);
 }
 
@@ -100,7 +131,9 @@ PetscErrorCode SSStarLawDestroyAll(void)
   }
   PetscCall(PetscFree(Laws));
   PetscCall(PetscFree(LawNames));
-  NumLaws = 0;
+  PetscCall(PetscFree(ParamNames));
+  NumLaws   = 0;
+  NumParams = 0;
   PetscFunctionReturn(0);
 }
 
@@ -300,6 +333,71 @@ PetscErrorCode SSStarLawGetParameterSize(const char name[], PetscInt *size)
   PetscFunctionBegin;
   PetscCall(SSStarLawGetParameter(name, &par));
   *size = SSStarLawParameterSize(par->kind);
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarLawGetParameterNames - the parameters of the registered friction laws: each name once, in the order of the
+   table (a name several laws have is one parameter, SNESSSStarSetLawParameter())
+
+   Not Collective
+
+   Output Parameters:
++  n     - the number of parameters, or pass NULL
+-  names - their names, NULL-terminated (owned by ssstar), or pass NULL
+
+   Notes:
+   With ssstar's laws: friction, slip_bound, friction_1, friction_2, friction_direction. The scenes read each as the
+   option -<name>_<G> of a contact group and write each as /contact/<name>.
+
+   Level: intermediate
+
+.seealso: `SSStarLawGetParameterInfo()`, `SSStarLawGetInfo()`, `SSStarLawGetNames()`
+@*/
+PetscErrorCode SSStarLawGetParameterNames(PetscInt *n, const char *const *names[])
+{
+  PetscFunctionBegin;
+  if (n) *n = NumParams;
+  if (names) *names = ParamNames;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarLawGetParameterInfo - what a parameter of the friction laws is
+
+   Not Collective
+
+   Input Parameter:
+.  name - the parameter ("friction", "slip_bound", "friction_direction", ...)
+
+   Output Parameters:
++  kind         - SSSTAR_LAW_COEFFICIENT (a number >= 0), SSSTAR_LAW_FORCE (>= 0, a force per contact node) or
+                  SSSTAR_LAW_DIRECTION (x, y, z in global axes, nonzero), or pass NULL
+.  size         - its number of values per node: 1, or 3 for a direction, or pass NULL
+.  description  - "friction coefficient", for messages (owned by ssstar), or pass NULL
+.  symbol       - "phi", for views (owned by ssstar), or pass NULL
+.  hasDefault   - whether the solver gives it a value until one is set (coulomb's friction: 0.3), or pass NULL
+-  defaultValue - that value (0 without one), or pass NULL
+
+   Notes:
+   An error names the parameters of the laws when no law has this one.
+
+   Level: intermediate
+
+.seealso: `SSStarLawGetParameterNames()`, `SSStarLawGetParameterSize()`, `SNESSSStarSetLawParameter()`
+@*/
+PetscErrorCode SSStarLawGetParameterInfo(const char name[], SSStarLawParameterKind *kind, PetscInt *size, const char *description[], const char *symbol[], PetscBool *hasDefault, PetscReal *defaultValue)
+{
+  const SSStarLawParameter *par;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarLawGetParameter(name, &par));
+  if (kind) *kind = par->kind;
+  if (size) *size = SSStarLawParameterSize(par->kind);
+  if (description) *description = par->description;
+  if (symbol) *symbol = par->symbol;
+  if (hasDefault) *hasDefault = par->hasDefault;
+  if (defaultValue) *defaultValue = par->hasDefault ? par->defaultValue : 0.0;
   PetscFunctionReturn(0);
 }
 

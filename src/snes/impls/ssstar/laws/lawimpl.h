@@ -13,24 +13,23 @@
 
    Table 1's states apply to every law; a law whose tangential law holds whatever the normal contact (Tresca: its
    bound does not depend on r_n) has a tangential state of its own on separated nodes (LS).
+
+   A new law is a file here whose SSStarLawCreate_<Name>() fills a _n_SSStarLaw and its registration in lawregall.c;
+   the options, checks, views and output of the solver and the scenes read the table (README "Adding a friction law").
 */
 #include <ssstar.h>
 
 #define SSSTAR_LAW_MAX_PARAMETERS 3
 
-/* What a parameter is: a coefficient (a number >= 0), a force (>= 0; the kernels see it times gamma) or a direction
-   (3 components in global axes, given to the kernels in the node's frame) */
-typedef enum {
-  SSSTAR_LAW_COEFFICIENT,
-  SSSTAR_LAW_FORCE,
-  SSSTAR_LAW_DIRECTION
-} SSStarLawParameterKind;
-
+/* A named parameter of a law; its kind (ssstar.h: a coefficient, a force or a direction) says how many values it has
+   and how they are checked. The kernels see a force times gamma, a direction in the node's frame. */
 typedef struct {
-  const char            *name;        /* SNESSSStarSetLawParameter()'s name, the option -snes_ssstar_<name>     */
-  const char            *description; /* for messages, -help and -snes_view: "friction coefficient"            */
-  const char            *symbol;      /* for -snes_view: "phi"                                                */
+  const char            *name;        /* SNESSSStarSetLawParameter()'s name, the options -snes_ssstar_<name>, -<name>_<G> */
+  const char            *description; /* for messages, -help and -snes_view: "friction coefficient"                      */
+  const char            *symbol;      /* for -snes_view and the scene's view: "phi"                                     */
   SSStarLawParameterKind kind;
+  PetscBool              hasDefault;  /* the solver's value for every node until one is set (a coefficient or force)    */
+  PetscReal              defaultValue;
 } SSStarLawParameter;
 
 typedef struct {
@@ -77,10 +76,5 @@ PETSC_EXTERN PetscBool      SSStarLawRegisterAllCalled;
    sliding node with the friction force s om (s = the threshold at the node) and coupling kappa om, om = d_t/|d_t| */
 PETSC_INTERN void SSStarSoftThreshold(PetscReal s, const PetscReal v[2], PetscReal d[2]);
 PETSC_INTERN void SSStarIsotropicSliding(PetscReal s, PetscReal kappa, const PetscReal d[3], PetscReal W[4], PetscReal k[2]);
-
-PETSC_INTERN PetscErrorCode SSStarLawCreate_None(SSStarLaw);
-PETSC_INTERN PetscErrorCode SSStarLawCreate_Tresca(SSStarLaw);
-PETSC_INTERN PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw);
-PETSC_INTERN PetscErrorCode SSStarLawCreate_Orthotropic(SSStarLaw);
 
 #endif

@@ -95,7 +95,7 @@ static PetscErrorCode Exchange(SSStarSearch s, const PetscMPIInt count[], const 
   PetscFunctionReturn(0);
 }
 
-static void PackPoint(SSStarSearch s, const void *ctx, PetscInt i, PetscReal rec[])
+static void PackPoint(const void *ctx, PetscInt i, PetscReal rec[])
 {
   const PetscReal *p = (const PetscReal *)ctx;
 
@@ -103,7 +103,7 @@ static void PackPoint(SSStarSearch s, const void *ctx, PetscInt i, PetscReal rec
   for (PetscInt k = 0; k < 3; k++) rec[1 + k] = p[3 * i + k];
 }
 
-static void PackRegion(SSStarSearch s, const void *ctx, PetscInt i, PetscReal rec[])
+static void PackRegion(const void *ctx, PetscInt i, PetscReal rec[])
 {
   const SSStarRegion *r = &((const SSStarRegion *)ctx)[i];
 
@@ -344,7 +344,7 @@ static PetscErrorCode AnswerRegion(SSStarSearch s, const PetscReal question[], P
    The questions of the routes (record reals each, written by pack) sent to their ranks; each rank's answers to what
    it was asked (answer); the nback answers that came back here (HIT_RECORD each)
 */
-static PetscErrorCode Ask(SSStarSearch s, const Routes *routes, PetscInt record, void (*pack)(SSStarSearch, const void *, PetscInt, PetscReal[]), const void *ctx, Answer answer, PetscReal tol, PetscInt *nback, PetscReal **back)
+static PetscErrorCode Ask(SSStarSearch s, const Routes *routes, PetscInt record, void (*pack)(const void *, PetscInt, PetscReal[]), const void *ctx, Answer answer, PetscReal tol, PetscInt *nback, PetscReal **back)
 {
   PetscMPIInt *count, *at, *rcount;
   PetscReal   *send, *asked, *buf = NULL;
@@ -356,7 +356,7 @@ static PetscErrorCode Ask(SSStarSearch s, const Routes *routes, PetscInt record,
   for (PetscMPIInt r = 1; r < s->size; r++) at[r] = at[r - 1] + count[r - 1];
   PetscCall(PetscMalloc1(record * routes->n + 1, &send));
   for (PetscInt e = 0; e < routes->n; e++) {
-    (*pack)(s, ctx, routes->item[e], &send[at[routes->rank[e]]]);
+    (*pack)(ctx, routes->item[e], &send[at[routes->rank[e]]]);
     at[routes->rank[e]] += (PetscMPIInt)record;
   }
   PetscCall(Exchange(s, count, send, rcount, &asked));

@@ -15,6 +15,7 @@ PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 PetscLogEvent SSSTAR_Mesh, SSSTAR_Assembly, SSSTAR_Output, SSSTAR_Schur, SSSTAR_Recovery;
 PetscLogEvent SSSTAR_MeshGmsh, SSSTAR_MeshCache, SSSTAR_MeshBuild, SSSTAR_MeshFaces, SSSTAR_MeshLabel;
 PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
+PetscLogEvent SSSTAR_Search;
 
 static PetscBool SSStarPackageInitialized = PETSC_FALSE;
 
@@ -79,6 +80,7 @@ PetscErrorCode SSStarInitializePackage(void)
   PetscCall(PetscLogEventRegister("SSStarMeshLabel", DM_CLASSID, &SSSTAR_MeshLabel));
   PetscCall(PetscLogEventRegister("SSStarAssembly", DM_CLASSID, &SSSTAR_Assembly));
   PetscCall(PetscLogEventRegister("SSStarOutput", DM_CLASSID, &SSSTAR_Output));
+  PetscCall(PetscLogEventRegister("SSStarSearch", DM_CLASSID, &SSSTAR_Search));
   PetscCall(PetscLogEventRegister("SSStarSchur", MAT_CLASSID, &SSSTAR_Schur));
   PetscCall(PetscLogEventRegister("SSStarRecovery", MAT_CLASSID, &SSSTAR_Recovery));
   PetscCall(PetscLogEventRegister("SSStarOrdering", MAT_CLASSID, &SSSTAR_SchurOrdering));

@@ -129,7 +129,7 @@ def obstacle_mesh_ball():
     expect(abs(a["force"] / b["force"] - 1) < 1e-3 and abs(a["nodes_in_contact"] - b["nodes_in_contact"]) <= 3, "exact ball %s, mesh %s" % (a, b))
 
 
-@test("obstacles on 2 ranks give the 1-rank solution (mesh obstacle read on rank 0 and broadcast; ball): to 1e-10")
+@test("obstacles on 2 ranks give the 1-rank solution (mesh obstacle read on rank 0 and spread over the ranks; ball): to 1e-10")
 def obstacle_ranks():
     for ranks in (1, 2):
         contact_run(scene("prism") + ["-level", "3", "-obstacle_contact", "mesh:" + SQUARE], h5="prism_mesh_r%d.h5" % ranks, ranks=ranks)

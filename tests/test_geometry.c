@@ -6,7 +6,12 @@ static const char help[] = "The geometry module (src/geometry) against hand-comp
    point found by brute force (the face's projection and the three edges). A triangle's normal and area, its bounding
    box and a point's distance to a box are the hand-computed ones. The pseudo-normals of a tetrahedron are its faces'
    outward normals, the sums of two for its edges, the angle-weighted sums for its vertices; a triangle of zero area,
-   an edge of three triangles and two neighbours oriented differently are each named. Tolerance 1e-14 (O(1) data). */
+   an edge of three triangles and two neighbours oriented differently are each named. Tolerance 1e-14 (O(1) data).
+   The search tree (tree.c) answers as a loop over all triangles, bit for bit: the closest triangle (the least squared
+   distance, the lowest number among equal ones) of random points near and far, of points on the vertices of a curved
+   grid (exact ties between the triangles around a vertex), for random soups, identical triangles, triangles of zero
+   area (segments, points), one triangle and none; the triangles meeting random boxes and random oriented regions
+   (infinite bounds too); the top boxes hold every triangle; a partition of the triangles has parts of equal size. */
 #include <ssstargeometry.h>
 
 static int failures = 0;
@@ -134,6 +139,202 @@ static void CheckSurface(const char defect[])
   }
 }
 
+/* ---- the search tree against brute force ---- */
+
+/* The least (d2, t) over all triangles, as SSStarTreeClosest() promises */
+static void BruteClosest(PetscInt n, const PetscReal x[], const PetscReal p[3], PetscInt *t, PetscReal *d2)
+{
+  *t  = -1;
+  *d2 = PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal q[3], e2;
+
+    SSStarClosestPointOnTriangle(p, &x[9 * i], &x[9 * i + 3], &x[9 * i + 6], q, NULL, NULL);
+    e2 = PetscSqr(p[0] - q[0]) + PetscSqr(p[1] - q[1]) + PetscSqr(p[2] - q[2]);
+    if (e2 < *d2) {
+      *d2 = e2;
+      *t  = i;
+    }
+  }
+}
+
+/* Whether the triangle's vertices, measured from the region's origin along each axis, overlap its bounds */
+static PetscBool BruteMeets(const PetscReal x[9], const SSStarRegion *r)
+{
+  for (PetscInt a = 0; a < 3; a++) {
+    PetscReal lo = PETSC_MAX_REAL, hi = PETSC_MIN_REAL;
+
+    for (PetscInt k = 0; k < 3; k++) {
+      PetscReal v = 0;
+
+      for (PetscInt c = 0; c < 3; c++) v += (x[3 * k + c] - r->origin[c]) * r->axes[3 * a + c];
+      lo = PetscMin(lo, v);
+      hi = PetscMax(hi, v);
+    }
+    if (lo > r->hi[a] || hi < r->lo[a]) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+static void CheckTreeClosest(SSStarTree tree, PetscInt n, const PetscReal x[], const PetscReal p[3], const char name[])
+{
+  PetscInt  t, tb;
+  PetscReal d2, db;
+
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTreeClosest(tree, p, &t, &d2));
+  BruteClosest(n, x, p, &tb, &db);
+  if (t != tb || d2 != db) {
+    PetscPrintf(PETSC_COMM_SELF, "  point (%g, %g, %g): tree %" PetscInt_FMT " at %.17g, brute force %" PetscInt_FMT " at %.17g\n", (double)p[0], (double)p[1], (double)p[2], t, (double)d2, tb, (double)db);
+    Expect(PETSC_FALSE, "the closest triangle is not brute force's", name);
+  }
+}
+
+static void CheckTreeRegion(SSStarTree tree, PetscInt n, const PetscReal x[], const SSStarRegion *r, const char name[])
+{
+  PetscInt        nf, m = 0;
+  const PetscInt *found;
+  PetscBool       same = PETSC_TRUE;
+
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTreeFindInRegion(tree, r, &nf, &found));
+  for (PetscInt i = 0; i < n; i++)
+    if (BruteMeets(&x[9 * i], r)) {
+      if (m >= nf || found[m] != i) same = PETSC_FALSE;
+      m++;
+    }
+  Expect((PetscBool)(same && m == nf), "the triangles of a region are not brute force's", name);
+}
+
+static PetscReal Uniform(PetscRandom rnd, PetscReal lo, PetscReal hi)
+{
+  PetscReal v;
+
+  PetscRandomGetValueReal(rnd, &v); /* in (-1, 1) */
+  return lo + (v + 1) / 2 * (hi - lo);
+}
+
+/* Random points near and far, random boxes and random oriented regions (some of infinite extent) */
+static void CheckTreeQueries(PetscRandom rnd, PetscInt n, const PetscReal x[], PetscReal size, const char name[])
+{
+  SSStarTree tree;
+
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTreeCreate(n, x, &tree));
+  for (PetscInt j = 0; j < 300; j++) {
+    PetscReal p[3], reach = j < 200 ? size : 10 * size;
+
+    for (PetscInt k = 0; k < 3; k++) p[k] = Uniform(rnd, -reach, reach);
+    CheckTreeClosest(tree, n, x, p, name);
+  }
+  for (PetscInt j = 0; j < 100; j++) {
+    SSStarRegion r;
+    PetscReal    box[6];
+
+    for (PetscInt k = 0; k < 3; k++) {
+      box[k]     = Uniform(rnd, -size, size);
+      box[3 + k] = box[k] + Uniform(rnd, 0, size / 2);
+    }
+    SSStarRegionBox(box, &r);
+    CheckTreeRegion(tree, n, x, &r, name);
+    for (PetscInt k = 0; k < 3; k++) r.origin[k] = Uniform(rnd, -size, size);
+    for (PetscInt k = 0; k < 9; k++) r.axes[k] = Uniform(rnd, -1, 1);
+    for (PetscInt k = 0; k < 3; k++) {
+      r.lo[k] = Uniform(rnd, -size, size);
+      r.hi[k] = r.lo[k] + Uniform(rnd, 0, size);
+    }
+    if (j % 3 == 0) { /* a prism: unbounded along its third axis */
+      r.lo[2] = PETSC_NINFINITY;
+      r.hi[2] = PETSC_INFINITY;
+    }
+    CheckTreeRegion(tree, n, x, &r, name);
+  }
+  { /* the top boxes hold every triangle */
+    PetscReal boxes[6 * 16];
+    PetscInt  nb;
+    PetscBool held = PETSC_TRUE;
+
+    PetscCallAbort(PETSC_COMM_SELF, SSStarTreeGetBoxes(tree, 16, &nb, boxes));
+    for (PetscInt i = 0; i < n; i++) {
+      PetscReal tb[6];
+      PetscBool in = PETSC_FALSE;
+
+      SSStarTriangleBox(&x[9 * i], &x[9 * i + 3], &x[9 * i + 6], tb);
+      for (PetscInt b = 0; b < nb && !in; b++) in = (PetscBool)(tb[0] >= boxes[6 * b] && tb[1] >= boxes[6 * b + 1] && tb[2] >= boxes[6 * b + 2] && tb[3] <= boxes[6 * b + 3] && tb[4] <= boxes[6 * b + 4] && tb[5] <= boxes[6 * b + 5]);
+      held = (PetscBool)(held && in);
+    }
+    Expect((PetscBool)(held && nb <= 16 && (n == 0 ? nb == 0 : nb >= 1)), "the top boxes do not hold every triangle", name);
+  }
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTreeDestroy(&tree));
+}
+
+/* The grid z = sin(x) cos(y) / 2 over (0, m)^2, two triangles per square: points on its vertices (exact ties) */
+static void CheckTreeGrid(PetscRandom rnd)
+{
+  const PetscInt m = 12;
+  PetscReal     *x, v[4][3];
+  PetscInt       n = 0;
+  SSStarTree     tree;
+
+  PetscCallAbort(PETSC_COMM_SELF, PetscMalloc1(18 * m * m, &x));
+  for (PetscInt i = 0; i < m; i++)
+    for (PetscInt j = 0; j < m; j++) {
+      for (PetscInt c = 0; c < 4; c++) {
+        v[c][0] = i + (c == 1 || c == 2);
+        v[c][1] = j + (c >= 2);
+        v[c][2] = PetscSinReal(v[c][0]) * PetscCosReal(v[c][1]) / 2;
+      }
+      for (PetscInt k = 0; k < 3; k++) {
+        x[9 * n + k]     = v[0][k];
+        x[9 * n + 3 + k] = v[1][k];
+        x[9 * n + 6 + k] = v[2][k];
+        x[9 * n + 9 + k] = v[0][k];
+        x[9 * n + 12 + k] = v[2][k];
+        x[9 * n + 15 + k] = v[3][k];
+      }
+      n += 2;
+    }
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTreeCreate(n, x, &tree));
+  for (PetscInt i = 0; i <= m; i++)
+    for (PetscInt j = 0; j <= m; j++) {
+      PetscReal p[3] = {(PetscReal)i, (PetscReal)j, PetscSinReal((PetscReal)i) * PetscCosReal((PetscReal)j) / 2}, lifted[3] = {p[0], p[1], p[2] + 0.25};
+
+      CheckTreeClosest(tree, n, x, p, "grid vertices");
+      CheckTreeClosest(tree, n, x, lifted, "above the grid vertices");
+    }
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTreeDestroy(&tree));
+  CheckTreeQueries(rnd, n, x, m, "curved grid");
+  PetscCallAbort(PETSC_COMM_SELF, PetscFree(x));
+}
+
+static void CheckTree(PetscRandom rnd)
+{
+  const PetscInt n = 600;
+  PetscReal     *x;
+  PetscMPIInt    part[600], size[5] = {0, 0, 0, 0, 0};
+
+  PetscCallAbort(PETSC_COMM_SELF, PetscMalloc1(9 * n, &x));
+  for (PetscInt i = 0; i < 9 * n; i++) x[i] = Uniform(rnd, -1, 1); /* a soup of random triangles */
+  CheckTreeQueries(rnd, n, x, 1, "random soup");
+  for (PetscInt i = 0; i < n; i++) /* small ones, spread */
+    for (PetscInt k = 0; k < 9; k++) x[9 * i + k] = x[9 * i + k % 3] + 0.05 * x[9 * i + k];
+  CheckTreeQueries(rnd, n, x, 1, "small random triangles");
+  for (PetscInt i = 1; i < 50; i++) PetscCallAbort(PETSC_COMM_SELF, PetscArraycpy(&x[9 * i], x, 9)); /* 50 identical triangles: ties everywhere */
+  CheckTreeQueries(rnd, 50, x, 1, "identical triangles");
+  for (PetscInt i = 0; i < 50; i++) /* zero area: on a line, or a point */
+    for (PetscInt k = 0; k < 3; k++) {
+      x[9 * i + 3 + k] = i % 2 ? x[9 * i + k] : 2 * x[9 * i + 6 + k] - x[9 * i + k];
+      if (i % 5 == 0) x[9 * i + 6 + k] = x[9 * i + 3 + k] = x[9 * i + k];
+    }
+  CheckTreeQueries(rnd, 50, x, 1, "triangles of zero area");
+  CheckTreeQueries(rnd, 1, x, 1, "one triangle");
+  CheckTreeQueries(rnd, 0, x, 1, "no triangle");
+  CheckTreeGrid(rnd);
+  for (PetscInt i = 0; i < 9 * n; i++) x[i] = Uniform(rnd, -1, 1);
+  PetscCallAbort(PETSC_COMM_SELF, SSStarTrianglesPartition(n, x, 5, part));
+  for (PetscInt i = 0; i < n; i++)
+    if (part[i] >= 0 && part[i] < 5) size[part[i]]++;
+  Expect((PetscBool)(size[0] == 120 && size[1] == 120 && size[2] == 120 && size[3] == 120 && size[4] == 120), "5 parts of 120 triangles", "partition");
+  PetscCallAbort(PETSC_COMM_SELF, PetscFree(x));
+}
+
 int main(int argc, char **argv)
 {
   const Case cases[] = {
@@ -160,6 +361,7 @@ int main(int argc, char **argv)
   PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
   PetscCall(PetscRandomSetInterval(rnd, -1, 1));
   CheckRandom(rnd);
+  CheckTree(rnd);
   PetscCall(PetscRandomDestroy(&rnd));
   area = SSStarTriangleNormal(a, b, c, n);
   Expect((PetscBool)(Close(3, n, up, 1e-14) && PetscAbsReal(area - 2) <= 1e-14), "normal (0, 0, 1) and area 2", "triangle normal");

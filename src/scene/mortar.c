@@ -2,6 +2,8 @@
    Dual mortar for the contact pairs (-pair_discretization dual_mortar; Wohlmuth 2000, Popp et al. 2010): a slave node's
    contact point is its dual-basis weighted average over the slave surface, compared with the master surface over the
    overlap of the slave faces with the master triangles (pairs.c), so that the contact pressure passes the patch test.
+   The master triangles a slave face may overlap are those whose projections onto its plane meet its box there: the
+   search over the ranks finds them (SSStarSearchFindInRegions(), the prism of the face's box along its normal).
    Where the master does not cover a slave node, the node keeps node-to-surface.
 */
 #include "pairs.h"
@@ -48,6 +50,45 @@ static PetscInt ClipByTriangle(PetscInt n, PetscReal P[][2], const PetscReal T[3
 }
 
 /*
+   The plane of a slave triangle x with normal n: axes e1 (along its first edge) and e2 = n x e1 from its first vertex;
+   its vertices there (S), counterclockwise (T); the region of the master triangles that may overlap it: the prism of
+   its box in the plane, along n
+*/
+static void SlavePlane(const PetscReal x[9], const PetscReal n[3], PetscReal e1[3], PetscReal e2[3], PetscReal S[3][2], PetscReal T[3][2], SSStarRegion *region)
+{
+  PetscReal len;
+
+  for (PetscInt c = 0; c < 3; c++) e1[c] = x[3 + c] - x[c];
+  len = PetscSqrtReal(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  for (PetscInt c = 0; c < 3; c++) e1[c] /= len;
+  SSStarCross3(n, e1, e2);
+  for (PetscInt k = 0; k < 3; k++) {
+    S[k][0] = S[k][1] = 0;
+    for (PetscInt c = 0; c < 3; c++) {
+      S[k][0] += (x[3 * k + c] - x[c]) * e1[c];
+      S[k][1] += (x[3 * k + c] - x[c]) * e2[c];
+    }
+  }
+  for (PetscInt k = 0; k < 3; k++) { /* (T: S counterclockwise) */
+    const PetscInt kk = ((S[1][0] - S[0][0]) * (S[2][1] - S[0][1]) - (S[1][1] - S[0][1]) * (S[2][0] - S[0][0])) > 0 ? k : 2 - k;
+
+    T[k][0] = S[kk][0], T[k][1] = S[kk][1];
+  }
+  for (PetscInt c = 0; c < 3; c++) {
+    region->origin[c]   = x[c];
+    region->axes[c]     = e1[c];
+    region->axes[3 + c] = e2[c];
+    region->axes[6 + c] = n[c];
+  }
+  for (PetscInt c = 0; c < 2; c++) {
+    region->lo[c] = PetscMin(S[0][c], PetscMin(S[1][c], S[2][c]));
+    region->hi[c] = PetscMax(S[0][c], PetscMax(S[1][c], S[2][c]));
+  }
+  region->lo[2] = PETSC_NINFINITY;
+  region->hi[2] = PETSC_INFINITY;
+}
+
+/*
    Dual mortar (Wohlmuth): per slave node i, D_i = int N_i over the slave faces, and per master node j
    M_ij = int_overlap psi_i N_j, psi_i = 4 lambda_i - 1 the dual basis of the slave triangle (int psi_i N_k = delta_ik
    int N_k), the integrals on the slave triangle's plane, the master triangle projected onto it along the slave normal
@@ -56,13 +97,17 @@ static PetscInt ClipByTriangle(PetscInt n, PetscReal P[][2], const PetscReal T[3
    D_i, its y-dof sum_j M_ij (= D_i where the master covers the slave), in G sum_j M_ij x_j (3), in N the master
    normals weighted like the master nodes, sum over the master triangles of (int psi_i) n_m (3): the node's normal
    is the master's (as node-to-surface, and as the small-deformation Hertz theory has it), not the curved slave's.
+   The master triangles of a slave face: those whose projections meet its box in its plane, in the order of their keys.
 */
-static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, PetscInt ntri, const SSStarMasterTriangle tris[], Mat *Mm, Vec *DC, Vec *G, Vec *N)
+static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, SSStarSearch search, Mat *Mm, Vec *DC, Vec *G, Vec *N)
 {
-  SSStarFaces     faces;
-  DMLabel         label;
-  PetscInt        m, xstart, *dnz;
-  const PetscInt *own;
+  SSStarFaces      faces;
+  DMLabel          label;
+  PetscInt         m, xstart, *dnz, *face, nf = 0, *offset;
+  const PetscInt  *own;
+  SSStarRegion    *region;
+  SSStarSearchHit *hit;
+  PetscReal       *data;
 
   PetscFunctionBegin;
   PetscCall(DMCreateGlobalVector(scene->dm, DC));
@@ -88,58 +133,42 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, PetscInt nt
   PetscCall(PetscFree(dnz));
   PetscCall(SSStarFacesBegin(scene, &faces));
   PetscCall(DMGetLabel(scene->dm, scene->contact[g].name, &label));
-  for (PetscInt f = faces.fStart; f < faces.fEnd; f++) {
+  PetscCall(PetscMalloc2(faces.fEnd - faces.fStart + 1, &face, faces.fEnd - faces.fStart + 1, &region));
+  for (PetscInt f = faces.fStart; f < faces.fEnd; f++) { /* the slave faces owned here and their regions */
     PetscInt  value, dof[3], tag[3], vertex;
-    PetscReal x[9], n[3], e1[3], e2[3], len, area, S[3][2], T[3][2];
+    PetscReal x[9], n[3], e1[3], e2[3], area, S[3][2], T[3][2];
 
     PetscCall(DMLabelGetValue(label, f, &value));
     if (value < 0 || faces.leaf[f]) continue;
     PetscCall(SSStarFaceTriangle(&faces, f, x, dof, tag, &vertex, n, &area)); /* n: out of the slave body */
-    /* the slave triangle's plane: origin x0, axes e1, e2 = n x e1 */
-    for (PetscInt c = 0; c < 3; c++) e1[c] = x[3 + c] - x[c];
-    len = PetscSqrtReal(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    for (PetscInt c = 0; c < 3; c++) e1[c] /= len;
-    SSStarCross3(n, e1, e2);
-    for (PetscInt k = 0; k < 3; k++) {
-      S[k][0] = S[k][1] = 0;
-      for (PetscInt c = 0; c < 3; c++) {
-        S[k][0] += (x[3 * k + c] - x[c]) * e1[c];
-        S[k][1] += (x[3 * k + c] - x[c]) * e2[c];
-      }
-    }
-    for (PetscInt k = 0; k < 3; k++) { /* (T: S counterclockwise) */
-      const PetscInt kk = ((S[1][0] - S[0][0]) * (S[2][1] - S[0][1]) - (S[1][1] - S[0][1]) * (S[2][0] - S[0][0])) > 0 ? k : 2 - k;
+    SlavePlane(x, n, e1, e2, S, T, &region[nf]);
+    face[nf++] = f;
+  }
+  PetscCall(SSStarSearchFindInRegions(search, nf, region, &offset, &hit, &data));
+  for (PetscInt s = 0; s < nf; s++) {
+    PetscInt  dof[3], tag[3], vertex;
+    PetscReal x[9], n[3], e1[3], e2[3], area, S[3][2], T[3][2];
 
-      T[k][0] = S[kk][0], T[k][1] = S[kk][1];
-    }
+    PetscCall(SSStarFaceTriangle(&faces, face[s], x, dof, tag, &vertex, n, &area));
+    SlavePlane(x, n, e1, e2, S, T, &region[s]);
     for (PetscInt k = 0; k < 3; k++) {
       if (dof[k] < 0) continue;
       PetscCall(VecSetValue(*DC, dof[k], area / 3, ADD_VALUES));
     }
-    for (PetscInt t = 0; t < ntri; t++) {
-      const SSStarMasterTriangle *tm = &tris[t];
-      PetscReal                   Mp[3][2], P[12][2], mij[3][3], dot = 0;
-      PetscInt                    np;
+    for (PetscInt e = offset[s]; e < offset[s + 1]; e++) {
+      SSStarMasterTriangle tm;
+      PetscReal            Mp[3][2], P[12][2], mij[3][3], dot = 0;
+      PetscInt             np;
 
-      for (PetscInt c = 0; c < 3; c++) dot += tm->n[c] * n[c];
+      SSStarMasterTriangleFromHit(&hit[e], &data[SSSTAR_MASTER_DATA * e], &tm);
+      for (PetscInt c = 0; c < 3; c++) dot += tm.n[c] * n[c];
       if (dot > -0.3) continue; /* not facing the slave face */
       for (PetscInt k = 0; k < 3; k++) {
         Mp[k][0] = Mp[k][1] = 0;
         for (PetscInt c = 0; c < 3; c++) {
-          Mp[k][0] += (tm->x[3 * k + c] - x[c]) * e1[c];
-          Mp[k][1] += (tm->x[3 * k + c] - x[c]) * e2[c];
+          Mp[k][0] += (tm.x[3 * k + c] - x[c]) * e1[c];
+          Mp[k][1] += (tm.x[3 * k + c] - x[c]) * e2[c];
         }
-      }
-      {
-        PetscReal lo[2], hi[2], slo[2], shi[2];
-
-        for (PetscInt c = 0; c < 2; c++) {
-          lo[c] = PetscMin(Mp[0][c], PetscMin(Mp[1][c], Mp[2][c]));
-          hi[c] = PetscMax(Mp[0][c], PetscMax(Mp[1][c], Mp[2][c]));
-          slo[c] = PetscMin(S[0][c], PetscMin(S[1][c], S[2][c]));
-          shi[c] = PetscMax(S[0][c], PetscMax(S[1][c], S[2][c]));
-        }
-        if (lo[0] > shi[0] || hi[0] < slo[0] || lo[1] > shi[1] || hi[1] < slo[1]) continue;
       }
       for (PetscInt k = 0; k < 3; k++) P[k][0] = Mp[k][0], P[k][1] = Mp[k][1];
       np = ClipByTriangle(3, P, T);
@@ -166,17 +195,21 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, PetscInt nt
         if (dof[i] < 0) continue;
         for (PetscInt j = 0; j < 3; j++) {
           sum += mij[i][j];
-          for (PetscInt c = 0; c < 3; c++) gx[c] += mij[i][j] * tm->x[3 * j + c];
-          if (tm->dof[j] >= 0 && mij[i][j] != 0) PetscCall(MatSetValue(*Mm, dof[i], tm->dof[j], mij[i][j], ADD_VALUES));
+          for (PetscInt c = 0; c < 3; c++) gx[c] += mij[i][j] * tm.x[3 * j + c];
+          if (tm.dof[j] >= 0 && mij[i][j] != 0) PetscCall(MatSetValue(*Mm, dof[i], tm.dof[j], mij[i][j], ADD_VALUES));
         }
         PetscCall(VecSetValue(*DC, dof[i] + 1, sum, ADD_VALUES));
         for (PetscInt c = 0; c < 3; c++) {
           PetscCall(VecSetValue(*G, dof[i] + c, gx[c], ADD_VALUES));
-          PetscCall(VecSetValue(*N, dof[i] + c, sum * tm->n[c], ADD_VALUES));
+          PetscCall(VecSetValue(*N, dof[i] + c, sum * tm.n[c], ADD_VALUES));
         }
       }
     }
   }
+  PetscCall(PetscFree(offset));
+  PetscCall(PetscFree(hit));
+  PetscCall(PetscFree(data));
+  PetscCall(PetscFree2(face, region));
   PetscCall(SSStarFacesEnd(&faces));
   PetscCall(MatAssemblyBegin(*Mm, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*Mm, MAT_FINAL_ASSEMBLY));
@@ -192,7 +225,7 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, PetscInt nt
    normals weighted like the master nodes), the gap of the node against its weighted master point, and the masters
    M_ij / D_i; mortar[i] marks them. The others keep node-to-surface (scene->pairFallback counts them).
 */
-PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, PetscInt ntri, const SSStarMasterTriangle tris[], PetscReal tol, PetscBool mortar[], SSStarMasters *masters)
+PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, SSStarSearch search, PetscReal tol, PetscBool mortar[], SSStarMasters *masters)
 {
   Mat                Mm;
   Vec                DC, G, N;
@@ -201,7 +234,7 @@ PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, PetscInt ntri, co
   PetscInt           xstart, fallback = 0;
 
   PetscFunctionBegin;
-  PetscCall(MortarIntegrals(scene, g, ntri, tris, &Mm, &DC, &G, &N));
+  PetscCall(MortarIntegrals(scene, g, search, &Mm, &DC, &G, &N));
   PetscCall(VecGetOwnershipRange(DC, &xstart, NULL));
   PetscCall(VecGetArrayRead(DC, &dca));
   PetscCall(VecGetArrayRead(G, &ga));

@@ -50,15 +50,61 @@ static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
   PetscFunctionReturn(0);
 }
 
-/* Whether the obstacles of two contact groups give the node at x the same gap and normal */
-static PetscErrorCode SameObstacleAt(const SSStarContactGroup *a, const SSStarContactGroup *b, const PetscReal x[3], PetscReal tol, PetscBool *same)
+/*
+   SSStarSceneObstacleGaps - the gaps and normals of n points against the obstacles of their contact groups (group[i]
+   < 0: none, left as they are). Collective: every rank asks each group's obstacle, with its points of the group (a
+   mesh obstacle's triangles are spread over the ranks).
+*/
+PetscErrorCode SSStarSceneObstacleGaps(SSStarScene scene, PetscInt n, const PetscInt group[], const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[])
 {
-  PetscReal ga, gb, na[3], nb[3];
+  PetscInt  *at;
+  PetscReal *xg, *gg, *ng;
 
   PetscFunctionBegin;
-  PetscCall(SSStarObstacleGap(a->obstacle, x, tol, &ga, na));
-  PetscCall(SSStarObstacleGap(b->obstacle, x, tol, &gb, nb));
-  *same = (PetscBool)(PetscAbsReal(na[0] - nb[0]) + PetscAbsReal(na[1] - nb[1]) + PetscAbsReal(na[2] - nb[2]) <= 1e-12 && PetscAbsReal(ga - gb) <= tol);
+  PetscCall(PetscMalloc4(n + 1, &at, 3 * n + 1, &xg, n + 1, &gg, 3 * n + 1, &ng));
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    PetscInt m = 0;
+
+    for (PetscInt i = 0; i < n; i++)
+      if (group[i] == g) {
+        at[m] = i;
+        PetscCall(PetscArraycpy(&xg[3 * m++], &x[3 * i], 3));
+      }
+    PetscCall(SSStarObstacleGaps(scene->contact[g].obstacle, m, xg, tol, gg, ng));
+    for (PetscInt j = 0; j < m; j++) {
+      gap[at[j]] = gg[j];
+      PetscCall(PetscArraycpy(&normal[3 * at[j]], &ng[3 * j], 3));
+    }
+  }
+  PetscCall(PetscFree4(at, xg, gg, ng));
+  PetscFunctionReturn(0);
+}
+
+/* The nodes in two contact groups (group[2 e], group[2 e + 1] for node e at x[3 e]): the first whose obstacles differ
+   there (gap or normal), or none */
+static PetscErrorCode SharedNodes(SSStarScene scene, PetscInt n, const PetscInt tag[], const PetscInt group[], const PetscReal x[], PetscReal tol, SSStarBadNode *twice)
+{
+  PetscInt  *ga, *gb;
+  PetscReal *gap, *normal;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc4(n + 1, &ga, n + 1, &gb, 2 * n + 1, &gap, 6 * n + 1, &normal));
+  for (PetscInt e = 0; e < n; e++) {
+    ga[e] = group[2 * e];
+    gb[e] = group[2 * e + 1];
+  }
+  PetscCall(SSStarSceneObstacleGaps(scene, n, ga, x, tol, gap, normal));
+  PetscCall(SSStarSceneObstacleGaps(scene, n, gb, x, tol, &gap[n], &normal[3 * n]));
+  for (PetscInt e = 0; e < n && twice->tag < 0; e++) {
+    const PetscReal *na = &normal[3 * e], *nb = &normal[3 * (n + e)];
+
+    if (PetscAbsReal(na[0] - nb[0]) + PetscAbsReal(na[1] - nb[1]) + PetscAbsReal(na[2] - nb[2]) <= 1e-12 && PetscAbsReal(gap[e] - gap[n + e]) <= tol) continue;
+    twice->tag   = tag[e];
+    twice->group = group[2 * e];
+    twice->other = group[2 * e + 1];
+    PetscCall(PetscArraycpy(twice->x, &x[3 * e], 3));
+  }
+  PetscCall(PetscFree4(ga, gb, gap, normal));
   PetscFunctionReturn(0);
 }
 
@@ -97,7 +143,8 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
   DM                 dm = scene->dm, cdm;
   DMLabel           *labels;
   PetscSection       sec, gsec, csec;
-  PetscInt           vStart, vEnd, n = 0, *dofs, rstart;
+  PetscInt           vStart, vEnd, n = 0, *dofs, rstart, nshared = 0, maxShared, *sharedTag, *sharedGroup;
+  PetscReal         *sharedX;
   Vec                coordinates, areas;
   const PetscScalar *ta, *xa, *aa;
   PetscReal          tol;
@@ -118,6 +165,8 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
   PetscCall(PetscMalloc4(vEnd - vStart, &scene->tag, vEnd - vStart, &scene->group, 3 * (vEnd - vStart), &scene->coords, 3 * (vEnd - vStart), &scene->normal));
   PetscCall(PetscMalloc2(vEnd - vStart, &scene->gap, vEnd - vStart, &scene->area));
   PetscCall(PetscMalloc1(3 * (vEnd - vStart), &dofs));
+  maxShared = PetscMax(0, scene->nContact - 1) * (vEnd - vStart); /* a node in k groups: k - 1 pairs to compare */
+  PetscCall(PetscMalloc3(maxShared + 1, &sharedTag, 2 * maxShared + 1, &sharedGroup, 3 * maxShared + 1, &sharedX));
   PetscCall(VecGetArrayRead(scene->tags, &ta));
   PetscCall(VecGetArrayRead(coordinates, &xa));
   PetscCall(VecGetArrayRead(areas, &aa));
@@ -127,7 +176,6 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
   for (PetscInt v = vStart; v < vEnd; v++) {
     PetscInt  off, ncon, coff, group = -1;
     PetscReal x[3];
-    PetscBool same;
 
     PetscCall(PetscSectionGetOffset(gsec, v, &off));
     PetscCall(PetscSectionGetConstraintDof(sec, v, &ncon));
@@ -143,13 +191,11 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
         group = g;
         continue;
       }
-      PetscCall(SameObstacleAt(&scene->contact[group], &scene->contact[g], x, tol, &same));
-      if (!same && twice.tag < 0) {
-        twice.tag   = (PetscInt)PetscRealPart(ta[v - vStart]);
-        twice.group = group;
-        twice.other = g;
-        PetscCall(PetscArraycpy(twice.x, x, 3));
-      }
+      /* in two groups: their obstacles must agree at the node (SharedNodes()) */
+      sharedTag[nshared]           = (PetscInt)PetscRealPart(ta[v - vStart]);
+      sharedGroup[2 * nshared]     = group;
+      sharedGroup[2 * nshared + 1] = g;
+      PetscCall(PetscArraycpy(&sharedX[3 * nshared++], x, 3));
     }
     if (group < 0) continue;
     scene->tag[n]   = (PetscInt)PetscRealPart(ta[v - vStart]);
@@ -170,6 +216,8 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
   scene->n = n;
   PetscCall(ISCreateGeneral(scene->comm, 3 * n, dofs, PETSC_OWN_POINTER, &scene->isC));
 
+  PetscCall(SharedNodes(scene, nshared, sharedTag, sharedGroup, sharedX, tol, &twice));
+  PetscCall(PetscFree3(sharedTag, sharedGroup, sharedX));
   PetscCall(SSStarSceneShareBadNode(scene->comm, &twice, &found));
   PetscCheck(!found, scene->comm, PETSC_ERR_ARG_WRONG, "Mesh node %" PetscInt_FMT " (0-based, file order) at (%g, %g, %g) is in the contact groups \"%s\" and \"%s\" whose obstacles (-obstacle_%s, -obstacle_%s) differ at this node: a node touches one obstacle", twice.tag, (double)twice.x[0], (double)twice.x[1], (double)twice.x[2], scene->contact[twice.group].name, scene->contact[twice.other].name, scene->contact[twice.group].name, scene->contact[twice.other].name);
   for (PetscInt g = 0; g < scene->nContact; g++) {

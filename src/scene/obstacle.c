@@ -70,13 +70,17 @@ PetscErrorCode SSStarObstacleDestroy(SSStarObstacle *ob)
 }
 
 /*
-   SSStarObstacleGap - the signed distance of x to the obstacle (positive outside it) and the unit normal of its frame
-   (out of the obstacle, into the body); tol: the distance within which x lies on the obstacle's surface
+   SSStarObstacleGaps - the signed distances of n points to the obstacle (positive outside it) and the unit normals of
+   their frames (out of the obstacle, into the body); tol: the distance within which a point lies on the obstacle's
+   surface. Collective on the communicator the obstacle was made on (a mesh obstacle's triangles are spread over its
+   ranks): every rank calls it, with its own points, 0 too.
 */
-PetscErrorCode SSStarObstacleGap(SSStarObstacle ob, const PetscReal x[3], PetscReal tol, PetscReal *gap, PetscReal n[3])
+PetscErrorCode SSStarObstacleGaps(SSStarObstacle ob, PetscInt n, const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[])
 {
   PetscFunctionBegin;
-  PetscCall((*ob->ops.gap)(ob, x, tol, gap, n));
+  if (ob->ops.gaps) PetscCall((*ob->ops.gaps)(ob, n, x, tol, gap, normal));
+  else
+    for (PetscInt i = 0; i < n; i++) PetscCall((*ob->ops.gap)(ob, &x[3 * i], tol, &gap[i], &normal[3 * i]));
   PetscFunctionReturn(0);
 }
 

@@ -22,7 +22,7 @@ PETSC_INTERN PetscErrorCode SSStarObstacleCreateFromString(MPI_Comm, const char[
 PETSC_INTERN PetscErrorCode SSStarObstacleCreateDefault(SSStarObstacle *);
 PETSC_INTERN PetscErrorCode SSStarObstacleHelp(char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarObstacleDestroy(SSStarObstacle *);
-PETSC_INTERN PetscErrorCode SSStarObstacleGap(SSStarObstacle, const PetscReal[3], PetscReal, PetscReal *, PetscReal[3]);
+PETSC_INTERN PetscErrorCode SSStarObstacleGaps(SSStarObstacle, PetscInt, const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarObstacleDescribe(SSStarObstacle, char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarObstacleWriteAttributes(SSStarObstacle, SSStarAttributeWriter *);
 PETSC_INTERN const char    *SSStarObstacleInsideHint(SSStarObstacle);

@@ -11,6 +11,8 @@ typedef struct {
   PetscErrorCode (*setfromstring)(SSStarObstacle, MPI_Comm, const char option[], const char spec[], const char numbers[]);
   /* the signed distance of x (positive outside), the unit normal out of the obstacle; tol: x on the surface */
   PetscErrorCode (*gap)(SSStarObstacle, const PetscReal x[3], PetscReal tol, PetscReal *gap, PetscReal n[3]);
+  /* the same for n points at once, collective: a shape whose data are spread over the ranks sets it instead of gap */
+  PetscErrorCode (*gaps)(SSStarObstacle, PetscInt n, const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[]);
   PetscErrorCode (*describe)(SSStarObstacle, char text[], size_t len);
   PetscErrorCode (*attributes)(SSStarObstacle, SSStarAttributeWriter *);
   PetscErrorCode (*destroy)(SSStarObstacle);

@@ -16,13 +16,14 @@ static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
 {
   SSStarBadNode inside = {-1, -1, -1, {0, 0, 0}, 0};
   PetscBool     found;
+  PetscInt     *group;
 
   PetscFunctionBegin;
+  PetscCall(PetscMalloc1(scene->n + 1, &group));
+  for (PetscInt i = 0; i < scene->n; i++) group[i] = scene->contact[scene->group[i]].master[0] ? -1 : scene->group[i];
+  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, scene->coords, tol, scene->gap, scene->normal));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-
-    if (cg->master[0]) continue;
-    PetscCall(SSStarObstacleGap(cg->obstacle, &scene->coords[3 * i], tol, &scene->gap[i], &scene->normal[3 * i]));
+    if (group[i] < 0) continue;
     if (scene->gap[i] < -tol && inside.tag < 0) {
       inside.tag   = scene->tag[i];
       inside.group = scene->group[i];
@@ -31,6 +32,7 @@ static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
     }
     if (PetscAbsReal(scene->gap[i]) <= tol) scene->gap[i] = 0.0; /* on the obstacle up to round-off: touching */
   }
+  PetscCall(PetscFree(group));
   PetscCall(SSStarSceneShareBadNode(scene->comm, &inside, &found));
   PetscCheck(!found, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Mesh node %" PetscInt_FMT " (0-based, file order) of contact group \"%s\" at (%g, %g, %g) starts %g inside the obstacle of -obstacle_%s (%s)", inside.tag, scene->contact[inside.group].name, (double)inside.x[0], (double)inside.x[1], (double)inside.x[2], (double)-inside.gap, scene->contact[inside.group].name, SSStarObstacleInsideHint(scene->contact[inside.group].obstacle));
   PetscFunctionReturn(0);

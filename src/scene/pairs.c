@@ -56,87 +56,52 @@ PetscErrorCode SSStarPairsCheckOptions(SSStarScene scene)
   PetscFunctionReturn(0);
 }
 
-#define SSSTAR_TRIANGLE_PACKED 19 /* x[9], n[3], dof[3], tag[3], body */
-
-/* The faces of the master group of pair g owned here, gathered on every rank */
-static PetscErrorCode GatherMasters(SSStarScene scene, PetscInt g, PetscInt *ntri, SSStarMasterTriangle **tris)
+/*
+   The master faces of pair g owned here, in a search over the ranks (no rank gathers them all): their vertices, keys
+   (their vertices' file indices, sorted: of equally close triangles the first in this order wins, on any number of
+   ranks) and data (the normal out of the master body, the x-dofs); the bodies the master faces are on, over all ranks
+*/
+static PetscErrorCode MasterSearch(SSStarScene scene, PetscInt g, SSStarSearch *search, PetscInt *nbodies, PetscInt **bodies)
 {
-  SSStarFaces  faces;
-  DMLabel      label;
-  PetscInt     nloc = 0;
-  PetscReal   *loc, *all;
-  PetscMPIInt  size, *counts, *displs, total = 0, mine;
+  SSStarFaces faces;
+  DMLabel     label;
+  PetscInt    n = 0, *key, *body;
+  PetscReal  *x, *data;
+  PetscMPIInt size, mine, *counts, *displs, total = 0;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
   PetscCall(SSStarFacesBegin(scene, &faces));
   PetscCall(DMGetLabel(scene->dm, scene->contact[g].master, &label));
-  PetscCall(PetscMalloc1(SSSTAR_TRIANGLE_PACKED * (faces.fEnd - faces.fStart) + 1, &loc));
+  PetscCall(PetscMalloc4(9 * (faces.fEnd - faces.fStart) + 1, &x, 3 * (faces.fEnd - faces.fStart) + 1, &key, SSSTAR_MASTER_DATA * (faces.fEnd - faces.fStart) + 1, &data, faces.fEnd - faces.fStart + 1, &body));
   for (PetscInt f = faces.fStart; f < faces.fEnd; f++) {
-    PetscInt   value, dof[3], tag[3], vertex;
-    PetscReal *a = &loc[SSSTAR_TRIANGLE_PACKED * nloc], area;
+    PetscInt  value, dof[3], vertex;
+    PetscReal area;
 
     PetscCall(DMLabelGetValue(label, f, &value));
     if (value < 0 || faces.leaf[f]) continue;
-    PetscCall(SSStarFaceTriangle(&faces, f, a, dof, tag, &vertex, &a[9], &area));
-    for (PetscInt k = 0; k < 3; k++) {
-      a[12 + k] = (PetscReal)dof[k];
-      a[15 + k] = (PetscReal)tag[k];
-    }
-    a[18] = (PetscReal)scene->body[vertex - faces.vStart];
-    nloc++;
+    PetscCall(SSStarFaceTriangle(&faces, f, &x[9 * n], dof, &key[3 * n], &vertex, &data[SSSTAR_MASTER_DATA * n], &area));
+    PetscCall(PetscSortInt(3, &key[3 * n]));
+    for (PetscInt k = 0; k < 3; k++) data[SSSTAR_MASTER_DATA * n + 3 + k] = (PetscReal)dof[k];
+    body[n++] = scene->body[vertex - faces.vStart];
   }
   PetscCall(SSStarFacesEnd(&faces));
+  PetscCall(SSStarSearchCreate(scene->comm, n, x, key, SSSTAR_MASTER_DATA, data, search));
+  PetscCall(PetscSortRemoveDupsInt(&n, body));
+  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
   PetscCall(PetscMalloc2(size, &counts, size, &displs));
-  mine = (PetscMPIInt)(SSSTAR_TRIANGLE_PACKED * nloc);
+  mine = (PetscMPIInt)n;
   PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, counts, 1, MPI_INT, scene->comm));
   for (PetscMPIInt r = 0; r < size; r++) {
     displs[r] = total;
     total += counts[r];
   }
-  PetscCall(PetscMalloc1(total + 1, &all));
-  PetscCallMPI(MPI_Allgatherv(loc, mine, MPIU_REAL, all, counts, displs, MPIU_REAL, scene->comm));
-  *ntri = total / SSSTAR_TRIANGLE_PACKED;
-  PetscCall(PetscMalloc1(*ntri + 1, tris));
-  for (PetscInt t = 0; t < *ntri; t++) {
-    const PetscReal      *a  = &all[SSSTAR_TRIANGLE_PACKED * t];
-    SSStarMasterTriangle *tr = &(*tris)[t];
-
-    for (PetscInt k = 0; k < 9; k++) tr->x[k] = a[k];
-    for (PetscInt k = 0; k < 3; k++) {
-      tr->n[k]   = a[9 + k];
-      tr->dof[k] = (PetscInt)a[12 + k];
-      tr->tag[k] = (PetscInt)a[15 + k];
-    }
-    tr->body = (PetscInt)a[18];
-  }
-  PetscCall(PetscFree(all));
+  PetscCall(PetscMalloc1(total + 1, bodies));
+  PetscCallMPI(MPI_Allgatherv(body, mine, MPIU_INT, *bodies, counts, displs, MPIU_INT, scene->comm));
+  *nbodies = total;
+  PetscCall(PetscSortRemoveDupsInt(nbodies, *bodies));
   PetscCall(PetscFree2(counts, displs));
-  PetscCall(PetscFree(loc));
+  PetscCall(PetscFree4(x, key, data, body));
   PetscFunctionReturn(0);
-}
-
-/* Lexicographic order of the sorted file indices of two triangles (a tie between equally close triangles) */
-static void Sort3(PetscInt a[3])
-{
-  for (PetscInt i = 1; i < 3; i++)
-    for (PetscInt j = i; j > 0 && a[j - 1] > a[j]; j--) {
-      const PetscInt t = a[j];
-
-      a[j]     = a[j - 1];
-      a[j - 1] = t;
-    }
-}
-
-static PetscBool TriangleBefore(const SSStarMasterTriangle *s, const SSStarMasterTriangle *t)
-{
-  PetscInt a[3] = {s->tag[0], s->tag[1], s->tag[2]}, b[3] = {t->tag[0], t->tag[1], t->tag[2]};
-
-  Sort3(a);
-  Sort3(b);
-  for (PetscInt k = 0; k < 3; k++)
-    if (a[k] != b[k]) return (PetscBool)(a[k] < b[k]);
-  return PETSC_FALSE;
 }
 
 /* The body of each owned contact node, through its file index */
@@ -168,86 +133,89 @@ static PetscErrorCode NodeBodies(SSStarScene scene, PetscInt **nodeBody)
 }
 
 /*
-   SSStarPairRows - the rows of B of the slave nodes of pair g: each node's closest master triangle gives its normal (the
-   triangle's, out of the master body; where the node lies beyond the master's rim, the direction from the closest
-   point), its gap and its master weights; with dual mortar, the mortar rows where the master covers the node (mortar.c).
-   Refuses a pair whose two groups are on one body, and a master group without triangles.
+   SSStarPairRows - the rows of B of the slave nodes of pair g: each node's closest master triangle (over the ranks; of
+   the triangles within the contact tolerance of the closest distance, the first by sorted file indices) gives its
+   normal (the triangle's, out of the master body; where the node lies beyond the master's rim, the direction from the
+   closest point), its gap and its master weights; with dual mortar, the mortar rows where the master covers the node
+   (mortar.c). Refuses a pair whose two groups are on one body, and a master group without triangles.
 */
 PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, SSStarMasters *masters)
 {
   const SSStarContactGroup *cg = &scene->contact[g];
-  PetscInt                  ntri = 0, bad = -1, *nodeBody, *nearest;
-  SSStarMasterTriangle     *tris;
+  PetscInt                  ntri, bad = -1, *nodeBody, nbodies, *bodies, np = 0, *at;
+  SSStarSearch              search;
+  SSStarSearchHit          *hit;
   PetscBool                *mortar;
-  PetscReal                 tol, *weights;
+  PetscReal                 tol, *p, *data;
 
   PetscFunctionBegin;
   PetscCall(SSStarSceneContactTolerance(scene, &tol));
-  PetscCall(GatherMasters(scene, g, &ntri, &tris));
+  PetscCall(MasterSearch(scene, g, &search, &nbodies, &bodies));
+  PetscCall(SSStarSearchGetSize(search, NULL, &ntri, NULL));
+  if (!ntri) {
+    PetscCall(SSStarSearchDestroy(&search));
+    PetscCall(PetscFree(bodies));
+  }
   PetscCheck(ntri > 0, scene->comm, PETSC_ERR_ARG_WRONG, "Option -contact_pair_%s %s: the master group has no triangles", cg->name, cg->master);
   PetscCall(NodeBodies(scene, &nodeBody));
-  PetscCall(PetscMalloc3(scene->n + 1, &nearest, 3 * scene->n + 1, &weights, scene->n + 1, &mortar));
+  PetscCall(PetscMalloc3(scene->n + 1, &at, 3 * scene->n + 1, &p, scene->n + 1, &mortar));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const PetscReal *p    = &scene->coords[3 * i];
-    PetscReal        best = PETSC_MAX_REAL, *w = &weights[3 * i], q[3];
-    PetscInt         b    = -1;
+    PetscInt found;
 
-    nearest[i] = -1;
-    mortar[i]  = PETSC_FALSE;
+    mortar[i] = PETSC_FALSE;
     if (scene->group[i] != g) continue;
-    for (PetscInt t = 0; t < ntri; t++) {
-      PetscReal d = 0;
-
-      if (tris[t].body == nodeBody[i]) {
-        if (bad < 0) bad = scene->tag[i];
-        continue;
-      }
-      SSStarClosestPointOnTriangle(p, &tris[t].x[0], &tris[t].x[3], &tris[t].x[6], NULL, q, NULL);
-      for (PetscInt k = 0; k < 3; k++) d += PetscSqr(p[k] - (q[0] * tris[t].x[k] + q[1] * tris[t].x[3 + k] + q[2] * tris[t].x[6 + k]));
-      d = PetscSqrtReal(d);
-      if (d < best - tol || (d <= best + tol && b >= 0 && TriangleBefore(&tris[t], &tris[b]))) {
-        best = PetscMin(best, d);
-        b    = t;
-      }
-    }
-    if (b < 0) continue; /* every master triangle on the slave's body: refused below */
-    nearest[i] = b;
-    {
-      const SSStarMasterTriangle *t = &tris[b];
-      PetscReal                   c[3], dc[3], n[3], len = 0, gap = 0;
-
-      SSStarClosestPointOnTriangle(p, &t->x[0], &t->x[3], &t->x[6], NULL, w, NULL);
-      for (PetscInt k = 0; k < 3; k++) {
-        c[k]  = w[0] * t->x[k] + w[1] * t->x[3 + k] + w[2] * t->x[6 + k];
-        dc[k] = p[k] - c[k];
-        len += dc[k] * dc[k];
-        gap += dc[k] * t->n[k];
-      }
-      len = PetscSqrtReal(len);
-      /* inside the triangle (the normal projection), or on its rim within round-off: the face's normal and signed distance */
-      if (PetscAbsReal(PetscAbsReal(gap) - len) <= tol * 1e2 + 1e-8 * len || len <= tol) {
-        for (PetscInt k = 0; k < 3; k++) n[k] = t->n[k];
-      } else if (gap > 0) { /* beyond the rim, outside: the direction from the closest point */
-        for (PetscInt k = 0; k < 3; k++) n[k] = dc[k] / len;
-        gap = len;
-      } else {
-        for (PetscInt k = 0; k < 3; k++) n[k] = t->n[k];
-      }
-      if (PetscAbsReal(gap) <= tol) gap = 0;
-      scene->gap[i] = gap;
-      for (PetscInt k = 0; k < 3; k++) scene->normal[3 * i + k] = n[k];
-    }
+    PetscCall(PetscFindInt(nodeBody[i], nbodies, bodies, &found));
+    if (found >= 0 && bad < 0) bad = scene->tag[i];
+    at[np] = i;
+    PetscCall(PetscArraycpy(&p[3 * np++], &scene->coords[3 * i], 3));
   }
   PetscCall(PetscFree(nodeBody));
+  PetscCall(PetscFree(bodies));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MAX, scene->comm));
-  PetscCheck(bad < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Option -contact_pair_%s %s: the groups \"%s\" and \"%s\" are on the same body (a contact pair is between two bodies: meshes that do not share nodes)", cg->name, cg->master, cg->name, cg->master);
-  if (scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(SSStarMortarRows(scene, g, ntri, tris, tol, mortar, masters));
-  for (PetscInt i = 0; i < scene->n; i++) { /* node-to-surface: the vertices of the closest triangle that move */
-    if (nearest[i] < 0 || mortar[i]) continue;
-    for (PetscInt j = 0; j < 3; j++)
-      if (tris[nearest[i]].dof[j] >= 0 && weights[3 * i + j] != 0) PetscCall(SSStarMastersAdd(masters, i, tris[nearest[i]].dof[j], weights[3 * i + j]));
+  if (bad >= 0) {
+    PetscCall(SSStarSearchDestroy(&search));
+    PetscCall(PetscFree3(at, p, mortar));
   }
-  PetscCall(PetscFree3(nearest, weights, mortar));
-  PetscCall(PetscFree(tris));
+  PetscCheck(bad < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Option -contact_pair_%s %s: the groups \"%s\" and \"%s\" are on the same body (a contact pair is between two bodies: meshes that do not share nodes)", cg->name, cg->master, cg->name, cg->master);
+  PetscCall(PetscMalloc2(np + 1, &hit, SSSTAR_MASTER_DATA * np + 1, &data));
+  PetscCall(SSStarSearchClosest(search, np, p, tol, hit, data));
+  for (PetscInt j = 0; j < np; j++) {
+    const PetscInt       i = at[j];
+    const PetscReal     *x = &scene->coords[3 * i], *w = hit[j].w;
+    SSStarMasterTriangle t;
+    PetscReal            c[3], dc[3], n[3], len = 0, gap = 0;
+
+    SSStarMasterTriangleFromHit(&hit[j], &data[SSSTAR_MASTER_DATA * j], &t);
+    for (PetscInt k = 0; k < 3; k++) {
+      c[k]  = w[0] * t.x[k] + w[1] * t.x[3 + k] + w[2] * t.x[6 + k];
+      dc[k] = x[k] - c[k];
+      len += dc[k] * dc[k];
+      gap += dc[k] * t.n[k];
+    }
+    len = PetscSqrtReal(len);
+    /* inside the triangle (the normal projection), or on its rim within round-off: the face's normal and signed distance */
+    if (PetscAbsReal(PetscAbsReal(gap) - len) <= tol * 1e2 + 1e-8 * len || len <= tol) {
+      for (PetscInt k = 0; k < 3; k++) n[k] = t.n[k];
+    } else if (gap > 0) { /* beyond the rim, outside: the direction from the closest point */
+      for (PetscInt k = 0; k < 3; k++) n[k] = dc[k] / len;
+      gap = len;
+    } else {
+      for (PetscInt k = 0; k < 3; k++) n[k] = t.n[k];
+    }
+    if (PetscAbsReal(gap) <= tol) gap = 0;
+    scene->gap[i] = gap;
+    for (PetscInt k = 0; k < 3; k++) scene->normal[3 * i + k] = n[k];
+  }
+  if (scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(SSStarMortarRows(scene, g, search, tol, mortar, masters));
+  for (PetscInt j = 0; j < np; j++) { /* node-to-surface: the vertices of the closest triangle that move */
+    const PetscReal *dof = &data[SSSTAR_MASTER_DATA * j + 3];
+
+    if (mortar[at[j]]) continue;
+    for (PetscInt k = 0; k < 3; k++)
+      if (dof[k] >= 0 && hit[j].w[k] != 0) PetscCall(SSStarMastersAdd(masters, at[j], (PetscInt)dof[k], hit[j].w[k]));
+  }
+  PetscCall(PetscFree2(hit, data));
+  PetscCall(PetscFree3(at, p, mortar));
+  PetscCall(SSStarSearchDestroy(&search));
   PetscFunctionReturn(0);
 }

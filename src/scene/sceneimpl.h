@@ -170,6 +170,7 @@ PETSC_INTERN PetscErrorCode SSStarSceneGroupUses(SSStarScene, PetscInt *, SSStar
 PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);

@@ -148,8 +148,8 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
   PetscSection       csec;
   Vec                coordinates, uC, rC;
   PetscBool         *ghost;
-  PetscInt           pStart, vStart, vEnd, fStart, fEnd, nq = 0, q, *tag, *pos, *all, ntri = 0, *tri, c = 0;
-  PetscReal         *x, *du, *st, *pr, *tt, *sl, *gp, *kin[4];
+  PetscInt           pStart, vStart, vEnd, fStart, fEnd, nq = 0, q, *tag, *pos, *all, ntri = 0, *tri, c = 0, *held, *faceGroup;
+  PetscReal         *x, *du, *st, *pr, *tt, *sl, *gp, *kin[4], *normal, *faceNormal, *centre;
   const PetscScalar *ta, *xa, *ua, *ra;
   PetscMPIInt        rank, size;
   hid_t              group;
@@ -178,6 +178,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
   PetscCall(PetscMalloc2(vEnd - vStart + 1, &tag, vEnd - vStart + 1, &pos));
   PetscCall(PetscMalloc5(3 * (vEnd - vStart) + 1, &x, 3 * (vEnd - vStart) + 1, &du, vEnd - vStart + 1, &st, vEnd - vStart + 1, &pr, 3 * (vEnd - vStart) + 1, &tt));
   PetscCall(PetscMalloc2(3 * (vEnd - vStart) + 1, &sl, vEnd - vStart + 1, &gp));
+  PetscCall(PetscMalloc2(vEnd - vStart + 1, &held, 3 * (vEnd - vStart) + 1, &normal));
   PetscCall(PetscMalloc4(scene->n + 1, &kin[0], scene->n + 1, &kin[1], 3 * scene->n + 1, &kin[2], 3 * scene->n + 1, &kin[3]));
   PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3])); /* gap and slip: against a plane or a master surface */
   for (PetscInt v = vStart; v < vEnd; v++) {
@@ -205,26 +206,29 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
         sl[3 * nq + k] = kin[3][3 * c + k]; /* for a plane, u - (u.n) n */
       }
       c++;
-    } else { /* held fixed (Dirichlet) */
-      PetscReal n[3];
-
-      st[nq] = -1;
-      pr[nq] = 0;
-      PetscCall(SSStarObstacleGap(scene->contact[g].obstacle, xv, 0, &gp[nq], n));
-      if (scene->contact[g].motion) gp[nq] -= SSStarDot3(n, scene->contact[g].d); /* the obstacle moved by d */
+      held[nq] = -1;
+    } else { /* held fixed (Dirichlet): its gap to the obstacle, below */
+      st[nq]   = -1;
+      pr[nq]   = 0;
+      held[nq] = g;
       for (PetscInt k = 0; k < 3; k++) du[3 * nq + k] = tt[3 * nq + k] = sl[3 * nq + k] = 0;
     }
     nq++;
   }
+  PetscCall(SSStarSceneObstacleGaps(scene, nq, held, x, 0, gp, normal));
+  for (PetscInt i = 0; i < nq; i++) /* an obstacle moved by d */
+    if (held[i] >= 0 && scene->contact[held[i]].motion) gp[i] -= SSStarDot3(&normal[3 * i], scene->contact[held[i]].d);
+  PetscCall(PetscFree2(held, normal));
   PetscCheck(c == scene->n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " of the %" PetscInt_FMT " contact nodes found on the contact faces", c, scene->n);
   PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
   PetscCall(SSStarFileOrder(comm, nq, tag, &q, &all, pos));
 
   /* the owned contact faces, as rows of 3 positions among the face vertices, their normal out of the body */
   PetscCall(PetscMalloc1(3 * (fEnd - fStart) + 1, &tri));
-  for (PetscInt f = fStart; f < fEnd; f++) {
-    PetscInt *closure = NULL, nclosure, nv = 0, g, verts[3];
-    PetscReal xv[3][3], e1[3], e2[3], nrm[3];
+  PetscCall(PetscMalloc3(fEnd - fStart + 1, &faceGroup, 3 * (fEnd - fStart) + 1, &faceNormal, 3 * (fEnd - fStart) + 1, &centre));
+  for (PetscInt f = fStart; f < fEnd; f++) { /* each face's vertices (file indices), normal and centre */
+    PetscInt *closure = NULL, nclosure, nv = 0, g, *verts = &tri[3 * ntri];
+    PetscReal xv[3][3], e1[3], e2[3];
 
     if (ghost[f - pStart]) continue;
     PetscCall(PointGroup(scene, labels, f, &g));
@@ -244,32 +248,38 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
     PetscCall(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &nclosure, &closure));
     PetscCheck(nv == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "Face %" PetscInt_FMT " of contact group %s has %" PetscInt_FMT " vertices, not 3", f, scene->contact[g].name, nv);
     for (PetscInt k = 0; k < 3; k++) {
-      e1[k] = xv[1][k] - xv[0][k];
-      e2[k] = xv[2][k] - xv[0][k];
+      e1[k]                = xv[1][k] - xv[0][k];
+      e2[k]                = xv[2][k] - xv[0][k];
+      centre[3 * ntri + k] = (xv[0][k] + xv[1][k] + xv[2][k]) / 3;
     }
-    SSStarCross3(e1, e2, nrm);
-    {
-      PetscReal centre[3], gap, n[3];
-
-      for (PetscInt k = 0; k < 3; k++) centre[k] = (xv[0][k] + xv[1][k] + xv[2][k]) / 3;
-      PetscCall(SSStarObstacleGap(scene->contact[g].obstacle, centre, 0, &gap, n));
-      for (PetscInt k = 0; k < 3; k++) e1[k] = n[k];
-    }
-    if (SSStarDot3(nrm, e1) > 0) { /* the obstacle's normal (at the face's centre) points into the body; the face's out of it */
-      const PetscInt t = verts[1];
-
-      verts[1] = verts[2];
-      verts[2] = t;
-    }
-    for (PetscInt k = 0; k < 3; k++) {
-      PetscInt at;
-
-      PetscCall(PetscFindInt(verts[k], q, all, &at));
-      PetscCheck(at >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Vertex %" PetscInt_FMT " of a contact face is not among the contact faces' vertices", verts[k]);
-      tri[3 * ntri + k] = at;
-    }
-    ntri++;
+    SSStarCross3(e1, e2, &faceNormal[3 * ntri]);
+    faceGroup[ntri++] = g;
   }
+  { /* the obstacle's normal (at the face's centre) points into the body; the face's out of it */
+    PetscReal *gap, *n;
+
+    PetscCall(PetscMalloc2(ntri + 1, &gap, 3 * ntri + 1, &n));
+    PetscCall(SSStarSceneObstacleGaps(scene, ntri, faceGroup, centre, 0, gap, n));
+    for (PetscInt t = 0; t < ntri; t++) {
+      PetscInt *verts = &tri[3 * t];
+
+      if (SSStarDot3(&faceNormal[3 * t], &n[3 * t]) > 0) {
+        const PetscInt v = verts[1];
+
+        verts[1] = verts[2];
+        verts[2] = v;
+      }
+      for (PetscInt k = 0; k < 3; k++) {
+        PetscInt at;
+
+        PetscCall(PetscFindInt(verts[k], q, all, &at));
+        PetscCheck(at >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Vertex %" PetscInt_FMT " of a contact face is not among the contact faces' vertices", verts[k]);
+        verts[k] = at;
+      }
+    }
+    PetscCall(PetscFree2(gap, n));
+  }
+  PetscCall(PetscFree3(faceGroup, faceNormal, centre));
   PetscCall(VecRestoreArrayRead(rC, &ra));
   PetscCall(VecRestoreArrayRead(uC, &ua));
   PetscCall(VecRestoreSubVector(r, scene->isC, &rC));

@@ -129,6 +129,12 @@ struct _n_SSStarScene {
 PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarMeshLoadCached(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarMeshCacheFromModel(const char[]);
+/* meshfaces.c: the faces of the cached mesh, and vertex triples matched over the ranks */
+PETSC_INTERN PetscErrorCode SSStarMeshAddFaces(DM, const PetscInt[], DM *);
+PETSC_INTERN PetscMPIInt    SSStarTripleHomeRank(const PetscInt[3], PetscMPIInt);
+PETSC_INTERN int            SSStarTripleCompare(const void *, const void *);
+PETSC_INTERN void           SSStarTripleSort(PetscInt[3]);
+PETSC_INTERN PetscErrorCode SSStarTripleExchange(MPI_Comm, PetscInt, const PetscMPIInt[], const PetscInt[], PetscInt *, PetscInt **);
 PETSC_INTERN PetscErrorCode SSStarMeshCellVertices(DM, PetscInt, PetscInt[4]);
 PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);

@@ -104,7 +104,8 @@ bench: all
 	$(PYTHON) bench/newton.py
 	$(PYTHON) bench/schur.py
 
-# levels 24, 32, 40 on the whole body (2 ranks, one run each, with the AMG yardstick): about 30 minutes
+# levels 8, 16, 24, 32, 40 on the whole body, 1 and 2 ranks (medians of 3 up to level 24, one run at 32 and 40), with
+# the AMG yardstick of each level in the same run: about 40 minutes on a quiet machine
 bench-large: all
 	$(PYTHON) bench/table2.py --large
 

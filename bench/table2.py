@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Table 2 of the seed, measured on both paths: examples/prism at levels L on 1 and 2 ranks, the median of several runs.
 
-  bench/table2.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--paths direct,none]
+  bench/table2.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--once-from L] [--paths direct,none]
                   [--yardsticks cholesky,amg] [--cholesky-max-level 14]
-  bench/table2.py --large          # levels 24, 32, 40 on the whole body, 2 ranks, one run each (make bench-large)
+  bench/table2.py --large          # levels 8, 16, 24, 32, 40 on the whole body, 1 and 2 ranks (make bench-large):
+                                   # medians of 3 runs up to level 24, one run at 32 and 40 (their time)
 
 Per level, ranks and path (direct: the dense route, P formed by MUMPS and the Newton steps by LU; none: the whole
 body, P never formed, Krylov + multigrid): the phases of the summary row (assembly = mesh to K, schur = the
@@ -93,28 +94,30 @@ def main():
     parser.add_argument("--paths", default="direct,none")
     parser.add_argument("--yardsticks", default="cholesky,amg", help="the yardsticks to measure (empty: none)")
     parser.add_argument("--cholesky-max-level", type=int, default=14, help="no Cholesky yardstick above this level (its time and memory)")
-    parser.add_argument("--large", action="store_true", help="levels 24, 32, 40 on the whole body, 2 ranks, one run (make bench-large)")
+    parser.add_argument("--once-from", type=int, default=10**6, help="levels from this one run once (their time)")
+    parser.add_argument("--large", action="store_true", help="levels 8-40 on the whole body, 1 and 2 ranks, one run from level 32 (make bench-large)")
     args = parser.parse_args()
     if args.large:
-        args.levels, args.ranks, args.repeat, args.paths, args.yardsticks = "24,32,40", "2", 1, "none", "amg"
+        args.levels, args.ranks, args.paths, args.yardsticks, args.once_from = "8,16,24,32,40", "1,2", "none", "amg", 32
     os.makedirs(OUT, exist_ok=True)
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
     paths = args.paths.split(",")
     sticks = [s for s in args.yardsticks.split(",") if s]
     rows = []
-    print("medians of %d runs, seconds; seed = the slides' Table 2 (MATLAB); direct = the dense route, none = the whole body" % args.repeat)
+    print("medians of %d runs%s, seconds; seed = the slides' Table 2 (MATLAB); direct = the dense route, none = the whole body" % (args.repeat, " (one from level %d)" % args.once_from if args.once_from < 10**6 else ""))
     print("level ranks path    nodes contact assembly   schur   solve   whole  (seed) seed/ours iters krylov/step peak[GB] cholesky amg  whole/chol whole/amg  sep/slide/stick reason")
     for level in level_list(args.levels):
+        repeat = args.repeat if level < args.once_from else 1
         for ranks in (int(r) for r in args.ranks.split(",")):
             ys = {}
             for s in sticks:
                 if s == "cholesky" and level > args.cholesky_max_level:
                     ys[s] = math.nan
                     continue
-                ys[s] = statistics.median(yardstick(level, ranks, s) for _ in range(args.repeat))
+                ys[s] = statistics.median(yardstick(level, ranks, s) for _ in range(repeat))
             measured = {path: [] for path in paths}
-            for _ in range(args.repeat):  # the paths interleaved, so that a noisy spell hits both
+            for _ in range(repeat):  # the paths interleaved, so that a noisy spell hits both
                 for path in paths:
                     r = measure(level, ranks, path)
                     if r:

@@ -3,13 +3,15 @@
 #include "../sys/meminfo.h"
 
 /*
-   Measured with the prism at levels 6, 10, 12 (peak resident memory, one rank): reading, interpolating and
-   distributing the mesh, the assembly of K and the load take less than 30 kB per node (MESH_BYTES): what every path
-   needs. A lower bound on purpose: the factors of K and the dense P of the dense route are left to the reduction,
-   which checks its own estimate (after MUMPS's analysis) against the same limit, and auto takes the whole-body path
-   where P does not fit (src/reduction).
+   Measured with the prism (resident memory after the assembly, one rank, the progress lines of examples/prism): reading
+   and distributing the mesh (faces, no edges), the assembly of K and the load take 6.0 kB per node at level 16 (0.42 GB
+   for 70 785 nodes); SSSTAR_MESH_BYTES is below that: what every path needs at least. A lower bound on purpose: the
+   factors of K and the dense P of the dense route are left to the reduction, which checks its own estimate (after
+   MUMPS's analysis) against the same limit, and auto takes the whole-body path where P does not fit (src/reduction).
+   The whole run on the whole body peaked at 9.3 kB per node on one rank at level 32 (5.1 GB), 16.9 kB on two (4.6 GB
+   each). The 30 kB of the mesh with edges (DMPlexInterpolate) refused level 40, which fits.
 */
-#define SSSTAR_MESH_BYTES 30000.0
+#define SSSTAR_MESH_BYTES 5000.0
 
 /* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
    summed over the machines */

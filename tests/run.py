@@ -8,6 +8,7 @@ import os
 import subprocess
 import sys
 import time
+import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from harness import OUT, TESTS, Failure  # noqa: E402
@@ -34,9 +35,10 @@ def main():
             fn()
             passed += 1
             print("ok   %-28s %6.1fs" % (name, time.time() - t0), flush=True)
-        except (Failure, subprocess.TimeoutExpired) as e:
+        except Exception as e:  # a test that breaks is a failure of that test, not the end of the suite
             failed += 1
-            print("FAIL %-28s %6.1fs\n  requirement: %s\n  %s" % (name, time.time() - t0, requirement, str(e).replace("\n", "\n  ")), flush=True)
+            detail = str(e) if isinstance(e, (Failure, subprocess.TimeoutExpired)) else traceback.format_exc()
+            print("FAIL %-28s %6.1fs\n  requirement: %s\n  %s" % (name, time.time() - t0, requirement, detail.replace("\n", "\n  ")), flush=True)
         if args.v:
             print("     " + requirement)
     print("%d passed, %d failed" % (passed, failed))

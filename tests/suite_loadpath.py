@@ -52,11 +52,14 @@ CONTACT = os.path.join(ROOT, "examples", "contact")
 PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
 STEP = re.compile(r"^step (\d+)/(\d+) t (\S+?)( \(halved \d+x\))?: load", re.M)
 
-# (11.1)-(11.2): a nearly rigid block (E = 2e7; at 2e8 the whole-body path's Krylov steps do not converge on the releases) on the plane z = 0, pressed by P = 10 (the traction on its top, area 1),
+# (11.1)-(11.2): a nearly rigid block (E = 2e8: on its spring alone it nearly floats, E/k = 2e5, the whole body's hard case) on the plane z = 0, pressed by P = 10 (the traction on its top, area 1),
 # held along x by the spring on its top (k = 1000 per unit area, area 1), sheared by Q = 7.5 > phi P = 5, released,
 # sheared back and released: u_x = +-(Q - phi P)/k = +-2.5e-3 after the releases
-BLOCK = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2e7", "-nu", "0.3", "-spring_top", "1000", "-contact", "bottom",
+BLOCK = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2e8", "-nu", "0.3", "-spring_top", "1000", "-contact", "bottom",
          "-friction_bottom", "0.5", "-traction_top", "0:0,0,0;1:0,0,-10;2:7.5,0,-10;3:0,0,-10;4:-7.5,0,-10;5:0,0,-10"]
+# the same at E = 2e7, where 1 and 2 ranks agree to 1e-10 (the file's test; at 2e8 the rounding of another
+# summation order grows past that)
+BLOCK_SOFTER = [("2e7" if a == "2e8" else a) for a in BLOCK]
 # (11.3): the plane z = 0 pushed 0.001 up into the block (its top held), moved 0.02 along x, then back by 1e-4
 SLIDE = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "top", "-contact", "bottom",
          "-friction_bottom", "0.3", "-obstacle_bottom_motion", "0:0,0,0;1:0,0,0.001;3:0.02,0,0.001;3.1:0.0199,0,0.001",
@@ -72,7 +75,7 @@ def path_run(args, name, ranks=1, expect_rc=0, extra=()):
     return out, h5py.File(h5(name), "r")
 
 
-@test("the block on a spring (docs/derivation.md (11.1)-(11.2), examples/contact): a nearly rigid block (E = 2e7) pressed by P = 10, held sideways by a spring k = 1000, sheared by Q = 7.5 > phi P = 5 (-traction_top with knots), released, sheared back, released, in 25 steps (-steps 25): the mean u_x of its top follows (11.1) at every step to 1e-3 (Q - phi P)/k (measured 3e-4: the block's compliance): no motion up to Q = phi P, none on the releases, reverse sliding from Q = 2 phi P - Q; it stays at (Q - phi P)/k = 2.5e-3 after the first release and at -2.5e-3 after the second; the dissipation is phi P times the slip (5 x 2.5e-3, then 5 x 5e-3); direct and none, 1 and 2 ranks")
+@test("the block on a spring (docs/derivation.md (11.1)-(11.2), examples/contact): a nearly rigid block (E = 2e8, E/k = 2e5) pressed by P = 10, held sideways by a spring k = 1000, sheared by Q = 7.5 > phi P = 5 (-traction_top with knots), released, sheared back, released, in 25 steps (-steps 25): the mean u_x of its top follows (11.1) at every step to 1e-3 (Q - phi P)/k (measured 3e-5: the block's compliance): no motion up to Q = phi P, none on the releases, reverse sliding from Q = 2 phi P - Q; it stays at (Q - phi P)/k = 2.5e-3 after the first release and at -2.5e-3 after the second; the dissipation is phi P times the slip (5 x 2.5e-3, then 5 x 5e-3); direct and none, 1 and 2 ranks")
 def loadpath_block_on_spring():
     phi, P, k = 0.5, 10.0, 1000.0
     for red, ranks in PATHS:
@@ -151,7 +154,7 @@ def vtk_python():
 def loadpath_output_file():
     files = {}
     for ranks in (1, 2):
-        out, f = path_run(BLOCK, "loadpath_output_%d.h5" % ranks, ranks)
+        out, f = path_run(BLOCK_SOFTER, "loadpath_output_%d.h5" % ranks, ranks)
         files[ranks] = f
         st = f["steps"]
         n = len(st["time"])

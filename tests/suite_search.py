@@ -14,8 +14,14 @@ RANKS = (1, 2, 3, 4)
 
 
 def read_msh41(path):
-    """The nodes of an ASCII msh 4.1 file in file order (ascending tag), the triangles of each physical surface and the
-    tetrahedra, by node index"""
+    """The nodes of a msh 4.1 file in file order (ascending tag), the triangles of each physical surface and the
+    tetrahedra, by node index (a binary file, as ssstar meshes a .geo, read from gmsh's ASCII copy of it)"""
+    with open(path, "rb") as f:
+        binary = f.read(64).split(b"\n")[1].split()[1] == b"1"
+    if binary:
+        ascii_copy = os.path.join(OUT, os.path.basename(path) + ".ascii.msh")
+        run(["gmsh", path, "-0", "-o", ascii_copy, "-format", "msh41", "-setnumber", "Mesh.Binary", "0"])
+        path = ascii_copy
     lines = iter(open(path).read().split("\n"))
     names, entity_groups, tags, coords, triangles, tets = {}, {}, [], [], {}, []
     for line in lines:

@@ -154,23 +154,36 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
 }
 
 /*
-   Whole body: the tolerances of the next linear solve (inexact Newton; the steps on P are exact). Its residual r (units of gamma^-1 y) moves
-   the next ||z|| by about gamma ||r||: gamma ||r|| <= eta ||z|| (eta: see SNESSolve_SSStar), never below a tenth of
-   the stopping threshold. The bound is on ||z||, not relative to the right-hand side: the eliminated known dofs
-   make that large, and one CG iteration could meet a relative tolerance with a useless step. Once a full step
-   left every node in its state, the problem is locally linear and one exact step ends it (as on the dense route):
-   eta = 0, the floor alone.
+   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a fraction of the
+   stopping threshold, a tenth of it
+*/
+PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscReal    unorm;
+
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
+  *floor = 0.1 * PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale)) / ss->scaling;
+  PetscFunctionReturn(0);
+}
+
+/*
+   Whole body: the tolerances of the next linear solve (inexact Newton; the steps on P are exact). Its residual r moves
+   the next ||z|| by about gamma ||r||: gamma ||r|| <= eta ||z|| (eta: see SNESSolve_SSStar), never below the floor.
+   The bound is on ||z||, not relative to the right-hand side: the eliminated known dofs make that large, and one CG
+   iteration could meet a relative tolerance with a useless step. Once a full step left every node in its state, the
+   problem is locally linear and one exact step ends it (as on the dense route): eta = 0, the floor alone.
 */
 PetscErrorCode SNESSSStarSetLinearTolerances(SNES snes, PetscReal znorm, PetscReal rtol)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  PetscReal    unorm, threshold;
+  PetscReal    floor;
 
   PetscFunctionBegin;
   if (!ss->problem.wholeBody) PetscFunctionReturn(0); /* the steps on P are solved exactly (dense or sparse LU) */
-  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
-  threshold = PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale));
-  PetscCall(SSStarNewtonSetTolerances(ss->newton, 0.0, PetscMax(rtol * znorm, 0.1 * threshold) / ss->scaling));
+  PetscCall(SNESSSStarLinearFloor(snes, &floor));
+  PetscCall(SSStarNewtonSetTolerances(ss->newton, 0.0, PetscMax(rtol * znorm / ss->scaling, floor)));
   PetscFunctionReturn(0);
 }
 

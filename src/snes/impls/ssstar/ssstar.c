@@ -84,64 +84,65 @@ static PetscErrorCode CreateWorkVectors(SNES snes)
    to the contact dofs, f = -(K u0 - b)_C with u0 in equilibrium and u0_C = 0: what a reduction would give. Into
    ss->scale, ss->fnorm_inf; u and c = K u - b on return.
 */
+/* The free dofs of ss->u corrected with its contact dofs held, from c = K u - b there, to max(rtol ||r0||, atol) */
+static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarProblem     *pb = &ss->problem;
+  const PetscScalar *ca;
+  PetscScalar       *za;
+  PetscBool          solved;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(ss->c, &ca));
+  PetscCall(VecGetArrayWrite(ss->z, &za));
+  for (PetscInt k = 0; k < 3 * ss->contact.nnodes; k++) za[pb->layoutDofs[k]] = 0;
+  for (PetscInt j = 0; j < pb->nfree; j++) za[pb->free[j]] = -ss->scaling * ca[pb->free[j]];
+  PetscCall(VecRestoreArrayWrite(ss->z, &za));
+  PetscCall(VecRestoreArrayRead(ss->c, &ca));
+  PetscCall(SSStarNewtonSetTolerances(ss->newton, rtol, atol));
+  PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
+  PetscCheck(solved, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Equilibrate(SNES snes)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
   SSStarProblem     *pb = &ss->problem;
-  PetscReal          sums[2] = {0, 0}, unorm;
+  PetscReal          sums[2] = {0, 0}, unorm, floor;
   const PetscScalar *ca;
-  PetscBool          solved;
   Vec                uC = ss->ut;
 
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   PetscCall(VecCopy(ss->u, uC));
+  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame */
   PetscCall(VecZeroEntries(ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  for (PetscInt pass = 0; pass < (unorm > 0 ? 2 : 1); pass++) {
-    PetscScalar *za;
+  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, 0.0));
+  PetscCall(VecGetArrayRead(ss->c, &ca));
+  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
+    const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);
 
-    /* pass 0: from u = 0; pass 1: to the given contact displacement. The known step moves the contact dofs by y */
-    PetscCall(VecGetArrayWrite(ss->z, &za));
-    if (pass == 0) {
-      for (PetscInt k = 0; k < 3 * ct->nnodes; k++) za[pb->layoutDofs[k]] = 0;
-    } else {
-      const PetscScalar *ga;
-
-      PetscCall(VecGetArrayRead(uC, &ga));
-      for (PetscInt i = 0; i < ct->nnodes; i++) {
-        PetscReal y[3];
-
-        SNESSSStarNodeRotate(ct, pb, i, ga, y);
-        for (PetscInt k = 0; k < 3; k++) za[pb->layoutDofs[3 * i + k]] = y[k];
-      }
-      PetscCall(VecRestoreArrayRead(uC, &ga));
-    }
-    PetscCall(VecRestoreArrayWrite(ss->z, &za));
-    PetscCall(VecGetArrayRead(ss->c, &ca));
-    PetscCall(VecGetArrayWrite(ss->z, &za));
-    for (PetscInt j = 0; j < pb->nfree; j++) za[pb->free[j]] = -ss->scaling * ca[pb->free[j]];
-    PetscCall(VecRestoreArrayWrite(ss->z, &za));
-    PetscCall(VecRestoreArrayRead(ss->c, &ca));
-    PetscCall(SSStarNewtonSetTolerances(ss->newton, SSSTAR_EQUILIBRIUM_RTOL, 0.0));
-    PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
-    PetscCheck(solved, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
-    if (pass > 0) continue;
-    /* f = -(K u0 - b)_C, in the global frame */
-    PetscCall(VecGetArrayRead(ss->c, &ca));
-    for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
-      const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);
-
-      sums[0] += fk * fk;
-      sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
-    }
-    PetscCall(VecRestoreArrayRead(ss->c, &ca));
+    sums[0] += fk * fk;
+    sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
   }
+  PetscCall(VecRestoreArrayRead(ss->c, &ca));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[0], 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)snes)));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
   ss->scale     = ss->scaling * PetscSqrtReal(sums[0]);
   ss->fnorm_inf = sums[1];
+  if (unorm == 0) PetscFunctionReturn(0);
+  /* a given u: its free dofs corrected from its own, relative to its own residual (not to the whole load's, from u0),
+     down to the Newton steps' floor: a guess already in equilibrium (the step before on a load path) keeps its
+     accuracy, which a body that nearly floats needs (from u0, a relative 1e-4 of the load left a stiff block on a
+     soft spring 300 times the stopping threshold away, and the path's release stagnated there) */
+  PetscCall(VecCopy(uC, ss->u));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  PetscCall(SNESSSStarLinearFloor(snes, &floor));
+  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, floor));
   PetscFunctionReturn(0);
 }
 

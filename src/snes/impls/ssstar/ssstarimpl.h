@@ -244,6 +244,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarNewtonStep(SNES, PetscReal, PetscReal, Pet
 PETSC_INTERN PetscErrorCode SNESSSStarRefineNewtonStep(SNES, PetscReal, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarSetLinearTolerances(SNES, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode SNESSSStarLinearFloor(SNES, PetscReal *);
 PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
 
 /* accessors.c: the type's composed functions (SNESSSStar*_C) on and off */

@@ -10,7 +10,7 @@ Per level, ranks and path (direct: the dense route, P formed by MUMPS and the Ne
 body, P never formed, Krylov + multigrid): the phases of the summary row (assembly = mesh to K, schur = the
 reduction, solve = SNESSolve without it), the whole run (the process's wall time, mesh to the -o file written), the
 Newton iterations and the linear (Krylov) iterations per Newton step, and the peak memory of the largest rank
-(-memory_view). Beside them the yardsticks measured in the same run (bench/yardstick): one plain MUMPS Cholesky of
+(the summary row's last column: VmHWM). Beside them the yardsticks measured in the same run (bench/yardstick): one plain MUMPS Cholesky of
 the whole K, and one CG + GAMG solve of K (set-up + solve, rtol 1e-8), with the ratios whole / yardstick that divide
 out the machine; the seed's published figures (MATLAB) and seed / ours; and, per ranks, the crossover: the first
 level where the whole body is faster than the dense route (what -snes_ssstar_reduction auto follows). Writes
@@ -33,10 +33,9 @@ SEED = {3: (637, 0.13, 0.02, 84, 0.03, 6), 4: (1377, 0.19, 0.09, 144, 0.07, 6), 
         9: (13357, 2.48, 7.20, 684, 3.05, 10), 10: (18081, 3.30, 13.44, 840, 4.69, 9), 11: (23805, 4.38, 23.07, 1012, 8.17, 10),
         12: (30625, 5.73, 40.71, 1200, 12.48, 10), 13: (38637, 7.33, 107.63, 1404, 17.55, 9), 14: (47937, 9.16, 293.50, 1624, 30.24, 11),
         15: (58621, 11.92, 684.17, 1860, 43.00, 11), 16: (70785, 13.78, 1217.38, 2112, 57.80, 11)}
-PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 CHOLESKY = re.compile(r"cholesky level \d+ ranks \d+ dofs (\d+) time (\S+) flops (\S+)")
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
-ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
+ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 KRYLOV_FULL = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations")
 KRYLOV_DENSE = re.compile(r"last solve: (\d+) LU factorizations .*?, (\d+) steps on an old LU \((\d+) Krylov iterations\)")
 
@@ -56,7 +55,7 @@ def mpiexec(ranks):
 def measure(level, ranks, path):
     h5 = os.path.join(OUT, "table2_L%d_%d_%s.h5" % (level, ranks, path))
     cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", path,
-                            "-summary_header", "0", "-memory_view", "-snes_view", "-o", h5]
+                            "-summary_header", "0", "-snes_view", "-o", h5]
     t0 = time.perf_counter()
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     whole = time.perf_counter() - t0
@@ -71,7 +70,7 @@ def measure(level, ranks, path):
     steps, krylov = (int(full.group(1)), int(full.group(2))) if full else (int(dense.group(1)) + int(dense.group(2)), int(dense.group(3))) if dense else (0, 0)
     return {"assembly": float(m.group(4)), "schur": float(m.group(5)), "solve": float(m.group(7)), "iters": int(m.group(8)),
             "nodes": int(m.group(3)), "contact": int(m.group(6)), "states": m.group(10), "reason": m.group(11), "whole": whole,
-            "krylov_per_step": krylov / steps if steps else 0.0, "peak_gb": float(PEAK.search(p.stdout).group(2)) / 1e9}
+            "krylov_per_step": krylov / steps if steps else 0.0, "peak_gb": float(m.group(12))}
 
 
 def yardstick(level, ranks, which):

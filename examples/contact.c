@@ -10,6 +10,8 @@ A scene is an options file: examples/contact -options_file scenes/hertz.opts (RE
                                   knots), each from the step before with incremental friction (docs/load-paths.md)\n\
   -steps_max_cuts <4>             a step that does not converge is halved and retried, at most this many times\n\
   -o <file.h5>                    write the solution (HDF5 + XDMF; on a load path every step, /steps)\n\
+  -ssstar_progress <true>         a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
+                                  Newton step, output), with seconds and the memory of the largest rank\n\
 The solver's options (-snes_ssstar_*) apply. An option nothing reads is refused before any work. Exit status 0 when every\n\
 solve converged, 2 when one did not (the load steps stop there; the -o file holds that step's iterate and says so:\n\
 attributes converged_reason, residual_norm, iterations of \"/\", and on a load path failed_step, failed_time),\n\
@@ -244,6 +246,7 @@ int main(int argc, char **argv)
   Vec                 u, r = NULL;
   PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
+  PetscLogDouble      peak;
   PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE;
   char                out[PETSC_MAX_PATH_LEN] = "", stepsText[4096] = "";
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
@@ -267,6 +270,7 @@ int main(int argc, char **argv)
   PetscCheck(maxCuts >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-steps_max_cuts %" PetscInt_FMT ": must be >= 0", maxCuts);
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
+  PetscCall(SSStarSceneSetProgress(scene, PETSC_TRUE));
   PetscCall(SSStarSceneSetFromOptions(scene));
   PetscCall(SSStarSceneHasContact(scene, &hasContact));
   PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
@@ -335,8 +339,9 @@ int main(int argc, char **argv)
   t_solve = -t0 - t_schur - t_recovery; /* the contact iterations: the SNESSolve()s less the reduction and the recovery */
 
   if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s\n", nodes, ncontact, (double)t_assembly,
-                        (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)"));
+  PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s peak %.3f GB per rank\n", nodes, ncontact, (double)t_assembly,
+                        (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)", peak / 1e9));
   if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nLoadSteps > 1 ? WriteLoadSteps : NULL, &steps));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 

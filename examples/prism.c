@@ -10,10 +10,14 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -initial_guess <zero>      the solver's starting point: zero, elastic (K u = b, no contact) or random\n\
   -initial_guess_scale <1>   random: entries uniform in [-scale, scale]\n\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
-  -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary)\n\
+  -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary);\n\
+                             it sets -snes_ssstar_reduction direct unless a reduction is given\n\
   -summary_header <true>     print the header line of the summary table\n\
-The solver's options (-snes_ssstar_*, README \"The solver\") apply; the prism sets -snes_ssstar_reduction direct unless\n\
-given (the Schur complement: direct, mumps or explicit; none solves on the whole body), and the friction coefficient is\n\
+  -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
+                             Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
+The solver's options (-snes_ssstar_*, README \"The solver\") apply: -snes_ssstar_reduction <auto> reduces K to the\n\
+contact dofs by a Schur complement (direct: the seed's route) up to SSSTAR_AUTO_DENSE_MAX_DOFS dofs and solves on the\n\
+whole body (none: Krylov + multigrid, P never formed) above; the friction coefficient is\n\
 -snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
@@ -27,13 +31,18 @@ line naming the option or file; -ssstar_traceback adds PETSc's report). -help li
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-/* The prism scene (README "The prism") and its Schur reduction unless the options say otherwise; -mesh replaces -geo and -level */
+/* The prism scene (README "The prism") unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
+   writes P: the dense route unless a reduction is named */
 static PetscErrorCode SetPrismDefaults(void)
 {
-  const char *defaults[][2] = {{"-snes_ssstar_reduction", "direct"}, {"-dirichlet", "dirichlet"}, {"-contact", "contact"}, {"-traction_top", "0,0,-500"}, {"-traction_right", "-200,30,200"}, {"-E", "2.1e5"}, {"-nu", "0.3"}, {"-geo", SSSTAR_MESH_DIR "/prism.geo"}, {"-level", "6"}};
+  const char *defaults[][2] = {{"-dirichlet", "dirichlet"}, {"-contact", "contact"}, {"-traction_top", "0,0,-500"}, {"-traction_right", "-200,30,200"}, {"-E", "2.1e5"}, {"-nu", "0.3"}, {"-geo", SSSTAR_MESH_DIR "/prism.geo"}, {"-level", "6"}};
   PetscBool   hasMesh, set;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-save_reduced", &set));
+  if (set) PetscCall(PetscOptionsHasName(NULL, NULL, "-snes_ssstar_reduction", &set));
+  else set = PETSC_TRUE;
+  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-snes_ssstar_reduction", "direct"));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &hasMesh));
   for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(defaults) - (hasMesh ? 2 : 0); k++) {
     PetscCall(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));
@@ -158,6 +167,7 @@ int main(int argc, char **argv)
   SSStarScene         scene;
   PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
+  PetscLogDouble      peak;
   char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar, hasHelp;
   DM                  dm;
@@ -188,6 +198,7 @@ int main(int argc, char **argv)
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
   if (hasReduced) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, reduced));
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
+  PetscCall(SSStarSceneSetProgress(scene, PETSC_TRUE));
   PetscCall(SSStarSceneSetFromOptions(scene));
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetType(snes, SNESSSSTAR));
@@ -231,10 +242,11 @@ int main(int argc, char **argv)
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   if (isssstar) PetscCall(SNESSSStarGetStates(snes, &states, counts));
   else PetscCall(PetscArrayzero(counts, SSSTAR_NUM_STATES));
-  if (header) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "level ranks  nodes assembly[s] schur[s] contact solve[s] iters  L/M1/M2/M3+/M3-/M4  separated/sliding/sticking reason\n"));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%5" PetscInt_FMT " %5d %6" PetscInt_FMT " %11.3f %8.3f %7" PetscInt_FMT " %8.3f %5" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s\n",
+  PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
+  if (header) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "level ranks  nodes assembly[s] schur[s] contact solve[s] iters  L/M1/M2/M3+/M3-/M4  separated/sliding/sticking reason peak[GB/rank]\n"));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%5" PetscInt_FMT " %5d %6" PetscInt_FMT " %11.3f %8.3f %7" PetscInt_FMT " %8.3f %5" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s %.3f\n",
                         hasMesh ? -1 : level, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
-                        SNESConvergedReasons[reason]));
+                        SNESConvergedReasons[reason], peak / 1e9));
 
   /* the solution file says how the solve ended; the reduced problem's u_C is written only as a solution */
   if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, NULL, NULL));

@@ -110,6 +110,9 @@ PETSC_EXTERN PetscErrorCode SSStarPushErrorHandler(void);
 /* Checks of a local condition that end every rank with the message of the first rank that failed */
 PETSC_EXTERN PetscErrorCode SSStarCheckAllRanks(MPI_Comm, PetscErrorCode, const char[]);
 
+/* The memory of the largest rank, now and at its peak (bytes): the progress lines and the summaries of the programs */
+PETSC_EXTERN PetscErrorCode SSStarMemoryGetUsage(MPI_Comm, PetscLogDouble *, PetscLogDouble *);
+
 /* The contact problem: the whole body (K u - b with contact nodes) or the reduced one (P u - f) */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLinearProblem(SNES, Mat, Vec);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetContactNodes(SNES, IS, Vec, Vec);
@@ -151,6 +154,8 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);
+PETSC_EXTERN PetscErrorCode SNESSSStarMonitorProgress(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);
+PETSC_EXTERN PetscErrorCode SNESSSStarMonitorProgressAdd(SNES);
 PETSC_EXTERN PetscErrorCode SNESConvergedSSStar(SNES, PetscInt, PetscReal, PetscReal, PetscReal, SNESConvergedReason *, void *);
 
 /*

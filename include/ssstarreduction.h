@@ -8,8 +8,10 @@
 #include <petscksp.h>
 
 /* auto takes the direct reduction up to this many dofs of K, none above: the crossover measured on the prism
-   (bench/table2.py, medians of 3, this 2-core machine): level 8 (28 611 dofs) whole run dense 5.6 s / whole body
-   7.4 s on 1 rank, 7.9 / 7.8 s on 2; level 10 (54 243 dofs) 16.8 / 16.2 s and 12.4 / 11.1 s */
+   (bench/table2.py --levels 4,6,8,10,12 --ranks 1,2 --repeat 3, medians, paths interleaved, this shared 2-core
+   machine): whole run dense / whole body, 1 rank and 2 ranks: level 6 (12 675 dofs) 1.00 / 1.18 s, 1.41 / 1.25 s;
+   level 8 (28 611) 2.71 / 1.73 s, 4.06 / 4.22 s; level 10 (54 243) 7.30 / 7.46 s, 12.16 / 12.11 s; level 12
+   (91 875) 21.2 / 12.1 s, 17.9 / 9.9 s. Levels 6 to 10 are within the noise; the limit sits in that band */
 #define SSSTAR_AUTO_DENSE_MAX_DOFS 30000
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;

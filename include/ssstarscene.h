@@ -25,6 +25,7 @@ typedef struct _n_SSStarScene *SSStarScene;
 
 PETSC_EXTERN PetscErrorCode SSStarSceneCreate(MPI_Comm, SSStarScene *);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetFromOptions(SSStarScene);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetProgress(SSStarScene, PetscBool);
 PETSC_EXTERN PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene, const char[], SNES);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetUp(SSStarScene);
 PETSC_EXTERN PetscErrorCode SSStarSceneView(SSStarScene, PetscViewer);

@@ -193,5 +193,6 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   PetscCall(SNESSSStarSetContactOperator(snes, scene->isC, scene->B, gaps));
   PetscCall(VecDestroy(&gaps));
   PetscCall(SSStarSceneSetContactLaws(scene, snes)); /* grouplaws.c */
+  if (scene->progress) PetscCall(SNESSSStarMonitorProgressAdd(snes));
   PetscFunctionReturn(0);
 }

@@ -33,6 +33,47 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
 }
 
 /*@C
+   SSStarSceneSetProgress - whether the scene prints a line as each phase of its work ends (the default of
+   -ssstar_progress, which SSStarSceneSetFromOptions() reads): the mesh file, the mesh read and distributed, the contact
+   nodes, the assembly, the output file, each with its seconds and the memory of the largest rank; and, through
+   SSStarSceneSetContact(), the solver's SNESSSStarMonitorProgress()
+
+   Logically Collective
+
+   Input Parameters:
++  scene    - the scene, before SSStarSceneSetFromOptions()
+-  progress - PETSC_TRUE for the lines (the programs of examples/); a library's scene prints none unless asked
+
+   Options Database Key:
+.  -ssstar_progress <bool> - the lines
+
+   Level: intermediate
+
+.seealso: `SSStarSceneSetFromOptions()`, `SNESSSStarMonitorProgress()`, `SSStarMemoryGetUsage()`
+@*/
+PetscErrorCode SSStarSceneSetProgress(SSStarScene scene, PetscBool progress)
+{
+  PetscFunctionBegin;
+  scene->progress = progress;
+  PetscFunctionReturn(0);
+}
+
+/* With -ssstar_progress, the line of a phase that ended: what it did, the seconds since *t (restarted), the memory of the largest rank */
+PetscErrorCode SSStarSceneProgress(SSStarScene scene, PetscLogDouble *t, const char what[])
+{
+  PetscLogDouble now, memory;
+
+  PetscFunctionBegin;
+  if (!scene->progress) PetscFunctionReturn(0);
+  PetscCall(PetscTime(&now));
+  PetscCall(SSStarMemoryGetUsage(scene->comm, &memory, NULL));
+  PetscCall(PetscPrintf(scene->comm, "%s, %.3f s, %.3f GB per rank\n", what, now - *t, memory / 1e9));
+  PetscCall(PetscViewerFlush(PETSC_VIEWER_STDOUT_(scene->comm)));
+  *t = now;
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarSceneDestroy - frees the scene, its mesh and contact nodes
 
    Collective
@@ -111,14 +152,20 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   char          **options;
   PetscInt        nuses = 0, cells;
   Vec             coordinates;
+  PetscLogDouble  t;
+  PetscMPIInt     size;
+  char            line[PETSC_MAX_PATH_LEN + 128];
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Mesh, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t));
   if (scene->geo[0]) {
     PetscCall(MeshFileOfLevel(scene));
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
+  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
+  PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
   PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, &scene->dm, &scene->tags));
@@ -137,9 +184,14 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
+  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
+  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
+  PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));
   PetscCall(SSStarSceneBuildContactOperator(scene));
+  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s"));
+  PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -209,13 +261,19 @@ PetscErrorCode SSStarSceneGetSizes(SSStarScene scene, PetscInt *nodes, PetscInt 
 @*/
 PetscErrorCode SSStarSceneAssemble(SSStarScene scene, Mat *K, Vec *b)
 {
-  PetscInt   nknots;
-  PetscReal *knots;
+  PetscInt       nknots, n;
+  PetscReal     *knots;
+  PetscLogDouble t;
+  char           line[128];
 
   PetscFunctionBegin;
+  PetscCall(PetscTime(&t));
   PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
   PetscCall(SSStarAssembleElasticity(scene, nknots ? knots[nknots - 1] : 0, K, b)); /* the load at the last knot */
   PetscCall(PetscFree(knots));
+  PetscCall(MatGetSize(*K, &n, NULL));
+  PetscCall(PetscSNPrintf(line, sizeof(line), "assembly: K of %" PetscInt_FMT " dofs and b", n));
+  PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscFunctionReturn(0);
 }
 

@@ -70,6 +70,7 @@ struct _n_SSStarScene {
   char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
   PetscInt           level;
   PetscReal          meshScale;
+  PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;
   PetscBool          hasE, hasNu;
   PetscInt           nMaterials, nTractions, nSprings, nDirichlet, nContact;
@@ -170,6 +171,7 @@ typedef struct {
   PetscInt  tag, group, other;
   PetscReal x[3], gap;
 } SSStarBadNode;
+PETSC_INTERN PetscErrorCode SSStarSceneProgress(SSStarScene, PetscLogDouble *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarSceneShareBadNode(MPI_Comm, SSStarBadNode *, PetscBool *);
 
 PETSC_INTERN PetscErrorCode SSStarSceneGroupUses(SSStarScene, PetscInt *, SSStarGroupUse **, char ***);

@@ -17,3 +17,53 @@ PetscErrorCode SSStarMemAvailable(PetscLogDouble *bytes)
   fclose(file);
   PetscFunctionReturn(0);
 }
+
+/* VmRSS and VmHWM of this process from /proc/self/status, in bytes; PETSc's getrusage figure for both when unknown */
+static PetscErrorCode ProcessMemory(PetscLogDouble *current, PetscLogDouble *peak)
+{
+  FILE  *file = fopen("/proc/self/status", "r");
+  char   line[256];
+  double kb;
+
+  PetscFunctionBegin;
+  *current = *peak = 0;
+  if (file) {
+    while (fgets(line, sizeof(line), file)) {
+      if (sscanf(line, "VmRSS: %lf kB", &kb) == 1) *current = 1024.0 * kb;
+      if (sscanf(line, "VmHWM: %lf kB", &kb) == 1) *peak = 1024.0 * kb;
+    }
+    fclose(file);
+  }
+  if (!*current) PetscCall(PetscMemoryGetCurrentUsage(current));
+  if (!*peak) *peak = *current;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarMemoryGetUsage - the memory of the largest rank: its resident set now and its peak since the start (Linux's
+   VmRSS and VmHWM; they need no -malloc_debug or -memory_view), the maximum over the ranks of comm
+
+   Collective
+
+   Input Parameter:
+.  comm - the ranks
+
+   Output Parameters:
++  current - bytes in memory now, on the rank with the most, or pass NULL
+-  peak    - the most bytes a rank had in memory at once so far, or pass NULL
+
+   Level: intermediate
+
+.seealso: `SSStarSceneSetProgress()`, `SNESSSStarMonitorProgress()`
+@*/
+PetscErrorCode SSStarMemoryGetUsage(MPI_Comm comm, PetscLogDouble *current, PetscLogDouble *peak)
+{
+  PetscLogDouble mine[2];
+
+  PetscFunctionBegin;
+  PetscCall(ProcessMemory(&mine[0], &mine[1]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mine, 2, MPIU_PETSCLOGDOUBLE, MPI_MAX, comm));
+  if (current) *current = mine[0];
+  if (peak) *peak = mine[1];
+  PetscFunctionReturn(0);
+}

@@ -457,10 +457,13 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
   PetscInt          nfaceVertices = 0, ntriangles = 0;
   PetscReal        *times;
   PetscErrorCode    ierr;
+  PetscLogDouble    t;
+  char              line[2 * PETSC_MAX_PATH_LEN + 32];
 
   PetscFunctionBegin;
   PetscCheck(out, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "SSStarSceneOutputEnd: call SSStarSceneOutputBegin() first");
   PetscCall(PetscLogEventBegin(SSSTAR_Output, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t));
   PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
   scene->output = NULL;
   PetscCall(PetscMalloc1(out->nsteps + 1, &times));
@@ -478,6 +481,10 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
   if (out->viewer) PetscCall(PetscViewerDestroy(&out->viewer));
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, scene->comm));
   PetscCheck(!failure, scene->comm, PETSC_ERR_FILE_WRITE, "Cannot rename the written files to %s and %s", out->final, out->xmf);
+  if (!ierr) {
+    PetscCall(PetscSNPrintf(line, sizeof(line), "output: wrote %s and %s", out->final, out->xmf));
+    PetscCall(SSStarSceneProgress(scene, &t, line));
+  }
   PetscCall(PetscFree(out->table));
   PetscCall(PetscFree(out->surfaces));
   PetscCall(PetscFree(out));

@@ -261,6 +261,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   PetscFunctionBegin;
   snes->reason = SNES_CONVERGED_ITERATING;
   ss->reason   = SSSTAR_REASON_ITERATING;
+  PetscCall(PetscTime(&ss->tStart));
   PetscCall(PetscObjectSAWsTakeAccess((PetscObject)snes));
   snes->iter = 0;
   snes->norm = 0;
@@ -461,6 +462,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 .  -snes_ssstar_method <newton> - newton (semismooth*) or fixedpoint (the first-order baseline u <- u + z)
 .  -snes_ssstar_state_tol <1e-13> - relative tolerance of the state classification
 .  -snes_ssstar_monitor_states - print the number of nodes per state at every iteration, and the remedies
+.  -snes_ssstar_monitor_progress - a line at the end of the set-up and one per iterate: ||z||, nodes that changed state, the step's seconds and Krylov iterations, memory
 .  -snes_ssstar_globalization <true> - damped steps on ||z|| and remedies; false: the plain iteration
 .  -snes_ssstar_damping_min <0.015625> - smallest damping factor of the line search
 .  -snes_ssstar_stagnation_its <20> - stop after this many iterations without a smaller ||z||

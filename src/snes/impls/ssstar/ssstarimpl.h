@@ -229,6 +229,10 @@ typedef struct {
   Vec          d, b;                       /* 3 per node, the nodes' frames                                 */
   SSStarNewton newton;
   SSStarGlobalization glob;
+
+  /* -snes_ssstar_monitor_progress: when the solve started, and the time, Krylov iterations, LUs (multigrids) at the last iterate */
+  PetscLogDouble tStart, tLast;
+  PetscInt       krylovLast, factorizationsLast;
 } SNES_SSStar;
 
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */

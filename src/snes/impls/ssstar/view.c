@@ -147,6 +147,7 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
     if (setOn || setDamping || setStagnation) PetscCall(SNESSSStarSetGlobalization(snes, on, setDamping ? value : PETSC_DEFAULT, setStagnation ? its : PETSC_DEFAULT));
   }
   PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_states", "Monitor the number of contact nodes in each state, and the remedies", "SNESSSStarMonitorStates", SNESSSStarMonitorStates, NULL));
+  PetscCall(SNESMonitorSetFromOptions(snes, "-snes_ssstar_monitor_progress", "Monitor the set-up (reduction) and each Newton step: ||z||, nodes that changed state, Krylov iterations, seconds, memory", "SNESSSStarMonitorProgress", SNESSSStarMonitorProgress, NULL));
   PetscOptionsHeadEnd();
   if (PetscOptionsObject->printhelp) PetscCall(HelpNewtonKSP(snes));
   PetscFunctionReturn(0);
@@ -252,3 +253,114 @@ PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm,
   PetscFunctionReturn(0);
 }
 
+
+/* "K reduced to the contact dofs by the direct Schur complement (chosen by auto), 3168 x 3168" or "the whole body, ..." */
+static PetscErrorCode FormatProblem(SNES snes, char buf[], size_t len)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscInt     n;
+  const char  *type;
+  PetscBool    isauto;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetSize(ss->problem.A, &n, NULL));
+  PetscCall(SSStarProblemGetReductionType(&ss->problem, &type));
+  PetscCall(PetscStrcmp(ss->problem.reductionType, SSSTARREDUCTIONAUTO, &isauto));
+  if (!ss->contact.dofs) PetscCall(PetscSNPrintf(buf, len, "the reduced problem, %" PetscInt_FMT " contact dofs", n));
+  else if (ss->problem.wholeBody) PetscCall(PetscSNPrintf(buf, len, "the whole body, %" PetscInt_FMT " dofs, P never formed (reduction %s%s)", n, type, isauto ? ", chosen by auto" : ""));
+  else PetscCall(PetscSNPrintf(buf, len, "K reduced to %" PetscInt_FMT " contact dofs by the %s Schur complement%s", n, type, isauto ? " (chosen by auto)" : ""));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarMonitorProgress - a line as each phase of a solve ends: the set-up (the reduction of K, or the whole
+   body's), then one per iterate with ||z||, the contact nodes whose state changed since the previous iterate, the
+   Krylov iterations and the seconds of the Newton step that led to it, and the memory of the largest rank
+
+   Collective
+
+   Input Parameters:
++  snes  - the SNES
+.  its   - the iteration
+.  znorm - ||z|| (the value -snes_monitor prints)
+-  vf    - the viewer and its format
+
+   Options Database Keys:
++  -snes_ssstar_monitor_progress - activates it
+-  -ssstar_progress              - the programs' progress lines (on by default in examples/), this monitor among them
+
+   Notes:
+   The lines are flushed as they are printed. The memory is the resident set of the rank with the most
+   (SSStarMemoryGetUsage()).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarMonitorProgressAdd()`, `SNESSSStarMonitorStates()`, `SSStarMemoryGetUsage()`
+@*/
+PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znorm, PetscViewerAndFormat *vf)
+{
+  SNES_SSStar   *ss     = (SNES_SSStar *)snes->data;
+  PetscViewer    viewer = vf->viewer;
+  PetscLogDouble now, memory;
+  PetscInt       krylov, factorizations;
+  char           problem[256];
+
+  PetscFunctionBegin;
+  PetscCall(PetscTime(&now));
+  PetscCall(SSStarMemoryGetUsage(PetscObjectComm((PetscObject)snes), &memory, NULL));
+  PetscCall(SSStarNewtonGetCounts(ss->newton, &factorizations, NULL, &krylov));
+  PetscCall(PetscViewerPushFormat(viewer, vf->format));
+  PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
+  if (its == 0) {
+    PetscCall(FormatProblem(snes, problem, sizeof(problem)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  set-up: %s, %.3f s, %.3f GB per rank\n", problem, now - ss->tStart, memory / 1e9));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e\n", its, (double)znorm));
+  } else {
+    PetscInt changed = PetscMax(ss->glob.changed, 0);
+
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e, %" PetscInt_FMT " node%s changed state; step %.3f s, %" PetscInt_FMT " Krylov its%s, %.3f GB per rank\n", its, (double)znorm, changed, changed == 1 ? "" : "s", now - ss->tLast, krylov - ss->krylovLast,
+                                     factorizations > ss->factorizationsLast ? (ss->problem.wholeBody ? ", new multigrid" : ", new LU") : "", memory / 1e9));
+  }
+  PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
+  PetscCall(PetscViewerPopFormat(viewer));
+  PetscCall(PetscViewerFlush(viewer));
+  ss->tLast              = now;
+  ss->krylovLast         = krylov;
+  ss->factorizationsLast = factorizations;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarMonitorProgressAdd - adds SNESSSStarMonitorProgress() on standard output, as -snes_ssstar_monitor_progress
+   does (once: a second call, or the option, adds nothing); nothing for a SNES of another type
+
+   Logically Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Level: intermediate
+
+.seealso: `SNESSSStarMonitorProgress()`, `SSStarSceneSetProgress()`
+@*/
+PetscErrorCode SNESSSStarMonitorProgressAdd(SNES snes)
+{
+  PetscViewerAndFormat *vf;
+  PetscBool             isssstar;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (!isssstar) PetscFunctionReturn(0);
+  PetscCall(PetscViewerAndFormatCreate(PETSC_VIEWER_STDOUT_(PetscObjectComm((PetscObject)snes)), PETSC_VIEWER_DEFAULT, &vf));
+  for (PetscInt i = 0; i < snes->numbermonitors; i++) { /* SNESMonitorSet() keeps neither of two identical monitors' contexts */
+    PetscBool identical;
+
+    PetscCall(PetscMonitorCompare((PetscErrorCode(*)(void))(void (*)(void))SNESSSStarMonitorProgress, vf, (PetscErrorCode(*)(void **))PetscViewerAndFormatDestroy, (PetscErrorCode(*)(void))(void (*)(void))snes->monitor[i], snes->monitorcontext[i], snes->monitordestroy[i], &identical));
+    if (identical) {
+      PetscCall(PetscViewerAndFormatDestroy(&vf));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(SNESMonitorSet(snes, (PetscErrorCode(*)(SNES, PetscInt, PetscReal, void *))SNESSSStarMonitorProgress, vf, (PetscErrorCode(*)(void **))PetscViewerAndFormatDestroy));
+  PetscFunctionReturn(0);
+}

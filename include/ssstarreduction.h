@@ -7,12 +7,12 @@
 */
 #include <petscksp.h>
 
-/* auto takes the direct reduction up to this many dofs of K, none above: the crossover measured on the prism
-   (bench/table2.py --levels 4,6,8,10,12 --ranks 1,2 --repeat 3, medians, paths interleaved, this shared 2-core
-   machine): whole run dense / whole body, 1 rank and 2 ranks: level 6 (12 675 dofs) 1.00 / 1.18 s, 1.41 / 1.25 s;
-   level 8 (28 611) 2.71 / 1.73 s, 4.06 / 4.22 s; level 10 (54 243) 7.30 / 7.46 s, 12.16 / 12.11 s; level 12
-   (91 875) 21.2 / 12.1 s, 17.9 / 9.9 s. Levels 6 to 10 are within the noise; the limit sits in that band */
-#define SSSTAR_AUTO_DENSE_MAX_DOFS 30000
+/* auto takes the direct reduction up to this many dofs of K, none above: the crossover measured on the prism, quiet
+   (bench/table2.py --levels 6,8,10,12 --ranks 1,2 --repeat 3 --yardsticks amg, medians, paths interleaved): whole run
+   dense / whole body, 1 rank and 2 ranks: level 6 (12 675 dofs) 0.80 / 0.81 s, 0.72 / 0.65 s; level 8 (28 611)
+   1.57 / 1.39 s, 1.30 / 0.94 s; level 10 (54 243) 3.56 / 2.59 s, 2.76 / 1.66 s. Level 6 is a tie, the whole body
+   is ahead from level 8: the limit sits between them, level 7 (19 575 dofs) keeps the dense route */
+#define SSSTAR_AUTO_DENSE_MAX_DOFS 20000
 
 PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;
 /* phases of the direct reduction: METIS ordering, MUMPS analysis, factorization with the Schur block, P to its rows */

@@ -23,10 +23,10 @@ def prism_level_run(level, extra, slack):
 
 
 def prism_level(level):
-    """The default (auto): the dense route up to SSSTAR_AUTO_DENSE_MAX_DOFS (30 000) dofs, the reference iterations +- 1;
+    """The default (auto): the dense route up to SSSTAR_AUTO_DENSE_MAX_DOFS (20 000) dofs, the reference iterations +- 1;
     the whole body above, whose inexact steps may take up to two more (README "Large problems"), and there the dense
     route named (-snes_ssstar_reduction direct) for the reference iterations +- 1"""
-    dense = 3 * (4 * level + 1) * (2 * level + 1) ** 2 <= 30000
+    dense = 3 * (4 * level + 1) * (2 * level + 1) ** 2 <= 20000
     out, s = prism_level_run(level, [], 1 if dense else 2)
     route = r"set-up: K reduced to \d+ contact dofs by the direct Schur complement \(chosen by auto\)" if dense else r"set-up: the whole body, \d+ dofs, P never formed \(reduction none, chosen by auto\)"
     expect(re.search(route, out) is not None, "level %d: not the route of auto (%s)" % (level, "dense" if dense else "whole body"), out)
@@ -35,7 +35,7 @@ def prism_level(level):
 
 
 for _L in sorted(REFERENCE_ITERATIONS):
-    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice above 30 000 dofs) without any remedy of the globalization, with the reference node counts%s"
+    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice above 20 000 dofs) without any remedy of the globalization, with the reference node counts%s"
          % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""))(
         (lambda L: (lambda: prism_level(L)))(_L))
     TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]

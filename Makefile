@@ -62,6 +62,7 @@ examples/%: examples/%.c $(LIB)
 tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
+tests/test_geometry tests/test_search: tests/brute_region.h
 
 bench/%: bench/%.c $(LIB)
 	$(SAY) "  CCLD    $@"

@@ -13,6 +13,7 @@ static const char help[] = "The geometry module (src/geometry) against hand-comp
    area (segments, points), one triangle and none; the triangles meeting random boxes and random oriented regions
    (infinite bounds too); the top boxes hold every triangle; a partition of the triangles has parts of equal size. */
 #include <ssstargeometry.h>
+#include "brute_region.h"
 
 static int failures = 0;
 
@@ -156,24 +157,6 @@ static void BruteClosest(PetscInt n, const PetscReal x[], const PetscReal p[3], 
       *t  = i;
     }
   }
-}
-
-/* Whether the triangle's vertices, measured from the region's origin along each axis, overlap its bounds */
-static PetscBool BruteMeets(const PetscReal x[9], const SSStarRegion *r)
-{
-  for (PetscInt a = 0; a < 3; a++) {
-    PetscReal lo = PETSC_MAX_REAL, hi = PETSC_MIN_REAL;
-
-    for (PetscInt k = 0; k < 3; k++) {
-      PetscReal v = 0;
-
-      for (PetscInt c = 0; c < 3; c++) v += (x[3 * k + c] - r->origin[c]) * r->axes[3 * a + c];
-      lo = PetscMin(lo, v);
-      hi = PetscMax(hi, v);
-    }
-    if (lo > r->hi[a] || hi < r->lo[a]) return PETSC_FALSE;
-  }
-  return PETSC_TRUE;
 }
 
 static void CheckTreeClosest(SSStarTree tree, PetscInt n, const PetscReal x[], const PetscReal p[3], const char name[])

@@ -9,6 +9,7 @@ static const char help[] = "The search over triangles spread over the ranks (src
    vertex numbers (as contact pairs have them), with points on its vertices (exact ties) and near them (ties within
    tol); random boxes and oriented regions, unbounded ones too; and a search without any triangle. */
 #include <ssstargeometry.h>
+#include "brute_region.h"
 
 static int failures = 0;
 
@@ -59,23 +60,6 @@ static PetscInt BruteClosest(const Set *s, const PetscReal p[3], PetscReal tol)
   for (PetscInt t = 0; t < s->n; t++)
     if (Distance2(p, &s->x[9 * t], q) <= bound2 && (best < 0 || CompareKeys(&s->key[3 * t], &s->key[3 * best]) < 0)) best = t;
   return best;
-}
-
-static PetscBool BruteMeets(const PetscReal x[9], const SSStarRegion *r)
-{
-  for (PetscInt a = 0; a < 3; a++) {
-    PetscReal lo = PETSC_MAX_REAL, hi = PETSC_MIN_REAL;
-
-    for (PetscInt k = 0; k < 3; k++) {
-      PetscReal v = 0;
-
-      for (PetscInt c = 0; c < 3; c++) v += (x[3 * k + c] - r->origin[c]) * r->axes[3 * a + c];
-      lo = PetscMin(lo, v);
-      hi = PetscMax(hi, v);
-    }
-    if (lo > r->hi[a] || hi < r->lo[a]) return PETSC_FALSE;
-  }
-  return PETSC_TRUE;
 }
 
 /* The triangles of rank `rank` of `size` when spread by `spread`: "partition", "every size-th", "rank 0" */

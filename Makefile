@@ -110,7 +110,7 @@ bench: all
 bench-large: all
 	$(PYTHON) bench/table2.py --large
 
-# the contact search on large inputs (a ball of 59 356 triangles on a 250 000-node block; a 330 000-dof pair): its
+# the contact search on large inputs (a ball of 59 356 triangles on a 250 000-node block; a 310 000-dof pair): its
 # share of the whole run, 2 ranks, the whole body (bench/output/search.csv)
 bench-search: all
 	$(PYTHON) bench/search.py

@@ -2,13 +2,13 @@
 """The contact search on large inputs: what it costs against the whole run (issue 18, item 4).
 
   bench/search.py [--cases ball,pair,mortar] [--ranks 2] [--repeat 3] [--ball-level 7] [--sphere-level 2]
-                  [--pair-level 4] [--yardstick]
+                  [--pair-level 3] [--yardstick]
 
 Cases, each through examples/contact on the whole-body path (-snes_ssstar_reduction none):
   ball    scenes/ball.opts with the block of meshes/indent.geo at --ball-level (7: about 250 000 nodes, the size of the
           prism's level 24) and the ball as a triangle mesh (-obstacle_top mesh:), meshes/ball_surface.geo meshed here
           at --sphere-level (2: 59 356 triangles), spread over the ranks
-  pair    scenes/hertz2.opts at --pair-level (4: two bodies, about 116 000 nodes = 350 000 dofs), node-to-surface
+  pair    scenes/hertz2.opts at --pair-level (3: two bodies, 103 200 nodes = 310 000 dofs), node-to-surface
   mortar  the same pair with -pair_discretization dual_mortar
 Per case the medians of --repeat runs: the whole run (the process's wall time, mesh to the -o file written), the
 search (the SSStarSearch event of -log_view, largest rank: building the trees, spreading a mesh obstacle's triangles,
@@ -96,7 +96,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--ball-level", type=int, default=7, help="level of meshes/indent.geo (7: about 250 000 nodes)")
     parser.add_argument("--sphere-level", type=int, default=2, help="level of meshes/ball_surface.geo (2: 59 356 triangles)")
-    parser.add_argument("--pair-level", type=int, default=4, help="level of meshes/hertz2.geo (4: about 350 000 dofs)")
+    parser.add_argument("--pair-level", type=int, default=3, help="level of meshes/hertz2.geo (3: 310 000 dofs)")
     parser.add_argument("--yardstick", action="store_true", help="the AMG yardstick of each case's K in the same run")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)

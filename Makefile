@@ -106,7 +106,7 @@ bench: all
 	$(PYTHON) bench/schur.py
 
 # levels 8, 16, 24, 32, 40 on the whole body, 1 and 2 ranks (medians of 3 up to level 24, one run at 32 and 40), with
-# the AMG yardstick of each level in the same run: about 40 minutes on a quiet machine
+# the AMG yardstick of each level in the same run: 24 minutes on a quiet machine
 bench-large: all
 	$(PYTHON) bench/table2.py --large
 

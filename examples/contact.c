@@ -32,45 +32,20 @@ typedef struct {
 /* The datasets /load_steps/{factor,area,normal_force,iterations}, held by rank 0 */
 static PetscErrorCode WriteLoadSteps(PetscViewer viewer, void *ctx)
 {
-  LoadSteps       *steps = (LoadSteps *)ctx;
+  LoadSteps       *steps    = (LoadSteps *)ctx;
   const char      *names[4] = {"factor", "area", "normal_force", "iterations"};
   const PetscReal *values[4] = {steps->factor, steps->area, steps->normal_force, steps->iterations};
-  PetscMPIInt      rank;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/load_steps"));
-  for (PetscInt k = 0; k < 4; k++) {
-    Vec v;
-
-    PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)viewer), rank ? 0 : steps->n, steps->n, &v));
-    PetscCall(PetscObjectSetName((PetscObject)v, names[k]));
-    if (!rank)
-      for (PetscInt i = 0; i < steps->n; i++) PetscCall(VecSetValue(v, i, values[k][i], INSERT_VALUES));
-    PetscCall(VecAssemblyBegin(v));
-    PetscCall(VecAssemblyEnd(v));
-    PetscCall(VecView(v, viewer));
-    PetscCall(VecDestroy(&v));
-  }
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscCall(SSStarWriteTable(viewer, "/load_steps", 4, names, steps->n, values));
   PetscFunctionReturn(0);
 }
 
-/* Where a load path stopped: the attributes failed_step (the index in /steps) and failed_time of "/" */
+/* Where a load path stopped: the step (its row of /steps) and its time; the file's / says so (SSStarSceneOutputStep()) */
 typedef struct {
   PetscInt  step;
   PetscReal time;
 } PathFailure;
-
-static PetscErrorCode WriteFailure(PetscViewer viewer, void *ctx)
-{
-  PathFailure *f = (PathFailure *)ctx;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "failed_step", PETSC_INT, &f->step));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "failed_time", PETSC_REAL, &f->time));
-  PetscFunctionReturn(0);
-}
 
 /* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion */
 static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscInt n, PetscReal t, PetscInt cuts, Vec load, PetscBool hasContact)
@@ -230,7 +205,7 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
       }
     }
   }
-  if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, failure->step >= 0 ? WriteFailure : NULL, failure));
+  if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, NULL, NULL));
   PetscCall(VecDestroy(&uAccepted));
   PetscCall(PetscFree(knots));
   PetscCall(PetscFree(times));

@@ -100,10 +100,12 @@ PETSC_EXTERN const char *const SSStarMethods[];
 
 PETSC_EXTERN PetscErrorCode SSStarInitializePackage(void);
 PETSC_EXTERN PetscErrorCode SSStarFinalizePackage(void);
+PETSC_EXTERN PetscErrorCode SSStarGetVersionNumber(PetscInt *, PetscInt *, PetscInt *);
 
 /* What ssstar's programs promise a scripted user: unknown options refused, a failed solve said by the exit status and the file */
 #define SSSTAR_EXIT_NOT_CONVERGED 2 /* the exit status of a program whose solve did not converge (bad input: PETSc's error code) */
 PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm, const char *const[], SNES);
+PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsedOf(MPI_Comm, PetscInt, const char *const[], const char *const[], SNES);
 PETSC_EXTERN PetscErrorCode SSStarWriteOutcome(SNES, PetscViewer);
 PETSC_EXTERN PetscErrorCode SSStarPushErrorHandler(void);
 

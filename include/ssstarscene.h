@@ -27,6 +27,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneCreate(MPI_Comm, SSStarScene *);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetFromOptions(SSStarScene);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetProgress(SSStarScene, PetscBool);
 PETSC_EXTERN PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene, const char[], SNES);
+PETSC_EXTERN PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene, PetscInt, const char *const[], const char[], SNES);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetUp(SSStarScene);
 PETSC_EXTERN PetscErrorCode SSStarSceneView(SSStarScene, PetscViewer);
 PETSC_EXTERN PetscErrorCode SSStarSceneDestroy(SSStarScene *);
@@ -60,12 +61,17 @@ PETSC_EXTERN PetscErrorCode SSStarSceneHasPath(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene, Vec, PetscReal[3]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetStep(SSStarScene, SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetHistory(SSStarScene, const char[], const char[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneAcceptStep(SSStarScene, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene, PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetMotion(SSStarScene, PetscInt, const char *[], PetscReal[3], PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneOutputBegin(SSStarScene, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneOutputStep(SSStarScene, SNES, Vec, PetscInt);
 PETSC_EXTERN PetscErrorCode SSStarSceneOutputEnd(SSStarScene, SNES, Vec, PetscErrorCode (*)(PetscViewer, void *), void *);
+/* The table of the steps (/steps): its columns and the row of the step just solved */
+PETSC_EXTERN PetscErrorCode SSStarSceneGetStepColumns(SSStarScene, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetStepColumn(SSStarScene, PetscInt, size_t, char[], PetscInt *, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetStepRow(SSStarScene, SNES, Vec, PetscInt, PetscReal[]);
 
 /*
    Output: HDF5 + XDMF, the same file on any number of ranks (the mesh file's node order), with what was solved and how
@@ -74,6 +80,9 @@ PETSC_EXTERN PetscErrorCode SSStarSceneOutputEnd(SSStarScene, SNES, Vec, PetscEr
 */
 PETSC_EXTERN PetscErrorCode SSStarCheckOutputFile(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneWriteSolution(SSStarScene, SNES, const char[], Vec, PetscErrorCode (*)(PetscViewer, void *), void *);
+PETSC_EXTERN PetscErrorCode SSStarWriteTable(PetscViewer, const char[], PetscInt, const char *const[], PetscInt, const PetscReal *const[]);
+/* A dataset of the output as the scene holds it at a state, every row in file order, on every rank */
+PETSC_EXTERN PetscErrorCode SSStarSceneGetField(SSStarScene, SNES, Vec, const char[], Vec *);
 /* The friction of each contact node of an ssstar SNES (group/friction_law, group/<parameter>), as the scenes write it */
 PETSC_EXTERN PetscErrorCode SSStarWriteNodeFriction(SNES, PetscViewer, const char[]);
 

@@ -54,6 +54,7 @@ static PetscErrorCode NameListDestroy(NameList *list)
   PetscFunctionBegin;
   for (PetscInt i = 0; i < list->n; i++) PetscCall(PetscFree(list->names[i]));
   PetscCall(PetscFree(list->names));
+  list->n = list->max = 0;
   PetscFunctionReturn(0);
 }
 
@@ -311,6 +312,52 @@ static PetscErrorCode UnreadOptions(MPI_Comm comm, NameList *unread)
   PetscFunctionReturn(0);
 }
 
+/* The options of names (without the dash) that no rank has read */
+static PetscErrorCode UnreadOptionsOf(MPI_Comm comm, PetscInt n, const char *const names[], NameList *unread)
+{
+  PetscBool *left;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(n + 1, &left));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscBool used;
+
+    PetscCall(PetscOptionsUsed(NULL, names[i], &used));
+    left[i] = (PetscBool)!used;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, left, n, MPIU_BOOL, MPI_LAND, comm));
+  for (PetscInt i = 0; i < n; i++)
+    if (left[i]) PetscCall(NameListAdd(unread, names[i], strlen(names[i])));
+  PetscCall(PetscFree(left));
+  PetscFunctionReturn(0);
+}
+
+/* Refuses the unread options, each with the nearest option known (known texts, the used options, the SNES's) */
+static PetscErrorCode RefuseUnread(MPI_Comm comm, NameList *unread, const char *const known[], SNES snes)
+{
+  NameList names = {0, 0, NULL};
+  char     message[4096] = "", nearest[PETSC_MAX_PATH_LEN];
+  PetscInt n;
+
+  PetscFunctionBegin;
+  if (!unread->n) PetscFunctionReturn(0);
+  for (PetscInt k = 0; known && known[k]; k++) PetscCall(AddNamesOfText(&names, known[k], NULL));
+  PetscCall(AddUsedNames(&names));
+  if (snes) PetscCall(AddNamesOfSNES(&names, snes));
+  for (PetscInt i = 0; i < unread->n; i++) {
+    char one[2 * PETSC_MAX_PATH_LEN];
+
+    PetscCall(Nearest(&names, unread->names[i], nearest, sizeof(nearest)));
+    if (nearest[0]) PetscCall(PetscSNPrintf(one, sizeof(one), "%s-%s (nearest known option: %s)", i ? ", " : "", unread->names[i], nearest));
+    else PetscCall(PetscSNPrintf(one, sizeof(one), "%s-%s (no known option is near it)", i ? ", " : "", unread->names[i]));
+    if (strlen(message) + strlen(one) < sizeof(message)) PetscCall(PetscMemcpy(message + strlen(message), one, strlen(one) + 1));
+  }
+  n = unread->n;
+  PetscCall(NameListDestroy(&names));
+  PetscCall(NameListDestroy(unread));
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "Unknown option%s %s: nothing was done; -help lists the options", n > 1 ? "s" : "", message);
+}
+
 /*@C
    SSStarCheckOptionsUsed - refuses the options of the database that nothing has read, naming each with the nearest
    option the program knows; for a program that has read all its options and set up its solver from them, before
@@ -337,36 +384,54 @@ static PetscErrorCode UnreadOptions(MPI_Comm comm, NameList *unread)
 
    Level: intermediate
 
-.seealso: `PetscOptionsLeftGet()`, `PetscOptionsUsed()`
+.seealso: `SSStarCheckOptionsUsedOf()`, `PetscOptionsLeftGet()`, `PetscOptionsUsed()`
 @*/
 PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm comm, const char *const known[], SNES snes)
 {
-  NameList unread = {0, 0, NULL}, names = {0, 0, NULL};
-  char     message[4096] = "", nearest[PETSC_MAX_PATH_LEN];
-  PetscInt n;
+  NameList unread = {0, 0, NULL};
 
   PetscFunctionBegin;
   if (snes) PetscValidHeaderSpecific(snes, SNES_CLASSID, 3);
   PetscCall(UnreadOptions(comm, &unread));
-  if (!unread.n) {
-    PetscCall(NameListDestroy(&unread));
-    PetscFunctionReturn(0);
-  }
-  for (PetscInt k = 0; known && known[k]; k++) PetscCall(AddNamesOfText(&names, known[k], NULL));
-  PetscCall(AddUsedNames(&names));
-  if (snes) PetscCall(AddNamesOfSNES(&names, snes));
-  for (PetscInt i = 0; i < unread.n; i++) {
-    char one[2 * PETSC_MAX_PATH_LEN];
-
-    PetscCall(Nearest(&names, unread.names[i], nearest, sizeof(nearest)));
-    if (nearest[0]) PetscCall(PetscSNPrintf(one, sizeof(one), "%s-%s (nearest known option: %s)", i ? ", " : "", unread.names[i], nearest));
-    else PetscCall(PetscSNPrintf(one, sizeof(one), "%s-%s (no known option is near it)", i ? ", " : "", unread.names[i]));
-    if (strlen(message) + strlen(one) < sizeof(message)) PetscCall(PetscMemcpy(message + strlen(message), one, strlen(one) + 1));
-  }
-  n = unread.n;
-  PetscCall(NameListDestroy(&names));
+  PetscCall(RefuseUnread(comm, &unread, known, snes));
   PetscCall(NameListDestroy(&unread));
-  SETERRQ(comm, PETSC_ERR_USER_INPUT, "Unknown option%s %s: nothing was done; -help lists the options", n > 1 ? "s" : "", message);
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarCheckOptionsUsedOf - refuses those of the given options that nothing has read, naming each with the nearest
+   option the program knows: SSStarCheckOptionsUsed() for a program's own list of options (the keywords of a Python
+   scene), the rest of the database left to PETSc's behaviour
+
+   Collective
+
+   Input Parameters:
++  comm  - the communicator of the program
+.  n     - the number of options
+.  names - their names, without the dash
+.  known - NULL, or a NULL-terminated list of texts that name the program's options as "-name" (its help text);
+           "-name_<G>" names the options -name_ followed by any group name
+-  snes  - NULL, or the program's SNES after SNESSetFromOptions(): the options of a SNES, KSP and PC of its types
+           count as known too
+
+   Notes:
+   Every option of names is checked, the late ones of SSStarCheckOptionsUsed() too: give only those that must have
+   been read by now.
+
+   Level: intermediate
+
+.seealso: `SSStarCheckOptionsUsed()`, `SSStarSceneCheckOptionsUsedOf()`
+@*/
+PetscErrorCode SSStarCheckOptionsUsedOf(MPI_Comm comm, PetscInt n, const char *const names[], const char *const known[], SNES snes)
+{
+  NameList unread = {0, 0, NULL};
+
+  PetscFunctionBegin;
+  if (snes) PetscValidHeaderSpecific(snes, SNES_CLASSID, 5);
+  PetscCall(UnreadOptionsOf(comm, n, names, &unread));
+  PetscCall(RefuseUnread(comm, &unread, known, snes));
+  PetscCall(NameListDestroy(&unread));
+  PetscFunctionReturn(0);
 }
 
 /*@C

@@ -43,6 +43,30 @@ PetscErrorCode SSStarFinalizePackage(void)
 }
 
 /*@C
+   SSStarGetVersionNumber - the version of the ssstar library at hand (SSSTAR_VERSION_MAJOR, _MINOR, _SUBMINOR of the
+   ssstar.h it was built with), for a program that loads it at run time (the Python module checks it against its own)
+
+   Not Collective
+
+   Output Parameters:
++  major    - the major version, or pass NULL
+.  minor    - the minor version, or pass NULL
+-  subminor - the subminor version, or pass NULL
+
+   Level: beginner
+
+.seealso: `SSStarInitializePackage()`
+@*/
+PetscErrorCode SSStarGetVersionNumber(PetscInt *major, PetscInt *minor, PetscInt *subminor)
+{
+  PetscFunctionBegin;
+  if (major) *major = SSSTAR_VERSION_MAJOR;
+  if (minor) *minor = SSSTAR_VERSION_MINOR;
+  if (subminor) *subminor = SSSTAR_VERSION_SUBMINOR;
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarInitializePackage - registers the SNES type "ssstar" (SNESSSSTAR), its friction laws (SSStarLawRegisterAll()),
    reductions (SSStarReductionRegisterAll()) and Newton steps, and the log events of ssstar
 

@@ -316,8 +316,8 @@ PetscErrorCode SSStarSceneGetMotion(SSStarScene scene, PetscInt g, const char *n
   PetscFunctionReturn(0);
 }
 
-/* The surface groups the output follows: the traction, spring and contact groups, each once */
-static PetscErrorCode Surfaces(SSStarScene scene)
+/* The surface groups the output follows (scene->surfaces): the traction, spring and contact groups, each once */
+PetscErrorCode SSStarSceneFollowSurfaces(SSStarScene scene)
 {
   const SSStarGroupValues *lists[2] = {scene->tractions, scene->springs};
   const PetscInt           sizes[2] = {scene->nTractions, scene->nSprings};
@@ -356,7 +356,7 @@ static PetscErrorCode Surfaces(SSStarScene scene)
 PetscErrorCode SSStarSceneSurfaceDisplacements(SSStarScene scene, Vec u, PetscReal mean[])
 {
   PetscFunctionBegin;
-  PetscCall(Surfaces(scene));
+  PetscCall(SSStarSceneFollowSurfaces(scene));
   for (PetscInt s = 0; s < scene->nSurfaces; s++) {
     const PetscScalar *wa, *ua;
     PetscInt           n;

@@ -174,6 +174,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarSceneProgress(SSStarScene, PetscLogDouble *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarSceneShareBadNode(MPI_Comm, SSStarBadNode *, PetscBool *);
 
+PETSC_INTERN PetscErrorCode SSStarSceneLastValue(SSStarHistory, PetscReal[3]);
 PETSC_INTERN PetscErrorCode SSStarSceneGroupUses(SSStarScene, PetscInt *, SSStarGroupUse **, char ***);
 PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
@@ -195,6 +196,7 @@ PETSC_INTERN PetscErrorCode SSStarGroupLawView(const SSStarContactGroup *, Petsc
 PETSC_INTERN PetscErrorCode SSStarSceneSetContactLaws(SSStarScene, SNES);
 PETSC_INTERN PetscErrorCode SSStarSceneContactKinematics(SSStarScene, Vec, Vec, PetscReal[], PetscReal[], PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarSceneRelativeDisplacement(SSStarScene, Vec, PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarSceneFollowSurfaces(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneSurfaceDisplacements(SSStarScene, Vec, PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarScenePathDestroy(SSStarScene);
 

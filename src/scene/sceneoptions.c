@@ -198,7 +198,7 @@ static PetscErrorCode MotionGroup(SSStarScene scene, const char rest[], SSStarCo
 }
 
 /* The value of a history at its last knot (a constant's value) */
-static PetscErrorCode LastValue(SSStarHistory h, PetscReal value[3])
+PetscErrorCode SSStarSceneLastValue(SSStarHistory h, PetscReal value[3])
 {
   PetscInt         n;
   const PetscReal *times;
@@ -228,7 +228,7 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     gv = &scene->tractions[scene->nTractions++];
     PetscCall(PetscStrncpy(gv->name, group, sizeof(gv->name)));
     PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &gv->history, &set));
-    PetscCall(LastValue(gv->history, gv->value));
+    PetscCall(SSStarSceneLastValue(gv->history, gv->value));
     break;
   case OPT_OBSTACLE: {
     char spec[PETSC_MAX_PATH_LEN + 8] = "";
@@ -328,7 +328,7 @@ static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -de
 
    Level: intermediate
 
-.seealso: `SSStarCheckOptionsUsed()`, `SSStarSceneSetFromOptions()`
+.seealso: `SSStarCheckOptionsUsed()`, `SSStarSceneSetFromOptions()`, `SSStarSceneCheckOptionsUsedOf()`
 @*/
 PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[], SNES snes)
 {
@@ -338,6 +338,35 @@ PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[],
   PetscFunctionBegin;
   PetscCall(GroupHelp(groups, sizeof(groups)));
   PetscCall(SSStarCheckOptionsUsed(scene->comm, known, snes));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneCheckOptionsUsedOf - SSStarSceneCheckOptionsUsed() for the options a program gave its scene: refuses
+   those of them that neither the program, nor the scene, nor its solver has read, naming the nearest known option;
+   the other options of the database keep PETSc's behaviour
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetFromOptions()
+.  n     - the number of options given
+.  names - their names, without the dash (the Python module's scene: its keywords and its options file)
+.  help  - the program's help text (its options as "-name"), or NULL
+-  snes  - the program's SNES after SNESSetFromOptions(), or NULL
+
+   Level: intermediate
+
+.seealso: `SSStarSceneCheckOptionsUsed()`, `SSStarCheckOptionsUsedOf()`
+@*/
+PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, const char *const names[], const char help[], SNES snes)
+{
+  char        groups[8192];
+  const char *known[4] = {help ? help : "", SceneOptionNames, groups, NULL};
+
+  PetscFunctionBegin;
+  PetscCall(GroupHelp(groups, sizeof(groups)));
+  PetscCall(SSStarCheckOptionsUsedOf(scene->comm, n, names, known, snes));
   PetscFunctionReturn(0);
 }
 
@@ -421,7 +450,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCheck(!scene->hasNu || (scene->nu > -1 && scene->nu < 0.5), comm, PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
 
   PetscCall(SSStarHistoryCreateFromOptions(comm, NULL, "-gravity", 3, &scene->gravityHistory, &scene->hasGravity));
-  if (scene->hasGravity) PetscCall(LastValue(scene->gravityHistory, scene->gravity));
+  if (scene->hasGravity) PetscCall(SSStarSceneLastValue(scene->gravityHistory, scene->gravity));
   PetscCheck(scene->hasGravity == hasDensity, comm, PETSC_ERR_ARG_WRONG, "Incomplete body force: %s needs %s", scene->hasGravity ? "-gravity" : "-density", scene->hasGravity ? "-density" : "-gravity");
   PetscCheck(!hasDensity || (scene->density >= 0 && !PetscIsInfOrNanReal(scene->density)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-density %g: the density must be a number >= 0", (double)scene->density);
 

@@ -13,110 +13,49 @@ static PetscErrorCode ContactPath(const char prefix[], const char name[], char p
   PetscFunctionReturn(0);
 }
 
-/* On a load path (SSStarSceneAcceptStep()): the slip increment of the last step (global axes), the slip path, the dissipation */
-static PetscErrorCode WritePathFields(SSStarScene scene, hid_t file, const char prefix[], PetscInt p, const PetscInt pos[])
-{
-  PetscReal *inc;
-  char       path[PETSC_MAX_PATH_LEN];
-
-  PetscFunctionBegin;
-  PetscCall(PetscMalloc1(3 * scene->n + 1, &inc));
-  for (PetscInt i = 0; i < scene->n; i++) {
-    const PetscReal *R = &scene->frame[9 * i];
-
-    for (PetscInt k = 0; k < 3; k++) inc[3 * i + k] = R[k] * scene->slipIncrement[2 * i] + R[3 + k] * scene->slipIncrement[2 * i + 1]; /* R_t^T dw_t */
-  }
-  PetscCall(ContactPath(prefix, "slip_increment", path, sizeof(path)));
-  PetscCall(SSStarWriteNodeField(scene->comm, file, path, p, scene->n, pos, 3, inc, PETSC_FALSE));
-  PetscCall(ContactPath(prefix, "slip_path", path, sizeof(path)));
-  PetscCall(SSStarWriteNodeField(scene->comm, file, path, p, scene->n, pos, 1, scene->slipPath, PETSC_FALSE));
-  PetscCall(ContactPath(prefix, "dissipation", path, sizeof(path)));
-  PetscCall(SSStarWriteNodeField(scene->comm, file, path, p, scene->n, pos, 1, scene->dissipation, PETSC_FALSE));
-  PetscCall(PetscFree(inc));
-  PetscFunctionReturn(0);
-}
-
 /*
-   The datasets of <prefix>/contact: per contact node, in the order of the mesh file. With nf, what was declared too
-   (the top level); without, the solution's fields alone (a step of a load path, prefix /steps/<k>).
+   The datasets of <prefix>/contact: per contact node, in the order of the mesh file (fields.c computes their values).
+   With nf, what was declared too (the top level); without, the solution's fields alone (a step of a load path, prefix
+   /steps/<k>). After a step of a load path was accepted, its slip increment, slip path and dissipation.
 */
 PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char prefix[], Vec u, Vec r, const SSStarState states[], const SSStarNodeFriction *nf)
 {
-  MPI_Comm           comm = scene->comm;
-  PetscInt           p, n = scene->n, *pos, *all;
-  PetscReal         *ul, *rl, *sl, *gl;
-  const PetscScalar *ua, *ra;
-  Vec                uC, rC;
-  char               names[1024], path[PETSC_MAX_PATH_LEN];
-  hid_t              group;
+  MPI_Comm   comm = scene->comm;
+  PetscInt   p, n = scene->n, *pos, *all;
+  PetscReal *values;
+  char       names[1024], path[PETSC_MAX_PATH_LEN];
+  hid_t      group;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc5(n + 1, &pos, 3 * n + 1, &ul, 3 * n + 1, &rl, n + 1, &sl, n + 1, &gl));
+  PetscCall(PetscMalloc2(n + 1, &pos, 3 * n + 1, &values));
   PetscCall(SSStarFileOrder(comm, n, scene->tag, &p, &all, pos));
   PetscCall(PetscFree(all));
-  PetscCall(VecGetSubVector(u, scene->isC, &uC));
-  PetscCall(VecGetSubVector(r, scene->isC, &rC));
-  PetscCall(VecGetArrayRead(uC, &ua));
-  PetscCall(VecGetArrayRead(rC, &ra));
-  for (PetscInt i = 0; i < 3 * n; i++) {
-    ul[i] = PetscRealPart(ua[i]);
-    rl[i] = PetscRealPart(ra[i]);
-  }
-  PetscCall(VecRestoreArrayRead(rC, &ra));
-  PetscCall(VecRestoreArrayRead(uC, &ua));
-  PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
-  PetscCall(VecRestoreSubVector(u, scene->isC, &uC));
   PetscCall(ContactPath(prefix, "", path, sizeof(path)));
   PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
-  {
-    const char      *vnames[] = {"displacement", "reaction", "coordinates", "normal", "gap", "area"};
-    const PetscReal *values[] = {ul, rl, scene->coords, scene->normal, scene->gap, scene->area};
-    const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1};
-
-    for (size_t k = 0; k < (nf ? PETSC_STATIC_ARRAY_LENGTH(vnames) : 2); k++) { /* a step: the solution's fields */
-      PetscCall(ContactPath(prefix, vnames[k], path, sizeof(path)));
-      PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, bs[k], values[k], PETSC_FALSE));
-    }
-  }
-  for (PetscInt i = 0; i < n; i++) {
-    sl[i] = states ? (PetscReal)states[i] : -1;
-    gl[i] = (PetscReal)scene->group[i];
+  for (const SSStarContactField *f = SSStarContactFields; f->name; f++) {
+    if ((f->kind == SSSTAR_FIELD_SCENE && !nf) || (f->kind == SSSTAR_FIELD_PATH && !scene->stepped)) continue;
+    PetscCall(SSStarContactFieldValues(scene, f, u, r, states, values));
+    PetscCall(ContactPath(prefix, f->name, path, sizeof(path)));
+    PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, f->bs, values, f->integer));
   }
   PetscCall(ContactPath(prefix, "state", path, sizeof(path)));
-  PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, 1, sl, PETSC_TRUE));
   PetscCall(SSStarJoinNames(SSSTAR_NUM_STATES, SSStarStateNames, names, sizeof(names)));
   PetscCall(SSStarH5ObjectAttrString(file, path, "names", names));
-  { /* at the solution: the gap, pressure, tangential traction and slip (against the plane or the master surface) */
-    PetscReal  *kin[4];
-    const char *knames[4] = {"final_gap", "pressure", "traction", "slip"};
-
-    PetscCall(PetscMalloc4(n + 1, &kin[0], n + 1, &kin[1], 3 * n + 1, &kin[2], 3 * n + 1, &kin[3]));
-    PetscCall(SSStarSceneContactKinematics(scene, u, r, kin[0], kin[1], kin[2], kin[3]));
-    for (PetscInt k = 0; k < 4; k++) {
-      PetscCall(ContactPath(prefix, knames[k], path, sizeof(path)));
-      PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, k < 2 ? 1 : 3, kin[k], PETSC_FALSE));
+  if (nf) {
+    PetscCall(SSStarNodeFrictionWrite(comm, file, "/contact", nf, p, pos)); /* friction_law and the laws' parameters */
+    names[0] = 0;
+    for (PetscInt g = 0; g < scene->nContact; g++) {
+      if (g) PetscCall(PetscStrlcat(names, ",", sizeof(names)));
+      PetscCall(PetscStrlcat(names, scene->contact[g].name, sizeof(names)));
+      if (scene->contact[g].master[0]) { /* a pair: slave->master */
+        PetscCall(PetscStrlcat(names, "->", sizeof(names)));
+        PetscCall(PetscStrlcat(names, scene->contact[g].master, sizeof(names)));
+      }
     }
-    PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
+    PetscCall(SSStarH5ObjectAttrString(file, "/contact/group", "names", names));
   }
-  if (scene->stepped) PetscCall(WritePathFields(scene, file, prefix, p, pos));
-  if (!nf) {
-    PetscCall(PetscFree5(pos, ul, rl, sl, gl));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(SSStarNodeFrictionWrite(comm, file, "/contact", nf, p, pos)); /* friction_law and the laws' parameters */
-  PetscCall(SSStarWriteNodeField(comm, file, "/contact/group", p, n, pos, 1, gl, PETSC_TRUE));
-  names[0] = 0;
-  for (PetscInt g = 0; g < scene->nContact; g++) {
-    if (g) PetscCall(PetscStrlcat(names, ",", sizeof(names)));
-    PetscCall(PetscStrlcat(names, scene->contact[g].name, sizeof(names)));
-    if (scene->contact[g].master[0]) { /* a pair: slave->master */
-      PetscCall(PetscStrlcat(names, "->", sizeof(names)));
-      PetscCall(PetscStrlcat(names, scene->contact[g].master, sizeof(names)));
-    }
-  }
-  PetscCall(SSStarH5ObjectAttrString(file, "/contact/group", "names", names));
-  PetscCall(PetscFree5(pos, ul, rl, sl, gl));
+  PetscCall(PetscFree2(pos, values));
   PetscFunctionReturn(0);
 }
 

@@ -223,50 +223,67 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
   PetscFunctionReturn(0);
 }
 
-/* <prefix>/fields/displacement: the displacement with the held dofs (0: DMGlobalToLocal leaves the constrained dofs as they are) */
-PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
+/*
+   The vertices' coordinates (u NULL) or the displacement u with the held dofs (0: DMGlobalToLocal leaves the
+   constrained dofs as they are) in file order, 3 per vertex: nat holds this rank's rows of the even split
+*/
+PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene scene, Vec u, Vec *nat)
 {
   PetscSection sec;
   PetscBool   *ghost;
-  Vec          ul, nat;
-  hid_t        group;
-  char         path[PETSC_MAX_PATH_LEN];
+  Vec          local;
 
   PetscFunctionBegin;
   PetscCall(SSStarGhostPoints(scene->dm, &ghost));
+  if (u) {
+    PetscCall(DMGetLocalSection(scene->dm, &sec));
+    PetscCall(DMGetLocalVector(scene->dm, &local));
+    PetscCall(VecZeroEntries(local));
+    PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, local));
+    PetscCall(VertexFieldInFileOrder(scene, ghost, 3, local, sec, nat));
+    PetscCall(DMRestoreLocalVector(scene->dm, &local));
+  } else {
+    DM cdm;
+
+    PetscCall(DMGetCoordinatesLocal(scene->dm, &local));
+    PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
+    PetscCall(DMGetLocalSection(cdm, &sec));
+    PetscCall(VertexFieldInFileOrder(scene, ghost, 3, local, sec, nat));
+  }
+  PetscCall(PetscFree(ghost));
+  PetscFunctionReturn(0);
+}
+
+/* <prefix>/fields/displacement */
+PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
+{
+  Vec   nat;
+  hid_t group;
+  char  path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields", prefix));
   PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
-  PetscCall(DMGetLocalSection(scene->dm, &sec));
-  PetscCall(DMGetLocalVector(scene->dm, &ul));
-  PetscCall(VecZeroEntries(ul));
-  PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, ul));
-  PetscCall(VertexFieldInFileOrder(scene, ghost, 3, ul, sec, &nat));
-  PetscCall(DMRestoreLocalVector(scene->dm, &ul));
+  PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
   PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
   PetscCall(WriteVec(file, path, 3, nat));
   PetscCall(VecDestroy(&nat));
-  PetscCall(PetscFree(ghost));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
 {
-  DM           cdm;
-  PetscSection csec;
-  Vec          coordinates, nat;
-  PetscBool   *ghost;
-  PetscInt     ncells, *cells;
-  hid_t        group;
+  Vec       nat;
+  PetscBool *ghost;
+  PetscInt  ncells, *cells;
+  hid_t     group;
 
   PetscFunctionBegin;
   PetscCall(SSStarGhostPoints(scene->dm, &ghost));
   PetscCall(SSStarH5GroupOpen(file, "/geometry", &group));
   PetscCallH5(H5Gclose(group));
-  PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
-  PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &csec));
-  PetscCall(VertexFieldInFileOrder(scene, ghost, 3, coordinates, csec, &nat));
+  PetscCall(SSStarVertexFieldInFileOrder(scene, NULL, &nat));
   PetscCall(WriteVec(file, "/geometry/vertices", 3, nat));
   PetscCall(VecDestroy(&nat));
 

@@ -155,28 +155,6 @@ PetscErrorCode SSStarCheckOutputFile(MPI_Comm comm, const char file[])
   PetscFunctionReturn(0);
 }
 
-/* The columns of the table of the steps (/steps/<name>): 1 or 3 values per step, integers or reals */
-typedef struct {
-  const char *name;
-  PetscInt    width;
-  PetscBool   integer;
-} StepColumn;
-
-static const StepColumn StepColumns[] = {
-  {"time", 1, PETSC_FALSE},         {"iterations", 1, PETSC_TRUE},   {"reason", 1, PETSC_TRUE}, {"residual_norm", 1, PETSC_FALSE}, {"cuts", 1, PETSC_TRUE},
-  {"load", 3, PETSC_FALSE},         {"normal_force", 1, PETSC_FALSE}, {"tangential_force", 3, PETSC_FALSE}, {"area", 1, PETSC_FALSE},
-  {"sliding", 1, PETSC_TRUE},       {"sticking", 1, PETSC_TRUE},     {"separated", 1, PETSC_TRUE}, {"dissipation", 1, PETSC_FALSE},
-};
-
-/* The moving obstacles' contact groups (their columns /steps/motion/<G> follow the fixed ones), then the surfaces */
-static PetscInt MovingGroups(SSStarScene scene)
-{
-  PetscInt n = 0;
-
-  for (PetscInt g = 0; g < scene->nContact; g++) n += scene->contact[g].motion ? 1 : 0;
-  return n;
-}
-
 /* A temporary file beside file: file.<pid>.tmp (the same name on every rank) */
 static PetscErrorCode TemporaryNames(SSStarScene scene, SSStarSceneOutput out, const char file[])
 {
@@ -218,61 +196,11 @@ PetscErrorCode SSStarSceneOutputBegin(SSStarScene scene, const char file[])
   PetscCall(SSStarCheckOutputFile(scene->comm, file));
   PetscCall(PetscNew(&out));
   PetscCall(TemporaryNames(scene, out, file));
-  out->ncols = 3 * MovingGroups(scene);
-  for (size_t c = 0; c < PETSC_STATIC_ARRAY_LENGTH(StepColumns); c++) out->ncols += StepColumns[c].width;
+  out->failedStep = -1;
+  PetscCall(SSStarSceneGetStepColumns(scene, NULL, &out->ncols));
   PetscCall(PetscViewerHDF5Open(scene->comm, out->tmpH5, FILE_MODE_WRITE, &out->viewer));
   PetscCall(PetscViewerHDF5GetFileId(out->viewer, &out->file));
   scene->output = out;
-  PetscFunctionReturn(0);
-}
-
-/* The table's row of a step: what the step was and what it gave (the columns of StepColumns, the motions, the surfaces) */
-static PetscErrorCode StepRow(SSStarScene scene, SNES snes, Vec u, PetscInt cuts, PetscReal row[])
-{
-  SSStarSceneOutput   out = scene->output;
-  SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
-  SNESConvergedReason reason;
-  PetscInt            its, c = 0;
-  PetscReal           norm, load[3];
-  Vec                 r, zero, b;
-  const SSStarState  *states = NULL;
-  PetscBool           isssstar;
-
-  PetscFunctionBegin;
-  PetscCall(SNESGetConvergedReason(snes, &reason));
-  PetscCall(SNESGetIterationNumber(snes, &its));
-  PetscCall(SNESGetFunctionNorm(snes, &norm));
-  PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
-  PetscCall(VecDuplicate(u, &zero));                  /* b = -F(0), the step's load */
-  PetscCall(VecDuplicate(u, &b));
-  PetscCall(VecZeroEntries(zero));
-  PetscCall(SNESComputeFunction(snes, zero, b));
-  PetscCall(VecScale(b, -1.0));
-  PetscCall(SSStarSceneGetLoadResultant(scene, b, load));
-  PetscCall(VecDestroy(&zero));
-  PetscCall(VecDestroy(&b));
-  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
-  if (scene->nContact && isssstar) {
-    PetscCall(SNESSSStarGetStates(snes, &states, NULL));
-    PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
-  }
-  row[c++] = scene->stepTime;
-  row[c++] = its;
-  row[c++] = reason;
-  row[c++] = norm;
-  row[c++] = cuts;
-  for (PetscInt k = 0; k < 3; k++) row[c++] = load[k];
-  row[c++] = res.normal_force;
-  for (PetscInt k = 0; k < 3; k++) row[c++] = res.tangential_force[k];
-  row[c++] = res.area;
-  row[c++] = res.sliding;
-  row[c++] = res.sticking;
-  row[c++] = res.separated;
-  row[c++] = res.dissipation;
-  for (PetscInt g = 0; g < scene->nContact; g++)
-    if (scene->contact[g].motion)
-      for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].d[k];
-  PetscCheck(c == out->ncols, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the row of a step has %" PetscInt_FMT " columns, not %" PetscInt_FMT, c, out->ncols);
   PetscFunctionReturn(0);
 }
 
@@ -316,7 +244,7 @@ PetscErrorCode SSStarSceneOutputStep(SSStarScene scene, SNES snes, Vec u, PetscI
     out->maxSteps = PetscMax(16, 2 * out->maxSteps);
     PetscCall(PetscRealloc(sizeof(PetscReal) * out->maxSteps * out->ncols, &out->table));
   }
-  PetscCall(StepRow(scene, snes, u, cuts, &out->table[out->nsteps * out->ncols]));
+  PetscCall(SSStarSceneGetStepRow(scene, snes, u, cuts, &out->table[out->nsteps * out->ncols]));
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "/steps/%" PetscInt_FMT, out->nsteps));
   PetscCall(SSStarH5GroupOpen(out->file, prefix, &group));
   PetscCall(SSStarH5AttrReal(group, "time", scene->stepTime));
@@ -329,63 +257,50 @@ PetscErrorCode SSStarSceneOutputStep(SSStarScene scene, SNES snes, Vec u, PetscI
     PetscCall(SSStarWriteContact(scene, out->file, prefix, u, r, states, NULL));
     PetscCall(SSStarWriteContactFaces(scene, out->file, prefix, PETSC_FALSE, u, r, states, &nv, &nt));
   }
-  { /* the surfaces' mean displacements: 3 per surface and step */
-    PetscReal *mean;
+  { /* the first step written that did not converge: where the path failed */
+    SNESConvergedReason reason;
 
-    PetscCall(PetscMalloc1(3 * (scene->nTractions + scene->nSprings + scene->nContact) + 1, &mean));
-    PetscCall(SSStarSceneSurfaceDisplacements(scene, u, mean));
-    PetscCall(PetscRealloc(sizeof(PetscReal) * (out->nsteps + 1) * 3 * scene->nSurfaces + 1, &out->surfaces));
-    PetscCall(PetscArraycpy(&out->surfaces[3 * scene->nSurfaces * out->nsteps], mean, 3 * scene->nSurfaces));
-    PetscCall(PetscFree(mean));
+    PetscCall(SNESGetConvergedReason(snes, &reason));
+    if (reason <= 0 && out->failedStep < 0) {
+      out->failedStep = out->nsteps;
+      out->failedTime = scene->stepTime;
+    }
   }
   out->nsteps++;
   PetscCall(PetscLogEventEnd(SSSTAR_Output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* The table /steps (rank 0 writes the rows), /steps/motion/<G>, /steps/groups/<G>/displacement */
+/* The table /steps: each column of SSStarSceneGetStepColumn() as /steps/<name> (rank 0 writes the rows) */
 static PetscErrorCode WriteStepTable(SSStarScene scene, SSStarSceneOutput out)
 {
   PetscMPIInt rank;
-  PetscInt    first = 0, n;
+  PetscInt    first = 0, n, ncolumns;
   PetscReal  *column;
   PetscInt   *ints;
-  char        path[PETSC_MAX_PATH_LEN];
-  hid_t       group;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
   n = rank ? 0 : out->nsteps;
   PetscCall(PetscMalloc2(3 * out->nsteps + 1, &column, out->nsteps + 1, &ints));
-  for (PetscInt c = 0; c < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns) + MovingGroups(scene) + scene->nSurfaces; c++) {
-    const PetscBool fixed = (PetscBool)(c < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns));
-    const PetscInt  width = fixed ? StepColumns[c].width : 3;
+  PetscCall(SSStarSceneGetStepColumns(scene, &ncolumns, NULL));
+  for (PetscInt c = 0; c < ncolumns; c++) {
+    char      name[PETSC_MAX_PATH_LEN], path[PETSC_MAX_PATH_LEN + 8], *slash;
+    PetscInt  width;
+    PetscBool integer;
+    hid_t     group;
 
-    if (fixed) PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/%s", StepColumns[c].name));
-    else if (c < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns) + MovingGroups(scene)) {
-      PetscInt m = c - (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns), g = 0;
-
-      for (PetscInt moving = -1; g < scene->nContact; g++)
-        if (scene->contact[g].motion && ++moving == m) break;
-      PetscCall(SSStarH5GroupOpen(out->file, "/steps/motion", &group));
-      PetscCallH5(H5Gclose(group));
-      PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/motion/%s", scene->contact[g].name));
-    } else {
-      const PetscInt s = c - (PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns) - MovingGroups(scene);
-
-      PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/groups/%s", scene->surfaces[s]));
-      PetscCall(SSStarH5GroupOpen(out->file, path, &group));
-      PetscCallH5(H5Gclose(group));
-      PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
-      for (PetscInt k = 0; k < out->nsteps; k++)
-        for (PetscInt j = 0; j < 3; j++) column[3 * k + j] = out->surfaces[3 * scene->nSurfaces * k + 3 * s + j];
-      PetscCall(SSStarH5WriteRows(scene->comm, out->file, path, n, 3, column, NULL));
-      continue;
-    }
+    PetscCall(SSStarSceneGetStepColumn(scene, c, sizeof(name), name, &width, &integer));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/steps/%s", name));
+    slash = strrchr(path, '/');
+    *slash = 0; /* its group: /steps, /steps/motion, /steps/groups/<G> */
+    PetscCall(SSStarH5GroupOpen(out->file, path, &group));
+    PetscCallH5(H5Gclose(group));
+    *slash = '/';
     for (PetscInt k = 0; k < out->nsteps; k++)
       for (PetscInt j = 0; j < width; j++) column[width * k + j] = out->table[out->ncols * k + first + j];
     for (PetscInt k = 0; k < out->nsteps; k++) ints[k] = (PetscInt)column[k]; /* the integer columns have width 1 */
-    PetscCall(SSStarH5WriteRows(scene->comm, out->file, path, n, width > 1 ? width : 0, fixed && StepColumns[c].integer ? NULL : column, fixed && StepColumns[c].integer ? ints : NULL));
+    PetscCall(SSStarH5WriteRows(scene->comm, out->file, path, n, width > 1 ? width : 0, integer ? NULL : column, integer ? ints : NULL));
     first += width;
   }
   PetscCall(PetscFree2(column, ints));
@@ -426,6 +341,10 @@ static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SN
     PetscCall(SSStarH5AttrInt(group, "count", out->nsteps));
     PetscCallH5(H5Gclose(group));
     PetscCall(WriteStepTable(scene, out));
+  }
+  if (out->failedStep >= 0) { /* the path stopped there */
+    PetscCall(PetscViewerHDF5WriteAttribute(out->viewer, "/", "failed_step", PETSC_INT, &out->failedStep));
+    PetscCall(PetscViewerHDF5WriteAttribute(out->viewer, "/", "failed_time", PETSC_REAL, &out->failedTime));
   }
   if (extra) PetscCall((*extra)(out->viewer, ctx));
   PetscFunctionReturn(0);
@@ -486,7 +405,6 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
     PetscCall(SSStarSceneProgress(scene, &t, line));
   }
   PetscCall(PetscFree(out->table));
-  PetscCall(PetscFree(out->surfaces));
   PetscCall(PetscFree(out));
   PetscCall(ierr);
   PetscCall(PetscLogEventEnd(SSSTAR_Output, 0, 0, 0, 0));

@@ -25,6 +25,7 @@ PETSC_INTERN PetscErrorCode SSStarGhostPoints(DM, PetscBool **);
 PETSC_INTERN int            SSStarCompareRows(const void *, const void *, void *);
 PETSC_INTERN PetscErrorCode SSStarWriteMesh(SSStarScene, hid_t, Vec);
 PETSC_INTERN PetscErrorCode SSStarWriteDisplacement(SSStarScene, hid_t, const char[], Vec);
+PETSC_INTERN PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene, Vec, Vec *);
 PETSC_INTERN PetscErrorCode SSStarFileOrder(MPI_Comm, PetscInt, const PetscInt[], PetscInt *, PetscInt **, PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], PetscInt, PetscInt, const PetscInt[], PetscInt, const PetscReal[], PetscBool);
 
@@ -42,6 +43,21 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionGet(MPI_Comm, SNES, PetscInt, const PetscInt[], SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionWrite(MPI_Comm, hid_t, const char[], const SSStarNodeFriction *, PetscInt, const PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *);
+/* The datasets of /contact (fields.c): the scene's, those of a state (u, r, states), those of a load path's last step */
+typedef enum {
+  SSSTAR_FIELD_SCENE,
+  SSSTAR_FIELD_STATE,
+  SSSTAR_FIELD_PATH
+} SSStarFieldKind;
+typedef struct {
+  const char     *name;
+  PetscInt        bs;      /* values per node: 1 or 3 */
+  PetscBool       integer; /* written as integers      */
+  SSStarFieldKind kind;
+} SSStarContactField;
+PETSC_INTERN const SSStarContactField SSStarContactFields[]; /* ends with a NULL name */
+PETSC_INTERN PetscErrorCode           SSStarContactFieldValues(SSStarScene, const SSStarContactField *, Vec, Vec, const SSStarState[], PetscReal[]);
+
 PETSC_INTERN PetscErrorCode SSStarWriteContact(SSStarScene, hid_t, const char[], Vec, Vec, const SSStarState[], const SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarWriteContactFaces(SSStarScene, hid_t, const char[], PetscBool, Vec, Vec, const SSStarState[], PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarWriteScene(SSStarScene, hid_t, const SSStarNodeFriction *);
@@ -50,15 +66,16 @@ PETSC_INTERN PetscErrorCode SSStarWriteRun(SSStarScene, hid_t, SNES);
 /*
    A file written step by step along a load path (output.c: SSStarSceneOutputBegin(), SSStarSceneOutputStep(),
    SSStarSceneOutputEnd()): open on its temporary name, each step's fields written as it comes, the table of the steps
-   (one row per step, the columns of StepColumn) kept on every rank and written at the end with the top level
+   (one row per step, the columns of SSStarSceneGetStepColumn()) kept on every rank and written at the end with the top level
 */
 struct _n_SSStarSceneOutput {
   PetscViewer viewer;
   hid_t       file;
   char        final[PETSC_MAX_PATH_LEN], xmf[PETSC_MAX_PATH_LEN], tmpH5[PETSC_MAX_PATH_LEN], tmpXmf[PETSC_MAX_PATH_LEN];
-  PetscInt    nsteps, maxSteps, ncols; /* the table: nsteps rows of ncols */
+  PetscInt    nsteps, maxSteps, ncols; /* the table: nsteps rows of ncols (SSStarSceneGetStepRow()) */
   PetscReal  *table;
-  PetscReal  *surfaces; /* per step, the mean displacement of each followed surface (3 per surface) */
+  PetscInt    failedStep; /* the first step written whose solve did not converge (-1: none): /'s failed_step */
+  PetscReal   failedTime; /* its time: /'s failed_time */
 };
 
 #endif

@@ -323,7 +323,7 @@ static PetscErrorCode UnreadOptionsOf(MPI_Comm comm, PetscInt n, const char *con
     PetscBool used;
 
     PetscCall(PetscOptionsUsed(NULL, names[i], &used));
-    left[i] = (PetscBool)!used;
+    left[i] = (PetscBool)(!used && !IsLate(names[i]));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, left, n, MPIU_BOOL, MPI_LAND, comm));
   for (PetscInt i = 0; i < n; i++)
@@ -415,8 +415,8 @@ PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm comm, const char *const known[], 
            count as known too
 
    Notes:
-   Every option of names is checked, the late ones of SSStarCheckOptionsUsed() too: give only those that must have
-   been read by now.
+   As SSStarCheckOptionsUsed(), options PETSc reads only during the work, after the solve or at PetscFinalize() are
+   not refused (-snes_view, -log_view, -mat_*, ...).
 
    Level: intermediate
 

@@ -26,8 +26,15 @@ numpy arrays (or sequences): the module makes the IS or Vec on the SNES's commun
 on every rank: input wrong on one rank raises petsc4py.PETSc.Error on every rank, with PETSc's error code (PETSc prints
 the message of the rank that found it on stderr), so that no rank waits for another in a collective call.
 
-The library is found, in this order, at $SSSTAR_LIB, where `make install` put it (_config.py), or in the source tree
-(lib/libssstar.so beside this python/ folder).
+Scenes (the scene library of examples/contact: meshes, groups, obstacles, pairs, load paths, the output file) are
+ssstar.Scene: help(ssstar.Scene).
+
+A PETSc error of the library raises ssstar.Error (a petsc4py.PETSc.Error): str() is the library's message, naming the
+option, file, group or node; .ierr is PETSc's error code.
+
+The library is found, in this order, at $SSSTAR_LIB, the one the module was installed with (_config.py: `pip install
+./python` copies it beside the module, `make install` records PREFIX/lib), or in the source tree (lib/libssstar.so
+beside this python/ folder); an installed module refuses a library of another version.
 """
 import ctypes
 import os
@@ -35,7 +42,7 @@ import os
 import numpy as np
 from petsc4py import PETSc
 
-__all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
+__all__ = ["Scene", "Step", "Error", "__version__", "SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
            "set_linear_problem", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
            "set_contact_offsets", "get_contact_offsets",
            "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
@@ -47,14 +54,17 @@ __all__ = ["SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REAS
 SNESSSSTAR = "ssstar"
 
 
+try:
+    from . import _config  # written by pip install ./python or make install: the library and version installed with
+except ImportError:
+    _config = None
+
+
 def _find_library():
     if os.environ.get("SSSTAR_LIB"):
         return os.environ["SSSTAR_LIB"]
-    try:
-        from . import _config  # written by make install
+    if _config is not None:
         return _config.LIBRARY
-    except ImportError:
-        pass
     here = os.path.dirname(os.path.abspath(__file__))
     return os.path.join(os.path.dirname(os.path.dirname(here)), "lib", "libssstar.so")
 
@@ -88,13 +98,42 @@ def _declare(name, *argtypes):
     return f
 
 
+class Error(PETSc.Error):
+    """An error of ssstar's C library: str() is its message (naming the option, file, group or node), ierr PETSc's error
+    code and reason PETSc's words for it. A petsc4py.PETSc.Error: except PETSc.Error catches it too."""
+
+    def __init__(self, ierr, message="", reason=""):
+        PETSc.Error.__init__(self, ierr)
+        self.message, self.reason = message, reason
+
+    def __str__(self):
+        return self.message or self.reason or PETSc.Error.__str__(self)
+
+
+_error_message = _declare("PetscErrorMessage", ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p))
+
+
 def _call(f, *args):
     ierr = f(*args)
     if ierr:
-        raise PETSc.Error(ierr)
+        text, specific = ctypes.c_char_p(), ctypes.c_char_p()
+        _error_message(ierr, ctypes.byref(text), ctypes.byref(specific))  # the message of the error's first call
+        raise Error(ierr, (specific.value or b"").decode(errors="replace").strip(), (text.value or b"").decode(errors="replace"))
 
 
 _call(_declare("SSStarInitializePackage"))  # registers the SNES type "ssstar"
+
+
+def _library_version():
+    v = [_Int(), _Int(), _Int()]
+    _call(_declare("SSStarGetVersionNumber", *[ctypes.POINTER(_Int)] * 3), *[ctypes.byref(x) for x in v])
+    return "%d.%d.%d" % tuple(x.value for x in v)
+
+
+__version__ = _library_version()
+if _config is not None and getattr(_config, "VERSION", __version__) != __version__:
+    raise ImportError("ssstar %s: the library %s is version %s; install the module again with the library (pip install ./python, or make install)" % (_config.VERSION, library, __version__))
+
 
 def _listed(function):
     """The names a function of the library lists as (n, names): SSStarLawGetNames() and the like"""
@@ -451,3 +490,6 @@ def write_node_friction(snes, viewer, group="/contact"):
     names as an attribute) and one dataset per parameter of the laws in use (group/friction, ...), as the scenes' files
     have them, into an open petsc4py HDF5 viewer"""
     _call(_C["SSStarWriteNodeFriction"], _h(snes), _h(viewer), group.encode())
+
+
+from .scene import Scene, Step  # noqa: E402  (the scene library: meshes, groups, load paths, output)

@@ -146,15 +146,17 @@ static PetscErrorCode ContactField(SSStarScene scene, const SSStarContactField *
 /* The vertices (u NULL) or the displacement u, every vertex in file order on every rank */
 static PetscErrorCode VertexField(SSStarScene scene, Vec u, Vec *v)
 {
-  Vec        nat;
+  Vec        nat, all;
   VecScatter scatter;
 
   PetscFunctionBegin;
   PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
-  PetscCall(VecScatterCreateToAll(nat, &scatter, v));
+  PetscCall(VecScatterCreateToAll(nat, &scatter, &all));
+  PetscCall(SequentialVec(3 * scene->nodesGlobal, 3, v));
   PetscCall(VecScatterBegin(scatter, nat, *v, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(scatter, nat, *v, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterDestroy(&scatter));
+  PetscCall(VecDestroy(&all));
   PetscCall(VecDestroy(&nat));
   PetscFunctionReturn(0);
 }

@@ -86,8 +86,8 @@ install: $(LIB)
 	install -m 755 $(LIB) $(DESTDIR)$(PREFIX)/lib/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@PETSC_CFLAGS@|$(PETSC_CC_INCLUDES)|' \
 	    -e 's|@PETSC_LIBS@|$(PETSC_LIB)|' ssstar.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/ssstar.pc
-	install -m 644 python/ssstar/__init__.py $(DESTDIR)$(PYTHON_DIR)/ssstar/
-	printf 'LIBRARY = "%s"\n' '$(PREFIX)/lib/lib$(LIBNAME).so' > $(DESTDIR)$(PYTHON_DIR)/ssstar/_config.py
+	install -m 644 python/ssstar/__init__.py python/ssstar/scene.py $(DESTDIR)$(PYTHON_DIR)/ssstar/
+	printf 'LIBRARY = "%s"\nVERSION = "%s"\n' '$(PREFIX)/lib/lib$(LIBNAME).so' '$(VERSION)' > $(DESTDIR)$(PYTHON_DIR)/ssstar/_config.py
 	@echo "The Python module ssstar is in $(PYTHON_DIR): put it on PYTHONPATH unless python3 searches it already"
 
 # the compiler and flags the sources are built with (tests/suite_package.py compiles the manual's synopses with them)

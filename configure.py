@@ -21,6 +21,10 @@ PACKAGES = {
     "python3-h5py": lambda: debian_python_has("h5py"),
     "pkg-config": lambda: shutil.which("pkg-config") is not None,
     "python3-petsc4py": lambda: debian_python_has("petsc4py"),
+    "python3-mpi4py": lambda: debian_python_has("mpi4py"),  # examples/scene.py sweep --split: a scene per rank
+    "python3-venv": lambda: debian_python_has("ensurepip"),  # pip install ./python into a venv (tests/suite_pyscene.py)
+    "python3-setuptools": lambda: debian_python_has("setuptools"),  # ... without build isolation (no index needed)
+    "python3-wheel": lambda: debian_python_has("wheel"),
     "libmumps-dev": lambda: os.path.exists("/usr/include/dmumps_c.h"),  # MUMPS's C API (the direct reduction)
     "libmetis-dev": lambda: os.path.exists("/usr/include/metis.h"),  # METIS_NodeND (its ordering)
     "valgrind": lambda: shutil.which("valgrind") is not None,  # the memory check of the tests (tests/suite_hard.py)

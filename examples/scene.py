@@ -5,7 +5,7 @@
                                                           in Python: the same scene, steps, answers and -o file
   examples/scene.py block [--out block.h5]               the README's block load path (press, shear past phi P,
                                                           release, shear back, release), one line per step
-  examples/scene.py sweep [--ratios 0.5,...] [--out sweep.png] [--split]
+  examples/scene.py sweep [--ratios 0.5,...] [--out sweep.png] [--split] [--csv f]
                                                           the residual slip of the block after press, shear Q and
                                                           release, against Q/(phi P), beside (11.2): max(0, Q - phi P)/k
   examples/scene.py onset [--out onset.h5]               a load path decided by its own loop: the shear raised step by
@@ -112,6 +112,11 @@ def sweep(args):
     say("Q/(phi P)  Q        residual slip   (11.2) max(0, Q - phi P)/k")
     for r, s in zip(ratios, slips):
         say("%-10.4g %-8.4g %-15.9g %.9g" % (r, r * PHI * P, s, max(0.0, (r - 1) * PHI * P) / K))
+    if args.csv and PETSc.COMM_WORLD.getRank() == 0:
+        with open(args.csv, "w") as f:
+            f.write("ratio,Q,residual_slip,closed_form\n")
+            for r, s in zip(ratios, slips):
+                f.write("%r,%r,%r,%r\n" % (r, r * PHI * P, s, max(0.0, (r - 1) * PHI * P) / K))
     if args.out and PETSc.COMM_WORLD.getRank() == 0:
         import matplotlib
         matplotlib.use("Agg")
@@ -122,7 +127,7 @@ def sweep(args):
         ax.plot(ratios, np.array(slips) * 1e3, "o", color="C3", label="ssstar.Scene, level 2")
         ax.set_xlabel("Q / (φ P)")
         ax.set_ylabel("residual slip after release [10⁻³]")
-        ax.set_title("block on a spring: press P = 10, shear Q, release (φ = 0.5, k = 1000)")
+        ax.set_title("block on a spring: press P = 10, shear Q, release\n(φ = 0.5, k = 1000 per unit area; ssstar.Scene)", fontsize=10)
         ax.legend()
         fig.tight_layout()
         fig.savefig(args.out, dpi=120)
@@ -131,21 +136,22 @@ def sweep(args):
 
 
 def onset(out=None):
-    """A load path decided by its own loop: press the block, then raise the shear Q; a step that makes more than 8
-    nodes begin to slide is refused (accept=False) and halved, until no node sticks"""
-    scene = ssstar.Scene(traction={"top": (0, 0, -P)}, **BLOCK)
+    """A load path decided by its own loop (the README's example): press the block, then raise the shear Q; a step
+    that makes more than 8 nodes begin to slide is refused (accept=False) and halved, until no node sticks"""
+    scene = ssstar.Scene(geo="meshes/block.geo", level=2, E=2e8, nu=0.3, spring={"top": 1000}, contact=["bottom"],
+                         friction={"bottom": 0.5}, traction={"top": (0, 0, -10)})
     if out:
-        scene.write(out)                              # every accepted step goes into the file
-    last = scene.step(0)                              # pressed by P = 10, no shear: most nodes stick
+        scene.write(out)                          # every accepted step goes into the file
+    last = scene.step(0)                          # pressed by P = 10, no shear: most nodes stick
     Q, dQ = 0.0, 1.0
     while last.sticking().any() and dQ > 1e-3:
-        scene.set(traction={"top": (Q + dQ, 0, -P)})
-        step = scene.step(Q + dQ, accept=False)       # tentative; its time is the shear
+        scene.set(traction={"top": (Q + dQ, 0, -10)})
+        step = scene.step(Q + dQ, accept=False)   # tentative; its time is the shear
         if step.converged and (step.sliding() & ~last.sliding()).sum() <= 8:
-            Q, last = Q + dQ, scene.accept()          # at most 8 nodes began to slide: go on from here
+            Q, last = Q + dQ, scene.accept()      # at most 8 nodes began to slide: go on from there
         else:
-            dQ /= 2                                   # too many at once: a smaller step
-    say("no node sticks from Q = %.6g on (phi P = %g): %d nodes slide, %d separated" % (Q, PHI * P, last.sliding().sum(), last.separated().sum()))
+            dQ /= 2                               # too many at once: a smaller step
+    say("no node sticks from Q = %.6g on (phi P = 5): %d nodes slide, %d separated" % (Q, last.sliding().sum(), last.separated().sum()))
     scene.close()
     return 0
 
@@ -162,6 +168,7 @@ def main():
     p.add_argument("--ratios", default="0.25,0.5,0.75,0.9,1.1,1.25,1.5,1.75,2")
     p.add_argument("--out", default="sweep.png", help="the picture (matplotlib)")
     p.add_argument("--split", action="store_true", help="each rank its own points on PETSC_COMM_SELF (mpi4py)")
+    p.add_argument("--csv", help="write the table (ratio, Q, residual slip, (11.2)) with every digit")
     p = sub.add_parser("onset", help="a load path decided by its own loop")
     p.add_argument("--out", help="write the path's file (HDF5 + XDMF)")
     args, petsc = parser.parse_known_args([a for a in sys.argv[1:]])

@@ -3,6 +3,8 @@ the same mesh, groups, obstacles, pairs, load paths and output file, solved by t
 the steps of a load path handed to the Python program one at a time. help(ssstar.Scene) says how."""
 import atexit
 import ctypes
+import math
+import os
 import weakref
 
 import numpy as np
@@ -20,6 +22,7 @@ _C = {name: _declare(name, *args) for name, args in {
     "PetscOptionsInsertFile": (_Handle, _Handle, ctypes.c_char_p, _Enum),
     "PetscOptionsLeftGet": (_Handle, _P(_Int), _P(_P(ctypes.c_char_p)), _P(_P(ctypes.c_char_p))),
     "PetscOptionsLeftRestore": (_Handle, _P(_Int), _P(_P(ctypes.c_char_p)), _P(_P(ctypes.c_char_p))),
+    "SSStarCheckAllRanks": (_Handle, ctypes.c_int, ctypes.c_char_p),
     "VecGetLocalSize": (_Handle, _P(_Int)),
     "VecGetBlockSize": (_Handle, _P(_Int)),
     "VecGetArrayRead": (_Handle, _P(_P(_Real))),
@@ -56,6 +59,7 @@ _C = {name: _declare(name, *args) for name, args in {
     "SSStarSceneGetStepRow": (_Handle, _Handle, _Handle, _Int, _P(_Real)),
     "SSStarSceneGetField": (_Handle, _Handle, _Handle, ctypes.c_char_p, _P(_Handle)),
 }.items()}
+_PETSC_ERR_FILE_OPEN = 65
 # PetscFree() is a macro over the function pointer PetscTrFree
 _free = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p)
 
@@ -126,6 +130,8 @@ def _file_options(comm, path):
     """The options of a PETSc options file (comments and all, as -options_file reads it), in a database of their own"""
     opts, n = _Handle(), _Int()
     names, values = _P(ctypes.c_char_p)(), _P(ctypes.c_char_p)()
+    missing = "" if os.access(str(path), os.R_OK) and os.path.isfile(str(path)) else "Unable to open options file %s" % path
+    _call(_C["SSStarCheckAllRanks"], comm, _PETSC_ERR_FILE_OPEN, missing.encode())  # rank 0 alone reads it below
     _call(_C["PetscOptionsCreate"], ctypes.byref(opts))
     try:
         _call(_C["PetscOptionsInsertFile"], comm, opts, str(path).encode(), 1)
@@ -261,9 +267,10 @@ class Scene:
                             accept() takes it, another step(t) replaces it
       set(traction={G: v}, gravity=v, obstacle_motion={G: v})   new values of the scene's histories (constants or
                             histories, as the keywords), for the steps to come
-      write(file)           the file examples/contact -o writes: after solve() of a static scene its solution; for a
-                            load path call it before the steps: each step goes into the file as it is solved, and
-                            close() (or the end of solve(), or of a with block) completes it
+      write(file)           the file examples/contact -o writes (o=file in the options does the same): given before
+                            the solve, solve() of a static scene writes its solution there, and the steps of a load
+                            path (solve(), steps(), step()) go into it as they are solved, completed by close() or the
+                            end of solve(); given after a static solve, that solution
       close()               frees the scene (collective); a with block does it
 
     What it holds: snes (the petsc4py SNES, ssstar or a Cholesky solve without contact), dm, K, b (the load at the
@@ -493,6 +500,8 @@ class Scene:
 
     def _solve_at(self, t, cuts):
         """Solves the step at t from the last accepted step (SolvePath() of examples/contact)"""
+        if not math.isfinite(t):
+            raise ValueError("ssstar.Scene: the time %r of a step is not a finite number" % t)
         _call(_C["SSStarSceneAssembleLoad"], self._scene, t, _h(self._load))
         _call(_C["SSStarSceneSetStep"], self._scene, _h(self.snes), t)
         if self._u_accepted is None:

@@ -2,7 +2,7 @@
    A scene's histories changed after it was described: a program's own load path decides the next load or obstacle
    position from the steps solved so far (the Python module's Scene.set()), through the same options' values.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /* The history of -traction_<G>, -gravity or -obstacle_<G>_motion, to be replaced; the value at its last knot, if any */
 static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStarHistory **history, PetscReal **last)

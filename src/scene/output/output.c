@@ -219,13 +219,13 @@ PetscErrorCode SSStarSceneOutputBegin(SSStarScene scene, const char file[])
 -  cuts  - how many times the step was halved before it converged (a caller's count; 0 without step cutting)
 
    Notes:
-   k counts the steps written, from 0. The step's time is the one of SSStarSceneSetStep(); its load the SNES's, b =
-   -F(0); /steps/groups/<G>/displacement the mean displacement of every traction, spring and contact group (weighted
-   like a uniform traction's load, so that the work of a uniform traction on G is its force times this).
+   k counts the steps written, from 0; the row is SSStarSceneGetStepRow()'s. The first step written whose solve did
+   not converge is where the path failed: SSStarSceneOutputEnd() writes its row and time as the attributes
+   failed_step and failed_time of "/".
 
    Level: intermediate
 
-.seealso: `SSStarSceneOutputBegin()`, `SSStarSceneOutputEnd()`, `SSStarSceneSetStep()`, `SSStarSceneAcceptStep()`
+.seealso: `SSStarSceneOutputBegin()`, `SSStarSceneOutputEnd()`, `SSStarSceneSetStep()`, `SSStarSceneAcceptStep()`, `SSStarSceneGetStepRow()`
 @*/
 PetscErrorCode SSStarSceneOutputStep(SSStarScene scene, SNES snes, Vec u, PetscInt cuts)
 {

@@ -66,7 +66,8 @@ def steps_equal_file():
 
 
 def keywords_and_file():
-    """A keyword overrides the file's option; a misspelt one is refused naming the nearest; bad values by the library"""
+    """A keyword overrides the file's option; a misspelt one is refused naming the nearest (also when the database has it
+    already); bad values by the library"""
     shear = os.path.join(ROOT, "scenes", "shear.opts")
     with ssstar.Scene(shear, level=1, geo=BLOCK["geo"]) as scene:
         expect(scene.nodes == 75 and scene.contact_size == 25, "level 1 of the file's block: %d nodes" % scene.nodes)  # (4+1)(4+1)(2+1)
@@ -75,6 +76,12 @@ def keywords_and_file():
     raises(ssstar.Error, lambda: ssstar.Scene(shear, geo=BLOCK["geo"], level=1, E=-1), "-E -1.: Young's modulus must be a positive number")
     raises(ssstar.Error, lambda: ssstar.Scene(shear, geo=BLOCK["geo"], level=1, steps_max_cutz=2), "-steps_max_cutz", "nearest known option: -steps_max_cuts")
     raises(ssstar.Error, lambda: ssstar.Scene(os.path.join(OUT, "no_such.opts")), "no_such.opts")
+    db = PETSc.Options()  # the same misspelt option already in the database (the command line), read there: refused too
+    db.setValue("friction_botom", "0.4")
+    db.hasName("friction_botom")
+    raises(ssstar.Error, lambda: ssstar.Scene(shear, geo=BLOCK["geo"], level=1, friction_botom=0.4), "Unknown option -friction_botom")
+    expect(db.getString("friction_botom", None) == "0.4", "the database's value is back")
+    db.delValue("friction_botom")
     raises(ssstar.Error, lambda: ssstar.Scene(traction={"top": "0:0,0,0;1:0,0"}, **BLOCK), "-traction_top")
 
 

@@ -18,6 +18,7 @@ _C = {name: _declare(name, *args) for name, args in {
     "PetscObjectCompose": (_Handle, ctypes.c_char_p, _Handle),
     "PetscObjectDereference": (_Handle,),
     "PetscOptionsCreate": (_P(_Handle),),
+    "PetscOptionsUsed": (_Handle, ctypes.c_char_p, _P(_Enum)),
     "PetscOptionsDestroy": (_P(_Handle),),
     "PetscOptionsInsertFile": (_Handle, _Handle, ctypes.c_char_p, _Enum),
     "PetscOptionsLeftGet": (_Handle, _P(_Int), _P(_P(ctypes.c_char_p)), _P(_P(ctypes.c_char_p))),
@@ -158,20 +159,30 @@ class _Options:
     def __enter__(self):
         db, saved = PETSc.Options(), []
         for name, value in self.pairs:
+            was_read = _read(name)  # before hasName() reads it
             had = db.hasName(name)
-            saved.append((name, had, db.getString(name, None) if had else None))
+            saved.append((name, had, db.getString(name, None) if had else None, was_read))
+            db.delValue(name)  # a new entry, unread until the scene reads it (the check of its options)
             db.setValue(name, value)
         self._saved.append(saved)
         return self
 
     def __exit__(self, *exc):
         db = PETSc.Options()
-        for name, had, old in reversed(self._saved.pop()):
+        for name, had, old, was_read in reversed(self._saved.pop()):
+            db.delValue(name)
             if had:
                 db.setValue(name, old if old != "" else None)
-            else:
-                db.delValue(name)
+                if was_read:
+                    db.hasName(name)  # read, as it was
         return False
+
+
+def _read(name):
+    """Whether an option of the database was read (PetscOptionsUsed(): it does not read it)"""
+    used = _Enum()
+    _call(_C["PetscOptionsUsed"], None, name.encode(), ctypes.byref(used))
+    return bool(used.value)
 
 
 _live = weakref.WeakSet()  # scenes to close before petsc4py finalizes PETSc

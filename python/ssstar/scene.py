@@ -287,7 +287,7 @@ class Scene:
     What it holds: snes (the petsc4py SNES, ssstar or a Cholesky solve without contact), dm, K, b (the load at the
     last knot), u (the displacement of the last solve), nodes, contact_size, has_contact, has_path, knots, vertices
     (n x 3, file order), contact_nodes ({coordinates, normal, gap, area, group} per contact node, file order),
-    group_names, columns (the table of the steps: (name, width)), view().
+    group_names, columns (the table of the steps: (name, width, integer)), view().
 
     MPI: every rank makes the same scene (comm=PETSc.COMM_WORLD by default; a petsc4py or mpi4py communicator) and
     gets the same numpy arrays; the scene's calls are collective.

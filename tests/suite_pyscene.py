@@ -152,23 +152,24 @@ def onset_code():
     return [line.split("#")[0].strip() for line in body[first:last + 1] if line.strip() and not line.strip().startswith(("if out", "scene.write"))]
 
 
-@test("a load path decided by a Python loop (examples/scene.py onset, the README's example: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike); the README holds the loop's code")
+@test("a load path decided by a Python loop (examples/scene.py onset, the README's example: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike); the README holds the loop's code")
 def pyscene_user_loop():
-    py_h5, c_h5 = out("pyscene_onset_py.h5"), out("pyscene_onset_c.h5")
-    text = python_run(mpiexec(1, PYTHON, SCENE_PY, "onset", "--out", py_h5, *RTOL))
-    m = re.search(r"no node sticks from Q = (\S+) on", text)
-    expect(m is not None and 4 < float(m.group(1)) < 5, "the shear at which no node sticks", text)
-    with h5py.File(py_h5, "r") as f:
-        times = f["steps/time"][()]
-        states = [f["steps/%d/contact/state" % k][()] for k in range(len(times))]
-        expect(f["steps/sticking"][-1] == 0 and times[-1] == float(m.group(1)), "the last step: %d sticking, t %g" % (f["steps/sticking"][-1], times[-1]), text)
-    sliding = [np.isin(s, (1, 2)) for s in states]
-    new = [int((sliding[k] & ~sliding[k - 1]).sum()) for k in range(1, len(sliding))]
-    expect(max(new) <= 8 and np.all(np.diff(times) > 0), "new sliding nodes per step %s, times %s" % (new, times), text)
-    history = ";".join("%r:%r,0,-10" % (float(t), float(t)) for t in times)
-    run(mpiexec(1, CONTACT, *BLOCK, "-traction_top", history, "-steps", ",".join(repr(float(t)) for t in times), *RTOL, "-o", c_h5))
-    same_files(c_h5, py_h5)
-    same_law(c_h5, py_h5)
+    for ranks in (1, 2):
+        py_h5, c_h5 = out("pyscene_onset_py_np%d.h5" % ranks), out("pyscene_onset_c_np%d.h5" % ranks)
+        text = python_run(mpiexec(ranks, PYTHON, SCENE_PY, "onset", "--out", py_h5, *RTOL, *PATHS[ranks]))
+        m = re.search(r"no node sticks from Q = (\S+) on", text)
+        expect(m is not None and 4 < float(m.group(1)) < 5, "%d ranks: the shear at which no node sticks" % ranks, text)
+        with h5py.File(py_h5, "r") as f:
+            times = f["steps/time"][()]
+            states = [f["steps/%d/contact/state" % k][()] for k in range(len(times))]
+            expect(f["steps/sticking"][-1] == 0 and times[-1] == float(m.group(1)), "%d ranks: the last step: %d sticking, t %g" % (ranks, f["steps/sticking"][-1], times[-1]), text)
+        sliding = [np.isin(s, (1, 2)) for s in states]
+        new = [int((sliding[k] & ~sliding[k - 1]).sum()) for k in range(1, len(sliding))]
+        expect(max(new) <= 8 and np.all(np.diff(times) > 0), "%d ranks: new sliding nodes per step %s, times %s" % (ranks, new, times), text)
+        history = ";".join("%r:%r,0,-10" % (float(t), float(t)) for t in times)
+        run(mpiexec(ranks, CONTACT, *BLOCK, "-traction_top", history, "-steps", ",".join(repr(float(t)) for t in times), *RTOL, *PATHS[ranks], "-o", c_h5))
+        same_files(c_h5, py_h5)
+        same_law(c_h5, py_h5)
     readme = open(os.path.join(ROOT, "README.md")).read()
     missing = [line for line in onset_code() if line not in readme]
     expect(not missing, "the README does not show these lines of examples/scene.py's onset(): %s" % missing)

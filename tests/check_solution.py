@@ -79,25 +79,38 @@ def coulomb(args):
         ut = u - (un - gap)[:, None] * normal
     rt = r - rn[:, None] * normal
     umax, rmax = max(np.abs(u).max(), np.abs(un).max(), np.abs(ut).max()), np.abs(r).max()
-    utn, rtn = np.linalg.norm(ut, axis=1), np.linalg.norm(rt, axis=1)
-    sliding = utn > args.tol * umax
-    # each node's friction set: how far r_t lies beyond its boundary (radially), and the force of maximum
-    # dissipation -F(w_t) a sliding node must have
-    excess, dissipative = np.zeros(p), np.zeros((p, 3))
+    umax, rmax = umax if umax > 0 else 1.0, rmax if rmax > 0 else 1.0
+    # the verdict (docs/derivation.md section 12): each node's (w, r) lies within tol max|w| and tol max|r| of a pair
+    # that satisfies its law exactly; the approximation step at gamma = max|w|/max|r| gives such a pair, z away
+    distance = np.zeros(p)
     for law, nodes in laws:
-        excess[nodes] = law.excess(nodes, rn[nodes], rt[nodes], normal[nodes])
+        distance[nodes] = law.distance(nodes, un[nodes], ut[nodes], rn[nodes], rt[nodes], normal[nodes], umax, rmax)
+    worst = int(np.argmax(distance))
+    # what that bound implies for each condition of the law, with a node "sliding" where its slip exceeds tol max|w|:
+    # printed with the bound each may reach
+    utn = np.linalg.norm(ut, axis=1)
+    sliding = utn > args.tol * umax
+    excess, direction = np.zeros(p), np.zeros(p)
+    for law, nodes in laws:
+        excess[nodes] = law.excess(nodes, rn[nodes], rt[nodes], normal[nodes]) / law.reach(nodes)
         slide = nodes[sliding[nodes]]
-        dissipative[slide] = -law.force(slide, rn[slide], ut[slide], normal[slide])
-    violations = {
-        "w_n >= 0": np.max(-un) / umax,
-        "r_n >= 0": np.max(-rn) / rmax,
-        "w_n r_n = 0": np.max(np.abs(un * rn)) / (umax * rmax),
-        "|r_t| <= bound": np.max(excess) / rmax,
-        "r_t = -bound w_t/|w_t|": np.max(np.abs(rt[sliding] - dissipative[sliding])) / rmax if sliding.any() else 0.0,
-    }
-    ok = True
-    for name, v in violations.items():
-        good = v <= args.tol
+        if len(slide):
+            dissipative = -law.force(slide, rn[slide], ut[slide], normal[slide])
+            # the force's direction follows the slip's to an angle 2 tol max|w| / |w_t|
+            allowed = 2 * args.tol * umax / utn[slide] * np.linalg.norm(dissipative, axis=1)
+            direction[slide] = (np.linalg.norm(rt[slide] - dissipative, axis=1) - allowed) / law.reach(slide)
+    conditions = [
+        ("w_n >= 0", np.max(-un) / umax, 1),
+        ("r_n >= 0", np.max(-rn) / rmax, 1),
+        ("w_n r_n = 0", np.max(np.abs(un * rn)) / (umax * rmax), 3),
+        ("|r_t| <= bound", np.max(excess) / rmax, 2),
+        ("r_t = -bound w_t/|w_t|", np.max(direction) / rmax if sliding.any() else 0.0, 2),
+    ]
+    ok = distance[worst] <= args.tol
+    print("%-28s %9.1e %s (node %d; tolerance %g of max|w| %.3g and max|r| %.3g)" % (
+        "distance to the law", distance[worst], "ok" if ok else "VIOLATED", worst, args.tol, umax, rmax))
+    for name, v, reach in conditions:
+        good = v <= reach * args.tol
         ok &= good
         print("%-28s %9.1e %s" % (name, v, "ok" if good else "VIOLATED"))
     separated = un > args.tol * umax
@@ -107,6 +120,17 @@ def coulomb(args):
     if "geometry" in f:
         ok &= check_xdmf(args.file, f)
     return ok
+
+
+def approximation_step_normal(un, rn, gamma):
+    """(1.1): z_n and the scaled normal force max(0, gamma r_n - w_n) of the approximation step"""
+    return np.maximum(-gamma * rn, -un), np.maximum(0.0, gamma * rn - un)
+
+
+def soft_threshold(v, s):
+    """(1.2): max(0, 1 - s/|v|) v, row by row"""
+    size = np.linalg.norm(v, axis=1)
+    return np.where(size > s, 1 - s / np.where(size > 0, size, 1.0), 0.0)[:, None] * v
 
 
 class Isotropic:
@@ -123,6 +147,18 @@ class Isotropic:
 
     def force(self, nodes, rn, wt, normal):
         return self.limit(nodes, rn)[:, None] * wt / np.linalg.norm(wt, axis=1)[:, None]
+
+    def reach(self, nodes):
+        """how far r_t may lie beyond the bound per unit of error of r: 1 + the coefficient"""
+        return 1.0 + (self.values[nodes] if self.name == "coulomb" else 0.0)
+
+    def distance(self, nodes, un, wt, rn, rt, normal, umax, rmax):
+        """|z|/max|w| of the approximation step at gamma = max|w|/max|r| (docs/derivation.md sections 1, 12)"""
+        gamma = umax / rmax
+        zn, force = approximation_step_normal(un, rn, gamma)
+        bound = np.zeros(len(nodes)) if self.values is None else self.values[nodes] * (force if self.name == "coulomb" else gamma)
+        zt = soft_threshold(wt - gamma * rt, bound) - wt
+        return np.maximum(np.abs(zn), np.linalg.norm(zt, axis=1)) / umax
 
     def describe(self, nodes):
         label = {"none": "frictionless", "tresca": "Tresca (s %s)", "coulomb": "Coulomb (phi %s)"}[self.name]
@@ -157,6 +193,37 @@ class Orthotropic:
         wa, wb = np.einsum("ij,ij->i", wt, a), np.einsum("ij,ij->i", wt, b)
         sigma = np.hypot(phi1 * wa, phi2 * wb)
         return (rn / sigma)[:, None] * ((phi1 ** 2 * wa)[:, None] * a + (phi2 ** 2 * wb)[:, None] * b)
+
+    def reach(self, nodes):
+        return 1.0 + np.maximum(self.phi1[nodes], self.phi2[nodes])
+
+    def distance(self, nodes, un, wt, rn, rt, normal, umax, rmax):
+        """|z|/max|w| of the approximation step (9.2) at gamma = max|w|/max|r|: d_t = v - the projection of v onto the
+        ellipse of semi-axes (phi_1, phi_2) times the scaled normal force, by the secular equation"""
+        gamma = umax / rmax
+        zn, force = approximation_step_normal(un, rn, gamma)
+        a, b, phi1, phi2 = self.axes(nodes, normal)
+        v = wt - gamma * rt
+        p = np.stack([np.einsum("ij,ij->i", v, a), np.einsum("ij,ij->i", v, b)], axis=1)
+        e = np.stack([phi1 * force, phi2 * force], axis=1)
+        inside = np.sum((p / np.where(e > 0, e, 1.0)) ** 2, axis=1) <= 1
+        inside &= (e > 0).all(axis=1)
+        t = np.zeros(len(nodes))
+        w = e * p
+        hi = np.linalg.norm(w, axis=1) - (e ** 2).min(axis=1)
+        t = np.maximum(0.0, (np.abs(w) - e ** 2).max(axis=1))
+        for _ in range(100):  # Newton from the left of the root of sum w^2/(e^2 + t)^2 = 1 (monotone)
+            q = w / (e ** 2 + t[:, None])
+            g = np.sum(q ** 2, axis=1) - 1
+            dg = -2 * np.sum(q ** 2 / (e ** 2 + t[:, None]), axis=1)
+            step = np.where((g > 0) & (dg < 0), -g / np.where(dg < 0, dg, -1.0), 0.0)
+            t = np.minimum(t + step, np.maximum(hi, t))
+            if np.all(step <= 4e-16 * np.maximum(t, 1e-300)):
+                break
+        dp = np.where(inside[:, None], 0.0, t[:, None] * p / np.where(e ** 2 + t[:, None] > 0, e ** 2 + t[:, None], 1.0))
+        dp = np.where((e == 0).any(axis=1)[:, None] & ~inside[:, None], p, dp)  # no force: the ellipse is a point
+        zt = dp[:, :1] * a + dp[:, 1:] * b - wt
+        return np.maximum(np.abs(zn), np.linalg.norm(zt, axis=1)) / umax
 
     def describe(self, nodes):
         return "%d orthotropic (phi_1 %s, phi_2 %s)" % (len(nodes), describe(self.phi1[nodes]), describe(self.phi2[nodes]))

@@ -230,7 +230,7 @@ PetscErrorCode SSStarWriteRun(SSStarScene scene, hid_t file, SNES snes)
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   if (isssstar) {
     SSStarReason        sub;
-    PetscReal           tol, gamma;
+    PetscReal           tol, gamma, law, lawtol;
     PetscInt            counts[SSSTAR_NUM_STATES];
     SSStarReductionType rtype;
 
@@ -241,6 +241,9 @@ PetscErrorCode SSStarWriteRun(SSStarScene scene, hid_t file, SNES snes)
     PetscCall(SNESSSStarGetReductionType(snes, &rtype));
     PetscCall(SSStarH5AttrString(root, "sub_reason", SSStarReasons[sub]));
     PetscCall(SSStarH5AttrReal(root, "tolerance", tol));
+    PetscCall(SNESSSStarGetLawResidual(snes, &law, &lawtol, NULL, NULL));
+    PetscCall(SSStarH5AttrReal(root, "law_residual", law));
+    PetscCall(SSStarH5AttrReal(root, "law_tolerance", lawtol));
     PetscCall(SSStarH5AttrReal(root, "scaling", gamma));
     PetscCall(SSStarH5AttrString(root, "reduction", rtype));
     PetscCall(SSStarH5AttrInts(root, "state_counts", SSSTAR_NUM_STATES, counts));

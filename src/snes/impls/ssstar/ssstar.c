@@ -7,7 +7,7 @@
 #include "ssstarimpl.h"
 
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
-const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
@@ -247,6 +247,10 @@ static PetscErrorCode SetUpSolve(SNES snes)
     ss->scale *= ss->scaling;
     PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   }
+  PetscCall(SNESSSStarRecordStart(snes, ss->u));
+  ss->lawBest   = PETSC_MAX_REAL;
+  ss->lawStalls = 0;
+  ss->polishing = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -269,11 +273,19 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
   PetscCall(SetUpSolve(snes));
   PetscCall(SSStarGlobalizationBegin(snes));
+  {
+    PetscBool taken;
+
+    PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
+    PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
+    PetscCall(SNESSSStarElasticTrial(snes, &taken));
+  }
 
   for (PetscInt k = 0;; k++) {
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
+    PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
     PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
     PetscCall(SNESSSStarClassify(snes));
     if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
@@ -296,6 +308,18 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       ss->reason   = SSSTAR_REASON_MAX_IT;
       snes->reason = SNES_DIVERGED_MAX_IT;
       break;
+    }
+    /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
+       taken whole, until it is, or it stops halving (its round-off floor) */
+    ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);
+    if (ss->polishing) {
+      if (ss->lawResidual > 0.5 * ss->lawBest) ss->lawStalls++;
+      ss->lawBest = PetscMin(ss->lawBest, ss->lawResidual);
+      if (ss->lawStalls > SSSTAR_LAW_MAX_STALLS) {
+        ss->reason   = SSSTAR_REASON_LAW_STALLED;
+        snes->reason = SNES_DIVERGED_LOCAL_MIN;
+        break;
+      }
     }
     if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
       PetscCall(SNESSSStarSetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
@@ -324,7 +348,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       PetscInt remedies = 0;
 
       for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) remedies += ss->glob.counts[r];
-      const PetscReal eta = remedies || (ss->glob.changed == 0 && ss->glob.shownAlpha == 1) ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
+      const PetscReal eta = remedies || ss->polishing || (ss->glob.changed == 0 && ss->glob.shownAlpha == 1) ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
 
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
@@ -340,7 +364,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
-        PetscCall(SSStarGlobalizationStep(snes, k, znorm, &stop));
+        PetscCall(SSStarGlobalizationStep(snes, k, znorm, ss->polishing, &stop));
       }
     }
     if (stop) {
@@ -402,9 +426,14 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 @*/
 PetscErrorCode SNESConvergedSSStar(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
 {
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscBool    law;
+
   PetscFunctionBegin;
   *reason = SNES_CONVERGED_ITERATING;
+  law = (PetscBool)(ss->lawResidual <= PetscMax(snes->rtol, ss->lawRtol));
   if (PetscIsInfOrNanReal(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
+  else if (!law) *reason = SNES_CONVERGED_ITERATING;
   else if (fnorm <= snes->abstol) *reason = SNES_CONVERGED_FNORM_ABS;
   else if (fnorm <= snes->rtol * xnorm) *reason = SNES_CONVERGED_FNORM_RELATIVE;
   PetscFunctionReturn(0);
@@ -420,6 +449,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(SSStarNewtonReset(ss->newton));
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
+  PetscCall(PetscFree(ss->uStart));
   PetscCall(VecDestroy(&ss->u));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) PetscCall(VecDestroy(w));
   PetscCall(VecDestroy(&ss->d));
@@ -499,6 +529,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscStrncpy(ss->problem.reductionType, SSSTARREDUCTIONAUTO, sizeof(ss->problem.reductionType)));
   ss->problem.built         = -1;
   ss->etaMax                = 0.1;
+  ss->lawRtol               = SSSTAR_LAW_RTOL_DEFAULT;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;
   ss->glob.dampingMin       = 1.0 / 64;

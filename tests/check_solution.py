@@ -40,45 +40,69 @@ import numpy as np
 
 def coulomb(args):
     f = h5py.File(args.file, "r")
-    c = f["contact"]
-    u = c["displacement"][:]
-    r = c["reaction"][:]
+    steps = sorted((k for k in f["steps"] if k.isdigit()), key=int) if "steps" in f else []
+    # a load path's step is measured against its own forces and displacements too: those of the step before
+    before = lambda k: f["steps/%s/contact" % steps[k - 1]] if k > 0 else None  # noqa: E731
+    ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None)
+    if args.steps:
+        for j, k in enumerate(steps):
+            print("-- step %s (/steps/%s/contact)" % (k, k))
+            ok &= check_law(f, f["steps/%s/contact" % k], "/steps/%s/contact" % k, args, before(j))
+        print("%d steps checked" % len(steps))
+    if "geometry" in f:
+        ok &= check_xdmf(args.file, f)
+    return ok
+
+
+def check_law(f, c, where, args, previous=None):
+    """the law at every node of the contact group c (/contact, or a load path's /steps/<k>/contact, which takes the
+    normals, gaps and the laws' parameters of /contact unless it has its own); previous: the contact group of the step
+    before on a load path, whose displacements and forces the step's scales include"""
+    top = f["contact"]
+
+    def data(name):
+        return c[name] if name in c else top[name] if name in top else None
+
+    u = data("displacement")[:]
+    r = data("reaction")[:]
     p = len(u)
-    normal = c["normal"][:] if "normal" in c else np.tile([0.0, 0.0, 1.0], (p, 1))
-    gap = c["gap"][:] if "gap" in c else np.zeros(p)
+    normal = data("normal")[:] if data("normal") is not None else np.tile([0.0, 0.0, 1.0], (p, 1))
+    gap = data("gap")[:] if data("gap") is not None else np.zeros(p)
     shapes = {"coordinates": (p, 3), "displacement": (p, 3), "reaction": (p, 3), "state": (p,), "normal": (p, 3), "gap": (p,)}
     for name, shape in shapes.items():
-        if name in c and c[name].shape != shape:
-            print("/contact/%s has shape %s, not %s" % (name, c[name].shape, shape))
+        if data(name) is not None and data(name).shape != shape:
+            print("%s/%s has shape %s, not %s" % (where, name, data(name).shape, shape))
             return False
-    if "state" in c:
-        state = c["state"][:]
-        if state.dtype.kind != "i" or state.min() < 0 or state.max() > 6:
-            print("/contact/state is not an integer state 0..6")
-            return False
+    state = data("state")[:] if data("state") is not None else None
+    if state is not None and (state.dtype.kind != "i" or state.min() < 0 or state.max() > 6):
+        print("%s/state is not an integer state 0..6" % where)
+        return False
     if not np.isfinite(u).all() or not np.isfinite(r).all():
         print("NaN or Inf in the solution")
         return False
-    laws = friction(c, p, args.phi)
+    laws = friction(top, p, args.phi)
     if laws is None:
         return False
     # the law in each node's frame, built here from the normal: w_n, w_t the relative displacement (the file's final
     # gap and slip, against the obstacle or the master surface; else from u: u.n + gap, u - (u.n) n), r_n, r_t
     rn = np.einsum("ij,ij->i", r, normal)
-    if "final_gap" in c and "slip" in c:
-        un, ut = c["final_gap"][:], c["slip"][:]
+    if data("final_gap") is not None and data("slip") is not None:
+        un, ut = data("final_gap")[:], data("slip")[:]
         if un.shape != (p,) or ut.shape != (p, 3) or not np.isfinite(un).all() or not np.isfinite(ut).all():
-            print("/contact/final_gap or /contact/slip: not one finite value (3 for the slip) per contact node")
+            print("%s/final_gap or slip: not one finite value (3 for the slip) per contact node" % where)
             return False
-        print("kinematics: /contact/final_gap and /contact/slip (relative to the obstacle or the master surface)")
-        if "slip_increment" in c:  # a load path: the law of its last step holds for the slip increment (10.2)
-            ut = c["slip_increment"][:]
-            print("tangential law on /contact/slip_increment (the last step of a load path, docs/derivation.md (10.2))")
+        print("kinematics: %s/final_gap and slip (relative to the obstacle or the master surface)" % where)
+        if data("slip_increment") is not None:  # a load path: the law of its step holds for the slip increment (10.2)
+            ut = data("slip_increment")[:]
+            print("tangential law on %s/slip_increment (a load path's step, docs/derivation.md (10.2))" % where)
     else:
         un = np.einsum("ij,ij->i", u, normal) + gap
         ut = u - (un - gap)[:, None] * normal
     rt = r - rn[:, None] * normal
     umax, rmax = max(np.abs(u).max(), np.abs(un).max(), np.abs(ut).max()), np.abs(r).max()
+    if previous is not None:  # the step's changes: a released body's forces go to zero, to be measured against their change
+        umax = max(umax, np.abs(u - previous["displacement"][:]).max())
+        rmax = max(rmax, np.abs(r - previous["reaction"][:]).max())
     umax, rmax = umax if umax > 0 else 1.0, rmax if rmax > 0 else 1.0
     # the verdict (docs/derivation.md section 12): each node's (w, r) lies within tol max|w| and tol max|r| of a pair
     # that satisfies its law exactly; the approximation step at gamma = max|w|/max|r| gives such a pair, z away
@@ -116,9 +140,7 @@ def coulomb(args):
     separated = un > args.tol * umax
     print("nodes %d: separated %d, sliding %d, sticking %d%s" % (
         p, separated.sum(), (~separated & sliding).sum(), (~separated & ~sliding).sum(),
-        "; states " + "/".join(str((c["state"][:] == s).sum()) for s in range(7)) if "state" in c else ""))
-    if "geometry" in f:
-        ok &= check_xdmf(args.file, f)
+        "; states " + "/".join(str((state == s).sum()) for s in range(7)) if state is not None else ""))
     return ok
 
 
@@ -296,12 +318,48 @@ def vertex_field(f):
     return u[np.lexsort((x[:, 2], x[:, 1], x[:, 0]))]
 
 
+def compare_steps(a, b, tol):
+    """every step of two load paths: the contact displacement and reaction and the whole field, relative to the first
+    file's step and its change from the step before (the step's own scale, as the law's, section 12)"""
+    steps = sorted((k for k in a["steps"] if k.isdigit()), key=int)
+    if "steps" not in b or sorted((k for k in b["steps"] if k.isdigit()), key=int) != steps:
+        print("the files have different steps")
+        return False
+    order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (vertices by coordinates)
+    oa, ob = (order(a), order(b)) if "geometry" in a and "geometry" in b else (None, None)
+    worst = {}
+    for j, k in enumerate(steps):
+        fields = [("displacement", "contact/displacement", None), ("reaction", "contact/reaction", None)]
+        if oa is not None:
+            fields.append(("full field", "fields/displacement", (oa, ob)))
+        for name, path, vertex in fields:
+            x, y = a["steps/%s/%s" % (k, path)][:], b["steps/%s/%s" % (k, path)][:]
+            if vertex is not None:
+                x, y = x[vertex[0]], y[vertex[1]]
+            scale = np.abs(x).max()
+            if j > 0:
+                before = a["steps/%s/%s" % (steps[j - 1], path)][:]
+                scale = max(scale, np.abs(x - (before[vertex[0]] if vertex is not None else before)).max())
+            d = np.abs(x - y).max() / (scale if scale > 0 else 1.0)
+            if d >= worst.get(name, (-1, None))[0]:
+                worst[name] = (d, k)
+    ok = True
+    for name, (d, k) in worst.items():
+        ok &= d <= tol
+        print("%-12s max difference %9.1e relative (step %s) %s" % (name, d, k, "ok" if d <= tol else "DIFFERENT"))
+    differ = sum(int((a["steps/%s/contact/state" % k][:] != b["steps/%s/contact/state" % k][:]).sum()) for k in steps)
+    print("%d steps compared; states differ at %d node-steps" % (len(steps), differ))
+    return ok
+
+
 def compare(args):
     a, b = h5py.File(args.a, "r"), h5py.File(args.b, "r")
     ok = True
     if not np.array_equal(a["contact/coordinates"][:], b["contact/coordinates"][:]):
         print("contact nodes differ (coordinates)")
         return False
+    if args.steps:
+        return compare_steps(a, b, args.tol)
     for name in ("displacement", "reaction"):
         x, y = a["contact/" + name][:], b["contact/" + name][:]
         d = np.abs(x - y).max() / np.abs(x).max()
@@ -332,10 +390,12 @@ def main():
     c = sub.add_parser("coulomb", aliases=["law"])
     c.add_argument("file")
     c.add_argument("--phi", type=float, default=None, help="Coulomb coefficient of every node, for files without /contact/friction")
-    c.add_argument("--tol", type=float, default=1e-8)
+    c.add_argument("--tol", type=float, default=1e-7, help="relative to max|w| and max|r| (default 1e-7: the solver guarantees 1e-8 by its own scales at its defaults)")
+    c.add_argument("--steps", action="store_true", help="also every step of a load path (/steps/<k>/contact)")
     m = sub.add_parser("compare")
     m.add_argument("a")
     m.add_argument("b")
+    m.add_argument("--steps", action="store_true", help="every step of two load paths, each relative to its own scale (not the states)")
     m.add_argument("--tol", type=float, default=1e-10)
     args = parser.parse_args()
     ok = coulomb(args) if args.cmd in ("coulomb", "law") else compare(args)

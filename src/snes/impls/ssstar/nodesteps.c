@@ -119,8 +119,8 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
    (the file's reaction) lie within rho U and rho F of a pair (w*, r*) that satisfies the law exactly, and the free
    dofs are in equilibrium to rho F, with
 
-     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_DISPLACEMENT_FLOOR |u_C|_inf)   the step's displacements
-     F = max|r_i|_inf (else |f|_inf)                                                      the largest contact force
+     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR |u_C|_inf)                       the step's displacements
+     F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
 
    rho is |z|_inf / U of the approximation step (12.1) at (w, r) with gamma_w = U/F: (w + z, -b/gamma_w) is that pair.
    Into ss->lawResidual, lawDisplacement (U), lawForce (F).
@@ -131,7 +131,7 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
   SSStarContact     *ct = &ss->contact;
   SSStarProblem     *pb = &ss->problem;
   const PetscScalar *ua, *ca;
-  PetscReal          scales[4] = {0, 0, 0, 0}, res[2] = {0, 0}, gammaw, U, F; /* |w|, |u_C - u_C(start)|, |u_C|, |r| */
+  PetscReal          scales[5] = {0, 0, 0, 0, 0}, res[2] = {0, 0}, gammaw, U, F; /* |w|, |u_C - u_C(start)|, |u_C|, |r|, |r - r(start)| */
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(u, &ua));
@@ -143,17 +143,19 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
     NodeIterate(ct, pb, i, ua, v);
     SNESSSStarNodeRotate(ct, pb, i, ca, r);
     for (PetscInt k = 0; k < 3; k++) {
-      const PetscReal uk = PetscRealPart(ua[pb->layoutDofs[3 * i + k]]);
+      const PetscInt  dof = pb->layoutDofs[3 * i + k];
+      const PetscReal uk = PetscRealPart(ua[dof]), ck = PetscRealPart(ca[dof]);
 
       scales[0] = PetscMax(scales[0], PetscAbsReal(scale * v[k]));
-      scales[1] = PetscMax(scales[1], PetscAbsReal(uk - ss->uStart[3 * i + k]));
+      scales[1] = PetscMax(scales[1], PetscAbsReal(uk - ss->start[6 * i + k]));
       scales[2] = PetscMax(scales[2], PetscAbsReal(uk));
       scales[3] = PetscMax(scales[3], PetscAbsReal(r[k]));
+      scales[4] = PetscMax(scales[4], PetscAbsReal(ck - ss->start[6 * i + 3 + k]));
     }
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, scales, 4, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  U = PetscMax(PetscMax(scales[0], scales[1]), SSSTAR_LAW_DISPLACEMENT_FLOOR * scales[2]);
-  F = scales[3] > 0 ? scales[3] : ss->fnorm_inf;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, scales, 5, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
+  U = PetscMax(PetscMax(scales[0], scales[1]), SSSTAR_LAW_FLOOR * scales[2]);
+  F = PetscMax(PetscMax(scales[3], scales[4]), SSSTAR_LAW_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf));
   if (U == 0) U = 1; /* nothing moves: a displacement error is absolute */
   if (F == 0) F = 1; /* no force at all: a force error is absolute */
   gammaw = U / F;
@@ -181,18 +183,25 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
   PetscFunctionReturn(0);
 }
 
-/* The contact dofs of the first iterate of a solve, from which the law residual measures the step's displacements */
-PetscErrorCode SNESSSStarRecordStart(SNES snes, Vec u)
+/* The contact dofs of the first iterate u of a solve and of its c = A u - f, from which the law residual measures the
+   step's displacements and forces */
+PetscErrorCode SNESSSStarRecordStart(SNES snes, Vec u, Vec c)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarProblem     *pb = &ss->problem;
-  const PetscScalar *ua;
+  const PetscScalar *ua, *ca;
 
   PetscFunctionBegin;
-  PetscCall(PetscFree(ss->uStart));
-  PetscCall(PetscMalloc1(3 * ss->contact.nnodes + 1, &ss->uStart));
+  PetscCall(PetscFree(ss->start));
+  PetscCall(PetscMalloc1(6 * ss->contact.nnodes + 1, &ss->start));
   PetscCall(VecGetArrayRead(u, &ua));
-  for (PetscInt k = 0; k < 3 * ss->contact.nnodes; k++) ss->uStart[k] = PetscRealPart(ua[pb->layoutDofs[k]]);
+  PetscCall(VecGetArrayRead(c, &ca));
+  for (PetscInt i = 0; i < ss->contact.nnodes; i++)
+    for (PetscInt k = 0; k < 3; k++) {
+      ss->start[6 * i + k]     = PetscRealPart(ua[pb->layoutDofs[3 * i + k]]);
+      ss->start[6 * i + 3 + k] = PetscRealPart(ca[pb->layoutDofs[3 * i + k]]);
+    }
+  PetscCall(VecRestoreArrayRead(c, &ca));
   PetscCall(VecRestoreArrayRead(u, &ua));
   PetscFunctionReturn(0);
 }
@@ -217,7 +226,7 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
 
   PetscFunctionBegin;
   *taken = PETSC_FALSE;
-  if (!ct->offset) PetscFunctionReturn(0);
+  if (!ct->offsets) PetscFunctionReturn(0);
   PetscCall(VecGetArrayRead(ss->u, &ua));
   PetscCall(VecGetArrayRead(ss->d, (const PetscScalar **)&da));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
@@ -229,7 +238,7 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
   }
   PetscCall(VecRestoreArrayRead(ss->d, (const PetscScalar **)&da));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, moved, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  if (moved[0] <= SSSTAR_LAW_DISPLACEMENT_FLOOR * moved[1]) {
+  if (moved[0] <= SSSTAR_LAW_FLOOR * moved[1]) {
     PetscCall(VecRestoreArrayRead(ss->u, &ua));
     PetscFunctionReturn(0);
   }

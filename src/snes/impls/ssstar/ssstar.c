@@ -247,7 +247,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
     ss->scale *= ss->scaling;
     PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   }
-  PetscCall(SNESSSStarRecordStart(snes, ss->u));
+  PetscCall(SNESSSStarRecordStart(snes, ss->u, ss->c));
   ss->lawBest   = PETSC_MAX_REAL;
   ss->lawStalls = 0;
   ss->polishing = PETSC_FALSE;
@@ -449,7 +449,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(SSStarNewtonReset(ss->newton));
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
-  PetscCall(PetscFree(ss->uStart));
+  PetscCall(PetscFree(ss->start));
   PetscCall(VecDestroy(&ss->u));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) PetscCall(VecDestroy(w));
   PetscCall(VecDestroy(&ss->d));

@@ -27,8 +27,9 @@ typedef struct {
   const PetscReal *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
 } SSStarContactLayout;
 
-/* the law residual's displacement scale is at least this fraction of |u_C|: the rounding of w = R u + o is below it */
-#define SSSTAR_LAW_DISPLACEMENT_FLOOR 1e-6
+/* the law residual's scales are at least this fraction of |u_C| and of |A| |u| + |f|: the rounding of w = R u + o and
+   of r = A u - f, 1e-16 of those, stays 100 times below the default tolerance of the law */
+#define SSSTAR_LAW_FLOOR 1e-6
 /* the default least tolerance of the law residual of a converged iterate (-snes_ssstar_law_rtol) */
 #define SSSTAR_LAW_RTOL_DEFAULT 1e-8
 /* polishing steps without halving the law residual before the solve stops (it is at its round-off floor) */
@@ -232,7 +233,7 @@ typedef struct {
   PetscReal  lawBest;                   /* the smallest rho of this solve's polishing steps                       */
   PetscInt   lawStalls;                 /* polishing steps that did not halve it                                  */
   PetscBool  polishing;                 /* ||z|| is below its threshold, rho not: Newton steps solved to the floor */
-  PetscReal *uStart;                    /* the contact dofs of the solve's first iterate (3 per node)             */
+  PetscReal *start;                     /* u and c = A u - f at the contact dofs of the solve's first iterate (6 per node) */
 
   /* the iteration, per local node in the solver's order */
   SSStarState *states;                     /* at the last iterate                                   */
@@ -257,7 +258,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarClassify(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarLawResidual(SNES, Vec, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarRecordStart(SNES, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarRecordStart(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarElasticTrial(SNES, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarNewtonStep(SNES, PetscReal, PetscReal, PetscBool, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarRefineNewtonStep(SNES, PetscReal, PetscBool *);

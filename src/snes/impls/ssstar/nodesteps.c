@@ -316,8 +316,9 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
 }
 
 /*
-   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a fraction of the
-   stopping threshold, a tenth of it; while polishing (section 12) also a tenth of the law's tolerance of forces
+   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a tenth of the
+   stopping threshold, and of the law's tolerance of forces (section 12) once the law residual has been measured: on a
+   stiff body gamma^-1 times the first is far above the contact forces
 */
 PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
 {
@@ -327,7 +328,7 @@ PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   *floor = 0.1 * PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale)) / ss->scaling;
-  if (ss->polishing) *floor = PetscMin(*floor, 0.1 * PetscMax(snes->rtol, ss->lawRtol) * ss->lawForce);
+  if (ss->lawForce > 0) *floor = PetscMin(*floor, 0.1 * PetscMax(snes->rtol, ss->lawRtol) * ss->lawForce);
   PetscFunctionReturn(0);
 }
 

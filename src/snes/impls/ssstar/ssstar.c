@@ -248,6 +248,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
     PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   }
   PetscCall(SNESSSStarRecordStart(snes, ss->u, ss->c));
+  ss->lawForce  = 0; /* not measured yet */
   ss->lawBest   = PETSC_MAX_REAL;
   ss->lawStalls = 0;
   ss->polishing = PETSC_FALSE;
@@ -310,10 +311,10 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
     /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
-       taken whole, until it is, or it stops halving (its round-off floor) */
+       taken whole, until it is, or it stops halving while the states stay (its round-off floor) */
     ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);
     if (ss->polishing) {
-      if (ss->lawResidual > 0.5 * ss->lawBest) ss->lawStalls++;
+      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0) ss->lawStalls++;
       ss->lawBest = PetscMin(ss->lawBest, ss->lawResidual);
       if (ss->lawStalls > SSSTAR_LAW_MAX_STALLS) {
         ss->reason   = SSSTAR_REASON_LAW_STALLED;

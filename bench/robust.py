@@ -12,8 +12,9 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
   static: nearly floating bodies (soft springs against a stiff body) under tilted rollers and rigid balls, two-body
           pairs, sheared, friction from 0.1 to 2 (issue 18)
   paths:  load paths (issue 23): stiff blocks on soft springs pressed, sheared past sliding, released, reversed and
-          released; a plane dragging a block forward and back (it sticks and returns; or slides back); the tilted
-          roller and the two-body pairs loaded forth and back
+          released; a plane dragging a block forward and back (it sticks and returns; or slides back); a ball pressed
+          and lifted off, a cylinder pressed and rolled forth and back; the tilted roller and the two-body pairs loaded
+          forth and back
 
 Prints a markdown table (and bench/output/robust.csv): per member and ranks, each path's iterations (Krylov iterations
 of the whole body), reason, law (check_solution's largest distance to the law over the steps) and error (to the exact
@@ -112,6 +113,11 @@ PATHS = {
     "plane drags a block forward and back in 8 steps": dragged(0.002, 0.0015) + ["-steps", "8"],
     "tilted roller: press, shear 0.22 P, reverse, release": ROLLER + ["-traction_bottom", history((0, 0, 0), (0, 0, 300), (66, 0, 300), (-66, 0, 300), (0, 0, 300))],
     "ball, k = 1e-3: press, shear obliquely, reverse": BALL + ["-spring_bottom", "1e-3", "-traction_bottom", history((0, 0, 0), (0, 0, 300), (40, 25, 300), (-40, -25, 300))],
+    "ball pressed 0.02 into a held block, then lifted off, 8 steps": ["-geo", "meshes/indent.geo", "-level", "1", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "bottom",
+        "-contact", "top", "-obstacle_top", "sphere:0,0,10,10", "-friction_top", "0.5", "-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.02), (0, 0, 0.01)), "-steps", "8"],
+    "cylinder pressed 0.02 into a held block, rolled forward and back by 0.01, 8 steps": ["-geo", "meshes/roller.geo", "-level", "1", "-E", "2.1e5", "-nu", "0.3",
+        "-dirichlet", "bottom", "-contact", "top", "-obstacle_top", "cylinder:0,0,10,0,1,0,10", "-friction_top", "0.5",
+        "-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.02), (0.01, 0, -0.02), (-0.01, 0, -0.02), (0, 0, -0.02)), "-steps", "8"],
     "slider (pair): push past sliding, release, reverse, release":
         scene("slider") + ["-traction_slider_top", history((0, 0, 0), (0, 0, -0.01), (0.008, 0, -0.01), (0, 0, -0.01), (-0.008, 0, -0.01), (0, 0, -0.01))],
     "mindlin (pair): P, then Q = 0.5 phi P forth and back, 4 steps per branch": mindlin_scene_args(1, 0.5, ROOT, steps_per_branch=4),

@@ -191,7 +191,7 @@ static PetscErrorCode SNESSSStarGetTolerance_SSStar(SNES snes, PetscReal *tol)
 static PetscErrorCode SNESSSStarSetLawTolerance_SSStar(SNES snes, PetscReal rtol)
 {
   PetscFunctionBegin;
-  PetscCheck(rtol > 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_law_rtol %g must be in (0, 1)", (double)rtol);
+  PetscCheck(rtol >= 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_law_rtol %g must be in (0, 1), or 0 for max(-snes_rtol, 1e-8)", (double)rtol);
   ((SNES_SSStar *)snes->data)->lawRtol = rtol;
   PetscFunctionReturn(0);
 }
@@ -202,7 +202,7 @@ static PetscErrorCode SNESSSStarGetLawResidual_SSStar(SNES snes, PetscReal *resi
 
   PetscFunctionBegin;
   if (residual) *residual = ss->lawResidual;
-  if (tol) *tol = PetscMax(snes->rtol, ss->lawRtol);
+  if (tol) *tol = SNESSSStarLawTolerance(snes);
   if (U) *U = ss->lawDisplacement;
   if (F) *F = ss->lawForce;
   PetscFunctionReturn(0);

@@ -348,17 +348,16 @@ PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
 }
 
 /*@
-   SNESSSStarSetLawTolerance - the least tolerance of the law residual of a converged iterate: a solve converges only
-   when, besides ||z||, every contact point's relative displacement and force as the output writes them lie within
-   max(rtol, lawRtol) U and F of a pair that satisfies the friction law exactly, and the other dofs are in equilibrium
-   to that tolerance times F (docs/derivation.md section 12; U the step's largest displacement, F the largest contact
-   force)
+   SNESSSStarSetLawTolerance - the tolerance of the law residual of a converged iterate: a solve converges only when,
+   besides ||z||, every contact point's relative displacement and force as the output writes them lie within rtol U
+   and rtol F of a pair that satisfies the friction law exactly, and the other dofs are in equilibrium to rtol F
+   (docs/derivation.md section 12; U the step's largest displacement, F the largest contact force)
 
    Logically Collective
 
    Input Parameters:
 +  snes - the SNES
--  rtol - in (0, 1) (default 1e-8)
+-  rtol - in (0, 1), or 0 (the default): max(the SNES's rtol, 1e-8)
 
    Options Database Key:
 .  -snes_ssstar_law_rtol <rtol> - the tolerance
@@ -392,7 +391,7 @@ PetscErrorCode SNESSSStarSetLawTolerance(SNES snes, PetscReal rtol)
    Output Parameters:
 +  residual - rho: every contact point's (w, r) lies within rho U, rho F of a pair satisfying the law, the other dofs are
               in equilibrium to rho F (NULL if not wanted)
-.  tol      - max(rtol, the law tolerance): a converged solve has residual <= tol (NULL if not wanted)
+.  tol      - the law tolerance (SNESSSStarSetLawTolerance()): a converged solve has residual <= tol (NULL if not wanted)
 .  U        - the displacement scale: the largest relative displacement, or displacement in the solve (NULL if not wanted)
 -  F        - the force scale: the largest contact force (NULL if not wanted)
 

@@ -122,6 +122,9 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
      U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR |u_C|_inf)                       the step's displacements
      F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
 
+   each at least SSSTAR_LAW_FLOOR times the largest of the solves since the set-up (a step of a load path where nothing
+   touches and nothing is loaded has forces of round-off alone: they are measured against the path's).
+
    rho is |z|_inf / U of the approximation step (12.1) at (w, r) with gamma_w = U/F: (w + z, -b/gamma_w) is that pair.
    Into ss->lawResidual, lawDisplacement (U), lawForce (F).
 */
@@ -154,8 +157,8 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, scales, 5, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  U = PetscMax(PetscMax(scales[0], scales[1]), SSSTAR_LAW_FLOOR * scales[2]);
-  F = PetscMax(PetscMax(scales[3], scales[4]), SSSTAR_LAW_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf));
+  U = PetscMax(PetscMax(PetscMax(scales[0], scales[1]), SSSTAR_LAW_FLOOR * scales[2]), SSSTAR_LAW_FLOOR * ss->pathDisplacement);
+  F = PetscMax(PetscMax(PetscMax(scales[3], scales[4]), SSSTAR_LAW_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf)), SSSTAR_LAW_FLOOR * ss->pathForce);
   if (U == 0) U = 1; /* nothing moves: a displacement error is absolute */
   if (F == 0) F = 1; /* no force at all: a force error is absolute */
   gammaw = U / F;
@@ -181,6 +184,14 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
   ss->lawDisplacement = U;
   ss->lawForce        = F;
   PetscFunctionReturn(0);
+}
+
+/* The tolerance of the law residual: as set (-snes_ssstar_law_rtol), else max(rtol, SSSTAR_LAW_RTOL_DEFAULT) */
+PetscReal SNESSSStarLawTolerance(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  return ss->lawRtol > 0 ? ss->lawRtol : PetscMax(snes->rtol, SSSTAR_LAW_RTOL_DEFAULT);
 }
 
 /* The contact dofs of the first iterate u of a solve and of its c = A u - f, from which the law residual measures the
@@ -328,7 +339,7 @@ PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   *floor = 0.1 * PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale)) / ss->scaling;
-  if (ss->lawForce > 0) *floor = PetscMin(*floor, 0.1 * PetscMax(snes->rtol, ss->lawRtol) * ss->lawForce);
+  if (ss->lawForce > 0) *floor = PetscMin(*floor, 0.1 * SNESSSStarLawTolerance(snes) * ss->lawForce);
   PetscFunctionReturn(0);
 }
 

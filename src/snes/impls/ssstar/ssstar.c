@@ -303,6 +303,10 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     PetscUseTypeMethod(snes, converged, k, xnorm, dunorm, znorm, &snes->reason, snes->cnvP);
     if (snes->reason) {
       ss->reason = SubReason(snes);
+      if (snes->reason > 0) {
+        ss->pathDisplacement = PetscMax(ss->pathDisplacement, ss->lawDisplacement);
+        ss->pathForce        = PetscMax(ss->pathForce, ss->lawForce);
+      }
       break;
     }
     if (k >= snes->max_its) {
@@ -397,7 +401,9 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
    SNESConvergedSSStar - the default convergence test of ssstar: converged when ||z|| <= atol (CONVERGED_FNORM_ABS)
    or ||z|| <= rtol max(||u||, ||gamma f||, ||o_t||) (CONVERGED_FNORM_RELATIVE), with z the approximation step, gamma f
    the reduced load in displacement units (docs/derivation.md section 6), o_t the tangential contact offsets of a load
-   path's step (SNESSSStarSetContactOffsets(); 0 without) and atol, rtol from SNESSetTolerances()
+   path's step (SNESSSStarSetContactOffsets(); 0 without) and atol, rtol from SNESSetTolerances(); and in both cases
+   when the law residual of the iterate as written is within its tolerance (SNESSSStarSetLawTolerance(),
+   docs/derivation.md section 12)
 
    Collective
 
@@ -432,7 +438,7 @@ PetscErrorCode SNESConvergedSSStar(SNES snes, PetscInt it, PetscReal xnorm, Pets
 
   PetscFunctionBegin;
   *reason = SNES_CONVERGED_ITERATING;
-  law = (PetscBool)(ss->lawResidual <= PetscMax(snes->rtol, ss->lawRtol));
+  law = (PetscBool)(ss->lawResidual <= SNESSSStarLawTolerance(snes));
   if (PetscIsInfOrNanReal(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   else if (!law) *reason = SNES_CONVERGED_ITERATING;
   else if (fnorm <= snes->abstol) *reason = SNES_CONVERGED_FNORM_ABS;
@@ -451,6 +457,7 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
   PetscCall(PetscFree(ss->start));
+  ss->pathDisplacement = ss->pathForce = 0;
   PetscCall(VecDestroy(&ss->u));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) PetscCall(VecDestroy(w));
   PetscCall(VecDestroy(&ss->d));
@@ -502,7 +509,8 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
 .  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||); once a remedy acted, and for a step whose full step fails, the floor (a tenth of the stopping threshold)
 .  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
-.  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
+.  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar()) and the law residual of the iterate as written is within its tolerance
+.  -snes_ssstar_law_rtol <0> - that tolerance (0: max(rtol, 1e-8); docs/derivation.md section 12)
 -  -snes_atol <1e-50> - or when ||z|| <= atol
 
 M*/
@@ -530,7 +538,6 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscStrncpy(ss->problem.reductionType, SSSTARREDUCTIONAUTO, sizeof(ss->problem.reductionType)));
   ss->problem.built         = -1;
   ss->etaMax                = 0.1;
-  ss->lawRtol               = SSSTAR_LAW_RTOL_DEFAULT;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;
   ss->glob.dampingMin       = 1.0 / 64;

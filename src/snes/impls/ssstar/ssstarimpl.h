@@ -30,7 +30,7 @@ typedef struct {
 /* the law residual's scales are at least this fraction of |u_C| and of |A| |u| + |f|: the rounding of w = R u + o and
    of r = A u - f, 1e-16 of those, stays 100 times below the default tolerance of the law */
 #define SSSTAR_LAW_FLOOR 1e-6
-/* the default least tolerance of the law residual of a converged iterate (-snes_ssstar_law_rtol) */
+/* the tolerance of the law residual of a converged iterate is max(rtol, this) unless -snes_ssstar_law_rtol sets it */
 #define SSSTAR_LAW_RTOL_DEFAULT 1e-8
 /* polishing steps without halving the law residual before the solve stops (it is at its round-off floor) */
 #define SSSTAR_LAW_MAX_STALLS 3
@@ -226,10 +226,12 @@ typedef struct {
   SSStarReason reason;
   PetscReal    tolerance;    /* the threshold of the last convergence test: max(atol, rtol max(||u||, ||gamma f||)) */
 
-  /* what a converged iterate guarantees as written (docs/derivation.md section 12): its law residual rho <= max(rtol, lawRtol) */
-  PetscReal  lawRtol;                   /* the least tolerance of rho                                             */
+  /* what a converged iterate guarantees as written (docs/derivation.md section 12): its law residual rho is at most
+     SNESSSStarLawTolerance() */
+  PetscReal  lawRtol;                   /* the tolerance of rho as set, or 0: max(rtol, SSSTAR_LAW_RTOL_DEFAULT)      */
   PetscReal  lawResidual;               /* rho of the last iterate                                                */
   PetscReal  lawDisplacement, lawForce; /* U and F of it                                                          */
+  PetscReal  pathDisplacement, pathForce; /* the largest U and F of the solves since the set-up (a load path's)    */
   PetscReal  lawBest;                   /* the smallest rho of this solve's polishing steps                       */
   PetscInt   lawStalls;                 /* polishing steps that did not halve it                                  */
   PetscBool  polishing;                 /* ||z|| is below its threshold, rho not: Newton steps solved to the floor */
@@ -258,6 +260,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarClassify(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarLawResidual(SNES, Vec, Vec);
+PETSC_INTERN PetscReal      SNESSSStarLawTolerance(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarRecordStart(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarElasticTrial(SNES, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarNewtonStep(SNES, PetscReal, PetscReal, PetscBool, PetscBool *);

@@ -134,7 +134,7 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
   if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
-  PetscCall(PetscOptionsReal("-snes_ssstar_law_rtol", "The least tolerance of the law residual of a converged iterate as written (docs/derivation.md section 12): max(-snes_rtol, this)", "SNESSSStarSetLawTolerance", ss->lawRtol, &value, &set));
+  PetscCall(PetscOptionsReal("-snes_ssstar_law_rtol", "The tolerance of the law residual of a converged iterate as written (docs/derivation.md section 12); 0: max(-snes_rtol, 1e-8)", "SNESSSStarSetLawTolerance", ss->lawRtol, &value, &set));
   if (set) PetscCall(SNESSSStarSetLawTolerance(snes, value));
   PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
   PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
@@ -186,7 +186,7 @@ PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag K_CC)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
   if (snes->ops->converged == SNESConvergedSSStar) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "    and the law residual of the iterate as written <= max(rtol, law_rtol) = %g (docs/derivation.md section 12)\n", (double)PetscMax(snes->rtol, ss->lawRtol)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    and the law residual of the iterate as written <= %g (%s; docs/derivation.md section 12)\n", (double)SNESSSStarLawTolerance(snes), ss->lawRtol > 0 ? "-snes_ssstar_law_rtol" : "max(rtol, 1e-8)"));
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
   PetscCall(SSStarNewtonView(ss->newton, viewer));
@@ -215,7 +215,7 @@ PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
   PetscCall(PetscOptionsGetViewer(PetscObjectComm((PetscObject)snes), ((PetscObject)snes)->options, ((PetscObject)snes)->prefix, "-snes_converged_reason", &viewer, &format, &flg));
   if (!flg) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g, law residual %g (tolerance %g)\n", SSStarReasons[ss->reason], (double)snes->norm, (double)ss->lawResidual, (double)PetscMax(snes->rtol, ss->lawRtol)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g, law residual %g (tolerance %g)\n", SSStarReasons[ss->reason], (double)snes->norm, (double)ss->lawResidual, (double)SNESSSStarLawTolerance(snes)));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);

@@ -97,7 +97,7 @@ def check_law(f, c, where, args, previous=None, path=(0.0, 0.0)):
         if un.shape != (p,) or ut.shape != (p, 3) or not np.isfinite(un).all() or not np.isfinite(ut).all():
             print("%s/final_gap or slip: not one finite value (3 for the slip) per contact node" % where)
             return False
-        print("kinematics: %s/final_gap and slip (relative to the obstacle or the master surface)" % where)
+        print("kinematics: %s/final_gap and %s/slip (relative to the obstacle or the master surface)" % (where, where))
         if data("slip_increment") is not None:  # a load path: the law of its step holds for the slip increment (10.2)
             ut = data("slip_increment")[:]
             print("tangential law on %s/slip_increment (a load path's step, docs/derivation.md (10.2))" % where)

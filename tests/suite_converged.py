@@ -16,6 +16,9 @@ from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 import robust  # noqa: E402  (the robustness families: members, runs, the checks of a file)
 
+robust.OUT = os.path.join(OUT, "robust")  # the members' files among the tests' own
+os.makedirs(robust.OUT, exist_ok=True)
+
 CONTACT = os.path.join(ROOT, "examples", "contact")
 AGREE = 2e-6  # two runs at the defaults, each within 1e-6 of the exact discrete solution
 PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
@@ -109,3 +112,19 @@ def converged_law_stalled():
     with h5py.File(h5("lawful.h5"), "r") as f:
         a = f.attrs
         expect(a["sub_reason"] == "CONVERGED_RELATIVE" and 0 <= a["law_residual"] <= a["law_tolerance"] == 1e-8, "attributes %s" % dict(a), out)
+
+
+@test("every scene of scenes/ (the README's table) at its level and the default settings writes a file that passes tests/check_solution.py on every step (the law as written, tolerance 1e-7), and so do the README's load-path example and its displacement-controlled sliding")
+def converged_every_scene():
+    import glob
+    scenes = sorted(glob.glob(os.path.join(ROOT, "scenes", "*.opts")))
+    expect(len(scenes) >= 13, "%d scenes" % len(scenes))
+    runs = [(os.path.basename(s)[:-5], ["-options_file", s]) for s in scenes]
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    expect("examples/contact -geo meshes/block.geo -level 2 -E 2e8 -nu 0.3 -spring_top 1000 -contact bottom -friction_bottom 0.5" in readme, "the README's load-path example changed: update this test")
+    runs.append(("readme_block", robust.PATHS["block on a spring: press, shear 1.5 phi P, release, reverse, release (the README's)"]))
+    runs.append(("readme_sliding", ["-geo", "meshes/block.geo", "-level", "2", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "top", "-contact", "bottom", "-friction_bottom", "0.3",
+                                    "-obstacle_bottom_motion", "0:0,0,0;1:0,0,0.001;3:0.02,0,0.001;3.1:0.0199,0,0.001", "-steps", "0,1,1.2,1.4,1.6,1.8,2,2.2,2.4,2.6,2.8,3,3.1"]))
+    for name, args in runs:
+        out = run(mpiexec(1, CONTACT, *args, "-ssstar_progress", "0", "-o", h5("every_%s.h5" % name)), timeout=300)
+        expect(law_distance(h5("every_%s.h5" % name)) <= 1e-7, "%s: the law" % name, out)

@@ -120,15 +120,15 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
    dofs are in equilibrium to rho F, with
 
      U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR |u_C|_inf)                       the step's displacements
-     F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
+     F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FORCE_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
 
    each at least SSSTAR_LAW_FLOOR times the largest of the solves since the set-up (a step of a load path where nothing
    touches and nothing is loaded has forces of round-off alone: they are measured against the path's).
 
    rho is |z|_inf / U of the approximation step (12.1) at (w, r) with gamma_w = U/F: (w + z, -b/gamma_w) is that pair.
-   Into ss->lawResidual, lawDisplacement (U), lawForce (F).
+   Without floors: the step's own scales alone (the elastic trial's choice, where the rounding does not matter).
 */
-PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
+static PetscErrorCode LawResidual(SNES snes, Vec u, Vec c, PetscBool floors, PetscReal *rho, PetscReal *Uout, PetscReal *Fout)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarContact     *ct = &ss->contact;
@@ -157,8 +157,14 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, scales, 5, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  U = PetscMax(PetscMax(PetscMax(scales[0], scales[1]), SSSTAR_LAW_FLOOR * scales[2]), SSSTAR_LAW_FLOOR * ss->pathDisplacement);
-  F = PetscMax(PetscMax(PetscMax(scales[3], scales[4]), SSSTAR_LAW_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf)), SSSTAR_LAW_FLOOR * ss->pathForce);
+  U = PetscMax(scales[0], scales[1]);
+  F = PetscMax(scales[3], scales[4]);
+  if (floors) {
+    U = PetscMax(PetscMax(U, SSSTAR_LAW_FLOOR * scales[2]), SSSTAR_LAW_FLOOR * ss->pathDisplacement);
+    F = PetscMax(PetscMax(F, SSSTAR_LAW_FORCE_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf)), SSSTAR_LAW_FLOOR * ss->pathForce);
+  }
+  *Uout = U;
+  *Fout = F;
   if (U == 0) U = 1; /* nothing moves: a displacement error is absolute */
   if (F == 0) F = 1; /* no force at all: a force error is absolute */
   gammaw = U / F;
@@ -180,9 +186,17 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
   PetscCall(VecRestoreArrayRead(c, &ca));
   PetscCall(VecRestoreArrayRead(u, &ua));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, res, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  ss->lawResidual     = PetscMax(res[0], res[1]);
-  ss->lawDisplacement = U;
-  ss->lawForce        = F;
+  *rho = PetscMax(res[0], res[1]);
+  PetscFunctionReturn(0);
+}
+
+/* The law residual of (u, c) with its floors, into ss->lawResidual, lawDisplacement (U), lawForce (F) */
+PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  PetscCall(LawResidual(snes, u, c, PETSC_TRUE, &ss->lawResidual, &ss->lawDisplacement, &ss->lawForce));
   PetscFunctionReturn(0);
 }
 
@@ -222,7 +236,8 @@ PetscErrorCode SNESSSStarRecordStart(SNES snes, Vec u, Vec c)
    solution) after the approximation step there: if the step's offsets moved nodes in contact (d_3 = 0) along their
    obstacles (|v_t| above the rounding of w = R u + o), one Newton step with every such node stuck where its obstacle
    took it (state M3+, target v = 0) and the others as classified; taken (the iterate moves there) when it lowers the law
-   residual. A block dragged back by its plane sticks and comes back with it: the trial is its answer, which the
+   residual measured with the step's own scales (not their round-off floors: a stiff body far from its reference
+   computes its forces only to round-off, and the floor would hide that the old sliding forces point the wrong way). A block dragged back by its plane sticks and comes back with it: the trial is its answer, which the
    approximation step's own classification (the nodes sliding the way they slid) reaches only by luck.
 */
 PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
@@ -232,7 +247,7 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
   SSStarProblem     *pb = &ss->problem;
   const PetscScalar *ua;
   PetscScalar       *za, *da, *ba;
-  PetscReal          moved[2] = {0, 0}, before = ss->lawResidual, znorm; /* the largest |v_t| in contact, |u_C| */
+  PetscReal          moved[2] = {0, 0}, before, after, U, F, znorm; /* the largest |v_t| in contact, |u_C| */
   PetscBool          solved;
 
   PetscFunctionBegin;
@@ -271,13 +286,14 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
   PetscCall(VecRestoreArray(ss->d, &da));
   PetscCall(VecRestoreArray(ss->z, &za));
   PetscCall(VecRestoreArrayRead(ss->u, &ua));
+  PetscCall(LawResidual(snes, ss->u, ss->c, PETSC_FALSE, &before, &U, &F));
   PetscCall(VecNorm(ss->z, NORM_2, &znorm));
   PetscCall(SNESSSStarNewtonStep(snes, znorm, 0.0, PETSC_FALSE, &solved));
   if (!solved) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
-  PetscCall(SNESSSStarLawResidual(snes, ss->ut, ss->ct));
-  *taken = (PetscBool)(ss->lawResidual < before);
+  PetscCall(LawResidual(snes, ss->ut, ss->ct, PETSC_FALSE, &after, &U, &F));
+  *taken = (PetscBool)(after < before);
   if (*taken) {
     PetscCall(VecCopy(ss->ut, ss->u));
     PetscCall(VecCopy(ss->ct, ss->c));

@@ -27,9 +27,13 @@ typedef struct {
   const PetscReal *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
 } SSStarContactLayout;
 
-/* the law residual's scales are at least this fraction of |u_C| and of |A| |u| + |f|: the rounding of w = R u + o and
-   of r = A u - f, 1e-16 of those, stays 100 times below the default tolerance of the law */
+/* the law residual's displacement scale is at least this fraction of |u_C| (and of the path's largest, as its force
+   scale of the path's largest force): the rounding of w = R u + o, 1e-16 of |u|, stays 100 times below the default
+   tolerance of the law */
 #define SSSTAR_LAW_FLOOR 1e-6
+/* its force scale is at least this fraction of |A| |u| + |f|: 10 times the worst round-off of r = A u - f, 2e-16 of
+   that, at the default tolerance 1e-8 (a stiff body far from its reference computes its forces to no better) */
+#define SSSTAR_LAW_FORCE_FLOOR 2e-7
 /* the tolerance of the law residual of a converged iterate is max(rtol, this) unless -snes_ssstar_law_rtol sets it */
 #define SSSTAR_LAW_RTOL_DEFAULT 1e-8
 /* polishing steps without halving the law residual before the solve stops (it is at its round-off floor) */

@@ -208,7 +208,8 @@ PetscErrorCode SSStarSceneOutputBegin(SSStarScene scene, const char file[])
    SSStarSceneOutputStep - appends a step of a load path to the file opened by SSStarSceneOutputBegin(): its fields
    (/steps/<k>/fields/displacement, /steps/<k>/contact/..., /steps/<k>/contact_faces/...) and its row of the table
    /steps (time, iterations, reason, residual_norm, cuts, load, normal_force, tangential_force, area, sliding,
-   sticking, separated, dissipation, motion/<G>, groups/<G>/displacement)
+   sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, motion/<G>,
+   groups/<G>/displacement)
 
    Collective
 

@@ -16,6 +16,7 @@ static const StepColumn StepColumns[] = {
   {"time", 1, PETSC_FALSE},         {"iterations", 1, PETSC_TRUE},   {"reason", 1, PETSC_TRUE}, {"residual_norm", 1, PETSC_FALSE}, {"cuts", 1, PETSC_TRUE},
   {"load", 3, PETSC_FALSE},         {"normal_force", 1, PETSC_FALSE}, {"tangential_force", 3, PETSC_FALSE}, {"area", 1, PETSC_FALSE},
   {"sliding", 1, PETSC_TRUE},       {"sticking", 1, PETSC_TRUE},     {"separated", 1, PETSC_TRUE}, {"dissipation", 1, PETSC_FALSE},
+  {"law_residual", 1, PETSC_FALSE}, {"law_displacement_scale", 1, PETSC_FALSE}, {"law_force_scale", 1, PETSC_FALSE},
 };
 #define NFIXED ((PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns))
 
@@ -43,8 +44,9 @@ static PetscInt MovingGroups(SSStarScene scene)
 
    Notes:
    The columns are time, iterations, reason, residual_norm, cuts, load (3), normal_force, tangential_force (3), area,
-   sliding, sticking, separated, dissipation, then motion/<G> (3) for each contact group with a moving obstacle and
-   groups/<G>/displacement (3) for each traction, spring and contact group (README "Load paths").
+   sliding, sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, then motion/<G>
+   (3) for each contact group with a moving obstacle and groups/<G>/displacement (3) for each traction, spring and
+   contact group (README "Load paths").
 
    Level: intermediate
 
@@ -121,7 +123,9 @@ PetscErrorCode SSStarSceneGetStepColumn(SSStarScene scene, PetscInt c, size_t le
    Notes:
    time is the one of SSStarSceneSetStep(); iterations, reason (SNESConvergedReason) and residual_norm the SNES's;
    load the resultant of the step's load b = -F(0); normal_force, tangential_force, area, sliding, sticking,
-   separated and dissipation those of SSStarSceneGetContactResult() for every group; motion/<G> the obstacle's
+   separated and dissipation those of SSStarSceneGetContactResult() for every group; law_residual and its scales
+   law_displacement_scale, law_force_scale the solver's (SNESSSStarGetLawResidual(), docs/derivation.md section 12);
+   motion/<G> the obstacle's
    translation; groups/<G>/displacement the mean displacement of the group, weighted like a uniform traction's load
    (so that the work of a uniform traction on G is its force times this). SSStarSceneOutputStep() writes this row.
 
@@ -134,7 +138,7 @@ PetscErrorCode SSStarSceneGetStepRow(SSStarScene scene, SNES snes, Vec u, PetscI
   SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
   SNESConvergedReason reason;
   PetscInt            its, c = 0, rowsize;
-  PetscReal           norm, load[3];
+  PetscReal           norm, load[3], law[3] = {0, 0, 0}; /* the law residual and its scales (docs/derivation.md section 12) */
   Vec                 r, zero, b;
   const SSStarState  *states = NULL;
   PetscBool           isssstar;
@@ -157,6 +161,7 @@ PetscErrorCode SSStarSceneGetStepRow(SSStarScene scene, SNES snes, Vec u, PetscI
   if (scene->nContact && isssstar) {
     PetscCall(SNESSSStarGetStates(snes, &states, NULL));
     PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
+    PetscCall(SNESSSStarGetLawResidual(snes, &law[0], NULL, &law[1], &law[2]));
   }
   row[c++] = scene->stepTime;
   row[c++] = its;
@@ -171,6 +176,7 @@ PetscErrorCode SSStarSceneGetStepRow(SSStarScene scene, SNES snes, Vec u, PetscI
   row[c++] = res.sticking;
   row[c++] = res.separated;
   row[c++] = res.dissipation;
+  for (PetscInt k = 0; k < 3; k++) row[c++] = law[k];
   for (PetscInt g = 0; g < scene->nContact; g++)
     if (scene->contact[g].motion)
       for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].d[k];

@@ -78,7 +78,7 @@ def same_files(c_h5, py_h5, rtol=1e-12):
     return worst
 
 
-@test("the README's block load path from Python (examples/scene.py block: ssstar.Scene with the history as (t, (x, y, z)) pairs, steps() and write()) writes the file examples/contact writes for the README's command: every dataset of every step within 1e-12 of it on 1 and 2 ranks (on 2 ranks the whole body, -snes_ssstar_reduction none: MUMPS's parallel factorization is not reproducible under load); the top face back at u_x = +-2.49994e-3 after the releases (README); check_solution.py coulomb judges it as it judges examples/contact's; no PETSc memory left")
+@test("the README's block load path from Python (examples/scene.py block: ssstar.Scene with the history as (t, (x, y, z)) pairs, steps() and write()) writes the file examples/contact writes for the README's command: every dataset of every step within 1e-12 of it on 1 and 2 ranks (on 2 ranks the whole body, -snes_ssstar_reduction none: MUMPS's parallel factorization is not reproducible under load); the top face back at u_x = +-2.49994e-3 after the releases (README); check_solution.py coulomb judges it as it judges examples/contact's, and passes it at every step (--steps); no PETSc memory left")
 def pyscene_block_path():
     for ranks in (1, 2):
         c_h5, py_h5 = out("pyscene_block_c_np%d.h5" % ranks), out("pyscene_block_py_np%d.h5" % ranks)
@@ -89,6 +89,8 @@ def pyscene_block_path():
         expect(sorted(ux) == [0, 1, 2, 3, 4, 5] and abs(ux[3] - 2.49994e-3) < 5e-9 and abs(ux[5] + 2.49994e-3) < 5e-9,
                "%d ranks: u_x after the releases %s" % (ranks, ux), text)
         same_law(c_h5, py_h5)
+        law = run(CHECK + ["coulomb", "--steps", py_h5])
+        expect("VIOLATED" not in law, "%d ranks: the law at some step" % ranks, law)
 
 
 def sweep_csv(path):
@@ -152,7 +154,7 @@ def onset_code():
     return [line.split("#")[0].strip() for line in body[first:last + 1] if line.strip() and not line.strip().startswith(("if out", "scene.write"))]
 
 
-@test("a load path decided by a Python loop (examples/scene.py onset, the README's example: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike); the README holds the loop's code")
+@test("a load path decided by a Python loop (examples/scene.py onset, the README's example: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike, and passes every step); the README holds the loop's code")
 def pyscene_user_loop():
     for ranks in (1, 2):
         py_h5, c_h5 = out("pyscene_onset_py_np%d.h5" % ranks), out("pyscene_onset_c_np%d.h5" % ranks)
@@ -170,6 +172,8 @@ def pyscene_user_loop():
         run(mpiexec(ranks, CONTACT, *BLOCK, "-traction_top", history, "-steps", ",".join(repr(float(t)) for t in times), *RTOL, *PATHS[ranks], "-o", c_h5))
         same_files(c_h5, py_h5)
         same_law(c_h5, py_h5)
+        law = run(CHECK + ["coulomb", "--steps", py_h5])
+        expect("VIOLATED" not in law, "%d ranks: the law at some step" % ranks, law)
     readme = open(os.path.join(ROOT, "README.md")).read()
     missing = [line for line in onset_code() if line not in readme]
     expect(not missing, "the README does not show these lines of examples/scene.py's onset(): %s" % missing)

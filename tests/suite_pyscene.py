@@ -31,12 +31,12 @@ def out(name):
     return os.path.join(OUT, name)
 
 
-def python_run(cmd, timeout=600):
+def python_run(cmd, timeout=600, expect_rc=0):
     """A Python program of ours (PYTHONPATH: the source tree's module) with PETSc's leak check: no block left"""
     env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
     env.pop("SSSTAR_LIB", None)
     p = subprocess.run(cmd + ["-malloc_dump"], cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout)
-    expect(p.returncode == 0, "exit status %d from %s" % (p.returncode, " ".join(cmd)), p.stdout)
+    expect(p.returncode == expect_rc, "exit status %d from %s" % (p.returncode, " ".join(cmd)), p.stdout)
     leaks = LEAK.findall(p.stdout)
     expect(not leaks, "memory leaked (-malloc_dump) by %s:\n%s" % (" ".join(cmd), "\n".join(leaks[:20])))
     return p.stdout
@@ -143,6 +143,24 @@ def pyscene_table_scenes():
                 fn = force @ normal
                 ratio = np.linalg.norm(force - fn * normal) / fn
             expect(abs(ratio - np.tan(np.radians(20))) < 1e-3, "incline: tangential/normal force %.6f, tan 20 = %.6f" % (ratio, np.tan(np.radians(20))), text)
+
+
+@test("step cutting from Python (ssstar.Scene's steps(), examples/scene.py run on an options file): the README's block path with -snes_max_it 6, whose step t = 2 does not converge, is halved as examples/contact halves it (retried at t 1.5, then on in sub-steps, 4 halvings, then the path stops): the same rows, cuts and reasons, the same file to 1e-12 with failed_step and failed_time, and exit status 2 as examples/contact's")
+def pyscene_step_cutting():
+    opts = out("pyscene_cut.opts")
+    with open(opts, "w") as f:
+        f.write("# the README's block path, with too few iterations for the step to t = 2\n")
+        for name, value in zip(BLOCK[::2], BLOCK[1::2]):
+            f.write("%s %s\n" % (name, value))
+        f.write("-traction_top %s\n-snes_max_it 6\n" % README_PATH)
+    c_h5, py_h5 = out("pyscene_cut_c.h5"), out("pyscene_cut_py.h5")
+    run(mpiexec(1, CONTACT, "-options_file", opts, *RTOL, "-o", c_h5), expect_rc=NOT_CONVERGED)
+    text = python_run(mpiexec(1, PYTHON, SCENE_PY, "run", opts, *RTOL, "-o", py_h5), expect_rc=NOT_CONVERGED)
+    same_files(c_h5, py_h5)
+    with h5py.File(py_h5, "r") as f:
+        t, cuts, reason = f["steps/time"][()], f["steps/cuts"][()], f["steps/reason"][()]
+        expect(t[2] == 1.5 and cuts[2] == 1 and reason[-1] < 0 and cuts[-1] == 4 and f.attrs["failed_step"] == len(t) - 1,
+               "times %s, cuts %s, reasons %s, failed_step %s" % (t, cuts, reason, f.attrs.get("failed_step")), text)
 
 
 def onset_code():

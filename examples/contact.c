@@ -160,28 +160,41 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
   PetscFunctionReturn(0);
 }
 
+/* The times of a load path: -steps (stepsText; NULL: the knots of the histories), or one step at t = 0 */
+static PetscErrorCode PathTimes(SSStarScene scene, const char stepsText[], PetscInt *nsteps, PetscReal **times)
+{
+  PetscInt   nknots;
+  PetscReal *knots;
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
+  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_WORLD, "-steps", stepsText, nknots, knots, nsteps, times));
+  PetscCall(PetscFree(knots));
+  if (!*nsteps) { /* constant loads and motions: one step */
+    PetscCall(PetscFree(*times));
+    PetscCall(PetscMalloc1(1, times));
+    (*times)[0] = 0;
+    *nsteps     = 1;
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
    A load path (docs/load-paths.md): the steps at the times of -steps (default the knots of the histories), each from
    the solution of the step before with incremental friction; a step that does not converge is retried from there at
    the midpoint and goes on to its time in sub-steps of that size, at most maxCuts halvings per step, then the path
    stops (failure->step >= 0). With out, every step (and sub-step) into the file.
 */
-static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, const char stepsText[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
+static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, PetscInt nsteps, const PetscReal times[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
 {
-  PetscInt   nknots, nsteps, written = 0;
-  PetscReal *knots, *times, tAccepted = 0;
+  PetscInt   nknots, written = 0;
+  PetscReal *knots, tAccepted = 0;
   PetscBool  accepted = PETSC_FALSE;
   Vec        uAccepted, r;
 
   PetscFunctionBeginUser;
   PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
-  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_WORLD, "-steps", stepsText, nknots, knots, &nsteps, &times));
-  if (!nsteps) { /* constant loads and motions: one step */
-    PetscCall(PetscFree(times));
-    PetscCall(PetscMalloc1(1, &times));
-    times[0] = 0;
-    nsteps   = 1;
-  }
+  PetscCall(SSStarSceneCheckSteps(scene, nsteps, times)); /* the motions of every step, before any solve and file */
   if (out) PetscCall(SSStarSceneOutputBegin(scene, out));
   PetscCall(VecDuplicate(u, &uAccepted));
   PetscCall(VecCopy(u, uAccepted));
@@ -233,7 +246,6 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
   if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, failure->step >= 0 ? WriteFailure : NULL, failure));
   PetscCall(VecDestroy(&uAccepted));
   PetscCall(PetscFree(knots));
-  PetscCall(PetscFree(times));
   PetscFunctionReturn(0);
 }
 
@@ -244,7 +256,8 @@ int main(int argc, char **argv)
   Vec                 b, load; /* the load b of the scene, and the one of a step: a fraction of b, or b(t) of a path */
   SNES                snes;
   Vec                 u, r = NULL;
-  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, nsteps = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscReal          *times = NULL; /* the times of a load path */
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
   PetscLogDouble      peak;
   PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE;
@@ -278,6 +291,7 @@ int main(int argc, char **argv)
     PetscCall(SSStarSceneHasPath(scene, &path));
     path = (PetscBool)(path || hasSteps);
     PetscCheck(!(path && hasLoadSteps), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Option -load_steps scales the constant loads of a static problem; a load path is -steps with histories (-traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion): give one of them");
+    if (path) PetscCall(PathTimes(scene, hasSteps ? stepsText : NULL, &nsteps, &times)); /* -steps refused before the mesh */
   }
   /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
@@ -325,7 +339,7 @@ int main(int argc, char **argv)
   nLoadSteps = steps.n; /* steps.n: the steps solved */
   PetscCall(PetscMalloc4(steps.n, &steps.factor, steps.n, &steps.area, steps.n, &steps.normal_force, steps.n, &steps.iterations));
   PetscCall(PetscTime(&t0));
-  if (path) PetscCall(SolvePath(scene, snes, load, u, hasSteps ? stepsText : NULL, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
+  if (path) PetscCall(SolvePath(scene, snes, load, u, nsteps, times, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
   else PetscCall(SolveLoadSteps(scene, snes, b, load, u, hasContact, &steps, &its, &reason));
   if (hasContact) {
     PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
@@ -346,6 +360,7 @@ int main(int argc, char **argv)
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
+  PetscCall(PetscFree(times));
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&u));
   PetscCall(MatDestroy(&K));

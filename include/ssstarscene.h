@@ -59,6 +59,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneGetKnots(SSStarScene, PetscInt *, PetscRe
 PETSC_EXTERN PetscErrorCode SSStarSceneHasPath(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene, Vec, PetscReal[3]);
+PETSC_EXTERN PetscErrorCode SSStarSceneCheckSteps(SSStarScene, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetStep(SSStarScene, SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SSStarSceneAcceptStep(SSStarScene, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene, PetscInt *);

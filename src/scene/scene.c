@@ -28,6 +28,7 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   PetscCall(PetscNew(scene));
   (*scene)->comm      = comm;
   (*scene)->meshScale = 1.0;
+  (*scene)->smallSlidingTol = 0.01;
   (*scene)->level     = -1;
   PetscFunctionReturn(0);
 }

@@ -115,6 +115,8 @@ struct _n_SSStarScene {
   PetscReal  stepTime;      /* the time of the step SSStarSceneSetStep() set                         */
   PetscReal  load[3];       /* the resultant of the load SSStarSceneAssembleLoad() assembled last       */
   PetscBool  stepped;       /* a step was accepted: the arrays below hold its kinematics              */
+  PetscInt   accepted;      /* the steps accepted (SSStarSceneAcceptStep())                           */
+  PetscReal  smallSlidingTol; /* -small_sliding_tol: the first-order gap's error allowed, relative to |d| */
   PetscReal *slipPrev;      /* w_t after the last accepted step, 2 per node (frame)                   */
   PetscReal *slipIncrement; /* its increment in that step, 2 per node (frame)                         */
   PetscReal *slipPath;      /* the length of the slip path, per node                                  */
@@ -179,6 +181,7 @@ PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);

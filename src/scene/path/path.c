@@ -160,6 +160,33 @@ static PetscErrorCode PathArrays(SSStarScene scene)
 }
 
 /*@C
+   SSStarSceneCheckSteps - checks the steps of a load path before any is solved: the motions of its obstacles at every
+   step (SSStarSceneSetStep() checks its own step again)
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetUp()
+.  n     - the number of steps
+-  times - their times
+
+   Notes:
+   A moved ball, cylinder or mesh obstacle is refused at the first step where its first-order gap g - n.d is off the
+   exact gap (the node's distance to the translated obstacle) by more than -small_sliding_tol times |d| at a node
+   within |d| of it, with an error naming the obstacle, the step and the error; a plane never is.
+
+   Level: intermediate
+
+.seealso: `SSStarSceneSetStep()`, `SSStarHistoryParseSteps()`
+@*/
+PetscErrorCode SSStarSceneCheckSteps(SSStarScene scene, PetscInt n, const PetscReal times[])
+{
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < n; k++) PetscCall(SSStarSceneCheckSmallSliding(scene, k + 1, times[k]));
+  PetscFunctionReturn(0);
+}
+
+/*@C
    SSStarSceneSetStep - sets up the step of a load path to the time t: each moving obstacle's translation d at t and
    the offsets of the contact nodes (docs/derivation.md (10.4)), handed to the SNES (SNESSSStarSetContactOffsets())
 
@@ -177,11 +204,13 @@ static PetscErrorCode PathArrays(SSStarScene scene)
    obstacle (or master surface), a sliding one is resisted against the direction of its increment. Solve the step
    from the previous solution with the load at t (SSStarSceneAssembleLoad()); a step that fails may be set again at
    another time. The normal offset g - n.d is exact for a plane and first order in |d| for a ball, cylinder or mesh
-   (small motions against the obstacle's radius of curvature).
+   (small motions against the obstacle's radius of curvature): a step where it is off the exact gap by more than
+   -small_sliding_tol times |d| at a node within |d| of the obstacle is refused with an error that names the obstacle,
+   the step (its row in the file's /steps) and the error.
 
    Level: intermediate
 
-.seealso: `SSStarSceneAcceptStep()`, `SSStarSceneAssembleLoad()`, `SNESSSStarSetContactOffsets()`
+.seealso: `SSStarSceneAcceptStep()`, `SSStarSceneAssembleLoad()`, `SNESSSStarSetContactOffsets()`, `SSStarSceneCheckSteps()`
 @*/
 PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
 {
@@ -195,6 +224,7 @@ PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
 
     if (cg->motion) PetscCall(SSStarHistoryEvaluate(cg->motion, t, cg->d));
   }
+  PetscCall(SSStarSceneCheckSmallSliding(scene, scene->accepted + 1, t));
   PetscCall(VecGetArrayWrite(scene->offsets, &oa));
   for (PetscInt i = 0; i < scene->n; i++) {
     const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
@@ -262,6 +292,7 @@ PetscErrorCode SSStarSceneAcceptStep(SSStarScene scene, Vec u, Vec r)
   PetscCall(PetscFree(w));
   for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(PetscArraycpy(scene->contact[g].dPrev, scene->contact[g].d, 3));
   scene->stepped = PETSC_TRUE;
+  scene->accepted++;
   PetscFunctionReturn(0);
 }
 

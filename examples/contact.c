@@ -180,6 +180,31 @@ static PetscErrorCode PathTimes(SSStarScene scene, const char stepsText[], Petsc
 }
 
 /*
+   One step of a load path, set by SSStarSceneSetStep(), from u: solved, and with large sliding solved again from its
+   solution while the contact measured there moves (SSStarSceneCheckStep()); its iterations in all. A contact that does
+   not settle in -sliding_max_it linearizations is DIVERGED_MAX_IT (the step is cut).
+*/
+static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool hasContact, PetscInt *its, SNESConvergedReason *reason)
+{
+  PetscBool consistent = PETSC_TRUE, again = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  *its = 0;
+  while (again) {
+    PetscInt n;
+
+    PetscCall(SNESSolve(snes, NULL, u));
+    PetscCall(SNESGetConvergedReason(snes, reason));
+    PetscCall(SNESGetIterationNumber(snes, &n));
+    *its += hasContact ? n : 0;
+    if (*reason <= 0) PetscFunctionReturn(0);
+    PetscCall(SSStarSceneCheckStep(scene, snes, u, &consistent, &again));
+  }
+  if (!consistent) *reason = SNES_DIVERGED_MAX_IT;
+  PetscFunctionReturn(0);
+}
+
+/*
    A load path (docs/load-paths.md): the steps at the times of -steps (default the knots of the histories), each from
    the solution of the step before with incremental friction; a step that does not converge is retried from there at
    the midpoint and goes on to its time in sub-steps of that size, at most maxCuts halvings per step, then the path
@@ -209,10 +234,8 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, P
       PetscCall(SSStarSceneAssembleLoad(scene, t, load));
       PetscCall(SSStarSceneSetStep(scene, snes, t));
       PetscCall(VecCopy(uAccepted, u));
-      PetscCall(SNESSolve(snes, NULL, u));
-      PetscCall(SNESGetConvergedReason(snes, reason));
-      PetscCall(SNESGetIterationNumber(snes, &stepIts));
-      *its += hasContact ? stepIts : 0;
+      PetscCall(SolveStep(scene, snes, u, hasContact, &stepIts, reason));
+      *its += stepIts;
       if (*reason > 0) {
         PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
         PetscCall(SSStarSceneAcceptStep(scene, u, r));

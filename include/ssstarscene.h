@@ -61,6 +61,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneAssembleLoad(SSStarScene, PetscReal, Vec)
 PETSC_EXTERN PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene, Vec, PetscReal[3]);
 PETSC_EXTERN PetscErrorCode SSStarSceneCheckSteps(SSStarScene, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetStep(SSStarScene, SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SSStarSceneCheckStep(SSStarScene, SNES, Vec, PetscBool *, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAcceptStep(SSStarScene, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene, PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetMotion(SSStarScene, PetscInt, const char *[], PetscReal[3], PetscBool *);

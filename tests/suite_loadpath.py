@@ -215,7 +215,9 @@ def loadpath_proportional_static():
 
 @test("press, then shear between two bodies of different materials (scenes/mindlin.opts, the block 4 times stiffer: -material_block): the pressing alone already slips (Dundurs' beta != 0: nodes sliding radially at Q = 0), the path P then Q differs from the static solve of the final P and Q (the answer remembers the path), and the Coulomb law holds at every node for the last step's slip increment (tests/check_solution.py, 1e-8)")
 def loadpath_two_materials():
-    base = ["-options_file", os.path.join(ROOT, "scenes", "mindlin.opts"), "-material_block", "8.4e5,0.3"]
+    # -snes_rtol 1e-11: with large sliding (the default: the master faces found again at every step) the default 1e-10
+    # met the direction of the last step's friction to 1.3e-8 of max|r|; issue 23.1 makes the default bound the file
+    base = ["-options_file", os.path.join(ROOT, "scenes", "mindlin.opts"), "-material_block", "8.4e5,0.3", "-snes_rtol", "1e-11"]
     out, f = path_run(base + ["-traction_block_bottom", "0:0,0,0;1:0,0,78.54", "-traction_block_top", "0:0,0,0;1:0,0,0;2:-11.78,0,0", "-steps", "0,1,1.25,1.5,1.75,2"], "loadpath_materials.h5")
     c = f["steps/1/contact"]
     x = f["contact/coordinates"][:]
@@ -267,9 +269,9 @@ def loadpath_refusals():
 SMALL_SLIDING = re.compile(r"Step (\d+) \(t = ([-\d.e+]+)\): the obstacle of -obstacle_top \((.*?)\) moved by \(([^)]*)\) \(-obstacle_top_motion\): its first-order gap g - n\.d = (\S+) at mesh node (\d+) \(0-based, file order\) at \(([^)]*)\) is off the exact gap (\S+) by (\S+), more than -small_sliding_tol (\S+) times \|d\| = (\S+):")
 
 
-@test("honest limits of small sliding (issue 23.3): a rigid ball (R = 2) pressed 0.02 into a block and moved 1 along it is refused at that step before any solve and file, with the obstacle, the step and the error of g - n.d against the exact gap in the message (its numbers recomputed in numpy: |x - c - d| - R, the first-order gap and the error to 1e-5, larger than -small_sliding_tol 0.01 times |d|; 1 and 2 ranks the same message); a cylinder moved across its axis likewise; pressed only, or dragged by 0.01 (0.5 % of R), it is solved; the cylinder moved 1 along its axis, a plane and a flat mesh moved 1 across the block are never refused (their first-order gap is exact); -small_sliding_tol 0.5 accepts the ball's drag; -small_sliding_tol 0 is refused")
+@test("honest limits of small sliding (issue 23.3, -sliding small): a rigid ball (R = 2) pressed 0.02 into a block and moved 1 along it is refused at that step before any solve and file, with the obstacle, the step and the error of g - n.d against the exact gap in the message (its numbers recomputed in numpy: |x - c - d| - R, the first-order gap and the error to 1e-5, larger than -small_sliding_tol 0.01 times |d|; 1 and 2 ranks the same message); a cylinder moved across its axis likewise; pressed only, or dragged by 0.01 (0.5 % of R), it is solved; the cylinder moved 1 along its axis, a plane and a flat mesh moved 1 across the block are never refused (their first-order gap is exact); -small_sliding_tol 0.5 accepts the ball's drag; -small_sliding_tol 0 is refused")
 def loadpath_small_sliding_limits():
-    block = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "bottom", "-contact", "top", "-friction_top", "0.3", "-ssstar_progress", "0"]
+    block = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "bottom", "-contact", "top", "-friction_top", "0.3", "-ssstar_progress", "0", "-sliding", "small"]
     c, R = np.array([0.5, 0.5, 2.5]), 2.0
     ball, drag = ["-obstacle_top", "sphere:0.5,0.5,2.5,2"], ["-obstacle_top_motion", "0:0,0,0;1:0,0,-0.02;2:1,0,-0.02"]
     messages = []

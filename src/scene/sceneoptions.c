@@ -324,7 +324,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density -small_sliding_tol";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -378,7 +378,10 @@ PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[],
 .  -contact <G1,G2> - the contact groups
 .  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
 .  -obstacle_<G>_motion <t:x,y,z;...> - the translation history of G's obstacle
-.  -small_sliding_tol <0.01> - a step whose motion makes the first-order gap of a moved obstacle wrong by more than this times |d| is refused
+.  -sliding <large> - where a load path measures the contact: large (at the current configuration of each step) or small (at the reference)
+.  -sliding_tol <1e-3> - large sliding: a step is solved again, linearized at its solution, while the contact measured there is off by more than this times the normal displacements
+.  -sliding_max_it <4> - large sliding: such linearizations of a step before it is cut
+.  -small_sliding_tol <0.01> - small sliding: a step whose motion makes the first-order gap of a moved obstacle wrong by more than this times |d| is refused
 .  -friction_law_<G> <coulomb> - a law of the table: none, tresca, coulomb or orthotropic
 .  -<parameter>_<G> <value> - every parameter of the laws (SSStarLawGetParameterNames()): -friction_<G> (the Coulomb
    coefficient of G; default the solver's), -slip_bound_<G> (the Tresca bound), -friction_1_<G>, -friction_2_<G>,
@@ -415,6 +418,14 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
+  {
+    PetscInt sliding = (PetscInt)scene->sliding;
+
+    PetscCall(PetscOptionsEList("-sliding", "Where a load path measures the contact: large (at the current configuration of each step) or small (at the reference)", NULL, SSStarSlidings, 2, SSStarSlidings[sliding], &sliding, NULL));
+    scene->sliding = (SSStarSliding)sliding;
+  }
+  PetscCall(PetscOptionsReal("-sliding_tol", "Large sliding: a step is solved again, linearized at its solution, while the contact measured there is off by more than this times the normal displacements", NULL, scene->slidingTol, &scene->slidingTol, NULL));
+  PetscCall(PetscOptionsInt("-sliding_max_it", "Large sliding: linearizations of a step at its solution before it is cut", NULL, scene->slidingMaxIt, &scene->slidingMaxIt, NULL));
   PetscCall(PetscOptionsReal("-small_sliding_tol", "A moved ball, cylinder or mesh obstacle is refused at a step where its first-order gap g - n.d is off the exact gap by more than this times |d|", NULL, scene->smallSlidingTol, &scene->smallSlidingTol, NULL));
   PetscCall(PetscOptionsBool("-ssstar_progress", "A line as each phase ends: mesh, contact nodes, assembly, the solver's set-up and Newton steps, output", "SSStarSceneSetProgress", scene->progress, &scene->progress, NULL));
   if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
@@ -433,6 +444,8 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCheck(!hasGeo || scene->level >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-level %" PetscInt_FMT ": the mesh level must be >= 1", scene->level);
   PetscCheck(!scene->hasE || (scene->E > 0 && !PetscIsInfOrNanReal(scene->E)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be a positive number", (double)scene->E);
   PetscCheck(!scene->hasNu || (scene->nu > -1 && scene->nu < 0.5), comm, PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
+  PetscCheck(scene->slidingTol > 0 && !PetscIsInfOrNanReal(scene->slidingTol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-sliding_tol %g: must be a positive number", (double)scene->slidingTol);
+  PetscCheck(scene->slidingMaxIt >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-sliding_max_it %" PetscInt_FMT ": must be >= 0", scene->slidingMaxIt);
   PetscCheck(scene->smallSlidingTol > 0 && !PetscIsInfOrNanReal(scene->smallSlidingTol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-small_sliding_tol %g: must be a positive number", (double)scene->smallSlidingTol);
 
   PetscCall(SSStarHistoryCreateFromOptions(comm, NULL, "-gravity", 3, &scene->gravityHistory, &scene->hasGravity));

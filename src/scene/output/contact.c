@@ -71,10 +71,11 @@ PetscErrorCode SSStarWriteContact(SSStarScene scene, hid_t file, const char pref
   PetscCallH5(H5Gclose(group));
   {
     const char      *vnames[] = {"displacement", "reaction", "coordinates", "normal", "gap", "area"};
-    const PetscReal *values[] = {ul, rl, scene->coords, scene->normal, scene->gap, scene->area};
+    const PetscReal *values[] = {ul, rl, scene->coords, scene->normal, scene->gapInitial, scene->area};
     const PetscInt   bs[]     = {3, 3, 3, 3, 1, 1};
 
-    for (size_t k = 0; k < (nf ? PETSC_STATIC_ARRAY_LENGTH(vnames) : 2); k++) { /* a step: the solution's fields */
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(vnames); k++) { /* a step: the solution's fields and the normal of its frame */
+      if (!nf && k != 0 && k != 1 && k != 3) continue;
       PetscCall(ContactPath(prefix, vnames[k], path, sizeof(path)));
       PetscCall(SSStarWriteNodeField(comm, file, path, p, n, pos, bs[k], values[k], PETSC_FALSE));
     }

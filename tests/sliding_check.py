@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""docs/derivation.md section 12 (large sliding) checked in numpy, independent of the C code:
+"""docs/derivation.md section 13 (large sliding) checked in numpy, independent of the C code:
 
   1. small sliding's limit: the first-order gap g - n.d of a ball of radius R moved by d along its tangent at a node on
      it errs by |d|^2/(2R) to leading order, and R = 2 pressed 0.02 and moved 1 errs by 0.24 at the node under it
-  2. the offsets (12.4) give the step's kinematics (12.1)-(12.3): v_n = g_a + n_a.(u - a), v_t = R_t(u - u0 - dd);
+  2. the offsets (13.4) give the step's kinematics (13.1)-(13.3): v_n = g_a + n_a.(u - a), v_t = R_t(u - u0 - dd);
      a common translation of the body and the obstacle changes neither the exact gap nor the slip increment
-  3. the linearization updated at the solution (12.5): a node on springs pressed onto a ball that moves sideways in one
+  3. the linearization updated at the solution (13.5): a node on springs pressed onto a ball that moves sideways in one
      step, linearized at the step's start and then at each solution, converges to the solution of the exact gap (its
      KKT conditions), linearly at the rate of the neglected geometric stiffness, about kappa lambda / k (the ball's
      curvature times the contact force over the springs' stiffness)
@@ -58,7 +58,7 @@ def check_offsets():
     a = u0 + rng.normal(scale=1e-3, size=3)        # the configuration linearized at
     ga, na = ball_gap(X + a - d1, c, R)
     Ra = frame(na)
-    o_n = ga - na @ a                              # (12.4), a node against an obstacle (B = R_a)
+    o_n = ga - na @ a                              # (13.4), a node against an obstacle (B = R_a)
     o_t = -Ra[:2] @ u0 - Ra[:2] @ (d1 - d0)
     u = a + rng.normal(scale=1e-3, size=3)
     v = Ra @ u + np.r_[o_t, o_n]
@@ -67,7 +67,7 @@ def check_offsets():
     g1 = ball_gap(X + u0 + shift - (d0 + shift), c, R)[0] - ball_gap(X + u0 - d0, c, R)[0]
     slip = Ra[:2] @ ((u0 + shift) - u0 - ((d0 + shift) - d0))
     ok = err < 1e-15 and abs(g1) < 1e-15 and np.abs(slip).max() < 1e-15
-    return ok, "offsets against (12.1)-(12.3): %.1e; common translation: gap change %.1e, slip %.1e" % (err, abs(g1), np.abs(slip).max())
+    return ok, "offsets against (13.1)-(13.3): %.1e; common translation: gap change %.1e, slip %.1e" % (err, abs(g1), np.abs(slip).max())
 
 
 def solve_linearized(K, f, a, ga, na):
@@ -107,8 +107,8 @@ def check_geometric_newton():
 
 def main():
     failed = 0
-    for name, check in (("small sliding's first-order gap", check_small_sliding), ("offsets (12.4)", check_offsets),
-                        ("the geometry updated at the solution (12.5)", check_geometric_newton)):
+    for name, check in (("small sliding's first-order gap", check_small_sliding), ("offsets (13.4)", check_offsets),
+                        ("the geometry updated at the solution (13.5)", check_geometric_newton)):
         ok, text = check()
         failed += not ok
         print("%s %s: %s" % ("PASS" if ok else "FAIL", name, text))

@@ -1,4 +1,4 @@
-"""Large sliding (issue 24, docs/derivation.md section 12): load paths whose contact is measured where the bodies are at
+"""Large sliding (issue 24, docs/derivation.md section 13): load paths whose contact is measured where the bodies are at
 every step -- a ball and a cylinder dragged along a slab, a flat punch dragged off its edge, a block slid across
 another by twice its length -- against their known answers, on both paths and 1 to 4 ranks."""
 import os
@@ -31,10 +31,10 @@ def law(path):
     expect("slip_increment" in out, "%s: check_solution.py did not check the slip increment" % path, out)
 
 
-@test("docs/derivation.md section 12 holds (tests/sliding_check.py, numpy): small sliding's first-order gap errs by |d|^2/(2R) for a ball moved along its tangent (0.24 for R = 2 pressed 0.02 and moved 1); the offsets (12.4) give the step's kinematics (12.1)-(12.3), unchanged by a common translation of body and obstacle; the linearization updated at the solution (12.5) converges to the exact gap's KKT point at the rate of the neglected geometric stiffness")
+@test("docs/derivation.md section 13 holds (tests/sliding_check.py, numpy): small sliding's first-order gap errs by |d|^2/(2R) for a ball moved along its tangent (0.24 for R = 2 pressed 0.02 and moved 1); the offsets (13.4) give the step's kinematics (13.1)-(13.3), unchanged by a common translation of body and obstacle; the linearization updated at the solution (13.5) converges to the exact gap's KKT point at the rate of the neglected geometric stiffness")
 def sliding_derivation():
     page = open(os.path.join(ROOT, "docs", "derivation.md")).read()
-    for equation in ("(12.1)", "(12.2)", "(12.3)", "(12.4)", "(12.5)"):
+    for equation in ("(13.1)", "(13.2)", "(13.3)", "(13.4)", "(13.5)"):
         expect(equation in page, "docs/derivation.md has no equation %s" % equation)
     out = run([PYTHON, os.path.join(ROOT, "tests", "sliding_check.py")])
     expect(out.count("PASS") == 3 and "FAIL" not in out, "tests/sliding_check.py", out)

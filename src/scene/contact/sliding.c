@@ -1,5 +1,5 @@
 /*
-   Where the contact of a load path's step is measured (-sliding, docs/derivation.md section 12).
+   Where the contact of a load path's step is measured (-sliding, docs/derivation.md section 13).
 
    Large sliding (the default): at every step, at the current configuration -- the reference displaced by the last
    accepted solution -- against the obstacles at their translations of the step: each node's gap, normal and frame,
@@ -102,7 +102,7 @@ PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene scene, PetscInt step, Pe
 }
 
 /*
-   The step's contact linearized at the configuration X + at (large sliding, docs/derivation.md (12.3)): gaps, normals,
+   The step's contact linearized at the configuration X + at (large sliding, docs/derivation.md (13.3)): gaps, normals,
    frames and a pair's masters measured there against the obstacles at their translations of the step (cg->d; unless
    measured already), B declared to the SNES again, and what the offsets of the step are made of re-expressed: the gap g as the measured gap
    less w_n(at), so that o_n = g - B_n at, and the slip w_t^(k-1) = B_t u^(k-1) - R_t d^(k-1) of the last accepted
@@ -209,7 +209,7 @@ static PetscErrorCode PutBack(SSStarScene scene, Linearization *l, PetscBool res
 
 /*
    SSStarSceneRelinearizeContact - large sliding, after a solve u of the step: the contact measured at X + u against the
-   step's linearization (docs/derivation.md (12.5)). The geometric error is, over the nodes touching at u (states), the
+   step's linearization (docs/derivation.md (13.5)). The geometric error is, over the nodes touching at u (states), the
    exact gap there, and over the others the exact penetration, against -sliding_tol times the largest normal
    displacement n.u of a touching node. Within it (consistent): the linearization the step was solved with stays.
    Beyond it: the step is linearized at X + u (again: solve it again from u). Collective.

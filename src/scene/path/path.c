@@ -236,7 +236,7 @@ PetscErrorCode SSStarSceneCheckSteps(SSStarScene scene, PetscInt n, const PetscR
    reference displaced by the last accepted solution, against the obstacles at their translations of the step: gaps,
    normals, frames and a pair's master faces there (the search asked at the current positions), B declared to the SNES
    again (a rigid obstacle's reduction is kept; a pair's new masters reduce K again), g and w_t^(k-1) taken at that
-   configuration (docs/derivation.md section 12). With small sliding (-sliding small) every step keeps the reference
+   configuration (docs/derivation.md section 13). With small sliding (-sliding small) every step keeps the reference
    configuration: the normal offset g - n.d is exact for a plane and first order in |d| for a ball, cylinder or mesh,
    and a step where it is off the exact gap by more than -small_sliding_tol times |d| at a node within |d| of the
    obstacle is refused with an error that names the obstacle, the step (its row in the file's /steps) and the error.
@@ -263,7 +263,7 @@ PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
 
 /*@C
    SSStarSceneCheckStep - with large sliding, after a converged solve of the step set by SSStarSceneSetStep(): the
-   contact measured at the solution against the one the step was linearized at (docs/derivation.md (12.5))
+   contact measured at the solution against the one the step was linearized at (docs/derivation.md (13.5))
 
    Collective
 

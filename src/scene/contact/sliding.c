@@ -238,8 +238,10 @@ PetscErrorCode SSStarSceneRelinearizeContact(SSStarScene scene, SNES snes, Vec u
   PetscCall(SSStarSceneBuildContactOperator(scene, u)); /* the exact gaps at X + u */
   for (PetscInt i = 0; i < scene->n; i++) {
     const PetscBool touching = (PetscBool)(states[i] != SSSTAR_STATE_L && states[i] != SSSTAR_STATE_LS);
+    const PetscReal ei       = touching ? PetscAbsReal(scene->gap[i]) : PetscMax(0, -scene->gap[i]);
 
-    e[0] = PetscMax(e[0], touching ? PetscAbsReal(scene->gap[i]) : PetscMax(0, -scene->gap[i]));
+    if (ei > e[0]) PetscCall(PetscInfo(NULL, "node %" PetscInt_FMT " (file index) %s, its gap at the solution %g, normal (%g, %g, %g), kept (%g, %g, %g)\n", scene->tag[i], touching ? "touching" : "separated", (double)scene->gap[i], (double)scene->normal[3 * i], (double)scene->normal[3 * i + 1], (double)scene->normal[3 * i + 2], (double)kept.normal[3 * i], (double)kept.normal[3 * i + 1], (double)kept.normal[3 * i + 2]));
+    e[0] = PetscMax(e[0], ei);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPI_MAX, scene->comm));
   *error      = e[0];

@@ -136,17 +136,30 @@ static PetscErrorCode LinearizeAt(SSStarScene scene, SNES snes, Vec at, PetscBoo
 /*
    SSStarSceneMeasureContact - large sliding, at the start of a step: its contact linearized at the current
    configuration, the reference displaced by the last accepted solution (scene->uAccepted). Nothing to do before the
-   first step when no obstacle has moved: the reference B stands. Collective.
+   first step when no obstacle has moved (the reference B stands), nor when no obstacle moves in this step and the
+   contact measured at the current configuration is the one the last step ended with (SSStarSceneRelinearizeContact()
+   with that step's states: a pair whose bodies barely slid keeps its masters, and its reduction). Collective.
 */
 PetscErrorCode SSStarSceneMeasureContact(SSStarScene scene, SNES snes)
 {
-  PetscBool moved = PETSC_FALSE;
+  PetscBool moved = PETSC_FALSE, moving = PETSC_FALSE;
 
   PetscFunctionBegin;
   scene->relinearizations = 0;
-  for (PetscInt g = 0; g < scene->nContact; g++)
-    if (SSStarDot3(scene->contact[g].d, scene->contact[g].d) > 0) moved = PETSC_TRUE;
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    const SSStarContactGroup *cg = &scene->contact[g];
+
+    if (SSStarDot3(cg->d, cg->d) > 0) moved = PETSC_TRUE;
+    if (cg->d[0] != cg->dPrev[0] || cg->d[1] != cg->dPrev[1] || cg->d[2] != cg->dPrev[2]) moving = PETSC_TRUE;
+  }
   if (!scene->stepped && !moved) PetscFunctionReturn(0);
+  if (scene->stepped && !moving) {
+    PetscBool consistent;
+    PetscReal error, scale;
+
+    PetscCall(SSStarSceneRelinearizeContact(scene, snes, scene->uAccepted, &consistent, &error, &scale));
+    PetscFunctionReturn(0);
+  }
   PetscCall(LinearizeAt(scene, snes, scene->uAccepted, PETSC_FALSE));
   PetscFunctionReturn(0);
 }

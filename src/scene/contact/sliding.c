@@ -41,9 +41,9 @@ static PetscErrorCode ShareWorst(MPI_Comm comm, WorstNode *w)
 }
 
 /*
-   SSStarSceneCheckSmallSliding - with small sliding, refuses the step to time t (the path's step number step, 1-based) when a moved
-   obstacle's first-order gap g - n.d is off the exact gap by more than -small_sliding_tol |d| + the contact tolerance
-   at a node of its group that is within |d| of it (by either gap). Collective.
+   SSStarSceneCheckSmallSliding - with small sliding, refuses the step to time t (the path's step number step, 1-based)
+   when a moved obstacle's first-order gap g - n.d is off the exact gap by more than -small_sliding_tol |d| + the contact
+   tolerance at a node of its group that is within |d| of it (by either gap). Collective.
 */
 PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene scene, PetscInt step, PetscReal t)
 {
@@ -102,11 +102,11 @@ PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene scene, PetscInt step, Pe
 }
 
 /*
-   The step's contact linearized at the configuration X + at (large sliding, docs/derivation.md (13.3)): gaps, normals,
+   The step's contact linearized at the configuration X + at (large sliding, docs/derivation.md (13.4)): gaps, normals,
    frames and a pair's masters measured there against the obstacles at their translations of the step (cg->d; unless
-   measured already), B declared to the SNES again, and what the offsets of the step are made of re-expressed: the gap g as the measured gap
-   less w_n(at), so that o_n = g - B_n at, and the slip w_t^(k-1) = B_t u^(k-1) - R_t d^(k-1) of the last accepted
-   solution in the new frame. Collective.
+   measured already), B declared to the SNES again, and what the offsets of the step are made of re-expressed: the
+   gap g as the measured gap less w_n(at), so that o_n = g - B_n at, and the slip w_t^(k-1) = B_t u^(k-1) - R_t d^(k-1)
+   of the last accepted solution in the new frame. Collective.
 */
 static PetscErrorCode LinearizeAt(SSStarScene scene, SNES snes, Vec at, PetscBool measured)
 {

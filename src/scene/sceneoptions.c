@@ -426,7 +426,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   }
   PetscCall(PetscOptionsReal("-sliding_tol", "Large sliding: a step is solved again, linearized at its solution, while the contact measured there is off by more than this times the normal displacements", NULL, scene->slidingTol, &scene->slidingTol, NULL));
   PetscCall(PetscOptionsInt("-sliding_max_it", "Large sliding: linearizations of a step at its solution before it is cut", NULL, scene->slidingMaxIt, &scene->slidingMaxIt, NULL));
-  PetscCall(PetscOptionsReal("-small_sliding_tol", "A moved ball, cylinder or mesh obstacle is refused at a step where its first-order gap g - n.d is off the exact gap by more than this times |d|", NULL, scene->smallSlidingTol, &scene->smallSlidingTol, NULL));
+  PetscCall(PetscOptionsReal("-small_sliding_tol", "Small sliding: a moved ball, cylinder or mesh obstacle is refused at a step where its first-order gap g - n.d is off the exact gap by more than this times |d|", NULL, scene->smallSlidingTol, &scene->smallSlidingTol, NULL));
   PetscCall(PetscOptionsBool("-ssstar_progress", "A line as each phase ends: mesh, contact nodes, assembly, the solver's set-up and Newton steps, output", "SSStarSceneSetProgress", scene->progress, &scene->progress, NULL));
   if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
     char groups[8192];

@@ -182,14 +182,15 @@ static PetscErrorCode PathTimes(SSStarScene scene, const char stepsText[], Petsc
 /*
    One step of a load path, set by SSStarSceneSetStep(), from u: solved, and with large sliding solved again from its
    solution while the contact measured there moves (SSStarSceneCheckStep()); its iterations in all. A contact that does
-   not settle in -sliding_max_it linearizations is DIVERGED_MAX_IT (the step is cut).
+   not settle in -sliding_max_it linearizations is DIVERGED_MAX_IT (the step is cut); why says which failed.
 */
-static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool hasContact, PetscInt *its, SNESConvergedReason *reason)
+static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool hasContact, PetscInt *its, SNESConvergedReason *reason, const char **why)
 {
   PetscBool consistent = PETSC_TRUE, again = PETSC_TRUE;
 
   PetscFunctionBeginUser;
   *its = 0;
+  *why = NULL;
   while (again) {
     PetscInt n;
 
@@ -197,10 +198,16 @@ static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool h
     PetscCall(SNESGetConvergedReason(snes, reason));
     PetscCall(SNESGetIterationNumber(snes, &n));
     *its += hasContact ? n : 0;
-    if (*reason <= 0) PetscFunctionReturn(0);
+    if (*reason <= 0) {
+      *why = SNESConvergedReasons[*reason];
+      PetscFunctionReturn(0);
+    }
     PetscCall(SSStarSceneCheckStep(scene, snes, u, &consistent, &again));
   }
-  if (!consistent) *reason = SNES_DIVERGED_MAX_IT;
+  if (!consistent) {
+    *reason = SNES_DIVERGED_MAX_IT;
+    *why    = "the contact measured at its solution did not settle in -sliding_max_it linearizations";
+  }
   PetscFunctionReturn(0);
 }
 
@@ -229,12 +236,13 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, P
     PetscInt  cuts = 0;
 
     for (;;) {
-      PetscInt stepIts;
+      PetscInt    stepIts;
+      const char *why;
 
       PetscCall(SSStarSceneAssembleLoad(scene, t, load));
       PetscCall(SSStarSceneSetStep(scene, snes, t));
       PetscCall(VecCopy(uAccepted, u));
-      PetscCall(SolveStep(scene, snes, u, hasContact, &stepIts, reason));
+      PetscCall(SolveStep(scene, snes, u, hasContact, &stepIts, reason, &why));
       *its += stepIts;
       if (*reason > 0) {
         PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
@@ -254,11 +262,11 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, P
         if (cuts < maxCuts && t > from) {
           cuts++;
           dt = (t - from) / 2;
-          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], (double)(from + dt)));
+          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, why, (double)(from + dt)));
           t = from + dt;
           continue;
         }
-        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], cuts, maxCuts));
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, why, cuts, maxCuts));
         if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts)); /* its last iterate */
         failure->step = written;
         failure->time = t;

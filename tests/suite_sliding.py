@@ -124,3 +124,13 @@ def sliding_block_track():
         r = [v for m, v in results if m == method]
         diff = max(np.abs(v / r[0] - 1).max() for v in r)
         expect(diff <= AGREE, "%s: the runs differ by %.1e in T / (phi N), area and slide" % (method, diff))
+
+
+@test("a block pushed back past the end of the block it slides on (scenes/track.opts): a slave node beyond the master's rim meets its edge, the contact measured at the step's solution does not settle and the step is cut, then the path stops (exit status 2, the message says why); the sub-steps in between, set again after a failure, start from a fresh measure at the accepted state (their normal force is the pressing load, not that of the failed attempt's linearization)")
+def sliding_off_the_rim():
+    out, path = sliding_run("track.opts", "sliding_off_rim.h5", "direct", 1, ["-traction_slider_top", "0:0,0,0;1:0,0,-0.01;2:-1.005,0,-0.01", "-steps", "0,1,1.5,2"], expect_rc=NOT_CONVERGED)
+    expect("not converged (the contact measured at its solution did not settle in -sliding_max_it linearizations), retried at t 1.25" in out and "the path stops here" in out, "no cut, or no stop, for the rim", out)
+    f = h5py.File(path, "r")
+    t, N = f["steps/time"][:], f["steps/normal_force"][:]
+    k = int(np.argmin(abs(t - 1.25)))
+    expect(abs(t[k] - 1.25) < 1e-12 and abs(N[k] / N[1] - 1) <= 1e-3, "the sub-step at t = 1.25 after the failure: normal force %g against %g pressed" % (N[k], N[1]))

@@ -129,6 +129,7 @@ struct _n_SSStarScene {
   PetscReal  slidingTol;    /* -sliding_tol: the geometric error of a step, relative to its normal displacements */
   PetscInt   slidingMaxIt;  /* -sliding_max_it: linearizations of a step at its solution                */
   PetscInt   relinearizations; /* those of the step being solved                                      */
+  PetscBool  lastLinearization; /* the linearization and solver states are the last accepted step's        */
   PetscReal *gapInitial;    /* the gaps of the reference configuration (scene->gap: of the step)       */
   PetscReal *slipPrev;      /* w_t after the last accepted step, 2 per node (frame)                   */
   PetscReal *slipIncrement; /* its increment in that step, 2 per node (frame)                         */

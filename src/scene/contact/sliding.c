@@ -136,9 +136,10 @@ static PetscErrorCode LinearizeAt(SSStarScene scene, SNES snes, Vec at, PetscBoo
 /*
    SSStarSceneMeasureContact - large sliding, at the start of a step: its contact linearized at the current
    configuration, the reference displaced by the last accepted solution (scene->uAccepted). Nothing to do before the
-   first step when no obstacle has moved (the reference B stands), nor when no obstacle moves in this step and the
-   contact measured at the current configuration is the one the last step ended with (SSStarSceneRelinearizeContact()
-   with that step's states: a pair whose bodies barely slid keeps its masters, and its reduction). Collective.
+   first step when no obstacle has moved (the reference B stands), nor when no obstacle moves in this step, the step
+   follows the accepted one directly (not set again after a failure), and the contact measured at the current
+   configuration is the one the last step ended with (SSStarSceneRelinearizeContact() with that step's states: a pair
+   whose bodies barely slid keeps its masters, and its reduction). Collective.
 */
 PetscErrorCode SSStarSceneMeasureContact(SSStarScene scene, SNES snes)
 {
@@ -153,13 +154,15 @@ PetscErrorCode SSStarSceneMeasureContact(SSStarScene scene, SNES snes)
     if (cg->d[0] != cg->dPrev[0] || cg->d[1] != cg->dPrev[1] || cg->d[2] != cg->dPrev[2]) moving = PETSC_TRUE;
   }
   if (!scene->stepped && !moved) PetscFunctionReturn(0);
-  if (scene->stepped && !moving) {
+  if (scene->lastLinearization && !moving) { /* the linearization and the states of the last accepted solve */
     PetscBool consistent;
     PetscReal error, scale;
 
+    scene->lastLinearization = PETSC_FALSE;
     PetscCall(SSStarSceneRelinearizeContact(scene, snes, scene->uAccepted, &consistent, &error, &scale));
     PetscFunctionReturn(0);
   }
+  scene->lastLinearization = PETSC_FALSE; /* a step set again after a failure starts from a fresh measure */
   PetscCall(LinearizeAt(scene, snes, scene->uAccepted, PETSC_FALSE));
   PetscFunctionReturn(0);
 }

@@ -354,6 +354,7 @@ PetscErrorCode SSStarSceneAcceptStep(SSStarScene scene, Vec u, Vec r)
   PetscCall(PetscFree(w));
   for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(PetscArraycpy(scene->contact[g].dPrev, scene->contact[g].d, 3));
   if (scene->uAccepted) PetscCall(VecCopy(u, scene->uAccepted)); /* large sliding: the next step's configuration */
+  scene->lastLinearization = PETSC_TRUE;
   scene->stepped = PETSC_TRUE;
   scene->accepted++;
   PetscFunctionReturn(0);

@@ -15,15 +15,19 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
           released; a plane dragging a block forward and back (it sticks and returns; or slides back); a ball pressed
           and lifted off, a cylinder pressed and rolled forth and back; the tilted roller and the two-body pairs loaded
           forth and back
+  sliding: large sliding (issue 24): balls, cylinders and flat punches dragged along a slab and back by several of
+          their sizes (scenes/drag.opts, scenes/punch.opts), a punch off the slab's end, blocks slid across a block by
+          twice their length and part of the way back (scenes/track.opts), node-to-surface and dual mortar
 
 Prints a markdown table (and bench/output/robust.csv): per member and ranks, each path's iterations (Krylov iterations
 of the whole body), reason, law (check_solution's largest distance to the law over the steps) and error (to the exact
 solution), then "N members x ranks: converged C of R runs, the law holds in L, within 1e-6 of the exact solution E";
 the exit status is 0 when every run passes.
 
-  bench/robust.py [--family static|paths|all] [--ranks 1,2,3,4] [--only SUBSTRING]
+  bench/robust.py [--family static|paths|sliding|all] [--ranks 1,2,3,4] [--only SUBSTRING]
 
-tests/suite_robust.py runs members of both families (FAMILY, PATHS below) as tests.
+tests/suite_robust.py runs members of the first two families (FAMILY, PATHS below) as tests, tests/suite_sliding.py
+the known answers of the third.
 """
 import argparse
 import csv
@@ -124,6 +128,28 @@ PATHS = {
 }
 
 
+# large sliding: the slab of scenes/drag.opts (4 x 1 x 0.5, held at its bottom, level 1) with a ball (R = 1), a cylinder
+# (R = 1, along y) or a flat punch (0.4 x 0.4) pressed into it and dragged along x by several of their sizes, and back;
+# the block of scenes/track.opts slid across the long one by twice its length, and back (not past the base's end: a
+# slave node beyond the master's rim meets its edge, where the measured normal turns and the step does not settle)
+DRAG = scene("drag")
+CYLINDER = DRAG + ["-obstacle_top", "cylinder:0.5,0,1,0,1,0,1"]
+PUNCH = scene("punch")
+TRACK = scene("track")
+SLIDING = {
+    "ball dragged by two radii (scenes/drag.opts)": DRAG,
+    "ball dragged forward by 2 and back by 2, 40 steps": DRAG + ["-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.02), (1, 0, -0.02), (2, 0, -0.02), (1, 0, -0.02), (0, 0, -0.02)), "-steps", "40"],
+    "ball dragged diagonally by 1.5, phi = 0.6": DRAG + ["-friction_top", "0.6", "-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.02), (0.75, 0.2, -0.02), (1.5, 0.4, -0.02)), "-steps", "24"],
+    "cylinder slid across its axis by 2": CYLINDER + ["-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.01), (1, 0, -0.01), (2, 0, -0.01)), "-steps", "24"],
+    "cylinder slid forward by 1.5 and back by 1.5": CYLINDER + ["-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.01), (1.5, 0, -0.01), (0, 0, -0.01)), "-steps", "24"],
+    "punch dragged off the slab's end (scenes/punch.opts)": PUNCH,
+    "punch dragged along the slab by 1 and back": PUNCH + ["-obstacle_top_motion", "0:2,0,0.001;1:2,0,-0.002;2:3,0,-0.002;3:2,0,-0.002", "-steps", "21"],
+    "block slid across a block by twice its length (scenes/track.opts)": TRACK,
+    "block slid across a block, dual mortar": TRACK + ["-pair_discretization", "dual_mortar"],
+    "block slid forward by 1 and back by 0.5": TRACK + ["-traction_slider_top", history((0, 0, 0), (0, 0, -0.01), (1.005, 0, -0.01), (0.495, 0, -0.01)), "-steps", "24"],
+}
+
+
 def env():
     return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
 
@@ -188,13 +214,13 @@ def cell(r):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--family", choices=("static", "paths", "all"), default="all")
+    parser.add_argument("--family", choices=("static", "paths", "sliding", "all"), default="all")
     parser.add_argument("--ranks", default="1,2,3,4")
     parser.add_argument("--only", default="")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)
     ranks = [int(r) for r in args.ranks.split(",")]
-    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS)) if args.family in (f, "all")]
+    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING)) if args.family in (f, "all")]
     print("| family | member | ranks | dense route: its, law, error | whole body: its (Krylov), law, error |")
     print("|---|---|---|---|---|")
     rows, total, converged, lawful, exact = [], 0, 0, 0, 0

@@ -135,28 +135,73 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
   PetscFunctionReturn(0);
 }
 
+/* The times of a load path: -steps (stepsText; NULL: the knots of the histories), or one step at t = 0 */
+static PetscErrorCode PathTimes(SSStarScene scene, const char stepsText[], PetscInt *nsteps, PetscReal **times)
+{
+  PetscInt   nknots;
+  PetscReal *knots;
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
+  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_WORLD, "-steps", stepsText, nknots, knots, nsteps, times));
+  PetscCall(PetscFree(knots));
+  if (!*nsteps) { /* constant loads and motions: one step */
+    PetscCall(PetscFree(*times));
+    PetscCall(PetscMalloc1(1, times));
+    (*times)[0] = 0;
+    *nsteps     = 1;
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+   One step of a load path, set by SSStarSceneSetStep(), from u: solved, and with large sliding solved again from its
+   solution while the contact measured there moves (SSStarSceneCheckStep()); its iterations in all. A contact that does
+   not settle in -sliding_max_it linearizations is DIVERGED_MAX_IT (the step is cut); why says which failed.
+*/
+static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool hasContact, PetscInt *its, SNESConvergedReason *reason, const char **why)
+{
+  PetscBool consistent = PETSC_TRUE, again = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  *its = 0;
+  *why = NULL;
+  while (again) {
+    PetscInt n;
+
+    PetscCall(SNESSolve(snes, NULL, u));
+    PetscCall(SNESGetConvergedReason(snes, reason));
+    PetscCall(SNESGetIterationNumber(snes, &n));
+    *its += hasContact ? n : 0;
+    if (*reason <= 0) {
+      *why = SNESConvergedReasons[*reason];
+      PetscFunctionReturn(0);
+    }
+    PetscCall(SSStarSceneCheckStep(scene, snes, u, &consistent, &again));
+  }
+  if (!consistent) {
+    *reason = SNES_DIVERGED_MAX_IT;
+    *why    = "the contact measured at its solution did not settle in -sliding_max_it linearizations";
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
    A load path (docs/load-paths.md): the steps at the times of -steps (default the knots of the histories), each from
    the solution of the step before with incremental friction; a step that does not converge is retried from there at
    the midpoint and goes on to its time in sub-steps of that size, at most maxCuts halvings per step, then the path
    stops (failure->step >= 0). With out, every step (and sub-step) into the file.
 */
-static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, const char stepsText[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
+static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, PetscInt nsteps, const PetscReal times[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
 {
-  PetscInt   nknots, nsteps, written = 0;
-  PetscReal *knots, *times, tAccepted = 0;
+  PetscInt   nknots, written = 0;
+  PetscReal *knots, tAccepted = 0;
   PetscBool  accepted = PETSC_FALSE;
   Vec        uAccepted, r;
 
   PetscFunctionBeginUser;
   PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
-  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_WORLD, "-steps", stepsText, nknots, knots, &nsteps, &times));
-  if (!nsteps) { /* constant loads and motions: one step */
-    PetscCall(PetscFree(times));
-    PetscCall(PetscMalloc1(1, &times));
-    times[0] = 0;
-    nsteps   = 1;
-  }
+  PetscCall(SSStarSceneCheckSteps(scene, nsteps, times)); /* the motions of every step, before any solve and file */
   if (out) PetscCall(SSStarSceneOutputBegin(scene, out));
   PetscCall(VecDuplicate(u, &uAccepted));
   PetscCall(VecCopy(u, uAccepted));
@@ -166,15 +211,14 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
     PetscInt  cuts = 0;
 
     for (;;) {
-      PetscInt stepIts;
+      PetscInt    stepIts;
+      const char *why;
 
       PetscCall(SSStarSceneAssembleLoad(scene, t, load));
       PetscCall(SSStarSceneSetStep(scene, snes, t));
       PetscCall(VecCopy(uAccepted, u));
-      PetscCall(SNESSolve(snes, NULL, u));
-      PetscCall(SNESGetConvergedReason(snes, reason));
-      PetscCall(SNESGetIterationNumber(snes, &stepIts));
-      *its += hasContact ? stepIts : 0;
+      PetscCall(SolveStep(scene, snes, u, hasContact, &stepIts, reason, &why));
+      *its += stepIts;
       if (*reason > 0) {
         PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
         PetscCall(SSStarSceneAcceptStep(scene, u, r));
@@ -193,11 +237,11 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
         if (cuts < maxCuts && t > from) {
           cuts++;
           dt = (t - from) / 2;
-          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], (double)(from + dt)));
+          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, why, (double)(from + dt)));
           t = from + dt;
           continue;
         }
-        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, SNESConvergedReasons[*reason], cuts, maxCuts));
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, why, cuts, maxCuts));
         if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts)); /* its last iterate */
         failure->step = written;
         failure->time = t;
@@ -208,7 +252,6 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, c
   if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, NULL, NULL));
   PetscCall(VecDestroy(&uAccepted));
   PetscCall(PetscFree(knots));
-  PetscCall(PetscFree(times));
   PetscFunctionReturn(0);
 }
 
@@ -219,7 +262,8 @@ int main(int argc, char **argv)
   Vec                 b, load; /* the load b of the scene, and the one of a step: a fraction of b, or b(t) of a path */
   SNES                snes;
   Vec                 u, r = NULL;
-  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscInt            nodes, ncontact, its = 0, maxCuts = 4, nLoadSteps, nsteps = 0, counts[SSSTAR_NUM_STATES] = {0, 0, 0, 0, 0, 0, 0};
+  PetscReal          *times = NULL; /* the times of a load path */
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
   PetscLogDouble      peak;
   PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE;
@@ -253,6 +297,7 @@ int main(int argc, char **argv)
     PetscCall(SSStarSceneHasPath(scene, &path));
     path = (PetscBool)(path || hasSteps);
     PetscCheck(!(path && hasLoadSteps), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Option -load_steps scales the constant loads of a static problem; a load path is -steps with histories (-traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion): give one of them");
+    if (path) PetscCall(PathTimes(scene, hasSteps ? stepsText : NULL, &nsteps, &times)); /* -steps refused before the mesh */
   }
   /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
@@ -300,7 +345,7 @@ int main(int argc, char **argv)
   nLoadSteps = steps.n; /* steps.n: the steps solved */
   PetscCall(PetscMalloc4(steps.n, &steps.factor, steps.n, &steps.area, steps.n, &steps.normal_force, steps.n, &steps.iterations));
   PetscCall(PetscTime(&t0));
-  if (path) PetscCall(SolvePath(scene, snes, load, u, hasSteps ? stepsText : NULL, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
+  if (path) PetscCall(SolvePath(scene, snes, load, u, nsteps, times, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
   else PetscCall(SolveLoadSteps(scene, snes, b, load, u, hasContact, &steps, &its, &reason));
   if (hasContact) {
     PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
@@ -321,6 +366,7 @@ int main(int argc, char **argv)
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));
+  PetscCall(PetscFree(times));
   PetscCall(SNESDestroy(&snes));
   PetscCall(VecDestroy(&u));
   PetscCall(MatDestroy(&K));

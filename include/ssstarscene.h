@@ -60,8 +60,10 @@ PETSC_EXTERN PetscErrorCode SSStarSceneGetKnots(SSStarScene, PetscInt *, PetscRe
 PETSC_EXTERN PetscErrorCode SSStarSceneHasPath(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene, Vec, PetscReal[3]);
+PETSC_EXTERN PetscErrorCode SSStarSceneCheckSteps(SSStarScene, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetStep(SSStarScene, SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetHistory(SSStarScene, const char[], const char[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneCheckStep(SSStarScene, SNES, Vec, PetscBool *, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAcceptStep(SSStarScene, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene, PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetMotion(SSStarScene, PetscInt, const char *[], PetscReal[3], PetscBool *);

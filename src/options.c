@@ -10,6 +10,7 @@
 #include <petsc/private/petscimpl.h>
 #include <ssstar.h>
 #include <petscviewerhdf5.h>
+#include "sys/names.h"
 
 /*
    Options PETSc reads only while the work runs (objects created then: the reduction's MUMPS, the mesh, the viewers,
@@ -191,27 +192,6 @@ static PetscErrorCode AddNamesOfSNES(NameList *list, SNES snes)
   PetscFunctionReturn(0);
 }
 
-/* The optimal string alignment distance (Levenshtein with transpositions), case-insensitive */
-static PetscInt Distance(const char a[], size_t la, const char b[], size_t lb)
-{
-  PetscInt d[3][257]; /* rows i-2, i-1, i; option names are shorter */
-
-  if (la > 256 || lb > 256) return PETSC_MAX_INT;
-  for (size_t j = 0; j <= lb; j++) d[1][j] = (PetscInt)j;
-  for (size_t i = 1; i <= la; i++) {
-    PetscInt *cur = d[(i + 1) % 3], *prev = d[i % 3], *prev2 = d[(i + 2) % 3];
-
-    cur[0] = (PetscInt)i;
-    for (size_t j = 1; j <= lb; j++) {
-      const PetscInt cost = tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]);
-
-      cur[j] = PetscMin(PetscMin(prev[j] + 1, cur[j - 1] + 1), prev[j - 1] + cost);
-      if (i > 1 && j > 1 && tolower((unsigned char)a[i - 1]) == tolower((unsigned char)b[j - 2]) && tolower((unsigned char)a[i - 2]) == tolower((unsigned char)b[j - 1])) cur[j] = PetscMin(cur[j], prev2[j - 2] + 1);
-    }
-  }
-  return d[(la + 1) % 3][lb];
-}
-
 /*
    The known option nearest to name: by edit distance (a template -x_<G> matches -x_ followed by any group name: the
    name's own, after one of its underscores); else a known option that ends with _name (-friction:
@@ -234,14 +214,14 @@ static PetscErrorCode Nearest(const NameList *known, const char name[], char nea
         PetscInt d;
 
         if (name[split - 1] != '_') continue; /* the group name follows an underscore */
-        d = Distance(name, split, k, klen - 3);
+        d = SSStarNameDistance(name, split, k, klen - 3);
         if (d < best) {
           best = d;
           PetscCall(PetscSNPrintf(nearest, size, "-%.*s%s", (int)(klen - 3), k, name + split));
         }
       }
     } else {
-      const PetscInt d = Distance(name, len, k, klen);
+      const PetscInt d = SSStarNameDistance(name, len, k, klen);
 
       if (d < best) {
         best = d;

@@ -21,6 +21,12 @@
   scene_answers.py first-contact LINEAR.h5 CONTACT.h5
       the load factor at which a body first touches: min over the contact nodes of gap / (-u.n), with u the
       displacement without contact (LINEAR.h5, at the full load) and the gaps and normals of CONTACT.h5
+  scene_answers.py sliding FILE.h5 [--from T]
+      a load path's steps from time T on (default: every step), for large sliding: the normal force N, the ratio of
+      the tangential force to phi N over the steps where every touching node slides (phi from /contact/friction),
+      the contact area, and the contact's centroid (the pressure-weighted mean of the touching nodes' current
+      positions x + u) less the moving obstacle's translation (/steps/motion/<G>: the patch follows the obstacle
+      when that stays put); the mean and spread (max - min) of each
 Prints "name value" lines; as a module, the functions return dictionaries.
 """
 import argparse
@@ -105,6 +111,30 @@ def first_contact(linear, with_contact):
     return {"factor": float(np.min(d["gap"][closing] / -un[closing])) if closing.any() else np.inf}
 
 
+def sliding(name, start=-np.inf):
+    f = h5py.File(name, "r")
+    st, x = f["steps"], f["contact/coordinates"][:]
+    phi = f["contact/friction"][:].max()
+    t, N, T, A = st["time"][:], st["normal_force"][:], np.linalg.norm(st["tangential_force"][:], axis=1), st["area"][:]
+    motion = next(iter(st["motion"].values()))[:] if "motion" in st and len(st["motion"]) else np.zeros((len(t), 3))
+    rows = np.flatnonzero(t >= start)
+    full = [k for k in rows if st["sticking"][k] == 0 and st["sliding"][k] > 0]
+    lag = []
+    for k in rows:
+        c = st["%d/contact" % k]
+        touching = np.isin(c["state"][:], TOUCHING)
+        p = (c["reaction"][:] * c["normal"][:]).sum(axis=1)[touching]
+        if p.sum() > 0:
+            lag.append(((x + c["displacement"][:])[touching] * p[:, None]).sum(axis=0) / p.sum() - motion[k])
+    lag = np.array(lag)
+    spread = lambda v: float(v.max() - v.min()) if len(v) else np.nan
+    ratio = T[full] / (phi * N[full]) if full else np.array([np.nan])
+    return {"steps": len(rows), "sliding_steps": len(full), "normal_force_mean": float(N[rows].mean()),
+            "normal_force_spread": spread(N[rows]), "friction_ratio_min": float(ratio.min()),
+            "friction_ratio_max": float(ratio.max()), "area_mean": float(A[rows].mean()), "area_spread": spread(A[rows]),
+            "centroid_lag_x_spread": spread(lag[:, 0]) if len(lag) else np.nan, "centroid_lag_y_spread": spread(lag[:, 1]) if len(lag) else np.nan}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="cmd", required=True)
@@ -123,6 +153,9 @@ def main():
     sl = sub.add_parser("slide")
     sl.add_argument("file")
     sl.add_argument("direction")
+    sd = sub.add_parser("sliding")
+    sd.add_argument("file")
+    sd.add_argument("--from", dest="start", type=float, default=-np.inf)
     fc = sub.add_parser("first-contact")
     fc.add_argument("linear")
     fc.add_argument("contact")
@@ -135,6 +168,8 @@ def main():
         result = friction(args.file)
     elif args.cmd == "slide":
         result = slide(args.file, [float(v) for v in args.direction.split(",")])
+    elif args.cmd == "sliding":
+        result = sliding(args.file, args.start)
     else:
         result = first_contact(args.linear, args.contact)
     for k, v in result.items():

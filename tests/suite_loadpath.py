@@ -15,7 +15,7 @@ def loadpath_derivation():
     expect(out.count("PASS") == 8 and "FAIL" not in out, "tests/loadpath_check.py", out)
 
 
-@test("load histories (include/ssstarhistory.h, tests/test_history): the issue's example, a plain vector, spaces, exponents, negative times, one component, a single knot and a value of 1000 knots parse to the hand-computed knots; evaluation is linear between knots, constant outside them and exact at them; the knots of several histories merge (1 and 1.0 once); -steps N gives the first knot and N equal steps ending exactly at the last, -steps t1,t2,... the times; every malformed value (empty, no time, not a number, NaN, Inf, wrong count, times not increasing, an empty knot, a count 0 or without a time span) is refused with a message naming the option and the knot or time, leaving nothing allocated (-malloc_dump)")
+@test("load histories (include/ssstarhistory.h, tests/test_history): the issue's example, a plain vector, spaces, exponents, negative times, one component, a single knot and a value of 1000 knots parse to the hand-computed knots; evaluation is linear between knots, constant outside them and exact at them; the knots of several histories merge (1 and 1.0 once); -steps N gives the first knot and N equal steps ending exactly at the last, -steps t1,t2,... the times; every malformed value (empty, no time, not a number, NaN, Inf, wrong count, times not increasing, an empty knot, a count 0, negative (-3), fractional (2.5, 2.0) or without a time span) is refused with a message naming the option and the knot or time, leaving nothing allocated (-malloc_dump)")
 def history_parser():
     out = run([os.path.join(ROOT, "tests", "test_history")])
     expect("OK: 0 failures" in out, "tests/test_history", out)
@@ -227,7 +227,8 @@ def loadpath_two_materials():
 
 
 def refused(args, message, name):
-    """examples/contact refuses args before any work: non-zero exit, the message, no output file"""
+    """examples/contact refuses args before any mesh work (no progress line "mesh:"): non-zero exit, the message, no
+    output file"""
     path = h5("refused_loadpath_%s.h5" % name)
     for x in os.listdir(OUT):
         if x.startswith("refused_loadpath_%s." % name):
@@ -235,22 +236,72 @@ def refused(args, message, name):
     out = run([CONTACT] + args + ["-o", path], expect_rc=1)
     expect(message in out, "%s: the message %r is missing" % (name, message), out)
     expect(not [x for x in os.listdir(OUT) if x.startswith("refused_loadpath_%s." % name)], "%s: a file was left behind" % name)
+    expect("mesh:" not in out, "%s: refused only after the mesh was made" % name, out)
 
 
-@test("bad load paths are refused before any work, naming the option: -load_steps with a history (static continuation only), a motion for a contact pair, a motion of a group not in -contact, a knot with two components, times that do not increase in a knot list or in -steps, -steps N without histories, -steps_max_cuts -1")
+@test("bad load paths are refused before any mesh work, naming the option: -load_steps with a history (static continuation only), a motion for a contact pair, a motion of a group not in -contact (named as the group, with the nearest contact group), a knot with two components, times that do not increase in a knot list or in -steps, -steps N without histories, a negative or fractional count (-steps -3, -steps 2.5), -steps_max_cuts -1")
 def loadpath_refusals():
     block = ["-geo", "meshes/block.geo", "-level", "1", "-E", "2e7", "-nu", "0.3", "-spring_top", "1000", "-contact", "bottom"]
     mindlin = ["-options_file", os.path.join(ROOT, "scenes", "mindlin.opts")]
     for name, args, message in (
             ("load_steps", block + ["-traction_top", "0:0,0,0;1:0,0,-10", "-load_steps", "2"], "Option -load_steps scales the constant loads of a static problem"),
             ("pair_motion", mindlin + ["-obstacle_cap_motion", "0:0,0,0;1:0,0,0.1"], "Options -obstacle_cap_motion and -contact_pair_cap contradict each other"),
-            ("motion_not_contact", block + ["-obstacle_nowhere_motion", "0:0,0,0;1:0,0,0.1"], 'Option -obstacle_nowhere_motion: "nowhere_motion" is not a contact group'),
+            ("motion_not_contact", block + ["-obstacle_nowhere_motion", "0:0,0,0;1:0,0,0.1"], 'Option -obstacle_nowhere_motion: "nowhere" is not a contact group (not in -contact; the nearest contact group is "bottom")'),
+            ("motion_misspelt", block + ["-obstacle_botom_motion", "0:0,0,0;1:0,0,0.1"], 'Option -obstacle_botom_motion: "botom" is not a contact group (not in -contact; the nearest contact group is "bottom")'),
             ("knot_two_values", block + ["-traction_top", "0:0,0,0;1:0,-10"], "Option -traction_top: knot 2"),
             ("knots_decrease", block + ["-obstacle_bottom_motion", "1:0,0,0;0.5:0,0,0.1"], "the times of the knots must increase"),
             ("steps_decrease", block + ["-traction_top", "0,0,-10", "-steps", "1,0.5"], "Option -steps: the times must increase"),
             ("steps_without_history", block + ["-traction_top", "0,0,-10", "-steps", "4"], "equal steps need load histories that span a time"),
+            ("steps_negative", block + ["-traction_top", "0:0,0,0;1:0,0,-10", "-steps", "-3"], "Option -steps -3: a count of equal steps is a whole number >= 1"),
+            ("steps_fractional", block + ["-traction_top", "0:0,0,0;1:0,0,-10", "-steps", "2.5"], "Option -steps 2.5: a count of equal steps is a whole number >= 1"),
             ("max_cuts", block + ["-traction_top", "0:0,0,0;1:0,0,-10", "-steps_max_cuts", "-1"], "-steps_max_cuts -1: must be >= 0")):
         refused(args, message, name)
+
+
+SMALL_SLIDING = re.compile(r"Step (\d+) \(t = ([-\d.e+]+)\): the obstacle of -obstacle_top \((.*?)\) moved by \(([^)]*)\) \(-obstacle_top_motion\): its first-order gap g - n\.d = (\S+) at mesh node (\d+) \(0-based, file order\) at \(([^)]*)\) is off the exact gap (\S+) by (\S+), more than -small_sliding_tol (\S+) times \|d\| = (\S+):")
+
+
+@test("honest limits of small sliding (issue 23.3, -sliding small): a rigid ball (R = 2) pressed 0.02 into a block and moved 1 along it is refused at that step before any solve and file, with the obstacle, the step and the error of g - n.d against the exact gap in the message (its numbers recomputed in numpy: |x - c - d| - R, the first-order gap and the error to 1e-5, larger than -small_sliding_tol 0.01 times |d|; 1 and 2 ranks the same message); a cylinder moved across its axis likewise; pressed only, or dragged by 0.01 (0.5 % of R), it is solved; the cylinder moved 1 along its axis, a plane and a flat mesh moved 1 across the block are never refused (their first-order gap is exact); -small_sliding_tol 0.5 accepts the ball's drag; -small_sliding_tol 0 is refused")
+def loadpath_small_sliding_limits():
+    block = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "bottom", "-contact", "top", "-friction_top", "0.3", "-ssstar_progress", "0", "-sliding", "small"]
+    c, R = np.array([0.5, 0.5, 2.5]), 2.0
+    ball, drag = ["-obstacle_top", "sphere:0.5,0.5,2.5,2"], ["-obstacle_top_motion", "0:0,0,0;1:0,0,-0.02;2:1,0,-0.02"]
+    messages = []
+    for ranks in (1, 2):
+        name = "small_sliding_refused_%d" % ranks
+        for x in os.listdir(OUT):
+            if x.startswith(name):
+                os.remove(os.path.join(OUT, x))
+        out = run(mpiexec(ranks, CONTACT, *block, *ball, *drag, "-steps", "0,1,2", "-o", h5(name + ".h5")), expect_rc=1)
+        m = SMALL_SLIDING.search(out)
+        expect(m and m.group(1) == "3" and float(m.group(2)) == 2 and "rigid ball of radius 2" in m.group(3), "%d ranks: no refusal naming step 3 (t = 2) and the ball" % ranks, out)
+        expect("step 1/" not in out and not [x for x in os.listdir(OUT) if x.startswith(name)], "%d ranks: a step was solved or a file written before the refusal" % ranks, out)
+        d = np.array([float(v) for v in m.group(4).split(",")])
+        x = np.array([float(v) for v in m.group(7).split(",")])
+        linear, exact, error, tol, dd = (float(m.group(k)) for k in (5, 8, 9, 10, 11))
+        g, n = np.linalg.norm(x - c) - R, (x - c) / np.linalg.norm(x - c)
+        expect(np.allclose(d, [1, 0, -0.02]) and abs(dd - np.linalg.norm(d)) <= 1e-5, "%d ranks: the translation %s, |d| %g" % (ranks, d, dd))
+        expect(abs(linear - (g - n @ d)) <= 1e-5 and abs(exact - (np.linalg.norm(x - c - d) - R)) <= 1e-5 and abs(error - abs(exact - linear)) <= 1e-5, "%d ranks: the message's gaps %g, %g, %g against numpy's %g, %g" % (ranks, linear, exact, error, g - n @ d, np.linalg.norm(x - c - d) - R))
+        expect(error > tol * dd and tol == 0.01, "%d ranks: an error %g within the tolerance %g |d| was refused" % (ranks, error, tol))
+        messages.append(m.group(0))
+    expect(messages[0] == messages[1], "1 and 2 ranks refuse differently", "\n".join(messages))
+    cylinder = ["-obstacle_top", "cylinder:0.5,0.5,2.5,0,1,0,2"]
+    out = run([CONTACT] + block + cylinder + drag + ["-steps", "0,1,2"], expect_rc=1)
+    expect("the obstacle of -obstacle_top (rigid cylinder" in out and "Step 3 (t = 2.)" in out, "the cylinder moved across its axis is not refused", out)
+    for what, args in (("pressed", ball + ["-obstacle_top_motion", "0:0,0,0;1:0,0,-0.02"]),
+                       ("dragged by 0.01", ball + drag + ["-steps", "0,1,1.01"]),
+                       ("drag accepted by -small_sliding_tol 0.5", ball + drag + ["-steps", "0,1,2", "-small_sliding_tol", "0.5"]),
+                       ("cylinder along its axis", cylinder + ["-obstacle_top_motion", "0:0,0,0;1:0,0,-0.02;2:0,1,-0.02"]),
+                       ("plane", ["-obstacle_top", "plane:0,0,0.5,0,0,-1", "-obstacle_top_motion", "0:0,0,0;1:0,0,-0.001;2:1,0,-0.001"]),
+                       ("flat mesh", ["-obstacle_top", "mesh:" + os.path.join(OUT, "small_sliding_square.msh"), "-obstacle_top_motion", "0:0,0,0;1:0,0,-0.001;2:1,0,-0.001"])):
+        if what == "flat mesh":  # the two-triangle square (-10, 10)^2 at z = 0.5, oriented down (towards the block)
+            with open(os.path.join(OUT, "small_sliding_square.msh"), "w") as f:
+                f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 -10 -10 0.5\n2 10 -10 0.5\n3 10 10 0.5\n4 -10 10 0.5\n$EndNodes\n"
+                        "$Elements\n2\n1 2 2 1 1 3 2 1\n2 2 2 1 1 4 3 1\n$EndElements\n")
+        out = run([CONTACT] + block + args)
+        expect("CONVERGED" in out and "first-order gap" not in out, "%s: refused or not solved" % what, out)
+    out = run([CONTACT] + block + ball + drag + ["-small_sliding_tol", "0"], expect_rc=1)
+    expect("-small_sliding_tol 0.: must be a positive number" in out, "-small_sliding_tol 0 is not refused", out)
 
 
 @test("examples/plot_contact.py on a load path draws FILE_history.png beside the contact faces: the tangential force against the loaded group's displacement (the lines are the file's /steps/load and /steps/groups/<G>/displacement; for a moving obstacle its /steps/motion/<G> against /steps/tangential_force), the loop without its linear elastic part, the normal force against the indentation, the contact area and sliding nodes against the time")

@@ -113,7 +113,7 @@ REFUSED = [
     ("unknown master", HELD + ["-contact_pair_slider_bottom", "nothing"],
      'Mesh meshes/slider_L1.msh has no physical group named "nothing" (option -contact_pair_slider_bottom)'),
     ("slave not a contact group", HELD + ["-contact_pair_base_top", "slider_bottom"],
-     'Option -contact_pair_base_top: "base_top" is not a contact group (not in -contact)'),
+     'Option -contact_pair_base_top: "base_top" is not a contact group (not in -contact; the nearest contact group is "slider_bottom")'),
     ("no master", HELD + ["-contact_pair_slider_bottom"], "Option -contact_pair_slider_bottom needs the name of the master surface group H"),
     ("obstacle and master", HELD + ["-contact_pair_slider_bottom", "base_top", "-obstacle_slider_bottom", "0,0,0,0,0,1"],
      "Options -contact_pair_slider_bottom and -obstacle_slider_bottom contradict each other"),

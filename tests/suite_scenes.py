@@ -298,7 +298,7 @@ for _name, _args, _message in BAD_INPUT:
 
 CONTACT_ONLY = [
     # name, scene, arguments, message
-    ("group_option_not_contact", "prism", ["-obstacle_top", "0,0,0,0,0,1"], 'Option -obstacle_top: "top" is not a contact group (not in -contact)'),
+    ("group_option_not_contact", "prism", ["-obstacle_top", "0,0,0,0,0,1"], 'Option -obstacle_top: "top" is not a contact group (not in -contact; the nearest contact group is "contact")'),
     ("friction_with_law_none", "prism", ["-friction_law_contact", "none"], "Options -friction_contact and -friction_law_contact none contradict each other"),
     ("tresca_without_bound", "hertz", ["-friction_law_cap", "tresca"], "Option -friction_law_cap tresca needs -slip_bound_cap"),
     ("gravity_without_density", "prism", ["-gravity", "0,0,-9.81"], "Incomplete body force: -gravity needs -density"),

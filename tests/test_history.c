@@ -4,7 +4,8 @@ static const char help[] = "Load histories (include/ssstarhistory.h) against han
    evaluated piecewise linearly, constant before the first and after the last knot, exactly a knot's value at its
    time; spaces, exponents, negative times, one component and a single knot are accepted, and a value of any length;
    the knots of several histories merge into the default steps (equal times once); -steps gives a count N (the first
-   knot and N equal steps to the last) or a list of times; every malformed value is refused with a message naming the
+   knot and N equal steps to the last; a single value, refused unless a whole number >= 1) or a list of two or more
+   times; every malformed value is refused with a message naming the
    option and the knot or time, and leaves nothing allocated (the suite runs this with -malloc_dump). Tolerance: exact
    where the arithmetic is (knot values, merged times), 1e-15 relative otherwise. */
 #include <ssstarhistory.h>
@@ -211,11 +212,8 @@ static PetscErrorCode Steps(void)
     Expect((PetscBool)(n == 4 && Close(4, times, expected, 0)), "-steps as a list of times (7: after the last knot)", "");
   }
   PetscCall(PetscFree(times));
-  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_SELF, "-steps", "2.0", m, knots, &n, &times));
-  Expect((PetscBool)(n == 1 && times[0] == 2), "-steps 2.0: one time, not a count", "");
-  PetscCall(PetscFree(times));
-  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_SELF, "-steps", "-1", m, knots, &n, &times));
-  Expect((PetscBool)(n == 1 && times[0] == -1), "-steps -1: a time (before the first knot), not a count", "");
+  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_SELF, "-steps", "-1,2", m, knots, &n, &times));
+  Expect((PetscBool)(n == 2 && times[0] == -1 && times[1] == 2), "-steps -1,2: times (the first before the first knot)", "");
   PetscCall(PetscFree(times));
   PetscCall(SSStarHistoryParseSteps(PETSC_COMM_SELF, "-steps", NULL, 0, NULL, &n, &times));
   Expect((PetscBool)(n == 0), "no histories, no -steps: no steps (one static solve)", "");
@@ -292,6 +290,10 @@ int main(int argc, char **argv)
   }
   RefusedSteps("", 3, knots, "Option -steps has an empty value: give a count N of equal steps, or the times t1,t2,...");
   RefusedSteps("0", 3, knots, "Option -steps 0: needs at least one step");
+  RefusedSteps("-3", 3, knots, "Option -steps -3: a count of equal steps is a whole number >= 1 (times are a list of two or more, t1,t2,...)");
+  RefusedSteps("2.5", 3, knots, "Option -steps 2.5: a count of equal steps is a whole number >= 1");
+  RefusedSteps("2.0", 3, knots, "Option -steps 2.0: a count of equal steps is a whole number >= 1");
+  RefusedSteps("x", 3, knots, "Option -steps x: not a number (give a count N of equal steps, or the times t1,t2,...)");
   RefusedSteps("4", 0, NULL, "Option -steps 4: equal steps need load histories that span a time (knots t:x,y,z); no option has one");
   RefusedSteps("4", 1, knots, "they have a single time");
   RefusedSteps("1,x", 3, knots, "Option -steps: time 2 \"x\" is not a number (give a count N of equal steps, or the times t1,t2,...)");

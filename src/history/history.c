@@ -413,12 +413,12 @@ static PetscBool IsCount(Piece p)
 -  times - the times, increasing (free with PetscFree())
 
    Notes:
-   A value of digits only is a count N: the first knot and N equal steps to the last one, N + 1 times (the first knot's
-   state is a step of its own, so that a load path starts where its histories start); it needs knots that span a
-   time. Any other value is a list of times t1,t2,... (finite, strictly increasing; a single time is written with a
-   decimal point, 2.0, to tell it from a count); the histories are constant outside their knots, so times before the
-   first or after the last knot hold those knots' values. Refused, naming the option: a count of 0, a count without a
-   time span, a time that is not a finite number, times that do not increase, an empty value.
+   A single value is a count N, a whole number >= 1: the first knot and N equal steps to the last one, N + 1 times (the
+   first knot's state is a step of its own, so that a load path starts where its histories start); it needs knots
+   that span a time. A list of two or more values is the times t1,t2,... (finite, strictly increasing); the
+   histories are constant outside their knots, so times before the first or after the last knot hold those knots'
+   values. Refused, naming the option: a count that is 0, negative or fractional (-steps -3, -steps 2.5), a count
+   without a time span, a time that is not a finite number, times that do not increase, an empty value.
 
    Level: intermediate
 
@@ -453,6 +453,12 @@ PetscErrorCode SSStarHistoryParseSteps(MPI_Comm comm, const char option[], const
     PetscFunctionReturn(0);
   }
   count = Count(all, ',');
+  if (count == 1) { /* one value: a count, which is none of these */
+    PetscReal x;
+
+    PetscCheck(ParseReal(all, &x), comm, PETSC_ERR_ARG_WRONG, "Option %s %.*s: not a number (give a count N of equal steps, or the times t1,t2,...)", option, (int)PetscMin(all.len, 60), all.text);
+    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %.*s: a count of equal steps is a whole number >= 1 (times are a list of two or more, t1,t2,...)", option, (int)PetscMin(all.len, 60), all.text);
+  }
   PetscCall(PetscMalloc1(count, &list));
   rest = all;
   for (PetscInt k = 0; k < count; k++) {

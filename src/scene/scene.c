@@ -28,6 +28,9 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   PetscCall(PetscNew(scene));
   (*scene)->comm      = comm;
   (*scene)->meshScale = 1.0;
+  (*scene)->smallSlidingTol = 0.01;
+  (*scene)->slidingTol      = 1e-3;
+  (*scene)->slidingMaxIt    = 4;
   (*scene)->level     = -1;
   PetscFunctionReturn(0);
 }
@@ -105,6 +108,7 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscCall(PetscFree(s->contact));
   PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
   PetscCall(PetscFree2(s->gap, s->area));
+  PetscCall(PetscFree(s->gapInitial));
   PetscCall(ISDestroy(&s->isC));
   PetscCall(PetscFree(s->body));
   PetscCall(PetscFree(s->frame));
@@ -189,7 +193,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));
-  PetscCall(SSStarSceneBuildContactOperator(scene));
+  PetscCall(SSStarSceneBuildContactOperator(scene, NULL));
   PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s"));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
@@ -431,7 +435,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
     PetscBool path; /* histories with knots or moving obstacles */
 
     PetscCall(SSStarSceneHasPath(scene, &path));
-    if (path) PetscCall(PetscStrlcat(effects, ", load path (incremental friction)", sizeof(effects)));
+    if (path) PetscCall(PetscStrlcat(effects, scene->nContact && scene->sliding == SSSTAR_SLIDING_LARGE ? ", load path (incremental friction, large sliding)" : ", load path (incremental friction)", sizeof(effects)));
   }
   if (scene->nContact) {
     PetscInt nlaws;

@@ -56,6 +56,13 @@ typedef struct {
   PetscReal         d[3], dPrev[3];     /* its translation in the step being solved, and after the last accepted one */
 } SSStarContactGroup;
 
+/* Where a load path measures the contact (-sliding): at the current configuration of each step, or at the reference */
+typedef enum {
+  SSSTAR_SLIDING_LARGE,
+  SSSTAR_SLIDING_SMALL
+} SSStarSliding;
+PETSC_INTERN const char *const SSStarSlidings[];
+
 /* How a pair's slave nodes are compared with the master surface (-pair_discretization) */
 typedef enum {
   SSSTAR_PAIR_NODE_TO_SURFACE,
@@ -115,6 +122,15 @@ struct _n_SSStarScene {
   PetscReal  stepTime;      /* the time of the step SSStarSceneSetStep() set                         */
   PetscReal  load[3];       /* the resultant of the load SSStarSceneAssembleLoad() assembled last       */
   PetscBool  stepped;       /* a step was accepted: the arrays below hold its kinematics              */
+  PetscInt   accepted;      /* the steps accepted (SSStarSceneAcceptStep())                           */
+  SSStarSliding sliding;     /* -sliding                                                                */
+  PetscReal  smallSlidingTol; /* -small_sliding_tol: the first-order gap's error allowed, relative to |d| */
+  Vec        uAccepted;     /* large sliding: the solution of the last accepted step (0 before)        */
+  PetscReal  slidingTol;    /* -sliding_tol: the geometric error of a step, relative to its normal displacements */
+  PetscInt   slidingMaxIt;  /* -sliding_max_it: linearizations of a step at its solution                */
+  PetscInt   relinearizations; /* those of the step being solved                                      */
+  PetscBool  lastLinearization; /* the linearization and solver states are the last accepted step's        */
+  PetscReal *gapInitial;    /* the gaps of the reference configuration (scene->gap: of the step)       */
   PetscReal *slipPrev;      /* w_t after the last accepted step, 2 per node (frame)                   */
   PetscReal *slipIncrement; /* its increment in that step, 2 per node (frame)                         */
   PetscReal *slipPath;      /* the length of the slip path, per node                                  */
@@ -153,16 +169,16 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarMastersAdd(SSStarMasters *, PetscInt, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarMastersDestroy(SSStarMasters *);
 
-/* The boundary faces as triangles (faces.c) */
+/* The boundary faces as triangles (faces.c), at the reference or at a displaced configuration */
 typedef struct {
   DM                 dm;
-  PetscSection       csec, gsec;
-  Vec                coordinates, tags;
-  const PetscScalar *xa, *ta;
+  PetscSection       csec, gsec, lsec;
+  Vec                coordinates, tags, uLocal; /* uLocal: the displacement of every local vertex, or NULL */
+  const PetscScalar *xa, *ta, *ua;
   PetscInt           vStart, vEnd, fStart, fEnd;
   PetscBool         *leaf; /* leaf[f]: face f is owned by another rank */
 } SSStarFaces;
-PETSC_INTERN PetscErrorCode SSStarFacesBegin(SSStarScene, SSStarFaces *);
+PETSC_INTERN PetscErrorCode SSStarFacesBegin(SSStarScene, Vec, SSStarFaces *);
 PETSC_INTERN PetscErrorCode SSStarFacesEnd(SSStarFaces *);
 PETSC_INTERN PetscErrorCode SSStarFaceTriangle(const SSStarFaces *, PetscInt, PetscReal[9], PetscInt[3], PetscInt[3], PetscInt *, PetscReal[3], PetscReal *);
 
@@ -180,11 +196,14 @@ PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
-PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarSceneMeasureContact(SSStarScene, SNES);
+PETSC_INTERN PetscErrorCode SSStarSceneRelinearizeContact(SSStarScene, SNES, Vec, PetscBool *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene, Vec);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);
-PETSC_INTERN PetscErrorCode SSStarPairRows(SSStarScene, PetscInt, SSStarMasters *);
-PETSC_INTERN PetscErrorCode SSStarMortarRows(SSStarScene, PetscInt, SSStarSearch, PetscReal, PetscBool[], SSStarMasters *);
+PETSC_INTERN PetscErrorCode SSStarPairRows(SSStarScene, PetscInt, const PetscReal[], Vec, SSStarMasters *);
+PETSC_INTERN PetscErrorCode SSStarMortarRows(SSStarScene, PetscInt, const PetscReal[], Vec, SSStarSearch, PetscReal, PetscBool[], SSStarMasters *);
 PETSC_INTERN PetscErrorCode SSStarSceneNodeVec(SSStarScene, PetscInt, const PetscReal[], Vec *);
 
 /* The friction law of a contact group (grouplaws.c) */

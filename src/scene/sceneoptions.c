@@ -4,6 +4,7 @@
    name, for the checks against the mesh; the refusal of unread options with the scene's own among the known ones.
 */
 #include "sceneimpl.h"
+#include "../sys/names.h"
 
 #define SSSTAR_MAX_LIST 64 /* groups in one -dirichlet or -contact list */
 
@@ -172,28 +173,38 @@ static PetscErrorCode FindContactGroup(SSStarScene scene, const char group[], SS
   PetscFunctionReturn(0);
 }
 
-/* The contact group G of a -obstacle_G, -friction_law_G, -<parameter>_G or -contact_pair_G (which must be in -contact) */
+/* The contact group G of a -obstacle_G, -friction_law_G, -<parameter>_G or -contact_pair_G (which must be in -contact);
+   an unknown one is refused with the nearest contact group */
 static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const char option[], SSStarContactGroup **cg)
 {
+  PetscInt best = PETSC_MAX_INT, nearest = -1;
+
   PetscFunctionBegin;
   PetscCall(FindContactGroup(scene, group, cg));
-  PetscCheck(*cg, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: \"%s\" is not a contact group (not in -contact)", option, group);
-  PetscFunctionReturn(0);
+  if (*cg) PetscFunctionReturn(0);
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    const PetscInt d = SSStarNameDistance(group, strlen(group), scene->contact[g].name, strlen(scene->contact[g].name));
+
+    if (d < best) {
+      best    = d;
+      nearest = g;
+    }
+  }
+  PetscCheck(nearest >= 0, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: \"%s\" is not a contact group (there is no -contact)", option, group);
+  SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: \"%s\" is not a contact group (not in -contact; the nearest contact group is \"%s\")", option, group, scene->contact[nearest].name);
 }
 
-/* The contact group G of a rest "G_motion" of -obstacle_G_motion, or NULL (a group named "x_motion" is looked up first) */
-static PetscErrorCode MotionGroup(SSStarScene scene, const char rest[], SSStarContactGroup **cg)
+/* The group name G of a rest "G_motion" of -obstacle_G_motion (empty: no such rest) */
+static PetscErrorCode MotionStem(const char rest[], char stem[], size_t size)
 {
   const char suffix[] = "_motion";
   size_t     len;
-  char       stem[SSSTAR_GROUP_NAME_LEN];
 
   PetscFunctionBegin;
-  *cg = NULL;
+  stem[0] = 0;
   PetscCall(PetscStrlen(rest, &len));
   if (len <= sizeof(suffix) - 1 || strcmp(rest + len - (sizeof(suffix) - 1), suffix)) PetscFunctionReturn(0);
-  PetscCall(PetscStrncpy(stem, rest, PetscMin(sizeof(stem), len - (sizeof(suffix) - 1) + 1)));
-  PetscCall(FindContactGroup(scene, stem, cg));
+  PetscCall(PetscStrncpy(stem, rest, PetscMin(size, len - (sizeof(suffix) - 1) + 1)));
   PetscFunctionReturn(0);
 }
 
@@ -233,14 +244,15 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   case OPT_OBSTACLE: {
     char spec[PETSC_MAX_PATH_LEN + 8] = "";
 
+    char stem[SSSTAR_GROUP_NAME_LEN];
+
     PetscCall(FindContactGroup(scene, group, &cg));
-    if (!cg) { /* -obstacle_<G>_motion: a translation history */
-      PetscCall(MotionGroup(scene, group, &cg));
-      if (cg) {
-        PetscCall(SSStarHistoryDestroy(&cg->motion));
-        PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &cg->motion, &set));
-        break;
-      }
+    PetscCall(MotionStem(group, stem, sizeof(stem)));
+    if (!cg && stem[0]) { /* -obstacle_<G>_motion: a translation history (a group named "x_motion" is looked up first) */
+      PetscCall(ContactGroup(scene, stem, option, &cg));
+      PetscCall(SSStarHistoryDestroy(&cg->motion));
+      PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &cg->motion, &set));
+      break;
     }
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(PetscOptionsGetString(NULL, NULL, option, spec, sizeof(spec), &set));
@@ -312,7 +324,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -395,6 +407,10 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -contact <G1,G2> - the contact groups
 .  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
 .  -obstacle_<G>_motion <t:x,y,z;...> - the translation history of G's obstacle
+.  -sliding <large> - where a load path measures the contact: large (at the current configuration of each step) or small (at the reference)
+.  -sliding_tol <1e-3> - large sliding: a step is solved again, linearized at its solution, while the contact measured there is off by more than this times the normal displacements
+.  -sliding_max_it <4> - large sliding: such linearizations of a step before it is cut
+.  -small_sliding_tol <0.01> - small sliding: a step whose motion makes the first-order gap of a moved obstacle wrong by more than this times |d| is refused
 .  -friction_law_<G> <coulomb> - a law of the table: none, tresca, coulomb or orthotropic
 .  -<parameter>_<G> <value> - every parameter of the laws (SSStarLawGetParameterNames()): -friction_<G> (the Coulomb
    coefficient of G; default the solver's), -slip_bound_<G> (the Tresca bound), -friction_1_<G>, -friction_2_<G>,
@@ -431,6 +447,15 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
+  {
+    PetscInt sliding = (PetscInt)scene->sliding;
+
+    PetscCall(PetscOptionsEList("-sliding", "Where a load path measures the contact: large (at the current configuration of each step) or small (at the reference)", NULL, SSStarSlidings, 2, SSStarSlidings[sliding], &sliding, NULL));
+    scene->sliding = (SSStarSliding)sliding;
+  }
+  PetscCall(PetscOptionsReal("-sliding_tol", "Large sliding: a step is solved again, linearized at its solution, while the contact measured there is off by more than this times the normal displacements", NULL, scene->slidingTol, &scene->slidingTol, NULL));
+  PetscCall(PetscOptionsInt("-sliding_max_it", "Large sliding: linearizations of a step at its solution before it is cut", NULL, scene->slidingMaxIt, &scene->slidingMaxIt, NULL));
+  PetscCall(PetscOptionsReal("-small_sliding_tol", "Small sliding: a moved ball, cylinder or mesh obstacle is refused at a step where its first-order gap g - n.d is off the exact gap by more than this times |d|", NULL, scene->smallSlidingTol, &scene->smallSlidingTol, NULL));
   PetscCall(PetscOptionsBool("-ssstar_progress", "A line as each phase ends: mesh, contact nodes, assembly, the solver's set-up and Newton steps, output", "SSStarSceneSetProgress", scene->progress, &scene->progress, NULL));
   if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
     char groups[8192];
@@ -448,6 +473,9 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCheck(!hasGeo || scene->level >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-level %" PetscInt_FMT ": the mesh level must be >= 1", scene->level);
   PetscCheck(!scene->hasE || (scene->E > 0 && !PetscIsInfOrNanReal(scene->E)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be a positive number", (double)scene->E);
   PetscCheck(!scene->hasNu || (scene->nu > -1 && scene->nu < 0.5), comm, PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
+  PetscCheck(scene->slidingTol > 0 && !PetscIsInfOrNanReal(scene->slidingTol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-sliding_tol %g: must be a positive number", (double)scene->slidingTol);
+  PetscCheck(scene->slidingMaxIt >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-sliding_max_it %" PetscInt_FMT ": must be >= 0", scene->slidingMaxIt);
+  PetscCheck(scene->smallSlidingTol > 0 && !PetscIsInfOrNanReal(scene->smallSlidingTol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-small_sliding_tol %g: must be a positive number", (double)scene->smallSlidingTol);
 
   PetscCall(SSStarHistoryCreateFromOptions(comm, NULL, "-gravity", 3, &scene->gravityHistory, &scene->hasGravity));
   if (scene->hasGravity) PetscCall(SSStarSceneLastValue(scene->gravityHistory, scene->gravity));

@@ -11,20 +11,30 @@
 */
 #include "../sceneimpl.h"
 
-/* The rows of the nodes of rigid obstacles: gap and normal from the shape; refuses a node that starts inside it */
-static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
+/*
+   The rows of the nodes of rigid obstacles: gap and normal from the shape, at the positions x (3 per node) against the
+   obstacles translated by their d (the shape asked at x - d); at the reference configuration (reference) refuses a node
+   that starts inside its obstacle
+*/
+static PetscErrorCode ObstacleRows(SSStarScene scene, const PetscReal x[], PetscBool reference, PetscReal tol)
 {
   SSStarBadNode inside = {-1, -1, -1, {0, 0, 0}, 0};
   PetscBool     found;
   PetscInt     *group;
+  PetscReal    *q;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc1(scene->n + 1, &group));
-  for (PetscInt i = 0; i < scene->n; i++) group[i] = scene->contact[scene->group[i]].master[0] ? -1 : scene->group[i];
-  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, scene->coords, tol, scene->gap, scene->normal));
+  PetscCall(PetscMalloc2(scene->n + 1, &group, 3 * scene->n + 1, &q));
+  for (PetscInt i = 0; i < scene->n; i++) {
+    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
+
+    group[i] = cg->master[0] ? -1 : scene->group[i];
+    for (PetscInt k = 0; k < 3; k++) q[3 * i + k] = x[3 * i + k] - cg->d[k];
+  }
+  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, q, tol, scene->gap, scene->normal));
   for (PetscInt i = 0; i < scene->n; i++) {
     if (group[i] < 0) continue;
-    if (scene->gap[i] < -tol && inside.tag < 0) {
+    if (reference && scene->gap[i] < -tol && inside.tag < 0) {
       inside.tag   = scene->tag[i];
       inside.group = scene->group[i];
       inside.gap   = scene->gap[i];
@@ -32,7 +42,7 @@ static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)
     }
     if (PetscAbsReal(scene->gap[i]) <= tol) scene->gap[i] = 0.0; /* on the obstacle up to round-off: touching */
   }
-  PetscCall(PetscFree(group));
+  PetscCall(PetscFree2(group, q));
   PetscCall(SSStarSceneShareBadNode(scene->comm, &inside, &found));
   PetscCheck(!found, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Mesh node %" PetscInt_FMT " (0-based, file order) of contact group \"%s\" at (%g, %g, %g) starts %g inside the obstacle of -obstacle_%s (%s)", inside.tag, scene->contact[inside.group].name, (double)inside.x[0], (double)inside.x[1], (double)inside.x[2], (double)-inside.gap, scene->contact[inside.group].name, SSStarObstacleInsideHint(scene->contact[inside.group].obstacle));
   PetscFunctionReturn(0);
@@ -64,7 +74,7 @@ static PetscErrorCode CompressMasters(SSStarScene scene, const SSStarMasters *m)
 /* B from the frames and the masters: R_i at the node's own dofs, -w_ij R_i at the dofs of its master m_j */
 static PetscErrorCode AssembleOperator(SSStarScene scene)
 {
-  PetscInt        m, rstart, cstart, cend, *dnz, *onz;
+  PetscInt        m, rstart, cstart, cend, *dnz, *onz, remote = 0;
   const PetscInt *own;
   Vec             x;
 
@@ -85,7 +95,10 @@ static PetscErrorCode AssembleOperator(SSStarScene scene)
       dnz[3 * i + c] = d;
       onz[3 * i + c] = o;
     }
+    remote += o > 0;
   }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &remote, 1, MPIU_INT, MPI_SUM, scene->comm));
+  PetscCall(PetscInfo(NULL, "contact operator: %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes compared with master vertices of other ranks\n", remote, scene->nGlobal));
   PetscCall(MatDestroy(&scene->B));
   PetscCall(MatCreate(scene->comm, &scene->B));
   PetscCall(MatSetSizes(scene->B, 3 * scene->n, m, PETSC_DETERMINE, PETSC_DETERMINE));
@@ -115,31 +128,51 @@ static PetscErrorCode AssembleOperator(SSStarScene scene)
 
 /*
    SSStarSceneBuildContactOperator - the rows of B of every contact node from its group's contact source (gap, normal,
-   masters), the frames, the gap range of each group, and B
+   masters), the frames and B: at the reference configuration (u NULL; then also the gap range of each group), or at
+   the configuration displaced by u (a global displacement) with the obstacles at their translations d (large
+   sliding, sliding.c): the gaps are then those of the displaced nodes
 */
-PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene)
+PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene, Vec u)
 {
   SSStarMasters masters = {0, 0, NULL, NULL, NULL};
-  PetscReal     tol;
+  PetscReal     tol, *x;
 
   PetscFunctionBegin;
   PetscCall(SSStarSceneContactTolerance(scene, &tol));
+  PetscCall(PetscMalloc1(3 * scene->n + 1, &x)); /* the positions of the contact nodes */
+  PetscCall(PetscArraycpy(x, scene->coords, 3 * scene->n));
+  if (u) {
+    const PetscScalar *ua;
+    Vec                uC;
+
+    PetscCall(VecGetSubVector(u, scene->isC, &uC));
+    PetscCall(VecGetArrayRead(uC, &ua));
+    for (PetscInt k = 0; k < 3 * scene->n; k++) x[k] += PetscRealPart(ua[k]);
+    PetscCall(VecRestoreArrayRead(uC, &ua));
+    PetscCall(VecRestoreSubVector(u, scene->isC, &uC));
+  }
   for (PetscInt i = 0; i < scene->n; i++) { /* a pair's node without a master triangle keeps these (refused later) */
     scene->gap[i]            = 0;
     scene->normal[3 * i]     = 0;
     scene->normal[3 * i + 1] = 0;
     scene->normal[3 * i + 2] = 1;
   }
-  PetscCall(ObstacleRows(scene, tol));
+  PetscCall(ObstacleRows(scene, x, (PetscBool)!u, tol));
   scene->pairFallback = 0;
   for (PetscInt g = 0; g < scene->nContact; g++)
-    if (scene->contact[g].master[0]) PetscCall(SSStarPairRows(scene, g, &masters));
+    if (scene->contact[g].master[0]) PetscCall(SSStarPairRows(scene, g, x, u, &masters));
+  PetscCall(PetscFree(x));
   PetscCall(CompressMasters(scene, &masters));
   PetscCall(SSStarMastersDestroy(&masters));
   PetscCall(PetscFree(scene->frame));
   PetscCall(PetscMalloc1(9 * scene->n + 1, &scene->frame));
   for (PetscInt i = 0; i < scene->n; i++) SSStarNodeFrame(&scene->normal[3 * i], &scene->frame[9 * i]);
-  for (PetscInt g = 0; g < scene->nContact; g++) {
+  if (!u) { /* the reference's gaps, which the output keeps as the initial gaps */
+    PetscCall(PetscFree(scene->gapInitial));
+    PetscCall(PetscMalloc1(scene->n + 1, &scene->gapInitial));
+    PetscCall(PetscArraycpy(scene->gapInitial, scene->gap, scene->n));
+  }
+  for (PetscInt g = 0; g < scene->nContact && !u; g++) {
     SSStarContactGroup *cg       = &scene->contact[g];
     PetscReal           range[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL};
 

@@ -11,7 +11,7 @@ const SSStarContactField SSStarContactFields[] = {
   {"displacement", 3, PETSC_FALSE, SSSTAR_FIELD_STATE},
   {"reaction", 3, PETSC_FALSE, SSSTAR_FIELD_STATE},
   {"coordinates", 3, PETSC_FALSE, SSSTAR_FIELD_SCENE},
-  {"normal", 3, PETSC_FALSE, SSSTAR_FIELD_SCENE},
+  {"normal", 3, PETSC_FALSE, SSSTAR_FIELD_FRAME},
   {"gap", 1, PETSC_FALSE, SSSTAR_FIELD_SCENE},
   {"area", 1, PETSC_FALSE, SSSTAR_FIELD_SCENE},
   {"state", 1, PETSC_TRUE, SSSTAR_FIELD_STATE},
@@ -63,7 +63,7 @@ static PetscErrorCode Kinematics(SSStarScene scene, const char name[], Vec u, Ve
 
 /*
    The values of a field of /contact at the owned contact nodes (field->bs per node, in the scene's order): the scene's
-   (coordinates, normal, gap, area, group), at the state u with r = K u - b and the solver's states (displacement,
+   (coordinates, gap of the reference configuration, area, group; normal: of the frames of the last step), at the state u with r = K u - b and the solver's states (displacement,
    reaction, state: -1 without states, final_gap, pressure, traction, slip), or of the load path after its last
    accepted step (slip_increment in global axes, slip_path, dissipation)
 */
@@ -95,7 +95,7 @@ PetscErrorCode SSStarContactFieldValues(SSStarScene scene, const SSStarContactFi
   else if (is[5] || is[6]) PetscCall(PetscArraycpy(values, is[5] ? scene->coords : scene->normal, 3 * n));
   else {
     const char *const names[4]  = {"gap", "area", "slip_path", "dissipation"};
-    const PetscReal  *arrays[4] = {scene->gap, scene->area, scene->slipPath, scene->dissipation};
+    const PetscReal  *arrays[4] = {scene->gapInitial, scene->area, scene->slipPath, scene->dissipation};
     PetscBool         found     = PETSC_FALSE;
 
     for (PetscInt k = 0; k < 4 && !found; k++) {

@@ -43,9 +43,11 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionGet(MPI_Comm, SNES, PetscInt, const PetscInt[], SSStarNodeFriction *);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionWrite(MPI_Comm, hid_t, const char[], const SSStarNodeFriction *, PetscInt, const PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarNodeFrictionDestroy(SSStarNodeFriction *);
-/* The datasets of /contact (fields.c): the scene's, those of a state (u, r, states), those of a load path's last step */
+/* The datasets of /contact (fields.c): the scene's, the frames' (the scene's, and each step's on a load path: large
+   sliding measures the contact where the bodies are), those of a state (u, r, states), those of a load path's last step */
 typedef enum {
   SSSTAR_FIELD_SCENE,
+  SSSTAR_FIELD_FRAME,
   SSSTAR_FIELD_STATE,
   SSSTAR_FIELD_PATH
 } SSStarFieldKind;

@@ -156,6 +156,60 @@ static PetscErrorCode PathArrays(SSStarScene scene)
   if (scene->slipPrev) PetscFunctionReturn(0);
   PetscCall(PetscCalloc4(2 * scene->n + 1, &scene->slipPrev, 2 * scene->n + 1, &scene->slipIncrement, scene->n + 1, &scene->slipPath, scene->n + 1, &scene->dissipation));
   PetscCall(VecCreateMPI(scene->comm, 3 * scene->n, PETSC_DETERMINE, &scene->offsets));
+  if (scene->sliding == SSSTAR_SLIDING_LARGE) { /* the configuration of the first step: the reference */
+    PetscCall(DMCreateGlobalVector(scene->dm, &scene->uAccepted));
+    PetscCall(VecZeroEntries(scene->uAccepted));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The offsets of the step (docs/derivation.md (10.4)) from the gaps, frames and slips of its linearization, to the SNES */
+static PetscErrorCode SetOffsets(SSStarScene scene, SNES snes)
+{
+  PetscScalar *oa;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayWrite(scene->offsets, &oa));
+  for (PetscInt i = 0; i < scene->n; i++) {
+    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
+    const PetscReal          *R  = &scene->frame[9 * i];
+    PetscReal                 Rd[3] = {0, 0, 0};
+
+    if (cg->motion)
+      for (PetscInt k = 0; k < 3; k++) Rd[k] = SSStarDot3(&R[3 * k], cg->d);
+    oa[3 * i]     = -scene->slipPrev[2 * i] - Rd[0];
+    oa[3 * i + 1] = -scene->slipPrev[2 * i + 1] - Rd[1];
+    oa[3 * i + 2] = scene->gap[i] - Rd[2];
+  }
+  PetscCall(VecRestoreArrayWrite(scene->offsets, &oa));
+  PetscCall(SNESSSStarSetContactOffsets(snes, scene->offsets));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarSceneCheckSteps - checks the steps of a load path before any is solved: the motions of its obstacles at every
+   step (SSStarSceneSetStep() checks its own step again)
+
+   Collective
+
+   Input Parameters:
++  scene - the scene, after SSStarSceneSetUp()
+.  n     - the number of steps
+-  times - their times
+
+   Notes:
+   A moved ball, cylinder or mesh obstacle is refused at the first step where its first-order gap g - n.d is off the
+   exact gap (the node's distance to the translated obstacle) by more than -small_sliding_tol times |d| at a node
+   within |d| of it, with an error naming the obstacle, the step and the error; a plane never is.
+
+   Level: intermediate
+
+.seealso: `SSStarSceneSetStep()`, `SSStarHistoryParseSteps()`
+@*/
+PetscErrorCode SSStarSceneCheckSteps(SSStarScene scene, PetscInt n, const PetscReal times[])
+{
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < n; k++) PetscCall(SSStarSceneCheckSmallSliding(scene, k + 1, times[k]));
   PetscFunctionReturn(0);
 }
 
@@ -176,17 +230,23 @@ static PetscErrorCode PathArrays(SSStarScene scene)
    o = (-w_t^(k-1), g), w_t^(k-1) its slip after that step. So a node that sticks keeps its position relative to its
    obstacle (or master surface), a sliding one is resisted against the direction of its increment. Solve the step
    from the previous solution with the load at t (SSStarSceneAssembleLoad()); a step that fails may be set again at
-   another time. The normal offset g - n.d is exact for a plane and first order in |d| for a ball, cylinder or mesh
-   (small motions against the obstacle's radius of curvature).
+   another time.
+
+   With large sliding (-sliding large, the default) the contact is measured again at the current configuration, the
+   reference displaced by the last accepted solution, against the obstacles at their translations of the step: gaps,
+   normals, frames and a pair's master faces there (the search asked at the current positions), B declared to the SNES
+   again (a rigid obstacle's reduction is kept; a pair's new masters reduce K again), g and w_t^(k-1) taken at that
+   configuration (docs/derivation.md section 13). With small sliding (-sliding small) every step keeps the reference
+   configuration: the normal offset g - n.d is exact for a plane and first order in |d| for a ball, cylinder or mesh,
+   and a step where it is off the exact gap by more than -small_sliding_tol times |d| at a node within |d| of the
+   obstacle is refused with an error that names the obstacle, the step (its row in the file's /steps) and the error.
 
    Level: intermediate
 
-.seealso: `SSStarSceneAcceptStep()`, `SSStarSceneAssembleLoad()`, `SNESSSStarSetContactOffsets()`
+.seealso: `SSStarSceneAcceptStep()`, `SSStarSceneAssembleLoad()`, `SNESSSStarSetContactOffsets()`, `SSStarSceneCheckSteps()`, `SSStarSceneCheckStep()`
 @*/
 PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
 {
-  PetscScalar *oa;
-
   PetscFunctionBegin;
   PetscCall(PathArrays(scene));
   scene->stepTime = t;
@@ -195,20 +255,52 @@ PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
 
     if (cg->motion) PetscCall(SSStarHistoryEvaluate(cg->motion, t, cg->d));
   }
-  PetscCall(VecGetArrayWrite(scene->offsets, &oa));
-  for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-    const PetscReal          *R  = &scene->frame[9 * i];
-    PetscReal                 Rd[3] = {0, 0, 0};
+  PetscCall(SSStarSceneCheckSmallSliding(scene, scene->accepted + 1, t));
+  if (scene->sliding == SSSTAR_SLIDING_LARGE) PetscCall(SSStarSceneMeasureContact(scene, snes));
+  PetscCall(SetOffsets(scene, snes));
+  PetscFunctionReturn(0);
+}
 
-    if (cg->motion)
-      for (PetscInt k = 0; k < 3; k++) Rd[k] = SSStarDot3(&R[3 * k], cg->d);
-    oa[3 * i]     = -scene->slipPrev[2 * i] - Rd[0];
-    oa[3 * i + 1] = -scene->slipPrev[2 * i + 1] - Rd[1];
-    oa[3 * i + 2] = scene->gap[i] - Rd[2];
-  }
-  PetscCall(VecRestoreArrayWrite(scene->offsets, &oa));
-  PetscCall(SNESSSStarSetContactOffsets(snes, scene->offsets));
+/*@C
+   SSStarSceneCheckStep - with large sliding, after a converged solve of the step set by SSStarSceneSetStep(): the
+   contact measured at the solution against the one the step was linearized at (docs/derivation.md (13.5))
+
+   Collective
+
+   Input Parameters:
++  scene - the scene
+.  snes  - its ssstar SNES, after the solve
+-  u     - the solution
+
+   Output Parameters:
++  consistent - whether the contact at u agrees with the step's linearization within -sliding_tol: accept the step
+-  again      - when it does not: the step is now linearized at u; solve it again from u and check again (after
+                -sliding_max_it linearizations without agreement, consistent and again are both PETSC_FALSE: the
+                step is too large, cut it)
+
+   Notes:
+   The geometric error is the largest exact gap at u of a node touching there, or penetration of one that is not,
+   against -sliding_tol (1e-3) times the largest normal displacement of a touching node. With small sliding, and on
+   a static problem, the step is always consistent.
+
+   Level: intermediate
+
+.seealso: `SSStarSceneSetStep()`, `SSStarSceneAcceptStep()`
+@*/
+PetscErrorCode SSStarSceneCheckStep(SSStarScene scene, SNES snes, Vec u, PetscBool *consistent, PetscBool *again)
+{
+  PetscReal error, scale;
+
+  PetscFunctionBegin;
+  *consistent = PETSC_TRUE;
+  *again      = PETSC_FALSE;
+  if (scene->sliding != SSSTAR_SLIDING_LARGE || !scene->nContact) PetscFunctionReturn(0);
+  PetscCall(SSStarSceneRelinearizeContact(scene, snes, u, consistent, &error, &scale));
+  PetscCall(PetscInfo(NULL, "Step at t = %g, linearization %" PetscInt_FMT ": geometric error %g of the normal displacements %g\n", (double)scene->stepTime, scene->relinearizations, (double)error, (double)scale));
+  if (*consistent) PetscFunctionReturn(0);
+  *again = (PetscBool)(scene->relinearizations < scene->slidingMaxIt);
+  scene->relinearizations++;
+  PetscCall(SetOffsets(scene, snes));
   PetscFunctionReturn(0);
 }
 
@@ -261,7 +353,10 @@ PetscErrorCode SSStarSceneAcceptStep(SSStarScene scene, Vec u, Vec r)
   PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
   PetscCall(PetscFree(w));
   for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(PetscArraycpy(scene->contact[g].dPrev, scene->contact[g].d, 3));
+  if (scene->uAccepted) PetscCall(VecCopy(u, scene->uAccepted)); /* large sliding: the next step's configuration */
+  scene->lastLinearization = PETSC_TRUE;
   scene->stepped = PETSC_TRUE;
+  scene->accepted++;
   PetscFunctionReturn(0);
 }
 
@@ -381,6 +476,7 @@ PetscErrorCode SSStarScenePathDestroy(SSStarScene scene)
   PetscFunctionBegin;
   PetscCall(PetscFree4(scene->slipPrev, scene->slipIncrement, scene->slipPath, scene->dissipation));
   PetscCall(VecDestroy(&scene->offsets));
+  PetscCall(VecDestroy(&scene->uAccepted));
   for (PetscInt s = 0; s < scene->nSurfaces; s++) {
     PetscCall(PetscFree(scene->surfaces[s]));
     PetscCall(VecDestroy(&scene->surfaceWeights[s]));

@@ -1,13 +1,17 @@
 /*
    The boundary faces of a scene's mesh as triangles: their vertices, dofs and file indices, and their unit normal out of
-   their body (away from the centroid of the cell they bound). Contact pairs take the master faces (pairs.c) and the
-   slave faces (mortar.c) from here.
+   their body (away from the centroid of the cell they bound), at the reference configuration or at a displaced one
+   (large sliding: the current configuration of a load path's step). Contact pairs take the master faces (master.c)
+   and the slave faces (mortar.c) from here.
 */
 #include "../../sceneimpl.h"
 #include <petscsf.h>
 
-/* SSStarFacesBegin - what SSStarFaceTriangle() reads: the sections, the coordinates, the faces owned here */
-PetscErrorCode SSStarFacesBegin(SSStarScene scene, SSStarFaces *faces)
+/*
+   SSStarFacesBegin - what SSStarFaceTriangle() reads: the sections, the coordinates, the faces owned here; with u (a
+   global displacement of the scene's DM, or NULL), the positions x + u
+*/
+PetscErrorCode SSStarFacesBegin(SSStarScene scene, Vec u, SSStarFaces *faces)
 {
   DM              cdm;
   PetscSF         sf;
@@ -33,15 +37,42 @@ PetscErrorCode SSStarFacesBegin(SSStarScene scene, SSStarFaces *faces)
   faces->tags = scene->tags;
   PetscCall(VecGetArrayRead(faces->coordinates, &faces->xa));
   PetscCall(VecGetArrayRead(faces->tags, &faces->ta));
+  faces->uLocal = NULL;
+  faces->ua     = NULL;
+  if (u) { /* every local vertex's displacement, held ones 0 */
+    PetscCall(DMGetLocalSection(scene->dm, &faces->lsec));
+    PetscCall(DMGetLocalVector(scene->dm, &faces->uLocal));
+    PetscCall(VecZeroEntries(faces->uLocal));
+    PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, faces->uLocal));
+    PetscCall(VecGetArrayRead(faces->uLocal, &faces->ua));
+  }
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SSStarFacesEnd(SSStarFaces *faces)
 {
   PetscFunctionBegin;
+  if (faces->uLocal) {
+    PetscCall(VecRestoreArrayRead(faces->uLocal, &faces->ua));
+    PetscCall(DMRestoreLocalVector(faces->dm, &faces->uLocal));
+  }
   PetscCall(VecRestoreArrayRead(faces->tags, &faces->ta));
   PetscCall(VecRestoreArrayRead(faces->coordinates, &faces->xa));
   PetscCall(PetscFree(faces->leaf));
+  PetscFunctionReturn(0);
+}
+
+/* The position of local vertex v: its coordinates, displaced by u when the faces have one */
+static PetscErrorCode VertexPosition(const SSStarFaces *faces, PetscInt v, PetscReal x[3])
+{
+  PetscInt coff, off;
+
+  PetscFunctionBegin;
+  PetscCall(PetscSectionGetOffset(faces->csec, v, &coff));
+  for (PetscInt c = 0; c < 3; c++) x[c] = PetscRealPart(faces->xa[coff + c]);
+  if (!faces->ua) PetscFunctionReturn(0);
+  PetscCall(PetscSectionGetOffset(faces->lsec, v, &off));
+  for (PetscInt c = 0; c < 3; c++) x[c] += PetscRealPart(faces->ua[off + c]);
   PetscFunctionReturn(0);
 }
 
@@ -62,10 +93,9 @@ PetscErrorCode SSStarFaceTriangle(const SSStarFaces *faces, PetscInt f, PetscRea
     if (closure[2 * k] >= faces->vStart && closure[2 * k] < faces->vEnd && nv < 3) vert[nv++] = closure[2 * k];
   PetscCall(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &nc, &closure));
   for (PetscInt k = 0; k < 3; k++) {
-    PetscInt off, d, coff;
+    PetscInt off, d;
 
-    PetscCall(PetscSectionGetOffset(faces->csec, vert[k], &coff));
-    for (PetscInt c = 0; c < 3; c++) x[3 * k + c] = PetscRealPart(faces->xa[coff + c]);
+    PetscCall(VertexPosition(faces, vert[k], &x[3 * k]));
     PetscCall(PetscSectionGetDof(faces->gsec, vert[k], &d));
     PetscCall(PetscSectionGetOffset(faces->gsec, vert[k], &off));
     if (d < 0) d = -(d + 1);
@@ -81,10 +111,10 @@ PetscErrorCode SSStarFaceTriangle(const SSStarFaces *faces, PetscInt f, PetscRea
   PetscCall(DMPlexGetTransitiveClosure(dm, support[0], PETSC_TRUE, &nc, &closure));
   for (PetscInt k = 0; k < nc; k++)
     if (closure[2 * k] >= faces->vStart && closure[2 * k] < faces->vEnd) {
-      PetscInt coff;
+      PetscReal y[3];
 
-      PetscCall(PetscSectionGetOffset(faces->csec, closure[2 * k], &coff));
-      for (PetscInt c = 0; c < 3; c++) cc[c] += PetscRealPart(faces->xa[coff + c]) / 4;
+      PetscCall(VertexPosition(faces, closure[2 * k], y));
+      for (PetscInt c = 0; c < 3; c++) cc[c] += y[c] / 4;
     }
   PetscCall(DMPlexRestoreTransitiveClosure(dm, support[0], PETSC_TRUE, &nc, &closure));
   *area = SSStarTriangleNormal(&x[0], &x[3], &x[6], n);

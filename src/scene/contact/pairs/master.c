@@ -8,10 +8,10 @@
 /*
    SSStarMasterSearchCreate - the master faces of pair g owned here, in a search over the ranks (no rank gathers them
    all): their vertices, keys (their vertices' file indices, sorted: of equally close triangles the first in this order
-   wins, on any number of ranks) and data (the normal out of the master body, the x-dofs); the bodies the master faces
-   are on, over all ranks
+   wins, on any number of ranks) and data (the normal out of the master body, the x-dofs), at the reference
+   configuration or displaced by u (a global displacement, or NULL); the bodies the master faces are on, over all ranks
 */
-PetscErrorCode SSStarMasterSearchCreate(SSStarScene scene, PetscInt g, SSStarSearch *search, PetscInt *nbodies, PetscInt **bodies)
+PetscErrorCode SSStarMasterSearchCreate(SSStarScene scene, PetscInt g, Vec u, SSStarSearch *search, PetscInt *nbodies, PetscInt **bodies)
 {
   SSStarFaces faces;
   DMLabel     label;
@@ -20,7 +20,7 @@ PetscErrorCode SSStarMasterSearchCreate(SSStarScene scene, PetscInt g, SSStarSea
   PetscMPIInt size, mine, *counts, *displs, total = 0;
 
   PetscFunctionBegin;
-  PetscCall(SSStarFacesBegin(scene, &faces));
+  PetscCall(SSStarFacesBegin(scene, u, &faces));
   PetscCall(DMGetLabel(scene->dm, scene->contact[g].master, &label));
   PetscCall(PetscMalloc4(9 * (faces.fEnd - faces.fStart) + 1, &x, 3 * (faces.fEnd - faces.fStart) + 1, &key, SSSTAR_MASTER_DATA * (faces.fEnd - faces.fStart) + 1, &data, faces.fEnd - faces.fStart + 1, &body));
   for (PetscInt f = faces.fStart; f < faces.fEnd; f++) {

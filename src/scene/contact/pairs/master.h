@@ -25,6 +25,6 @@ static inline void SSStarMasterTriangleFromHit(const SSStarSearchHit *hit, const
   }
 }
 
-PETSC_INTERN PetscErrorCode SSStarMasterSearchCreate(SSStarScene, PetscInt, SSStarSearch *, PetscInt *, PetscInt **);
+PETSC_INTERN PetscErrorCode SSStarMasterSearchCreate(SSStarScene, PetscInt, Vec, SSStarSearch *, PetscInt *, PetscInt **);
 
 #endif

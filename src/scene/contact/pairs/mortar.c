@@ -99,7 +99,7 @@ static void SlavePlane(const PetscReal x[9], const PetscReal n[3], PetscReal e1[
    is the master's (as node-to-surface, and as the small-deformation Hertz theory has it), not the curved slave's.
    The master triangles of a slave face: those whose projections meet its box in its plane, in the order of their keys.
 */
-static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, SSStarSearch search, Mat *Mm, Vec *DC, Vec *G, Vec *N)
+static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, Vec u, SSStarSearch search, Mat *Mm, Vec *DC, Vec *G, Vec *N)
 {
   SSStarFaces      faces;
   DMLabel          label;
@@ -131,7 +131,7 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, SSStarSearc
   PetscCall(MatMPIAIJSetPreallocation(*Mm, 0, dnz, 0, dnz));
   PetscCall(MatSetOption(*Mm, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   PetscCall(PetscFree(dnz));
-  PetscCall(SSStarFacesBegin(scene, &faces));
+  PetscCall(SSStarFacesBegin(scene, u, &faces));
   PetscCall(DMGetLabel(scene->dm, scene->contact[g].name, &label));
   PetscCall(PetscMalloc2(faces.fEnd - faces.fStart + 1, &face, faces.fEnd - faces.fStart + 1, &region));
   for (PetscInt f = faces.fStart; f < faces.fEnd; f++) { /* the slave faces owned here and their regions */
@@ -223,9 +223,11 @@ static PetscErrorCode MortarIntegrals(SSStarScene scene, PetscInt g, SSStarSearc
 /*
    SSStarMortarRows - the rows of the slave nodes of pair g the master covers (sum_j M_ij = D_i): the normal (the master
    normals weighted like the master nodes), the gap of the node against its weighted master point, and the masters
-   M_ij / D_i; mortar[i] marks them. The others keep node-to-surface (scene->pairFallback counts them).
+   M_ij / D_i; mortar[i] marks them. The others keep node-to-surface (scene->pairFallback counts them). At the
+   configuration of the slave nodes' positions xs (3 per contact node) and of the displacement u of the faces (NULL:
+   the reference); search holds the master faces at that configuration.
 */
-PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, SSStarSearch search, PetscReal tol, PetscBool mortar[], SSStarMasters *masters)
+PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, const PetscReal xs[], Vec u, SSStarSearch search, PetscReal tol, PetscBool mortar[], SSStarMasters *masters)
 {
   Mat                Mm;
   Vec                DC, G, N;
@@ -234,7 +236,7 @@ PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, SSStarSearch sear
   PetscInt           xstart, fallback = 0;
 
   PetscFunctionBegin;
-  PetscCall(MortarIntegrals(scene, g, search, &Mm, &DC, &G, &N));
+  PetscCall(MortarIntegrals(scene, g, u, search, &Mm, &DC, &G, &N));
   PetscCall(VecGetOwnershipRange(DC, &xstart, NULL));
   PetscCall(VecGetArrayRead(DC, &dca));
   PetscCall(VecGetArrayRead(G, &ga));
@@ -260,7 +262,7 @@ PetscErrorCode SSStarMortarRows(SSStarScene scene, PetscInt g, SSStarSearch sear
     len = PetscSqrtReal(len);
     for (PetscInt k = 0; k < 3; k++) {
       n[k] /= len;
-      gap += n[k] * (scene->coords[3 * i + k] - PetscRealPart(ga[xd + k]) / D);
+      gap += n[k] * (xs[3 * i + k] - PetscRealPart(ga[xd + k]) / D);
     }
     if (PetscAbsReal(gap) <= tol) gap = 0;
     scene->gap[i] = gap;

@@ -4,8 +4,8 @@
    master triangle; its contact point compares the slave node with the master surface interpolated there (P1: the
    barycentric coordinates of the projection), in the frame of the master normal, with the normal distance as gap:
    B_i = R_i (E_{s_i} - sum_j w_ij E_{m_j}) (docs/contact-operator.md). Dual mortar (-pair_discretization dual_mortar,
-   mortar.c) replaces the weights of the slave nodes the master covers. Frames and gaps at the reference configuration
-   (small deformation).
+   mortar.c) replaces the weights of the slave nodes the master covers. Frames and gaps at the reference configuration,
+   or on a load path with large sliding at the current one of each step (sliding.c).
 */
 #include "master.h"
 
@@ -89,9 +89,11 @@ static PetscErrorCode NodeBodies(SSStarScene scene, PetscInt **nodeBody)
    the triangles within the contact tolerance of the closest distance, the first by sorted file indices) gives its
    normal (the triangle's, out of the master body; where the node lies beyond the master's rim, the direction from the
    closest point), its gap and its master weights; with dual mortar, the mortar rows where the master covers the node
-   (mortar.c). Refuses a pair whose two groups are on one body, and a master group without triangles.
+   (mortar.c). At the configuration of x (3 per contact node: the slave nodes' positions) and u (the displacement of
+   the master surface: a global displacement, or NULL for the reference). Refuses a pair whose two groups are on one
+   body, and a master group without triangles.
 */
-PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, SSStarMasters *masters)
+PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, const PetscReal xs[], Vec u, SSStarMasters *masters)
 {
   const SSStarContactGroup *cg = &scene->contact[g];
   PetscInt                  ntri, bad = -1, *nodeBody, nbodies, *bodies, np = 0, *at;
@@ -102,7 +104,7 @@ PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, SSStarMasters *mast
 
   PetscFunctionBegin;
   PetscCall(SSStarSceneContactTolerance(scene, &tol));
-  PetscCall(SSStarMasterSearchCreate(scene, g, &search, &nbodies, &bodies));
+  PetscCall(SSStarMasterSearchCreate(scene, g, u, &search, &nbodies, &bodies));
   PetscCall(SSStarSearchGetSize(search, NULL, &ntri, NULL));
   if (!ntri) {
     PetscCall(SSStarSearchDestroy(&search));
@@ -119,7 +121,7 @@ PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, SSStarMasters *mast
     PetscCall(PetscFindInt(nodeBody[i], nbodies, bodies, &found));
     if (found >= 0 && bad < 0) bad = scene->tag[i];
     at[np] = i;
-    PetscCall(PetscArraycpy(&p[3 * np++], &scene->coords[3 * i], 3));
+    PetscCall(PetscArraycpy(&p[3 * np++], &xs[3 * i], 3));
   }
   PetscCall(PetscFree(nodeBody));
   PetscCall(PetscFree(bodies));
@@ -133,7 +135,7 @@ PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, SSStarMasters *mast
   PetscCall(SSStarSearchClosest(search, np, p, tol, hit, data));
   for (PetscInt j = 0; j < np; j++) {
     const PetscInt       i = at[j];
-    const PetscReal     *x = &scene->coords[3 * i], *w = hit[j].w;
+    const PetscReal     *x = &xs[3 * i], *w = hit[j].w;
     SSStarMasterTriangle t;
     PetscReal            c[3], dc[3], n[3], len = 0, gap = 0;
 
@@ -158,7 +160,7 @@ PetscErrorCode SSStarPairRows(SSStarScene scene, PetscInt g, SSStarMasters *mast
     scene->gap[i] = gap;
     for (PetscInt k = 0; k < 3; k++) scene->normal[3 * i + k] = n[k];
   }
-  if (scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(SSStarMortarRows(scene, g, search, tol, mortar, masters));
+  if (scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(SSStarMortarRows(scene, g, xs, u, search, tol, mortar, masters));
   for (PetscInt j = 0; j < np; j++) { /* node-to-surface: the vertices of the closest triangle that move */
     const PetscReal *dof = &data[SSSTAR_MASTER_DATA * j + 3];
 

@@ -114,8 +114,16 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   PetscCall(PetscObjectReference((PetscObject)A));
   nt->A = A;
   PetscCall(PetscStrallocpy(type, &nt->type));
-  /* the SNES's KSP may be the implementation's (SNESSetFromOptions gave it the user's Jacobian: drop that) */
+  /* the SNES's KSP may be the implementation's (SNESSetFromOptions gave it the user's Jacobian: drop that), and a
+     multigrid of another operator keeps its levels through a reset (GAMG's coarse solvers of the old sizes): a fresh
+     preconditioner, its type from the implementation's defaults and the options again */
   PetscCall(KSPReset(nt->snes->ksp));
+  {
+    PC pc;
+
+    PetscCall(KSPGetPC(nt->snes->ksp, &pc));
+    PetscCall(PCSetType(pc, PCNONE));
+  }
   PetscCall((*create)(nt));
   PetscCall((*nt->ops.setup)(nt));
   PetscFunctionReturn(0);

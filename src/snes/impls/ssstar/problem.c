@@ -123,9 +123,34 @@ static PetscErrorCode CreateReduction(SNES snes, SSStarContact *ct, SSStarProble
 }
 
 /*
-   A and f for the current K, load and declaration (SSStarContactSetUp() first): the Jacobian is evaluated once (c is
+   The declaration of this solve: one changed since the last solve (a load path measured at the current configuration
+   declares its points again at every step) is built here, with the same number of points. What the Newton step built
+   in the old frames (the whole body's K in the nodes' frames) is dropped. Whether the problem set up for the old one
+   stands: the reduction depends on K, the contact dofs and T only, so it is kept when the points and their dofs are the
+   same and neither declaration has master dofs (rigid obstacles whose frames and gaps changed).
+*/
+static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProblem *pb, Mat K)
+{
+  MPI_Comm       comm   = PetscObjectComm((PetscObject)snes);
+  const PetscInt nnodes = ct->nnodes;
+  PetscBool      rebuilt, other, same = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarContactSetUp(snes, ct, &rebuilt));
+  if (!rebuilt || !pb->A) PetscFunctionReturn(0);
+  PetscCall(SSStarNewtonReset(((SNES_SSStar *)snes->data)->newton));
+  other = (PetscBool)(ct->nnodes != nnodes);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &other, 1, MPIU_BOOL, MPI_LOR, comm));
+  PetscCheck(!other, comm, PETSC_ERR_ARG_WRONGSTATE, "ssstar: the contact points were declared again, in other numbers: a new declaration between solves keeps the points (SNESReset() for others)");
+  if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
+  if (same && !ct->T && pb->Kw == K) pb->built = ct->built; /* the problem stands */
+  PetscFunctionReturn(0);
+}
+
+/*
+   A and f for the current K, load and declaration (TakeDeclaration() first): the Jacobian is evaluated once (c is
    affine), b = -F(0), and in the whole-body use K is reduced to the contact dofs, or kept (reduction none), again only
-   when K or the declaration changed.
+   when K or the declaration changed (not for new frames and gaps of rigid obstacles alone).
 */
 PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *pb)
 {
@@ -137,6 +162,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
   PetscFunctionBegin;
   PetscCall(ComputeK(snes, &K));
   PetscCall(PetscObjectStateGet((PetscObject)K, &state));
+  PetscCall(TakeDeclaration(snes, ct, pb, K));
   if (K != pb->K || state != pb->Kstate || !pb->A || pb->built != ct->built) {
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
@@ -156,6 +182,8 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     pb->K      = K;
     pb->Kstate = state;
     pb->built  = ct->built;
+    if (ct->isC) PetscCall(PetscObjectReference((PetscObject)ct->isC));
+    pb->isC = ct->isC;
   }
   if (!pb->b) PetscCall(VecDuplicate(snes->vec_func, &pb->b));
   PetscCall(VecDuplicate(snes->vec_sol, &zero));
@@ -288,6 +316,7 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   PetscCall(VecDestroy(&pb->bw));
   PetscCall(PetscFree(pb->layoutDofs));
   PetscCall(PetscFree(pb->free));
+  PetscCall(ISDestroy(&pb->isC));
   pb->nfree     = 0;
   pb->K         = NULL;
   pb->built     = -1;

@@ -162,6 +162,7 @@ typedef struct {
   Vec              b, bw, f;        /* the whole load b = -F(0), T^T b, and A's load f (reduced, or bw)     */
   PetscBool        wholeBody;       /* A is K: the free dofs are unknowns too (the reduction says)          */
   PetscObjectState built;           /* the contact's built state it was set up for                          */
+  IS               isC;             /* the contact dofs it was set up for (a redeclaration may keep them)   */
   const char      *newtonType;      /* the Newton step that fits A                                          */
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */

@@ -76,7 +76,8 @@ typedef enum {
   SSSTAR_REASON_SINGULAR_NEWTON,  /* the reduced Newton matrix S P + T is singular, even regularized */
   SSSTAR_REASON_STAGNATION,       /* ||z|| has not decreased for -snes_ssstar_stagnation_its          */
   SSSTAR_REASON_CYCLE,            /* the iterates cycle (period 2) and the remedies did not break it  */
-  SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided     */
+  SSSTAR_REASON_USER,             /* a convergence test set with SNESSetConvergenceTest() decided     */
+  SSSTAR_REASON_NO_EQUILIBRIUM    /* no contact forces the friction laws allow balance the load on a floating body */
 } SSStarReason;
 PETSC_EXTERN const char *const SSStarReasons[];
 
@@ -151,6 +152,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetUnbalancedMotion(SNES, Vec *, PetscInt *, PetscReal[3]);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);

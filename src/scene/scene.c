@@ -107,6 +107,7 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscCall(PetscFree2(s->gap, s->area));
   PetscCall(ISDestroy(&s->isC));
   PetscCall(PetscFree(s->body));
+  PetscCall(SSStarSceneDestroyFloating(s));
   PetscCall(PetscFree(s->frame));
   PetscCall(PetscFree3(s->masterStart, s->masterDof, s->masterWeight));
   PetscCall(MatDestroy(&s->B));

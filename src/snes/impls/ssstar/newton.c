@@ -174,6 +174,7 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
 {
   PetscFunctionBegin;
   nt->nSteps++;
+  if (nt->layout.kernel) PetscCall(SSStarKernelFreeMotions(nt->layout.kernel, S, T)); /* floating bodies (12.5) */
   PetscCall((*nt->ops.solve)(nt, S, T, y, du, solved));
   PetscFunctionReturn(0);
 }
@@ -200,6 +201,7 @@ PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton nt, Vec y, Vec du, PetscBool 
   PetscScalar               *da;
 
   PetscFunctionBegin;
+  if (nt->layout.kernel) nt->layout.kernel->nfree = 0; /* the contact dofs hold every motion */
   if (nt->ops.solveknown) {
     nt->nSteps++;
     PetscCall((*nt->ops.solveknown)(nt, y, du, solved));

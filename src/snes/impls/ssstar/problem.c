@@ -141,6 +141,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
     PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
+    PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel)); /* floating bodies (floating.c): checked before any factorization */
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     pb->wholeBody = PETSC_FALSE;
     if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb));
@@ -151,6 +152,12 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
       pb->A = K;
     }
     PetscCall(ChooseNewton(pb));
+    if (pb->kernel.m) {
+      PetscBool sparse;
+
+      PetscCall(PetscStrcmp(pb->newtonType, SSSTARNEWTONSPARSE, &sparse));
+      PetscCheck(!sparse, PetscObjectComm((PetscObject)snes), PETSC_ERR_SUP, "ssstar: a sparse reduced P with a null space (floating bodies) is not supported: give P as a dense matrix, or K with its contact nodes");
+    }
     PetscCall(BuildLayout(ct, pb));
     PetscCall(MatCreateVecs(pb->A, &pb->f, NULL));
     pb->K      = K;
@@ -186,6 +193,7 @@ PetscErrorCode SSStarProblemGetLayout(SSStarContact *ct, SSStarProblem *pb, SSSt
   layout->nnodes = ct->nnodes;
   layout->dofs   = pb->layoutDofs;
   layout->frames = ct->frames;
+  layout->kernel = pb->kernel.m ? &pb->kernel : NULL;
   PetscFunctionReturn(0);
 }
 
@@ -222,6 +230,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   PetscFunctionBegin;
   if (!ct->dofs) {
     PetscCall(VecCopy(u, x));
+    PetscCall(SSStarKernelLeastNorm(&pb->kernel, x));
     PetscFunctionReturn(0);
   }
   PetscCall(VecDuplicate(x, &v));
@@ -230,6 +239,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   if (ct->T) PetscCall(MatMult(ct->T, v, x));
   else PetscCall(VecCopy(v, x));
   PetscCall(VecDestroy(&v));
+  PetscCall(SSStarKernelLeastNorm(&pb->kernel, x)); /* motions no contact resists: the least-norm solution */
   PetscFunctionReturn(0);
 }
 
@@ -288,6 +298,7 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   PetscCall(VecDestroy(&pb->bw));
   PetscCall(PetscFree(pb->layoutDofs));
   PetscCall(PetscFree(pb->free));
+  PetscCall(SSStarKernelReset(&pb->kernel));
   pb->nfree     = 0;
   pb->K         = NULL;
   pb->built     = -1;

@@ -27,6 +27,11 @@ static PetscBool Frictionless_Coulomb(const SSStarFriction *fr)
   return (PetscBool)(fr->value[0] == 0.0);
 }
 
+static PetscReal Slope_Coulomb(const SSStarFriction *fr)
+{
+  return fr->value[0];
+}
+
 PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
 {
   PetscFunctionBegin;
@@ -45,5 +50,6 @@ PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
   law->ops.margin            = Margin_Coulomb;
   law->ops.sliding           = Sliding_Coulomb;
   law->ops.frictionless      = Frictionless_Coulomb;
+  law->ops.slope             = Slope_Coulomb;
   PetscFunctionReturn(0);
 }

@@ -25,6 +25,11 @@ static PetscBool Frictionless_None(const SSStarFriction *fr)
   return PETSC_TRUE;
 }
 
+static PetscReal Slope_None(const SSStarFriction *fr)
+{
+  return 0.0;
+}
+
 PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
 {
   PetscFunctionBegin;
@@ -37,5 +42,6 @@ PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
   law->ops.margin       = Margin_None;
   law->ops.sliding      = Sliding_None;
   law->ops.frictionless = Frictionless_None;
+  law->ops.slope        = Slope_None;
   PetscFunctionReturn(0);
 }

@@ -155,6 +155,11 @@ static const char *Prepare_Orthotropic(SSStarFriction *fr)
   return NULL;
 }
 
+static PetscReal Slope_Orthotropic(const SSStarFriction *fr)
+{
+  return PetscMax(fr->value[0], fr->value[1]);
+}
+
 PetscErrorCode SSStarLawCreate_Orthotropic(SSStarLaw law)
 {
   PetscFunctionBegin;
@@ -179,6 +184,7 @@ PetscErrorCode SSStarLawCreate_Orthotropic(SSStarLaw law)
   law->ops.margin            = Margin_Orthotropic;
   law->ops.sliding           = Sliding_Orthotropic;
   law->ops.frictionless      = Frictionless_Orthotropic;
+  law->ops.slope             = Slope_Orthotropic;
   law->ops.prepare           = Prepare_Orthotropic;
   PetscFunctionReturn(0);
 }

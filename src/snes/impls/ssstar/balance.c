@@ -1,0 +1,309 @@
+/*
+   Whether the friction laws can hold the floating bodies at all (docs/derivation.md section 12, (12.3)-(12.4)). With
+   g_k = rho_k . b the load's work on the rigid-body motions rho_k of K's null space and Rc_i their values at contact
+   point i (its frame), an equilibrium needs contact forces mu_i in the cones K_i = { |mu_t| <= s_i mu_n } (s_i the
+   slope of the point's law: phi for Coulomb) with
+
+       g + sum_i Rc_i^T mu_i = 0.
+
+   The least squares problem min over mu in K of 1/2 |g + A mu|^2 (A mu = sum_i Rc_i^T mu_i) has the value 0 then.
+   When it does not, its residual r = g + A mu* is a rigid motion along which the load does positive work
+   (g . r = |r|^2) while every contact point moves into its dual cone (Rc_i r in K_i*: it lifts off, or slides no
+   closer to its obstacle than its friction angle allows), which no admissible contact force resists: no equilibrium
+   exists (Farkas' lemma), whatever the elasticity. Solved by accelerated projected gradients (FISTA with restarts)
+   from the contact forces of the first iterate; a load within round-off of the limit is left to the iteration.
+*/
+#include "ssstarimpl.h"
+#include "laws/lawimpl.h"
+
+/* the balance by accelerated projected gradients: iterations, and a test of the dual motion every this many */
+#define SSSTAR_BALANCE_MAX_IT   20000
+#define SSSTAR_BALANCE_TEST_ITS 20
+/* balanced: the unbalanced part below SSSTAR_BALANCE_TOL of the load's part on the motions; not balanced: above
+   SSSTAR_BALANCE_MIN, steady to SSSTAR_BALANCE_STEADY over a test's iterations, and the dual motion in the dual cones
+   to SSSTAR_BALANCE_DUAL of its largest value */
+#define SSSTAR_BALANCE_TOL    1e-10
+#define SSSTAR_BALANCE_MIN    1e-6
+#define SSSTAR_BALANCE_STEADY 1e-9
+#define SSSTAR_BALANCE_DUAL   1e-7
+
+/* x projected onto the cone |x_t| <= s x_n (s = infinity: x_n >= 0 alone) */
+static void ProjectCone(PetscReal s, PetscReal x[3])
+{
+  const PetscReal t = PetscSqrtReal(x[0] * x[0] + x[1] * x[1]), n = x[2];
+
+  if (PetscIsInfReal(s)) {
+    x[2] = PetscMax(n, 0.0);
+  } else if (s == 0) {
+    x[0] = x[1] = 0;
+    x[2]        = PetscMax(n, 0.0);
+  } else if (t <= s * n) {
+    return;
+  } else if (s * t <= -n) {
+    x[0] = x[1] = x[2] = 0;
+  } else {
+    const PetscReal a = (s * t + n) / (1 + s * s);
+
+    x[0] *= s * a / t;
+    x[1] *= s * a / t;
+    x[2] = a;
+  }
+}
+
+/* How far w lies outside the dual cone of |x_t| <= s x_n, which is s |w_t| <= w_n (s = infinity: w_t = 0, w_n >= 0) */
+static PetscReal DualViolation(PetscReal s, const PetscReal w[3])
+{
+  const PetscReal t = PetscSqrtReal(w[0] * w[0] + w[1] * w[1]);
+
+  if (PetscIsInfReal(s)) return t + PetscMax(0.0, -w[2]);
+  return PetscMax(0.0, s * t - w[2]);
+}
+
+typedef struct {
+  PetscInt   m, n;     /* motions, local points                          */
+  PetscReal *Rc;       /* the kernel's values at the points (frames)     */
+  PetscReal *slope;    /* per point, its law's                            */
+  PetscBool *moved;    /* per point: some motion moves it                 */
+  MPI_Comm   comm;
+} Balance;
+
+/* a = sum_i Rc_i^T x_i on the local points (m values) */
+static void Apply(const Balance *bl, const PetscReal x[], PetscReal a[])
+{
+  for (PetscInt k = 0; k < bl->m; k++) a[k] = 0;
+  for (PetscInt i = 0; i < bl->n; i++) {
+    if (!bl->moved[i]) continue;
+    for (PetscInt r = 0; r < 3; r++) {
+      const PetscReal *row = &bl->Rc[(3 * i + r) * bl->m];
+
+      for (PetscInt k = 0; k < bl->m; k++) a[k] += row[k] * x[3 * i + r];
+    }
+  }
+}
+
+/* w = Rc_i r */
+static void Motion(const Balance *bl, PetscInt i, const PetscReal r[], PetscReal w[3])
+{
+  for (PetscInt d = 0; d < 3; d++) {
+    const PetscReal *row = &bl->Rc[(3 * i + d) * bl->m];
+
+    w[d] = 0;
+    for (PetscInt k = 0; k < bl->m; k++) w[d] += row[k] * r[k];
+  }
+}
+
+/* The relative distance of the dual motion Rc r from the dual cones: max_i violation / max_i |Rc_i r| */
+static PetscErrorCode DualDistance(const Balance *bl, const PetscReal r[], PetscReal *dist)
+{
+  PetscReal v[2] = {0, 0};
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < bl->n; i++) {
+    PetscReal w[3];
+
+    if (!bl->moved[i]) continue;
+    Motion(bl, i, r, w);
+    v[0] = PetscMax(v[0], DualViolation(bl->slope[i], w));
+    v[1] = PetscMax(v[1], PetscSqrtReal(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPIU_MAX, bl->comm));
+  *dist = v[1] > 0 ? v[0] / v[1] : 0;
+  PetscFunctionReturn(0);
+}
+
+/*
+   min over mu in K of 1/2 |g + A mu|^2 from mu (projected first); r = g + A mu at the end. balanced: PETSC_TRUE when
+   r vanishes (to SSSTAR_BALANCE_TOL |g|), PETSC_FALSE when r is the certificate of (12.4), undecided (iterations
+   spent) otherwise: then decided is PETSC_FALSE.
+*/
+static PetscErrorCode Solve(const Balance *bl, PetscReal lmax, const PetscReal g[], PetscReal mu[], PetscReal r[], PetscBool *balanced, PetscBool *decided, PetscInt *its)
+{
+  const PetscInt m = bl->m, n3 = 3 * bl->n;
+  PetscReal     *y, *xn, *red, *amu, *ay, gnorm = 0, t = 1, last = -1;
+
+  PetscFunctionBegin;
+  *decided  = PETSC_FALSE;
+  *balanced = PETSC_FALSE;
+  for (PetscInt k = 0; k < m; k++) gnorm += g[k] * g[k];
+  gnorm = PetscSqrtReal(gnorm);
+  PetscCall(PetscMalloc5(n3 + 1, &y, n3 + 1, &xn, m + 1, &red, m, &amu, m, &ay));
+  for (PetscInt i = 0; i < bl->n; i++) {
+    if (bl->moved[i]) ProjectCone(bl->slope[i], &mu[3 * i]);
+    else mu[3 * i] = mu[3 * i + 1] = mu[3 * i + 2] = 0;
+  }
+  Apply(bl, mu, amu);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, amu, m, MPIU_REAL, MPIU_SUM, bl->comm));
+  PetscCall(PetscArraycpy(y, mu, n3));
+  PetscCall(PetscArraycpy(ay, amu, m));
+  for (*its = 0; *its < SSSTAR_BALANCE_MAX_IT; (*its)++) {
+    PetscReal rnorm = 0, tn, beta;
+
+    for (PetscInt k = 0; k < m; k++) r[k] = g[k] + amu[k];
+    for (PetscInt k = 0; k < m; k++) rnorm += r[k] * r[k];
+    rnorm = PetscSqrtReal(rnorm);
+    if (rnorm <= SSSTAR_BALANCE_TOL * gnorm) {
+      *decided = *balanced = PETSC_TRUE;
+      break;
+    }
+    if (*its % SSSTAR_BALANCE_TEST_ITS == 0) {
+      if (last > 0 && rnorm > SSSTAR_BALANCE_MIN * gnorm && PetscAbsReal(rnorm - last) <= SSSTAR_BALANCE_STEADY * rnorm) {
+        PetscReal dist = 0;
+
+        PetscCall(DualDistance(bl, r, &dist));
+        if (dist <= SSSTAR_BALANCE_DUAL) {
+          *decided = PETSC_TRUE;
+          break;
+        }
+      }
+      last = rnorm;
+    }
+    /* the projected gradient step from y, with r at y */
+    for (PetscInt k = 0; k < m; k++) red[k] = g[k] + ay[k];
+    for (PetscInt i = 0; i < bl->n; i++) {
+      PetscReal w[3];
+
+      if (!bl->moved[i]) {
+        xn[3 * i] = xn[3 * i + 1] = xn[3 * i + 2] = 0;
+        continue;
+      }
+      Motion(bl, i, red, w);
+      for (PetscInt d = 0; d < 3; d++) xn[3 * i + d] = y[3 * i + d] - w[d] / lmax;
+      ProjectCone(bl->slope[i], &xn[3 * i]);
+    }
+    Apply(bl, xn, red);
+    red[m] = 0; /* restart when the step turns against the momentum: (y - xn) . (xn - mu) > 0 */
+    for (PetscInt d = 0; d < n3; d++) red[m] += (y[d] - xn[d]) * (xn[d] - mu[d]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, red, m + 1, MPIU_REAL, MPIU_SUM, bl->comm));
+    tn   = red[m] > 0 ? 1 : 0.5 * (1 + PetscSqrtReal(1 + 4 * t * t));
+    beta = red[m] > 0 ? 0 : (t - 1) / tn;
+    for (PetscInt d = 0; d < n3; d++) y[d] = xn[d] + beta * (xn[d] - mu[d]);
+    for (PetscInt k = 0; k < m; k++) ay[k] = red[k] + beta * (red[k] - amu[k]);
+    PetscCall(PetscArraycpy(mu, xn, n3));
+    PetscCall(PetscArraycpy(amu, red, m));
+    t = tn;
+  }
+  PetscCall(PetscFree5(y, xn, red, amu, ay));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The rigid motion of the certificate r: sum_k r_k rho_k; the body it moves most (the largest |r| over its motions)
+   and that body's mean translation along it (the mean over its nodes, 3 dofs each, of the motion: its translation at
+   their centroid), unit
+*/
+static PetscErrorCode DescribeMotion(SSStarKernel *kn, Mat K, const PetscReal r[])
+{
+  const PetscInt     m = kn->m;
+  PetscReal          share = -1, sums[6] = {0, 0, 0, 0, 0, 0}, len = 0;
+  PetscScalar       *coef;
+  const PetscScalar *ma, *mk;
+  PetscInt           bs, n, rstart;
+  PetscBool         *onBody;
+
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&kn->motion));
+  PetscCall(VecDuplicate(kn->modes[0], &kn->motion));
+  PetscCall(VecZeroEntries(kn->motion));
+  PetscCall(PetscMalloc1(m, &coef));
+  for (PetscInt k = 0; k < m; k++) coef[k] = r[k];
+  PetscCall(VecMAXPY(kn->motion, m, coef, kn->modes));
+  PetscCall(PetscFree(coef));
+  for (PetscInt b = 0; b < kn->nbodies; b++) {
+    PetscReal s = 0;
+
+    for (PetscInt k = 0; k < m; k++)
+      if (kn->body[k] == b) s += r[k] * r[k];
+    if (s > share) {
+      share          = s;
+      kn->movingBody = b;
+    }
+  }
+  PetscCall(PetscArrayzero(kn->direction, 3));
+  PetscCall(MatGetBlockSize(K, &bs));
+  if (bs != 3) PetscFunctionReturn(0);
+  PetscCall(VecGetLocalSize(kn->motion, &n));
+  PetscCall(VecGetOwnershipRange(kn->motion, &rstart, NULL));
+  PetscCall(PetscCalloc1(n + 1, &onBody));
+  for (PetscInt k = 0; k < m; k++) { /* the dofs of the body: those its motions move */
+    if (kn->body[k] != kn->movingBody) continue;
+    PetscCall(VecGetArrayRead(kn->modes[k], &mk));
+    for (PetscInt j = 0; j < n; j++)
+      if (mk[j] != 0.0) onBody[j] = PETSC_TRUE;
+    PetscCall(VecRestoreArrayRead(kn->modes[k], &mk));
+  }
+  PetscCall(VecGetArrayRead(kn->motion, &ma));
+  for (PetscInt j = 0; j < n; j++) {
+    if (!onBody[j]) continue;
+    sums[(rstart + j) % 3] += PetscRealPart(ma[j]);
+    sums[3 + (rstart + j) % 3] += 1;
+  }
+  PetscCall(VecRestoreArrayRead(kn->motion, &ma));
+  PetscCall(PetscFree(onBody));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 6, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)K)));
+  for (PetscInt d = 0; d < 3; d++) {
+    kn->direction[d] = sums[3 + d] > 0 ? sums[d] / sums[3 + d] : 0;
+    len += kn->direction[d] * kn->direction[d];
+  }
+  len = PetscSqrtReal(len);
+  for (PetscInt d = 0; d < 3 && len > 0; d++) kn->direction[d] /= len;
+  PetscFunctionReturn(0);
+}
+
+/*
+   Before the first iteration of a solve with floating bodies: whether contact forces the laws allow can balance the
+   load on their rigid-body motions. Where they cannot, the solve ends here: reason NO_EQUILIBRIUM
+   (SNES_DIVERGED_DTOL), the motion along which the body goes in the kernel (SNESSSStarGetUnbalancedMotion()), the
+   first iterate's approximation step and states for the record.
+*/
+PetscErrorCode SNESSSStarCheckEquilibrium(SNES snes)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarContact     *ct = &ss->contact;
+  SSStarProblem     *pb = &ss->problem;
+  SSStarKernel      *kn = &pb->kernel;
+  const PetscInt     m  = kn->m;
+  Balance            bl;
+  PetscScalar       *gs;
+  PetscReal         *g, *r, *mu, gnorm = 0, rnorm = 0;
+  const PetscScalar *ca;
+  PetscBool          balanced, decided;
+  PetscInt           its;
+
+  PetscFunctionBegin;
+  if (!m) PetscFunctionReturn(0);
+  bl.m    = m;
+  bl.n    = kn->nnodes;
+  bl.Rc   = kn->Rc;
+  bl.comm = PetscObjectComm((PetscObject)snes);
+  PetscCall(PetscMalloc6(m, &gs, m, &g, m, &r, 3 * bl.n + 1, &mu, bl.n + 1, &bl.slope, bl.n + 1, &bl.moved));
+  PetscCall(VecMDot(pb->b, m, kn->modes, gs));
+  for (PetscInt k = 0; k < m; k++) {
+    g[k] = PetscRealPart(gs[k]);
+    gnorm += g[k] * g[k];
+  }
+  PetscCall(VecGetArrayRead(ss->c, &ca));
+  for (PetscInt i = 0; i < bl.n; i++) {
+    const SSStarFriction *fr = &ct->nodeFriction[i];
+
+    bl.slope[i] = fr->law->ops.slope ? fr->law->ops.slope(fr) : PETSC_INFINITY;
+    bl.moved[i] = PETSC_FALSE;
+    for (PetscInt d = 0; d < 3 * m; d++) bl.moved[i] = (PetscBool)(bl.moved[i] || bl.Rc[3 * i * m + d] != 0.0);
+    SNESSSStarNodeRotate(ct, pb, i, ca, &mu[3 * i]); /* the contact forces of the first iterate */
+  }
+  PetscCall(VecRestoreArrayRead(ss->c, &ca));
+  balanced = decided = PETSC_TRUE;
+  its      = 0;
+  if (gnorm > 0) PetscCall(Solve(&bl, kn->gmax, g, mu, r, &balanced, &decided, &its));
+  for (PetscInt k = 0; k < m && !balanced; k++) rnorm += r[k] * r[k];
+  kn->unbalanced = gnorm > 0 ? PetscSqrtReal(rnorm / gnorm) : 0;
+  PetscCall(PetscInfo(snes, "Balance of the load on %" PetscInt_FMT " rigid-body motions: %s after %" PetscInt_FMT " iterations, unbalanced part %g of the load's\n", m, !decided ? "undecided" : balanced ? "balanced" : "not balanced", its, (double)kn->unbalanced));
+  if (decided && !balanced) {
+    PetscCall(DescribeMotion(kn, pb->K, r));
+    ss->reason   = SSSTAR_REASON_NO_EQUILIBRIUM;
+    snes->reason = SNES_DIVERGED_DTOL;
+    PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &snes->norm));
+    PetscCall(SNESSSStarClassify(snes));
+  }
+  PetscCall(PetscFree6(gs, g, r, mu, bl.slope, bl.moved));
+  PetscFunctionReturn(0);
+}

@@ -324,3 +324,62 @@ PetscErrorCode SSStarSceneFindBodies(SSStarScene scene)
   PetscCall(PetscFree4(parent, comp, copy, setMin));
   PetscFunctionReturn(0);
 }
+
+/*@C
+   SSStarSceneViewNoEquilibrium - after a solve that found no equilibrium (SSSTAR_REASON_NO_EQUILIBRIUM), one line: the
+   floating body of the scene that goes away, the direction it slides in and the load its contacts cannot balance;
+   nothing after any other solve
+
+   Collective
+
+   Input Parameters:
++  scene  - the scene
+.  snes   - the SNES of its solve
+-  viewer - an ASCII viewer
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetUnbalancedMotion()`, `SNESSSStarGetReason()`
+@*/
+PetscErrorCode SSStarSceneViewNoEquilibrium(SSStarScene scene, SNES snes, PetscViewer viewer)
+{
+  SSStarReason       reason;
+  Vec                motion, mloc;
+  PetscReal          direction[3], unbalanced, *share;
+  PetscSection       sec;
+  PetscInt           vStart, vEnd, moving = 0;
+  const PetscScalar *ma;
+  PetscBool          isssstar;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (!isssstar) PetscFunctionReturn(0);
+  PetscCall(SNESSSStarGetReason(snes, &reason));
+  if (reason != SSSTAR_REASON_NO_EQUILIBRIUM) PetscFunctionReturn(0);
+  PetscCall(SNESSSStarGetUnbalancedMotion(snes, &motion, NULL, direction, &unbalanced));
+  /* the floating body whose nodes the motion moves most */
+  PetscCall(PetscCalloc1(scene->nFloating + 1, &share));
+  PetscCall(DMGetLocalVector(scene->dm, &mloc));
+  PetscCall(DMGlobalToLocal(scene->dm, motion, INSERT_VALUES, mloc));
+  PetscCall(DMGetLocalSection(scene->dm, &sec));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(mloc, &ma));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt dof, off;
+
+    PetscCall(PetscSectionGetDof(sec, v, &dof));
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    for (PetscInt b = 0; b < scene->nFloating; b++)
+      if (scene->body[v - vStart] == scene->floating[b])
+        for (PetscInt k = 0; k < dof; k++) share[b] += PetscRealPart(ma[off + k] * ma[off + k]);
+  }
+  PetscCall(VecRestoreArrayRead(mloc, &ma));
+  PetscCall(DMRestoreLocalVector(scene->dm, &mloc));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, share, scene->nFloating, MPIU_REAL, MPIU_SUM, scene->comm));
+  for (PetscInt b = 1; b < scene->nFloating; b++)
+    if (share[b] > share[moving]) moving = b;
+  PetscCall(PetscFree(share));
+  if (scene->nFloating)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "no equilibrium: the body of %s slides away along (%.4g, %.4g, %.4g): no contact forces its friction allows balance its load (%.3g of the load on its rigid-body motions is unbalanced)\n", scene->floatingName[moving], (double)direction[0], (double)direction[1], (double)direction[2], (double)unbalanced));
+  PetscFunctionReturn(0);
+}

@@ -162,7 +162,7 @@ static PetscErrorCode SNESSSStarGetReason_SSStar(SNES snes, SSStarReason *reason
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SNESSSStarGetUnbalancedMotion_SSStar(SNES snes, Vec *motion, PetscInt *body, PetscReal direction[3])
+static PetscErrorCode SNESSSStarGetUnbalancedMotion_SSStar(SNES snes, Vec *motion, PetscInt *body, PetscReal direction[3], PetscReal *unbalanced)
 {
   SNES_SSStar  *ss = (SNES_SSStar *)snes->data;
   SSStarKernel *kn = &ss->problem.kernel;
@@ -172,6 +172,7 @@ static PetscErrorCode SNESSSStarGetUnbalancedMotion_SSStar(SNES snes, Vec *motio
   if (motion) *motion = none ? NULL : kn->motion;
   if (body) *body = none ? -1 : kn->movingBody;
   for (PetscInt d = 0; d < 3 && direction; d++) direction[d] = none ? 0 : kn->direction[d];
+  if (unbalanced) *unbalanced = none ? 0 : kn->unbalanced;
   PetscFunctionReturn(0);
 }
 

@@ -187,9 +187,36 @@ static PetscErrorCode Solve(const Balance *bl, PetscReal lmax, const PetscReal g
 }
 
 /*
-   The rigid motion of the certificate r: sum_k r_k rho_k; the body it moves most (the largest |r| over its motions)
-   and that body's mean translation along it (the mean over its nodes, 3 dofs each, of the motion: its translation at
-   their centroid), unit
+   The direction the body slides in: the mean tangential part, in global axes, of the motion at its contact points
+   (r restricted to its motions); its translation where it only lifts off
+*/
+static PetscErrorCode SlidingDirection(SSStarKernel *kn, const PetscReal r[])
+{
+  PetscReal *rb, sums[4] = {0, 0, 0, 0}, len;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(kn->m, &rb));
+  for (PetscInt k = 0; k < kn->m; k++) rb[k] = kn->body[k] == kn->movingBody ? r[k] : 0;
+  for (PetscInt i = 0; i < kn->nnodes; i++) {
+    const PetscReal *R = kn->frames ? &kn->frames[9 * i] : NULL;
+    PetscReal        w[3] = {0, 0, 0};
+
+    for (PetscInt d = 0; d < 3; d++)
+      for (PetscInt k = 0; k < kn->m; k++) w[d] += kn->Rc[(3 * i + d) * kn->m + k] * rb[k];
+    for (PetscInt k = 0; k < 3; k++) sums[k] += R ? R[k] * w[0] + R[3 + k] * w[1] : w[k] * (k < 2);
+    sums[3] += PetscSqrtReal(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 4, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)kn->modes[0])));
+  len = PetscSqrtReal(sums[0] * sums[0] + sums[1] * sums[1] + sums[2] * sums[2]);
+  for (PetscInt k = 0; k < 3; k++) kn->direction[k] = len > 1e-3 * sums[3] ? sums[k] / len : kn->translation[k];
+  PetscCall(PetscFree(rb));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The rigid motion of the certificate r: sum_k r_k rho_k; the body it moves most (the largest |r| over its motions),
+   that body's mean translation along it (the mean over its nodes, 3 dofs each, of the motion: its translation at
+   their centroid) and the direction it slides in, unit
 */
 static PetscErrorCode DescribeMotion(SSStarKernel *kn, Mat K, const PetscReal r[])
 {
@@ -218,9 +245,12 @@ static PetscErrorCode DescribeMotion(SSStarKernel *kn, Mat K, const PetscReal r[
       kn->movingBody = b;
     }
   }
-  PetscCall(PetscArrayzero(kn->direction, 3));
+  PetscCall(PetscArrayzero(kn->translation, 3));
   PetscCall(MatGetBlockSize(K, &bs));
-  if (bs != 3) PetscFunctionReturn(0);
+  if (bs != 3) {
+    PetscCall(SlidingDirection(kn, r));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecGetLocalSize(kn->motion, &n));
   PetscCall(VecGetOwnershipRange(kn->motion, &rstart, NULL));
   PetscCall(PetscCalloc1(n + 1, &onBody));
@@ -241,11 +271,12 @@ static PetscErrorCode DescribeMotion(SSStarKernel *kn, Mat K, const PetscReal r[
   PetscCall(PetscFree(onBody));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 6, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)K)));
   for (PetscInt d = 0; d < 3; d++) {
-    kn->direction[d] = sums[3 + d] > 0 ? sums[d] / sums[3 + d] : 0;
-    len += kn->direction[d] * kn->direction[d];
+    kn->translation[d] = sums[3 + d] > 0 ? sums[d] / sums[3 + d] : 0;
+    len += kn->translation[d] * kn->translation[d];
   }
   len = PetscSqrtReal(len);
-  for (PetscInt d = 0; d < 3 && len > 0; d++) kn->direction[d] /= len;
+  for (PetscInt d = 0; d < 3 && len > 0; d++) kn->translation[d] /= len;
+  PetscCall(SlidingDirection(kn, r));
   PetscFunctionReturn(0);
 }
 

@@ -41,7 +41,8 @@ typedef struct {
   PetscReal *free, *freeGlobal; /* 3 nnodes x nfree, column-major: in the nodes' frames, in global axes       */
   Vec        motion;     /* no equilibrium: the rigid motion whose work no admissible contact force balances    */
   PetscInt   movingBody; /* the body it moves most                                                            */
-  PetscReal  direction[3]; /* that body's mean translation along it, unit                                     */
+  PetscReal  direction[3]; /* the direction it slides in at that body's contact points (global axes, unit)      */
+  PetscReal  translation[3]; /* that body's mean translation along the motion, unit                           */
   PetscReal  unbalanced; /* the unbalanced part of the load, relative to its part on the motions             */
 } SSStarKernel;
 

@@ -94,6 +94,27 @@ static PetscErrorCode RowGram(MPI_Comm comm, const SSStarKernel *kn, const unsig
   PetscFunctionReturn(0);
 }
 
+/* sum over every node of Rc_i^T sym(T_i) Rc_i (m x m) */
+static PetscErrorCode HeldGram(MPI_Comm comm, const SSStarKernel *kn, const PetscReal T[], PetscReal G[])
+{
+  const PetscInt m = kn->m;
+
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(G, m * m));
+  for (PetscInt i = 0; i < kn->nnodes; i++)
+    for (PetscInt r = 0; r < 3; r++)
+      for (PetscInt c = 0; c < 3; c++) {
+        const PetscReal  t = 0.5 * (T[9 * i + 3 * r + c] + T[9 * i + 3 * c + r]);
+        const PetscReal *a = &kn->Rc[(3 * i + r) * m], *b = &kn->Rc[(3 * i + c) * m];
+
+        if (t == 0) continue;
+        for (PetscInt k = 0; k < m; k++)
+          for (PetscInt l = 0; l < m; l++) G[k * m + l] += t * a[k] * b[l];
+      }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, G, m * m, MPIU_REAL, MPIU_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
 /* The motions' values at the contact points in their frames: (B rho_k)_i = R_i (T^-1 rho_k) at the point's own dofs */
 static PetscErrorCode ContactValues(SSStarContact *ct, SSStarKernel *kn)
 {
@@ -277,10 +298,10 @@ PetscErrorCode SSStarKernelSetUp(SSStarContact *ct, Mat K, SSStarKernel *kn)
 }
 
 /*
-   The motions the current Newton step leaves free (12.5): those whose values at the step's known rows (S row r = 0,
-   T row r = e_r: sticking nodes, the normal of nodes in contact) vanish, i.e. the eigenvectors of
-   G_known y = lambda G y with lambda ~ 0; U = Rc y with the known rows set to zero, orthonormal over the contact dofs
-   (y^T G y = 1), in the nodes' frames and in global axes.
+   The motions the current Newton step leaves free (12.5): those the step's T blocks do not hold, i.e. the eigenvectors
+   of G_T y = lambda G y with lambda ~ 0, G_T = sum_i Rc_i^T sym(T_i) Rc_i (a known row, T row r = e_r: sticking nodes
+   and the normal of nodes in contact; a sliding node's W, which resists a motion across its slip); U = Rc y with the
+   known rows set to zero, orthonormal over the contact dofs (y^T G y = 1), in the nodes' frames and in global axes.
 */
 PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const PetscReal S[], const PetscReal T[])
 {
@@ -298,7 +319,7 @@ PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const PetscReal S[], co
     for (PetscInt r = 0; r < 3; r++)
       if (SSStarKnownRow(&S[9 * i], &T[9 * i], r)) known[i] |= (unsigned char)(1 << r);
   }
-  PetscCall(RowGram(comm, kn, known, Gk));
+  PetscCall(HeldGram(comm, kn, T, Gk));
   PetscCall(PetscArraycpy(G, kn->G, m * m));
   PetscCall(Eigen(m, Gk, G, w));
   while (kn->nfree < m && w[kn->nfree] <= SSSTAR_KERNEL_FREE_TOL) kn->nfree++;

@@ -108,17 +108,20 @@ static PetscErrorCode HeldThroughContact(SSStarScene scene, PetscMPIInt nent, lo
   PetscFunctionReturn(0);
 }
 
-/* Refuses a body nothing can hold; the others held by contact alone are the floating bodies (scene->floating) */
+/* Refuses a body nothing can hold (the first in file order); those held by contact alone are the floating bodies */
 static PetscErrorCode RecordFloating(SSStarScene scene, PetscMPIInt nent, const long long all[], PetscInt nvol, const char *volName[])
 {
-  char name[1280];
+  char             name[1280];
+  const long long *loose = NULL;
 
   PetscFunctionBegin;
   for (PetscMPIInt e = 0; e < nent; e++) {
     const long long *a = &all[SSSTAR_BODY_INFO * e];
 
-    if (a[0] < 0 || a[5]) continue;
-    PetscCall(BodyName(a, nvol, volName, name, sizeof(name)));
+    if (a[0] >= 0 && !a[5] && (!loose || a[0] < loose[0])) loose = a;
+  }
+  if (loose) {
+    PetscCall(BodyName(loose, nvol, volName, name, sizeof(name)));
     SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "The body of %s, one of %" PetscInt_FMT " bodies, is held by nothing: no -dirichlet or -spring_<G> group, no contact group against an obstacle (-contact), no contact pair with a body held so. Hold it by one of them", name, scene->nBodies);
   }
   PetscCall(SSStarSceneDestroyFloating(scene));

@@ -25,7 +25,7 @@
 #define SSSTAR_BALANCE_TOL    1e-10
 #define SSSTAR_BALANCE_MIN    1e-6
 #define SSSTAR_BALANCE_STEADY 1e-9
-#define SSSTAR_BALANCE_DUAL   1e-7
+#define SSSTAR_BALANCE_DUAL   1e-4
 
 /* x projected onto the cone |x_t| <= s x_n (s = infinity: x_n >= 0 alone) */
 static void ProjectCone(PetscReal s, PetscReal x[3])

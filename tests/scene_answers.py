@@ -38,7 +38,7 @@ def contact(name, group=None):
     d = {k: c[k][:] for k in c}
     if group is not None:
         names = c["group"].attrs["names"]
-        names = (names.decode() if isinstance(names, bytes) else str(names)).split(",")  # "G,H->M,..."
+        names = [n.split("->")[0] for n in (names.decode() if isinstance(names, bytes) else str(names)).split(",")]  # "G,H->M"
         mine = d["group"] == names.index(group)
         d = {k: (v[mine] if len(v) == len(mine) else v) for k, v in d.items()}
     d["touching"] = np.isin(d["state"], TOUCHING)

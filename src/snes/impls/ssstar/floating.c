@@ -12,7 +12,7 @@
      the least-norm solution (12.6): motions no contact point can resist at all (a frictionless body on a plane: its
        sliding along the plane) leave a family of solutions; the one of smallest ||u|| is returned.
 */
-#include "newtonimpl.h"
+#include "ssstarimpl.h"
 #include "laws/lawimpl.h"
 #include <petscblaslapack.h>
 
@@ -301,24 +301,19 @@ PetscErrorCode SSStarKernelSetUp(SSStarContact *ct, Mat K, SSStarKernel *kn)
    The motions the current Newton step leaves free (12.5): those the step's T blocks do not hold, i.e. the eigenvectors
    of G_T y = lambda G y with lambda ~ 0, G_T = sum_i Rc_i^T sym(T_i) Rc_i (a known row, T row r = e_r: sticking nodes
    and the normal of nodes in contact; a sliding node's W, which resists a motion across its slip); U = Rc y with the
-   known rows set to zero, orthonormal over the contact dofs (y^T G y = 1), in the nodes' frames and in global axes.
+   known rows (bit r of known[i]: row r of node i) set to zero, orthonormal over the contact dofs (y^T G y = 1), in the
+   nodes' frames and in global axes.
 */
-PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const PetscReal S[], const PetscReal T[])
+PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const unsigned char known[], const PetscReal T[])
 {
   const PetscInt m = kn->m, n3 = 3 * kn->nnodes;
   MPI_Comm       comm = PetscObjectComm((PetscObject)kn->modes[0]);
-  unsigned char *known;
   PetscReal     *Gk, *G, *w;
 
   PetscFunctionBegin;
   kn->nfree = 0;
   if (!m) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc4(kn->nnodes + 1, &known, m * m, &Gk, m * m, &G, m, &w));
-  for (PetscInt i = 0; i < kn->nnodes; i++) {
-    known[i] = 0;
-    for (PetscInt r = 0; r < 3; r++)
-      if (SSStarKnownRow(&S[9 * i], &T[9 * i], r)) known[i] |= (unsigned char)(1 << r);
-  }
+  PetscCall(PetscMalloc3(m * m, &Gk, m * m, &G, m, &w));
   PetscCall(HeldGram(comm, kn, T, Gk));
   PetscCall(PetscArraycpy(G, kn->G, m * m));
   PetscCall(Eigen(m, Gk, G, w));
@@ -342,7 +337,7 @@ PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const PetscReal S[], co
       }
     }
   }
-  PetscCall(PetscFree4(known, Gk, G, w));
+  PetscCall(PetscFree3(Gk, G, w));
   PetscFunctionReturn(0);
 }
 

@@ -277,7 +277,7 @@ PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SS
 
 /* floating.c: bodies held by contact alone (K's null space; docs/derivation.md section 12) */
 PETSC_INTERN PetscErrorCode SSStarKernelSetUp(SSStarContact *, Mat, SSStarKernel *);
-PETSC_INTERN PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *, const PetscReal[], const PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *, const unsigned char[], const PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *, Vec);
 PETSC_INTERN PetscErrorCode SSStarKernelView(SSStarKernel *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarKernelReset(SSStarKernel *);

@@ -1,7 +1,9 @@
 /*
-   Whether the friction laws can hold the floating bodies at all (docs/derivation.md section 12, (12.3)-(12.4)). With
-   g_k = rho_k . b the load's work on the rigid-body motions rho_k of K's null space and Rc_i their values at contact
-   point i (its frame), an equilibrium needs contact forces mu_i in the cones K_i = { |mu_t| <= s_i mu_n } (s_i the
+   Floating bodies at the level of the iteration (docs/derivation.md section 12): whether the friction laws can hold
+   them at all, before the first iteration, and the step along their free motions to the first contact.
+
+   The balance (12.3)-(12.4). With g_k = rho_k . b the load's work on the rigid-body motions rho_k of K's null space
+   and Rc_i their values at contact point i (its frame), an equilibrium needs contact forces mu_i in the cones K_i = { |mu_t| <= s_i mu_n } (s_i the
    slope of the point's law: phi for Coulomb) with
 
        g + sum_i Rc_i^T mu_i = 0.
@@ -26,6 +28,8 @@
 #define SSSTAR_BALANCE_MIN    1e-6
 #define SSSTAR_BALANCE_STEADY 1e-9
 #define SSSTAR_BALANCE_DUAL   1e-4
+/* a Newton step's part on the free motions is carried on only when it is at least this fraction of the step */
+#define SSSTAR_FREE_PART_MIN 1e-3
 
 /* x projected onto the cone |x_t| <= s x_n (s = infinity: x_n >= 0 alone) */
 static void ProjectCone(PetscReal s, PetscReal x[3])
@@ -336,5 +340,124 @@ PetscErrorCode SNESSSStarCheckEquilibrium(SNES snes)
     PetscCall(SNESSSStarClassify(snes));
   }
   PetscCall(PetscFree6(gs, g, r, mu, bl.slope, bl.moved));
+  PetscFunctionReturn(0);
+}
+
+/*
+   How far a sliding point stays sliding along a motion w of its tangential iterate: the first t > 0 at which
+   a + t w (a = v_t - gamma c_t) enters its stick zone, where its law's tangential step (1.2) is zero; found by
+   bisection up to the line's closest approach to the zone's centre, PETSC_MAX_REAL when the line misses the zone there
+*/
+static PetscReal StickEntry(const SSStarFriction *fr, PetscReal rn, const PetscReal a[2], const PetscReal w[2])
+{
+  const PetscReal ww = w[0] * w[0] + w[1] * w[1];
+  PetscReal       lo = 0, hi, p[2], d[2];
+
+  if (ww == 0) return PETSC_MAX_REAL;
+  hi   = -(a[0] * w[0] + a[1] * w[1]) / ww;
+  p[0] = a[0] + hi * w[0];
+  p[1] = a[1] + hi * w[1];
+  if (hi <= 0) return PETSC_MAX_REAL;
+  fr->law->ops.tangential(fr, rn, p, d);
+  if (d[0] != 0 || d[1] != 0) return PETSC_MAX_REAL;
+  for (PetscInt k = 0; k < 60; k++) {
+    const PetscReal mid = 0.5 * (lo + hi);
+
+    p[0] = a[0] + mid * w[0];
+    p[1] = a[1] + mid * w[1];
+    fr->law->ops.tangential(fr, rn, p, d);
+    if (d[0] == 0 && d[1] == 0) hi = mid;
+    else lo = mid;
+  }
+  return hi;
+}
+
+/*
+   (12.5), the free motions' part of a Newton step carried on as far as its model holds: the model has no stiffness
+   along a free motion, and it stays the model while no point changes its state; so the step's part on the free
+   motions, U U^T du, is extended to the first point it would change: a separated point whose gap it closes, a sliding
+   point it brings into its stick zone (the contact force does not change along a rigid motion). A floating body off
+   its obstacles reaches them in one step, one that slid too far comes back in one, not in many proximal ones. ss->dv
+   in place; ss->ut, ss->ct are its scratch.
+*/
+PetscErrorCode SNESSSStarExtendFreeStep(SNES snes)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarContact     *ct = &ss->contact;
+  SSStarProblem     *pb = &ss->problem;
+  SSStarKernel      *kn = &pb->kernel;
+  const PetscInt     n3 = 3 * kn->nnodes;
+  PetscReal         *t, first = PETSC_MAX_REAL;
+  const PetscScalar *ua, *ca, *da;
+  PetscScalar       *xa;
+
+  PetscFunctionBegin;
+  if (!kn->m || !kn->nfree) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc1(kn->nfree + 1, &t));
+  PetscCall(VecGetArrayRead(ss->dv, &da));
+  for (PetscInt i = 0; i < kn->nnodes; i++) { /* t = U^T du (frames), and |du|^2 at the contact dofs */
+    PetscReal dv[3];
+
+    SNESSSStarNodeRotate(ct, pb, i, da, dv);
+    for (PetscInt f = 0; f < kn->nfree; f++)
+      for (PetscInt k = 0; k < 3; k++) t[f] += kn->free[f * n3 + 3 * i + k] * dv[k];
+    for (PetscInt k = 0; k < 3; k++) t[kn->nfree] += dv[k] * dv[k];
+  }
+  PetscCall(VecRestoreArrayRead(ss->dv, &da));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, t, kn->nfree + 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)snes)));
+  { /* a free part at the level of the solve's error has no direction to follow (|U t| = |t|: U orthonormal) */
+    PetscReal tt = 0;
+
+    for (PetscInt f = 0; f < kn->nfree; f++) tt += t[f] * t[f];
+    if (tt <= SSSTAR_FREE_PART_MIN * SSSTAR_FREE_PART_MIN * t[kn->nfree]) {
+      PetscCall(PetscFree(t));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u)); /* after the step: v+, c+ */
+  PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
+  PetscCall(VecGetArrayRead(ss->ut, &ua));
+  PetscCall(VecGetArrayRead(ss->ct, &ca));
+  for (PetscInt i = 0; i < kn->nnodes; i++) { /* the first point whose state it changes */
+    const SSStarState    s  = ss->states[i];
+    const SSStarFriction fr = SNESSSStarScaledFriction(ss, i);
+    PetscReal            v[3], c[3], w[3] = {0, 0, 0};
+
+    if (s != SSSTAR_STATE_L && s != SSSTAR_STATE_LS && s != SSSTAR_STATE_M1) continue;
+    for (PetscInt f = 0; f < kn->nfree; f++)
+      for (PetscInt k = 0; k < 3; k++) w[k] += kn->free[f * n3 + 3 * i + k] * t[f];
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
+    if (s != SSSTAR_STATE_M1) {
+      if (w[2] < 0 && v[2] > 0) first = PetscMin(first, v[2] / -w[2]);
+      continue;
+    }
+    SNESSSStarNodeRotate(ct, pb, i, ca, c);
+    {
+      const PetscReal a[2] = {v[0] - ss->scaling * c[0], v[1] - ss->scaling * c[1]};
+
+      first = PetscMin(first, StickEntry(&fr, PetscMax(0.0, ss->scaling * c[2] - v[2]), a, w));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ss->ct, &ca));
+  PetscCall(VecRestoreArrayRead(ss->ut, &ua));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &first, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)snes)));
+  if (first < PETSC_MAX_REAL) {
+    PetscCall(PetscInfo(snes, "Free motions of a floating body carried %g times further, to the first change of state\n", (double)first));
+    if (pb->wholeBody) { /* the rigid motion sum_k (Y t)_k T^-1 rho_k on every dof */
+      PetscScalar *coef;
+
+      PetscCall(PetscCalloc1(kn->m, &coef));
+      for (PetscInt k = 0; k < kn->m; k++)
+        for (PetscInt f = 0; f < kn->nfree; f++) coef[k] += first * kn->Y[f * kn->m + k] * t[f];
+      PetscCall(VecMAXPY(ss->dv, kn->m, coef, kn->pmodes));
+      PetscCall(PetscFree(coef));
+    } else { /* its contact dofs, in global axes */
+      PetscCall(VecGetArray(ss->dv, &xa));
+      for (PetscInt d = 0; d < n3; d++)
+        for (PetscInt f = 0; f < kn->nfree; f++) xa[pb->layoutDofs[d]] += first * kn->freeGlobal[f * n3 + d] * t[f];
+      PetscCall(VecRestoreArray(ss->dv, &xa));
+    }
+  }
+  PetscCall(PetscFree(t));
   PetscFunctionReturn(0);
 }

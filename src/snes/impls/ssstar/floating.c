@@ -24,6 +24,9 @@ PetscErrorCode SSStarKernelReset(SSStarKernel *kn)
 {
   PetscFunctionBegin;
   for (PetscInt k = 0; k < kn->m; k++) PetscCall(VecDestroy(&kn->modes[k]));
+  for (PetscInt k = 0; k < kn->m && kn->pmodes; k++) PetscCall(VecDestroy(&kn->pmodes[k]));
+  PetscCall(PetscFree(kn->pmodes));
+  PetscCall(PetscFree(kn->Y));
   for (PetscInt k = 0; k < kn->nfixed; k++) PetscCall(VecDestroy(&kn->fixed[k]));
   PetscCall(PetscFree(kn->modes));
   PetscCall(PetscFree(kn->fixed));
@@ -122,10 +125,12 @@ static PetscErrorCode ContactValues(SSStarContact *ct, SSStarKernel *kn)
   Vec            w, wC;
 
   PetscFunctionBegin;
-  PetscCall(VecDuplicate(kn->modes[0], &w));
+  PetscCall(PetscMalloc1(m, &kn->pmodes));
   for (PetscInt k = 0; k < m; k++) {
     const PetscScalar *a;
 
+    PetscCall(VecDuplicate(kn->modes[k], &kn->pmodes[k]));
+    w = kn->pmodes[k];
     PetscCall(SSStarContactToPointVariables(ct, kn->modes[k], w));
     if (ct->isC) PetscCall(VecGetSubVector(w, ct->isC, &wC));
     else wC = w;
@@ -138,7 +143,6 @@ static PetscErrorCode ContactValues(SSStarContact *ct, SSStarKernel *kn)
     PetscCall(VecRestoreArrayRead(wC, &a));
     if (ct->isC) PetscCall(VecRestoreSubVector(w, ct->isC, &wC));
   }
-  PetscCall(VecDestroy(&w));
   PetscFunctionReturn(0);
 }
 
@@ -320,7 +324,10 @@ PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const unsigned char kno
   while (kn->nfree < m && w[kn->nfree] <= SSSTAR_KERNEL_FREE_TOL) kn->nfree++;
   if (kn->nfree) {
     PetscCall(PetscFree2(kn->free, kn->freeGlobal));
+    PetscCall(PetscFree(kn->Y));
     PetscCall(PetscMalloc2(n3 * kn->nfree + 1, &kn->free, n3 * kn->nfree + 1, &kn->freeGlobal));
+    PetscCall(PetscMalloc1(m * kn->nfree, &kn->Y));
+    PetscCall(PetscArraycpy(kn->Y, Gk, m * kn->nfree));
     for (PetscInt f = 0; f < kn->nfree; f++) {
       const PetscReal *y = &Gk[m * f];
       PetscReal       *u = &kn->free[n3 * f], *ug = &kn->freeGlobal[n3 * f];
@@ -353,3 +360,4 @@ PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *kn, Vec x)
   }
   PetscFunctionReturn(0);
 }
+

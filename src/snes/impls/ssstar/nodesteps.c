@@ -10,7 +10,7 @@
 #define SSSTAR_RCOND_MIN 1e-12
 
 /* The scaled friction of node i: the kernels see gamma c (section 6), so a force of the law (Tresca's bound) too */
-static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i)
+SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *ss, PetscInt i)
 {
   SSStarFriction fr = ss->contact.nodeFriction[i];
 
@@ -30,7 +30,7 @@ void SNESSSStarNodeRotate(const SSStarContact *ct, const SSStarProblem *pb, Pets
 
 /* v_i = R_i u_i + o_i: the iterate in node i's frame, with its offset (docs/derivation.md (10.5)), o_i = g_i e3 unless
    a load path's step set the offsets */
-static void NodeIterate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *ua, PetscReal v[3])
+void SNESSSStarNodeIterate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *ua, PetscReal v[3])
 {
   SNESSSStarNodeRotate(ct, pb, i, ua, v);
   if (ct->offset)
@@ -91,11 +91,11 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
   PetscCall(VecGetArrayWrite(ss->d, &da));
   PetscCall(VecGetArrayWrite(ss->b, &ba));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i);
+    const SSStarFriction fr  = SNESSSStarScaledFriction(ss, i);
     const PetscInt      *dof = &pb->layoutDofs[3 * i];
     PetscReal            v[3], cv[3], z[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     SNESSSStarNodeRotate(ct, pb, i, ca, cv);
     for (PetscInt k = 0; k < 3; k++) cv[k] *= ss->scaling;
     SSStarApproximationStep(&fr, v, cv, z, &da[3 * i], &ba[3 * i]);
@@ -128,7 +128,7 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     PetscReal v[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     for (PetscInt k = 0; k < 3; k++) {
       norms[0] = PetscMax(norms[0], PetscAbsReal(v[k]));
       norms[1] = PetscMax(norms[1], PetscAbsScalar(da[3 * i + k]));
@@ -140,7 +140,7 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
   tol_b = ss->state_tol * PetscMax(ss->scaling * ss->fnorm_inf, norms[2]);
   PetscCall(PetscArrayzero(ss->counts, SSSTAR_NUM_STATES));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr = ScaledFriction(ss, i);
+    const SSStarFriction fr = SNESSSStarScaledFriction(ss, i);
 
     ss->states[i] = SSStarClassify(&fr, &da[3 * i], &ba[3 * i], tol_d, tol_b);
     ss->counts[ss->states[i]]++;
@@ -211,7 +211,7 @@ PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscReal znorm, PetscReal eta, P
   PetscCall(VecGetArrayRead(ss->b, &ba));
   PetscCall(VecGetArrayWrite(ss->y, &ya));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i);
+    const SSStarFriction fr  = SNESSSStarScaledFriction(ss, i);
     const PetscInt      *dof = &pb->layoutDofs[3 * i];
     PetscReal           *S = &ss->S[9 * i], *T = &ss->T[9 * i];
 

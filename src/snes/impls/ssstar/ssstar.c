@@ -340,6 +340,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         if (improved) continue;
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
+        PetscCall(SNESSSStarExtendFreeStep(snes)); /* floating bodies: free motions to the first contact (balance.c) */
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, &stop));
       }

@@ -37,8 +37,10 @@ typedef struct {
   PetscInt  *body;       /* per motion, its body                                                               */
   PetscInt   nfixed;     /* motions no contact point can resist (frictionless): the least-norm solution        */
   Vec       *fixed;      /* orthonormal                                                                        */
+  Vec       *pmodes;     /* the motions in the points' variables, T^-1 rho_k (the layout of the whole body's K)   */
   PetscInt   nfree;      /* the motions the states of the current Newton step leave free                      */
   PetscReal *free, *freeGlobal; /* 3 nnodes x nfree, column-major: in the nodes' frames, in global axes       */
+  PetscReal *Y;          /* m x nfree: their coefficients on the motions                                     */
   Vec        motion;     /* no equilibrium: the rigid motion whose work no admissible contact force balances    */
   PetscInt   movingBody; /* the body it moves most                                                            */
   PetscReal  direction[3]; /* the direction it slides in at that body's contact points (global axes, unit)      */
@@ -274,14 +276,17 @@ PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *
 PETSC_INTERN PetscErrorCode SNESSSStarSetLinearTolerances(SNES, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode SNESSSStarLinearFloor(SNES, PetscReal *);
 PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
+PETSC_INTERN void           SNESSSStarNodeIterate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
+PETSC_INTERN SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *, PetscInt);
 
-/* floating.c: bodies held by contact alone (K's null space; docs/derivation.md section 12) */
+/* floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 12) */
 PETSC_INTERN PetscErrorCode SSStarKernelSetUp(SSStarContact *, Mat, SSStarKernel *);
 PETSC_INTERN PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *, const unsigned char[], const PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *, Vec);
 PETSC_INTERN PetscErrorCode SSStarKernelView(SSStarKernel *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarKernelReset(SSStarKernel *);
 PETSC_INTERN PetscErrorCode SNESSSStarCheckEquilibrium(SNES);
+PETSC_INTERN PetscErrorCode SNESSSStarExtendFreeStep(SNES);
 
 /* accessors.c: the type's composed functions (SNESSSStar*_C) on and off */
 PETSC_INTERN PetscErrorCode SNESSSStarComposeFunctions(SNES, PetscBool);

@@ -6,7 +6,7 @@
    section 12). A body nothing can hold (no such group, no such pair) is refused, named by its volume groups. Contact
    pairs (pairs.c) are between two bodies.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 #include <petscsf.h>
 
 #define SSSTAR_MAX_VOLUME_GROUPS 62 /* bits of the body's volume-group mask */

@@ -42,6 +42,12 @@ def group_force(f, group):
     return c["reaction"][:][mine].sum(0)
 
 
+@test("docs/derivation.md section 12 holds (tests/floating_check.py, numpy, independent of the C code): the Schur complement of a semidefinite K has ker P = R_C and equals FETI's (Pi F Pi)^+ with f = P (d + F l0) - l0 to 1e-10; the balance (12.4) of a rigid block on a 20 degree slope is exact for phi = 0.5 and leaves sin(alpha - arctan phi) unbalanced for phi = 0.3, 0 with the residual as Farkas' certificate; the proximal Newton step (12.5) on a semidefinite P converges where the plain matrix is singular, keeps the free motion's part zero (12.6) and gives the limit of P + eps I")
+def floating_derivation():
+    out = run([PYTHON, os.path.join(ROOT, "tests", "floating_check.py")])
+    expect(out.count("PASS") == 3 and "FAIL" not in out, "tests/floating_check.py", out)
+
+
 @test("a block on a slope of 20 degrees held by contact alone (scenes/slope.opts at level 2: no spring, phi = 0.5 > tan 20 deg): it stays; the contact resultant is its weight (0, 0, 9810) to 1e-6 relative; its displacement is the limit of the spring-held block (scenes/incline.opts) as the spring vanishes: springs k = 1 and 0.01 differ from it by about 1.2e-7 and 1.2e-9 of its largest displacement, in proportion to k (ratio 100 within 10 %); the Coulomb law at every node (check_solution.py); direct and none, 1 and 2 ranks agree to 1e-8")
 def floating_slope_stays():
     ref = None

@@ -6,9 +6,16 @@ and the largest difference of the whole body's displacement (whole field) to the
 relative to the largest displacement. Prints a markdown table and the line "N cases x ranks: dense converged D, whole
 body converged W, same answer S (of those where the dense route converged)".
 
-  bench/robust.py [--ranks 1,2,3,4] [--only SUBSTRING] [--rtol 1e-12]
+The floating family of issue 25 (FLOATING below): bodies held by contact alone, no spring (README "Bodies held by
+contact alone"): slopes at several phi / tan alpha, stacks, squeezed balls, a slider pushed on its base. Where an
+equilibrium exists both paths must converge to the same answer; where none exists both must stop before their first
+iteration (DIVERGED_DTOL, "no equilibrium") within EARLY seconds. It ends with the line "N floating cases x ranks:
+converged C of E expected, the same answer S, early exits X of Y expected".
 
-tests/suite_robust.py runs a few members of the same family (FAMILY below) as tests.
+  bench/robust.py [--family robust,floating] [--ranks 1,2,3,4] [--only SUBSTRING] [--rtol 1e-12]
+
+tests/suite_robust.py runs a few members of the first family (FAMILY below) as tests, tests/suite_floating.py of the
+second.
 """
 import argparse
 import math
@@ -16,6 +23,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 import h5py
 import numpy as np
@@ -66,6 +74,44 @@ FAMILY = {
 }
 
 
+SLOPE = scene("slope") + ["-level", "4"]
+TAN = math.tan(math.radians(20))
+DOWNHILL = (math.cos(math.radians(20)), 0, -math.sin(math.radians(20)))
+STACK = scene("stack")
+SQUEEZE = scene("squeeze")
+SLIDER = ["-geo", "meshes/slider.geo", "-level", "1", "-E", "1", "-nu", "0.3", "-dirichlet", "bottom", "-contact", "slider_bottom",
+          "-contact_pair_slider_bottom", "base_top", "-friction_slider_bottom", "0.5"]
+EARLY = 30  # seconds: a run without equilibrium must stop within this (mesh and set-up included)
+
+
+def push(pressure):
+    return "%g,0,%g" % (pressure * DOWNHILL[0], pressure * DOWNHILL[2])
+
+
+# name -> (options, an equilibrium exists)
+FLOATING = {
+    "slope, phi = 0 (frictionless)": (SLOPE + ["-friction_bottom", "0"], False),
+    "slope, phi / tan a = 0.5": (SLOPE + ["-friction_bottom", str(0.5 * TAN)], False),
+    "slope, phi / tan a = 0.9": (SLOPE + ["-friction_bottom", str(0.9 * TAN)], False),
+    "slope, phi / tan a = 0.999": (SLOPE + ["-friction_bottom", str(0.999 * TAN)], False),
+    "slope, phi / tan a = 1.001": (SLOPE + ["-friction_bottom", str(1.001 * TAN)], True),
+    "slope, phi / tan a = 1.02": (SLOPE + ["-friction_bottom", str(1.02 * TAN)], True),
+    "slope, phi / tan a = 1.2": (SLOPE + ["-friction_bottom", str(1.2 * TAN)], True),
+    "slope, phi / tan a = 1.37 (scene)": (SLOPE, True),
+    "slope, phi / tan a = 3": (SLOPE + ["-friction_bottom", str(3 * TAN)], True),
+    "slope, pushed downhill 400 Pa (holds)": (SLOPE + ["-traction_top", push(400)], True),
+    "slope, pushed downhill 800 Pa (slides)": (SLOPE + ["-traction_top", push(800)], False),
+    "stack, phi = 0.5": (STACK, True),
+    "stack, frictionless (least norm)": (STACK + ["-snes_ssstar_friction", "0"], True),
+    "stack, lid pushed by 0.4 of its weight": (STACK + ["-traction_top", "1962,0,0"], True),
+    "stack, lid pushed by 0.6 of its weight": (STACK + ["-traction_top", "2943,0,0"], False),
+    "squeeze, frictionless": (SQUEEZE, True),
+    "squeeze, phi = 0.3": (SQUEEZE + ["-friction_law_bottom_cap", "coulomb", "-friction_law_top_cap", "coulomb", "-snes_ssstar_friction", "0.3"], True),
+    "slider (pair), push 0.8 of phi N (holds)": (SLIDER + ["-traction_slider_top", "0.004,0,-0.01"], True),
+    "slider (pair), push 1.6 of phi N": (SLIDER + ["-traction_slider_top", "0.008,0,-0.01"], False),
+}
+
+
 def env():
     e = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
     return e
@@ -73,16 +119,18 @@ def env():
 
 def solve(options, path, ranks, h5, rtol):
     cmd = ["mpiexec", "--oversubscribe", "-n", str(ranks), CONTACT] + options + ["-snes_ssstar_reduction", path, "-snes_rtol", str(rtol), "-snes_view", "-o", h5]
+    t0 = time.time()
     try:
         p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env(), timeout=TIMEOUT)
     except subprocess.TimeoutExpired:
-        return {"iters": -1, "states": "", "reason": "HUNG (killed after %d s)" % TIMEOUT, "krylov": None}
+        return {"iters": -1, "states": "", "reason": "HUNG (killed after %d s)" % TIMEOUT, "krylov": None, "seconds": TIMEOUT, "noeq": False}
     m = SUMMARY.search(p.stdout)
     if not m:
         tail = p.stdout.strip().splitlines()[-1:] or ["no output"]
-        return {"iters": -1, "states": "", "reason": "ERROR: " + tail[0][:60], "krylov": None}
+        return {"iters": -1, "states": "", "reason": "ERROR: " + tail[0][:60], "krylov": None, "seconds": time.time() - t0, "noeq": False}
     k = KRYLOV.search(p.stdout)
-    return {"iters": int(m.group(1)), "states": m.group(2), "reason": m.group(3), "krylov": int(k.group(1)) if k else None}
+    return {"iters": int(m.group(1)), "states": m.group(2), "reason": m.group(3), "krylov": int(k.group(1)) if k else None, "seconds": time.time() - t0,
+            "noeq": "no equilibrium: " in p.stdout}
 
 
 def field(h5):
@@ -109,14 +157,44 @@ def run_case(name, options, ranks, rtol):
     return dense, full, diff
 
 
+def floating(ranks, only, rtol):
+    """the floating family: True when every case converges or stops early as expected"""
+    print("| floating case | ranks | dense: its, reason, s | whole body: its (Krylov), reason, s | difference |")
+    print("|---|---|---|---|---|")
+    total = expected = converged = same = early = expected_early = 0
+    for name, (options, exists) in FLOATING.items():
+        if only not in name:
+            continue
+        for r in ranks:
+            d, f, diff = run_case(name, options, r, rtol)
+            total += 1
+            if exists:
+                expected += 1
+                converged += d["reason"].startswith("CONVERGED") and f["reason"].startswith("CONVERGED")
+                same += diff is not None and diff <= 1e-8
+            else:
+                expected_early += 1
+                early += all(x["reason"] == "DIVERGED_DTOL" and x["iters"] == 0 and x["noeq"] and x["seconds"] <= EARLY for x in (d, f))
+            print("| %s | %d | %d, %s, %.1f | %d (%s), %s, %.1f | %s |" % (name, r, d["iters"], d["reason"], d["seconds"], f["iters"], f["krylov"], f["reason"], f["seconds"],
+                                                                      "—" if diff is None else "%.1e" % diff), flush=True)
+    print("%d floating cases x ranks: converged %d of %d expected, the same answer %d, early exits %d of %d expected" % (total, converged, expected, same, early, expected_early))
+    return converged == expected == same and early == expected_early
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--family", default="robust,floating")
     parser.add_argument("--ranks", default="1,2,3,4")
     parser.add_argument("--only", default="")
     parser.add_argument("--rtol", type=float, default=1e-13, help="-snes_rtol of both paths (nearly floating bodies: the error is about 1e4 ||z||)")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)
     ranks = [int(r) for r in args.ranks.split(",")]
+    ok = True
+    if "floating" in args.family:
+        ok = floating(ranks, args.only, args.rtol)
+    if "robust" not in args.family:
+        sys.exit(0 if ok else 1)
     print("| case | ranks | dense: its, reason | whole body: its (Krylov), reason | difference |")
     print("|---|---|---|---|---|")
     total = dense_ok = full_ok = same = 0
@@ -132,7 +210,7 @@ def main():
             print("| %s | %d | %d, %s | %d (%s), %s | %s%s |" % (name, r, d["iters"], d["reason"], f["iters"], f["krylov"], f["reason"],
                                                              "—" if diff is None else "%.1e" % diff, "" if d["states"] == f["states"] else ", states differ"), flush=True)
     print("%d cases x ranks: dense converged %d, whole body converged %d, same answer %d (of those where the dense route converged)" % (total, dense_ok, full_ok, same))
-    sys.exit(0 if full_ok == dense_ok == same else 1)
+    sys.exit(0 if ok and full_ok == dense_ok == same else 1)
 
 
 if __name__ == "__main__":

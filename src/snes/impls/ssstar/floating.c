@@ -78,7 +78,7 @@ static PetscErrorCode Eigen(PetscInt m, PetscReal A[], PetscReal B[], PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* sum over every node of w_ir Rc_ir^T Rc_ir (m x m), rows weighted by weight(i, r) in {0, 1} (NULL: every row) */
+/* sum over every node of Rc_ir^T Rc_ir (m x m) over its rows r with bit r of rows[i] set (rows NULL: every row) */
 static PetscErrorCode RowGram(MPI_Comm comm, const SSStarKernel *kn, const unsigned char *rows, PetscReal G[])
 {
   const PetscInt m = kn->m;
@@ -249,7 +249,6 @@ PetscErrorCode SSStarKernelSetUp(SSStarContact *ct, Mat K, SSStarKernel *kn)
   PetscCall(MatNullSpaceGetVecs(nsp, &hasConstant, &m, &vecs));
   PetscCheck(!hasConstant, comm, PETSC_ERR_ARG_WRONG, "ssstar: K's null space (MatSetNullSpace) holds the constant vector; give the rigid-body motions of the floating bodies as vectors");
   if (!m) PetscFunctionReturn(0);
-  PetscCheck(ct->nnodes >= 0, comm, PETSC_ERR_ARG_WRONGSTATE, "ssstar: the contact is not set up");
   kn->m = m;
   PetscCall(PetscMalloc1(m, &kn->modes));
   for (PetscInt k = 0; k < m; k++) {
@@ -361,3 +360,12 @@ PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *kn, Vec x)
   PetscFunctionReturn(0);
 }
 
+
+/* -snes_view: the floating bodies, if any */
+PetscErrorCode SSStarKernelView(SSStarKernel *kn, PetscViewer viewer)
+{
+  PetscFunctionBegin;
+  if (!kn->m) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  floating bodies (held by contact alone): %" PetscInt_FMT ", K's null space of %" PetscInt_FMT " rigid-body motions; %" PetscInt_FMT " of them resisted by no contact point (the least-norm solution)\n", kn->nbodies, kn->m, kn->nfixed));
+  PetscFunctionReturn(0);
+}

@@ -283,6 +283,7 @@ PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscView
     else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", type, isauto ? " (chosen by auto)" : ""));
   } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
+  PetscCall(SSStarKernelView(&pb->kernel, viewer));
   PetscFunctionReturn(0);
 }
 

@@ -150,6 +150,26 @@ def floating_least_norm():
         expect(np.abs(u - ref).max() <= 1e-8 * np.abs(ref).max(), "%s %d: displacement differs from direct on 1 rank by %.2e" % (red, ranks, np.abs(u - ref).max() / np.abs(ref).max()))
 
 
+def without_spring(name):
+    """the options of scenes/NAME.opts without its -spring_<G> lines: the body held by contact alone"""
+    lines = [line.split() for line in open(os.path.join(ROOT, "scenes", name + ".opts")) if line.strip() and not line.startswith("#")]
+    return [w for line in lines if not line[0].startswith("-spring") for w in line]
+
+
+@test("orthotropic friction on a body held by contact alone (scenes/orthotropic.opts without its spring: phi_1 = 0.3 along x, phi_2 = 0.6 across, pressed by 10): the balance uses the law's elliptic cone, not a circle: pushed along x by 4 (> 3) no equilibrium, direction +x; across by 4 (< 6) it holds and converges; across by 7 (> 6) no equilibrium, direction +y; direct and none")
+def floating_orthotropic():
+    base = without_spring("orthotropic")
+    for red in ("direct", "none"):
+        for push, exists, direction in (("4,0,-10", False, (1, 0, 0)), ("0,4,-10", True, None), ("0,7,-10", False, (0, 1, 0))):
+            out, m, f = contact(base + ["-traction_top", push, "-snes_ssstar_reduction", red], "floating_ortho_%s.h5" % red, 1, expect_rc=0 if exists else NOT_CONVERGED)
+            if exists:
+                continue
+            n = NOEQ.search(out)
+            expect(m.group(3) == "0" and n is not None, "%s, push %s: not stopped early" % (red, push), out)
+            d = np.array([float(n.group(k)) for k in (2, 3, 4)])
+            expect(np.abs(d - direction).max() <= 1e-3, "%s, push %s: direction %s" % (red, push, d), out)
+
+
 SLIDER = ["-geo", "meshes/slider.geo", "-level", "1", "-E", "1", "-nu", "0.3", "-traction_slider_top", "0.008,0,-0.01", "-contact", "slider_bottom",
           "-contact_pair_slider_bottom", "base_top", "-friction_slider_bottom", "0.5"]
 

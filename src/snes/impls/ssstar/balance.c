@@ -3,12 +3,14 @@
    them at all, before the first iteration, and the step along their free motions to the first contact.
 
    The balance (12.3)-(12.4). With g_k = rho_k . b the load's work on the rigid-body motions rho_k of K's null space
-   and Rc_i their values at contact point i (its frame), an equilibrium needs contact forces mu_i in the cones K_i = { |mu_t| <= s_i mu_n } (s_i the
-   slope of the point's law: phi for Coulomb) with
+   and Rc_i their values at contact point i (its frame), an equilibrium needs contact forces mu_i in the friction
+   cones K_i = { (D_i t, n) : |t| <= n } (D_i from the point's law: phi I for Coulomb, M^1/2 orthotropic, 0
+   frictionless; a point without a cone, Tresca's, limits only n >= 0) with
 
        g + sum_i Rc_i^T mu_i = 0.
 
-   The least squares problem min over mu in K of 1/2 |g + A mu|^2 (A mu = sum_i Rc_i^T mu_i) has the value 0 then.
+   In the variables t of the unit cone, Rc_i's tangential rows become D_i^T Rc_i's (Rs below). The least squares
+   problem min over mu in K of 1/2 |g + A mu|^2 (A mu = sum_i Rc_i^T mu_i) has the value 0 then.
    When it does not, its residual r = g + A mu* is a rigid motion along which the load does positive work
    (g . r = |r|^2) while every contact point moves into its dual cone (Rc_i r in K_i*: it lifts off, or slides no
    closer to its obstacle than its friction angle allows), which no admissible contact force resists: no equilibrium
@@ -31,7 +33,7 @@
 /* a Newton step's part on the free motions is carried on only when it is at least this fraction of the step */
 #define SSSTAR_FREE_PART_MIN 1e-3
 
-/* x projected onto the cone |x_t| <= s x_n (s = infinity: x_n >= 0 alone) */
+/* x projected onto the cone |x_t| <= s x_n (s = infinity: x_n >= 0 alone; s is 0, 1 or infinity here) */
 static void ProjectCone(PetscReal s, PetscReal x[3])
 {
   const PetscReal t = PetscSqrtReal(x[0] * x[0] + x[1] * x[1]), n = x[2];
@@ -64,12 +66,67 @@ static PetscReal DualViolation(PetscReal s, const PetscReal w[3])
 }
 
 typedef struct {
-  PetscInt   m, n;     /* motions, local points                          */
-  PetscReal *Rc;       /* the kernel's values at the points (frames)     */
-  PetscReal *slope;    /* per point, its law's                            */
-  PetscBool *moved;    /* per point: some motion moves it                 */
+  PetscInt   m, n;     /* motions, local points                                                  */
+  PetscReal *Rc;       /* the kernel's values at the points in the variables of the unit cones   */
+  PetscReal *Rc0;      /* and as they are (the scale of the dual motion)                          */
+  PetscReal *slope;    /* per point: 1 (its cone), 0 (frictionless), infinity (no cone: n >= 0 alone) */
+  PetscBool *moved;    /* per point: some motion moves it                                         */
   MPI_Comm   comm;
 } Balance;
+
+/*
+   The motions' values at the points in the variables of the unit cones, Rs_i = [D_i^T Rc_t; Rc_n] (a point whose law
+   has no cone keeps Rc_i, its tangential force free), its cone, and the largest eigenvalue of Rs^T Rs (by powers of
+   the m x m matrix): the Lipschitz constant of the gradient
+*/
+static PetscErrorCode ScaledValues(SNES snes, Balance *bl, PetscReal *lmax)
+{
+  SNES_SSStar        *ss = (SNES_SSStar *)snes->data;
+  const SSStarKernel *kn = &ss->problem.kernel;
+  const PetscInt      m  = bl->m;
+  PetscReal          *G, *x, *y;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < bl->n; i++) {
+    const SSStarFriction *fr  = &ss->contact.nodeFriction[i];
+    const PetscReal      *row = &kn->Rc[3 * i * m];
+    PetscReal            *out = &bl->Rc[3 * i * m];
+    PetscReal             D[4];
+
+    PetscCall(PetscArraycpy(out, row, 3 * m));
+    bl->slope[i] = fr->law->ops.cone ? 1.0 : PETSC_INFINITY;
+    bl->moved[i] = PETSC_FALSE;
+    for (PetscInt d = 0; d < 3 * m; d++) bl->moved[i] = (PetscBool)(bl->moved[i] || row[d] != 0.0);
+    if (!fr->law->ops.cone) continue;
+    fr->law->ops.cone(fr, D);
+    if (D[0] == 0 && D[1] == 0 && D[2] == 0 && D[3] == 0) bl->slope[i] = 0; /* frictionless: no tangential force */
+    for (PetscInt r = 0; r < 2; r++)
+      for (PetscInt k = 0; k < m; k++) out[r * m + k] = D[r] * row[k] + D[2 + r] * row[m + k]; /* (D^T Rc_t)_r */
+  }
+  PetscCall(PetscCalloc3(m * m, &G, m, &x, m, &y));
+  for (PetscInt d = 0; d < 3 * bl->n; d++)
+    for (PetscInt k = 0; k < m; k++)
+      for (PetscInt l = 0; l < m; l++) G[k * m + l] += bl->Rc[d * m + k] * bl->Rc[d * m + l];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, G, m * m, MPIU_REAL, MPIU_SUM, bl->comm));
+  for (PetscInt k = 0; k < m; k++) x[k] = 1;
+  *lmax = 0;
+  for (PetscInt it = 0; it < 200; it++) {
+    PetscReal norm = 0;
+
+    for (PetscInt k = 0; k < m; k++) {
+      y[k] = 0;
+      for (PetscInt l = 0; l < m; l++) y[k] += G[k * m + l] * x[l];
+      norm += y[k] * y[k];
+    }
+    norm = PetscSqrtReal(norm);
+    if (norm == 0) break;
+    *lmax = norm; /* |G x| with |x| = 1 after the first iteration: tends to the largest eigenvalue from below */
+    for (PetscInt k = 0; k < m; k++) x[k] = y[k] / norm;
+  }
+  *lmax *= 1.01; /* above it: the power iteration's estimate is a lower bound */
+  PetscCall(PetscFree3(G, x, y));
+  PetscFunctionReturn(0);
+}
 
 /* a = sum_i Rc_i^T x_i on the local points (m values) */
 static void Apply(const Balance *bl, const PetscReal x[], PetscReal a[])
@@ -86,17 +143,17 @@ static void Apply(const Balance *bl, const PetscReal x[], PetscReal a[])
 }
 
 /* w = Rc_i r */
-static void Motion(const Balance *bl, PetscInt i, const PetscReal r[], PetscReal w[3])
+static void Motion(const Balance *bl, const PetscReal *Rc, PetscInt i, const PetscReal r[], PetscReal w[3])
 {
   for (PetscInt d = 0; d < 3; d++) {
-    const PetscReal *row = &bl->Rc[(3 * i + d) * bl->m];
+    const PetscReal *row = &Rc[(3 * i + d) * bl->m];
 
     w[d] = 0;
     for (PetscInt k = 0; k < bl->m; k++) w[d] += row[k] * r[k];
   }
 }
 
-/* The relative distance of the dual motion Rc r from the dual cones: max_i violation / max_i |Rc_i r| */
+/* The relative distance of the dual motion from the dual cones: max_i violation / max_i |Rc_i r| */
 static PetscErrorCode DualDistance(const Balance *bl, const PetscReal r[], PetscReal *dist)
 {
   PetscReal v[2] = {0, 0};
@@ -106,8 +163,9 @@ static PetscErrorCode DualDistance(const Balance *bl, const PetscReal r[], Petsc
     PetscReal w[3];
 
     if (!bl->moved[i]) continue;
-    Motion(bl, i, r, w);
+    Motion(bl, bl->Rc, i, r, w);
     v[0] = PetscMax(v[0], DualViolation(bl->slope[i], w));
+    Motion(bl, bl->Rc0, i, r, w);
     v[1] = PetscMax(v[1], PetscSqrtReal(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPIU_MAX, bl->comm));
@@ -170,7 +228,7 @@ static PetscErrorCode Solve(const Balance *bl, PetscReal lmax, const PetscReal g
         xn[3 * i] = xn[3 * i + 1] = xn[3 * i + 2] = 0;
         continue;
       }
-      Motion(bl, i, red, w);
+      Motion(bl, bl->Rc, i, red, w);
       for (PetscInt d = 0; d < 3; d++) xn[3 * i + d] = y[3 * i + d] - w[d] / lmax;
       ProjectCone(bl->slope[i], &xn[3 * i]);
     }
@@ -299,7 +357,7 @@ PetscErrorCode SNESSSStarCheckEquilibrium(SNES snes)
   const PetscInt     m  = kn->m;
   Balance            bl;
   PetscScalar       *gs;
-  PetscReal         *g, *r, *mu, gnorm = 0, rnorm = 0;
+  PetscReal         *g, *r, *mu, gnorm = 0, rnorm = 0, lmax = 0;
   const PetscScalar *ca;
   PetscBool          balanced, decided;
   PetscInt           its;
@@ -308,27 +366,34 @@ PetscErrorCode SNESSSStarCheckEquilibrium(SNES snes)
   if (!m) PetscFunctionReturn(0);
   bl.m    = m;
   bl.n    = kn->nnodes;
-  bl.Rc   = kn->Rc;
   bl.comm = PetscObjectComm((PetscObject)snes);
+  bl.Rc0  = kn->Rc;
   PetscCall(PetscMalloc6(m, &gs, m, &g, m, &r, 3 * bl.n + 1, &mu, bl.n + 1, &bl.slope, bl.n + 1, &bl.moved));
+  PetscCall(PetscMalloc1(3 * bl.n * m + 1, &bl.Rc));
+  PetscCall(ScaledValues(snes, &bl, &lmax));
   PetscCall(VecMDot(pb->b, m, kn->modes, gs));
   for (PetscInt k = 0; k < m; k++) {
     g[k] = PetscRealPart(gs[k]);
     gnorm += g[k] * g[k];
   }
   PetscCall(VecGetArrayRead(ss->c, &ca));
-  for (PetscInt i = 0; i < bl.n; i++) {
+  for (PetscInt i = 0; i < bl.n; i++) { /* the contact forces of the first iterate, in the unit cone's variables */
     const SSStarFriction *fr = &ct->nodeFriction[i];
+    PetscReal             D[4], det, t0, t1;
 
-    bl.slope[i] = fr->law->ops.slope ? fr->law->ops.slope(fr) : PETSC_INFINITY;
-    bl.moved[i] = PETSC_FALSE;
-    for (PetscInt d = 0; d < 3 * m; d++) bl.moved[i] = (PetscBool)(bl.moved[i] || bl.Rc[3 * i * m + d] != 0.0);
-    SNESSSStarNodeRotate(ct, pb, i, ca, &mu[3 * i]); /* the contact forces of the first iterate */
+    SNESSSStarNodeRotate(ct, pb, i, ca, &mu[3 * i]);
+    if (!fr->law->ops.cone) continue;
+    fr->law->ops.cone(fr, D);
+    det = D[0] * D[3] - D[1] * D[2];
+    t0  = mu[3 * i];
+    t1  = mu[3 * i + 1];
+    mu[3 * i]     = det != 0 ? (D[3] * t0 - D[1] * t1) / det : 0;
+    mu[3 * i + 1] = det != 0 ? (-D[2] * t0 + D[0] * t1) / det : 0;
   }
   PetscCall(VecRestoreArrayRead(ss->c, &ca));
   balanced = decided = PETSC_TRUE;
   its      = 0;
-  if (gnorm > 0) PetscCall(Solve(&bl, kn->gmax, g, mu, r, &balanced, &decided, &its));
+  if (gnorm > 0) PetscCall(Solve(&bl, lmax, g, mu, r, &balanced, &decided, &its));
   for (PetscInt k = 0; k < m && !balanced; k++) rnorm += r[k] * r[k];
   kn->unbalanced = gnorm > 0 ? PetscSqrtReal(rnorm / gnorm) : 0;
   PetscCall(PetscInfo(snes, "Balance of the load on %" PetscInt_FMT " rigid-body motions: %s after %" PetscInt_FMT " iterations, unbalanced part %g of the load's\n", m, !decided ? "undecided" : balanced ? "balanced" : "not balanced", its, (double)kn->unbalanced));
@@ -340,6 +405,7 @@ PetscErrorCode SNESSSStarCheckEquilibrium(SNES snes)
     PetscCall(SNESSSStarClassify(snes));
   }
   PetscCall(PetscFree6(gs, g, r, mu, bl.slope, bl.moved));
+  PetscCall(PetscFree(bl.Rc));
   PetscFunctionReturn(0);
 }
 

@@ -281,7 +281,6 @@ PetscErrorCode SSStarKernelSetUp(SSStarContact *ct, Mat K, SSStarKernel *kn)
   PetscCall(PetscArrayzero(Id, m * m));
   for (PetscInt k = 0; k < m; k++) Id[k * m + k] = 1;
   PetscCall(Eigen(m, G, Id, w));
-  kn->gmax = w[m - 1];
   if (!(w[0] > SSSTAR_KERNEL_HELD_TOL * w[m - 1])) {
     PetscInt  worst = 0;
     PetscReal big   = 0;

@@ -32,7 +32,6 @@ typedef struct {
   const PetscReal *frames; /* theirs (the contact's), or NULL for identities                                   */
   PetscReal *Rc;         /* motion k at node i in its frame, (B rho_k)_i: Rc[(3 i + r) m + k]                  */
   PetscReal *G;          /* m x m: Rc^T Rc over every node                                                     */
-  PetscReal  gmax;       /* its largest eigenvalue                                                             */
   PetscInt   nbodies;    /* the floating bodies: groups of motions that move common dofs                      */
   PetscInt  *body;       /* per motion, its body                                                               */
   PetscInt   nfixed;     /* motions no contact point can resist (frictionless): the least-norm solution        */

@@ -27,9 +27,10 @@ static PetscBool Frictionless_Coulomb(const SSStarFriction *fr)
   return (PetscBool)(fr->value[0] == 0.0);
 }
 
-static PetscReal Slope_Coulomb(const SSStarFriction *fr)
+static void Cone_Coulomb(const SSStarFriction *fr, PetscReal D[4])
 {
-  return fr->value[0];
+  D[0] = D[3] = fr->value[0];
+  D[1] = D[2] = 0;
 }
 
 PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
@@ -50,6 +51,6 @@ PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
   law->ops.margin            = Margin_Coulomb;
   law->ops.sliding           = Sliding_Coulomb;
   law->ops.frictionless      = Frictionless_Coulomb;
-  law->ops.slope             = Slope_Coulomb;
+  law->ops.cone              = Cone_Coulomb;
   PetscFunctionReturn(0);
 }

@@ -25,9 +25,9 @@ static PetscBool Frictionless_None(const SSStarFriction *fr)
   return PETSC_TRUE;
 }
 
-static PetscReal Slope_None(const SSStarFriction *fr)
+static void Cone_None(const SSStarFriction *fr, PetscReal D[4])
 {
-  return 0.0;
+  D[0] = D[1] = D[2] = D[3] = 0;
 }
 
 PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
@@ -42,6 +42,6 @@ PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
   law->ops.margin       = Margin_None;
   law->ops.sliding      = Sliding_None;
   law->ops.frictionless = Frictionless_None;
-  law->ops.slope        = Slope_None;
+  law->ops.cone         = Cone_None;
   PetscFunctionReturn(0);
 }

@@ -106,7 +106,8 @@ FLOATING = {
     "stack, lid pushed by 0.4 of its weight": (STACK + ["-traction_top", "1962,0,0"], True),
     "stack, lid pushed by 0.6 of its weight": (STACK + ["-traction_top", "2943,0,0"], False),
     "squeeze, frictionless": (SQUEEZE, True),
-    "squeeze, phi = 0.3": (SQUEEZE + ["-friction_law_bottom_cap", "coulomb", "-friction_law_top_cap", "coulomb", "-snes_ssstar_friction", "0.3"], True),
+    # two steps: the path matters with friction, and in one step the dense route halves it where the whole body does not
+    "squeeze, phi = 0.3, two steps": (SQUEEZE + ["-friction_law_bottom_cap", "coulomb", "-friction_law_top_cap", "coulomb", "-snes_ssstar_friction", "0.3", "-steps", "2"], True),
     "slider (pair), push 0.8 of phi N (holds)": (SLIDER + ["-traction_slider_top", "0.004,0,-0.01"], True),
     "slider (pair), push 1.6 of phi N": (SLIDER + ["-traction_slider_top", "0.008,0,-0.01"], False),
 }

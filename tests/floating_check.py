@@ -1,17 +1,17 @@
 #!/usr/bin/python3
-"""Re-does the checks of docs/derivation.md section 12 (bodies held by contact alone) in numpy, independently of the
+"""Re-does the checks of docs/derivation.md section 13 (bodies held by contact alone) in numpy, independently of the
 C code.
 
   tests/floating_check.py [--seed 5]
 
 Checks (exit status 1 if one fails):
-  1. the Schur complement of a semidefinite K (12.2)-(12.3): K_II regular, P symmetric positive semidefinite with
+  1. the Schur complement of a semidefinite K (13.2)-(13.3): K_II regular, P symmetric positive semidefinite with
      ker P = R_C, R_C^T f = R^T b, R_C^T (P u - f) = -R^T b for every u, and FETI's form P = (Pi F Pi)^+,
      f = P (d + F lambda_0) - lambda_0 (F = E_C K^+ E_C^T, d = E_C K^+ b) to 1e-10
-  2. the balance (12.4): a rigid block on a slope of 20 degrees, its bottom a grid of contact points: balanced
+  2. the balance (13.4): a rigid block on a slope of 20 degrees, its bottom a grid of contact points: balanced
      (residual 0) for phi = 0.5 > tan 20 deg; for phi = 0.3 and 0 the least unbalanced part is sin(alpha - arctan phi)
      of the load's, and the residual r is the certificate: Rc r in the dual cones, g . r = |r|^2
-  3. the proximal Newton step (12.5) and the least-norm solution (12.6) on a semidefinite P whose kernel holds a
+  3. the proximal Newton step (13.5) and the least-norm solution (13.6) on a semidefinite P whose kernel holds a
      motion no contact point resists (zero normal components) and one the normals hold: frictionless (the plain
      Newton matrix singular at every iterate, the proximal one not; also from gaps of 3, every point separated at
      first, the body reaching its first contact in one step) and Coulomb phi = 0.4 (no free motion), it converges
@@ -146,7 +146,7 @@ def check_balance():
 
 
 def free_motions(Rc, G, S, T):
-    """(12.5): the eigenvectors of G_T y = lambda G y with lambda <= FREE_TOL, G_T = sum Rc_i^T sym(T_i) Rc_i; U = Rc Y
+    """(13.5): the eigenvectors of G_T y = lambda G y with lambda <= FREE_TOL, G_T = sum Rc_i^T sym(T_i) Rc_i; U = Rc Y
     with the known rows zeroed"""
     Ts = 0.5 * (T + T.T)
     GT = Rc.T @ Ts @ Rc
@@ -160,7 +160,7 @@ def free_motions(Rc, G, S, T):
 
 
 def extend_free(U, du, v, states):
-    """(12.5): the free part of the step (U U^T du) carried on as far as the model holds for the separated points: to
+    """(13.5): the free part of the step (U U^T du) carried on as far as the model holds for the separated points: to
     the first whose gap it closes (c does not change along a rigid motion); the extra displacement"""
     free = U @ (U.T @ du)
     vp, first = v + du, np.inf

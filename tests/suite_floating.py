@@ -1,4 +1,4 @@
-"""Bodies held by contact alone (docs/derivation.md section 12): no spring, no Dirichlet condition, on both paths
+"""Bodies held by contact alone (docs/derivation.md section 13): no spring, no Dirichlet condition, on both paths
 (-snes_ssstar_reduction direct and none) and 1 and 2 ranks. A block on a slope that friction holds and one it cannot
 hold (no equilibrium: an early exit naming the body and its direction, also on a load path), a ball squeezed between
 two plates (Hertz at both, equal forces), a stack of two floating blocks, the least-norm solution of a frictionless
@@ -42,7 +42,7 @@ def group_force(f, group):
     return c["reaction"][:][mine].sum(0)
 
 
-@test("docs/derivation.md section 12 holds (tests/floating_check.py, numpy, independent of the C code): the Schur complement of a semidefinite K has ker P = R_C and equals FETI's (Pi F Pi)^+ with f = P (d + F l0) - l0 to 1e-10; the balance (12.4) of a rigid block on a 20 degree slope is exact for phi = 0.5 and leaves sin(alpha - arctan phi) unbalanced for phi = 0.3, 0 with the residual as Farkas' certificate; the proximal Newton step (12.5) on a semidefinite P converges where the plain matrix is singular, keeps the free motion's part zero (12.6) and gives the limit of P + eps I")
+@test("docs/derivation.md section 13 holds (tests/floating_check.py, numpy, independent of the C code): the Schur complement of a semidefinite K has ker P = R_C and equals FETI's (Pi F Pi)^+ with f = P (d + F l0) - l0 to 1e-10; the balance (13.4) of a rigid block on a 20 degree slope is exact for phi = 0.5 and leaves sin(alpha - arctan phi) unbalanced for phi = 0.3, 0 with the residual as Farkas' certificate; the proximal Newton step (13.5) on a semidefinite P converges where the plain matrix is singular, keeps the free motion's part zero (13.6) and gives the limit of P + eps I")
 def floating_derivation():
     out = run([PYTHON, os.path.join(ROOT, "tests", "floating_check.py")])
     expect(out.count("PASS") == 3 and "FAIL" not in out, "tests/floating_check.py", out)

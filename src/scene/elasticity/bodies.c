@@ -3,7 +3,7 @@
    index of its nodes. A body is held by a -dirichlet or -spring_<G> group, or by contact alone: a contact group of its
    own against a rigid obstacle, or a contact pair with a body held so (the pairs chain them). A body held by contact
    alone floats: its rigid-body motions are K's null space (elasticity.c), which the solver needs (docs/derivation.md
-   section 12). A body nothing can hold (no such group, no such pair) is refused, named by its volume groups. Contact
+   section 13). A body nothing can hold (no such group, no such pair) is refused, named by its volume groups. Contact
    pairs (pairs.c) are between two bodies.
 */
 #include "../sceneimpl.h"

@@ -435,7 +435,7 @@ static PetscErrorCode AddGravity(DM dm, PetscReal rho, const PetscReal g[3], Vec
    six of the whole mesh, from which algebraic multigrid (PCGAMG) builds its coarse spaces (it halves its iterations on
    elasticity; the whole-body Newton step of ssstar uses it); as K's null space, six for each floating body (held by
    contact alone, bodies.c), orthonormal: K does not resist them, and the solver needs to know it (docs/derivation.md
-   section 12)
+   section 13)
 */
 static PetscErrorCode SetRigidBodyModes(SSStarScene scene, Mat K)
 {

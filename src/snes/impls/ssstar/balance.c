@@ -1,8 +1,8 @@
 /*
-   Floating bodies at the level of the iteration (docs/derivation.md section 12): whether the friction laws can hold
+   Floating bodies at the level of the iteration (docs/derivation.md section 13): whether the friction laws can hold
    them at all, before the first iteration, and the step along their free motions to the first contact.
 
-   The balance (12.3)-(12.4). With g_k = rho_k . b the load's work on the rigid-body motions rho_k of K's null space
+   The balance (13.3)-(13.4). With g_k = rho_k . b the load's work on the rigid-body motions rho_k of K's null space
    and Rc_i their values at contact point i (its frame), an equilibrium needs contact forces mu_i in the friction
    cones K_i = { (D_i t, n) : |t| <= n } (D_i from the point's law: phi I for Coulomb, M^1/2 orthotropic, 0
    frictionless; a point without a cone, Tresca's, limits only n >= 0) with
@@ -175,7 +175,7 @@ static PetscErrorCode DualDistance(const Balance *bl, const PetscReal r[], Petsc
 
 /*
    min over mu in K of 1/2 |g + A mu|^2 from mu (projected first); r = g + A mu at the end. balanced: PETSC_TRUE when
-   r vanishes (to SSSTAR_BALANCE_TOL |g|), PETSC_FALSE when r is the certificate of (12.4), undecided (iterations
+   r vanishes (to SSSTAR_BALANCE_TOL |g|), PETSC_FALSE when r is the certificate of (13.4), undecided (iterations
    spent) otherwise: then decided is PETSC_FALSE.
 */
 static PetscErrorCode Solve(const Balance *bl, PetscReal lmax, const PetscReal g[], PetscReal mu[], PetscReal r[], PetscBool *balanced, PetscBool *decided, PetscInt *its)
@@ -439,7 +439,7 @@ static PetscReal StickEntry(const SSStarFriction *fr, PetscReal rn, const PetscR
 }
 
 /*
-   (12.5), the free motions' part of a Newton step carried on as far as its model holds: the model has no stiffness
+   (13.5), the free motions' part of a Newton step carried on as far as its model holds: the model has no stiffness
    along a free motion, and it stays the model while no point changes its state; so the step's part on the free
    motions, U U^T du, is extended to the first point it would change: a separated point whose gap it closes, a sliding
    point it brings into its stick zone (the contact force does not change along a rigid motion). A floating body off
@@ -486,7 +486,7 @@ PetscErrorCode SNESSSStarExtendFreeStep(SNES snes)
   PetscCall(VecGetArrayRead(ss->ct, &ca));
   for (PetscInt i = 0; i < kn->nnodes; i++) { /* the first point whose state it changes */
     const SSStarState    s  = ss->states[i];
-    const SSStarFriction fr = SNESSSStarScaledFriction(ss, i);
+    const SSStarFriction fr = SNESSSStarScaledFriction(ss, i, ss->scaling);
     PetscReal            v[3], c[3], w[3] = {0, 0, 0};
 
     if (s != SSSTAR_STATE_L && s != SSSTAR_STATE_LS && s != SSSTAR_STATE_M1) continue;

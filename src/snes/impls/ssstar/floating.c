@@ -1,15 +1,15 @@
 /*
-   Bodies held by contact alone (docs/derivation.md section 12). A body without a Dirichlet condition or a spring has
+   Bodies held by contact alone (docs/derivation.md section 13). A body without a Dirichlet condition or a spring has
    rigid-body motions that K does not resist: K is semidefinite, and the program declares those motions as K's null
    space (MatSetNullSpace(); the scenes give six per floating body). What the iteration does with them:
 
-     the balance (12.3): the load's work on them must be taken by contact forces the friction laws allow; where no
+     the balance (13.3): the load's work on them must be taken by contact forces the friction laws allow; where no
        such forces exist there is no equilibrium, and the solve stops before its first iteration with the motion along
        which the body goes (SNESSSStarCheckEquilibrium);
-     the free motions of a Newton step (12.5): where the step's states hold no force along some of them (separated or
+     the free motions of a Newton step (13.5): where the step's states hold no force along some of them (separated or
        sliding nodes), its matrix would be singular; they get a proximal term of the approximation step's stiffness,
        A + (1/gamma) U U^T on them alone, which changes the step, not the solutions (SSStarKernelFreeMotions);
-     the least-norm solution (12.6): motions no contact point can resist at all (a frictionless body on a plane: its
+     the least-norm solution (13.6): motions no contact point can resist at all (a frictionless body on a plane: its
        sliding along the plane) leave a family of solutions; the one of smallest ||u|| is returned.
 */
 #include "ssstarimpl.h"
@@ -190,7 +190,7 @@ static PetscErrorCode GroupBodies(SSStarKernel *kn)
 }
 
 /*
-   The motions no contact point can resist (12.6): zero normal component at every point and zero tangential component
+   The motions no contact point can resist (13.6): zero normal component at every point and zero tangential component
    at every point with friction. Orthonormal combinations of the motions, for the least-norm solution.
 */
 static PetscErrorCode FixedMotions(SSStarContact *ct, SSStarKernel *kn)
@@ -300,7 +300,7 @@ PetscErrorCode SSStarKernelSetUp(SSStarContact *ct, Mat K, SSStarKernel *kn)
 }
 
 /*
-   The motions the current Newton step leaves free (12.5): those the step's T blocks do not hold, i.e. the eigenvectors
+   The motions the current Newton step leaves free (13.5): those the step's T blocks do not hold, i.e. the eigenvectors
    of G_T y = lambda G y with lambda ~ 0, G_T = sum_i Rc_i^T sym(T_i) Rc_i (a known row, T row r = e_r: sticking nodes
    and the normal of nodes in contact; a sliding node's W, which resists a motion across its slip); U = Rc y with the
    known rows (bit r of known[i]: row r of node i) set to zero, orthonormal over the contact dofs (y^T G y = 1), in the
@@ -346,7 +346,7 @@ PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *kn, const unsigned char kno
   PetscFunctionReturn(0);
 }
 
-/* x minus its part along the motions no contact point resists: the least-norm solution (12.6) */
+/* x minus its part along the motions no contact point resists: the least-norm solution (13.6) */
 PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *kn, Vec x)
 {
   PetscFunctionBegin;

@@ -174,7 +174,7 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
 {
   PetscFunctionBegin;
   nt->nSteps++;
-  if (nt->layout.kernel) { /* floating bodies: the motions the step leaves free (docs/derivation.md (12.5)) */
+  if (nt->layout.kernel) { /* floating bodies: the motions the step leaves free (docs/derivation.md (13.5)) */
     unsigned char *known;
 
     PetscCall(PetscMalloc1(nt->layout.nnodes + 1, &known));

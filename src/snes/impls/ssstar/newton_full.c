@@ -15,7 +15,7 @@
    changed their known rows, and built anew (interpolation included) when more did: an interpolation built for
    other rows known, even on the same matrix pattern, costs more Krylov iterations than its set-up saves.
 
-   Floating bodies (docs/derivation.md (12.5)): where the step's states leave rigid-body motions U free, the Krylov
+   Floating bodies (docs/derivation.md (13.5)): where the step's states leave rigid-body motions U free, the Krylov
    solver runs on M + Shat (c/gamma) U U^T (a shell: M and the low-rank term), preconditioned by the multigrid of M
    with a small shift on the free motions' unknown contact dofs, which makes it regular: the preconditioned operator
    has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.

@@ -20,7 +20,7 @@
    itself) and K on the whole body, whose free rows keep the body in equilibrium. SolveKnown is the same system with
    every contact dof known (S_i = 0, T_i = I): du_i = R_i^T y_i, and on the whole body the free dofs follow.
 
-   Floating bodies (layout.kernel, docs/derivation.md (12.5)): the rigid-body motions U the step's states leave free
+   Floating bodies (layout.kernel, docs/derivation.md (13.5)): the rigid-body motions U the step's states leave free
    (kernel->nfree of them, at the contact dofs) get a proximal term, A + SSSTAR_FREE_STIFFNESS / gamma U U^T.
 */
 #include "ssstarimpl.h"

@@ -44,7 +44,7 @@ typedef struct {
   /* its friction set at the normal force 1 as the image D (unit disk) of a 2 x 2 matrix D (row-major, the node's
      frame): phi I for Coulomb, M^1/2 for the orthotropic law, 0 frictionless; so its friction cone is
      { (D t', r_n) : |t'| <= r_n }. Floating bodies: a load these cones cannot balance has no equilibrium
-     (docs/derivation.md section 12). NULL: no such cone (a bound that does not grow with r_n, as Tresca's): no load is
+     (docs/derivation.md section 13). NULL: no such cone (a bound that does not grow with r_n, as Tresca's): no load is
      refused for such a node */
   void (*cone)(const SSStarFriction *, PetscReal D[4]);
   /* checks the values and puts them in the form the kernels use (a direction projected onto the tangent plane);

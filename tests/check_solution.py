@@ -331,14 +331,15 @@ def vertex_field(f):
 
 def compare_steps(a, b, tol):
     """every step of two load paths: the contact displacement and reaction and the whole field, relative to the first
-    file's step and its change from the step before (the step's own scale, as the law's, section 12)"""
+    file's step and its change from the step before, and at least 1e-6 of the path's largest so far (the step's own
+    scale, as the law's, docs/derivation.md section 12)"""
     steps = sorted((k for k in a["steps"] if k.isdigit()), key=int)
     if "steps" not in b or sorted((k for k in b["steps"] if k.isdigit()), key=int) != steps:
         print("the files have different steps")
         return False
     order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (vertices by coordinates)
     oa, ob = (order(a), order(b)) if "geometry" in a and "geometry" in b else (None, None)
-    worst = {}
+    worst, largest = {}, {}  # the largest of each field over the path so far: its scale is at least 1e-6 of that
     for j, k in enumerate(steps):
         fields = [("displacement", "contact/displacement", None), ("reaction", "contact/reaction", None)]
         if oa is not None:
@@ -348,9 +349,11 @@ def compare_steps(a, b, tol):
             if vertex is not None:
                 x, y = x[vertex[0]], y[vertex[1]]
             scale = np.abs(x).max()
+            largest[name] = max(largest.get(name, 0.0), scale)
             if j > 0:
                 before = a["steps/%s/%s" % (steps[j - 1], path)][:]
                 scale = max(scale, np.abs(x - (before[vertex[0]] if vertex is not None else before)).max())
+            scale = max(scale, 1e-6 * largest[name])
             d = np.abs(x - y).max() / (scale if scale > 0 else 1.0)
             if d >= worst.get(name, (-1, None))[0]:
                 worst[name] = (d, k)

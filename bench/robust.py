@@ -18,16 +18,20 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
   sliding: large sliding (issue 24): balls, cylinders and flat punches dragged along a slab and back by several of
           their sizes (scenes/drag.opts, scenes/punch.opts), a punch off the slab's end, blocks slid across a block by
           twice their length and part of the way back (scenes/track.opts), node-to-surface and dual mortar
+  floating: bodies held by contact alone, no spring (issue 25, README "Bodies held by contact alone"): slopes at
+          several phi / tan alpha, pushed slopes, stacks, squeezed balls, a slider pushed on its base. Where no
+          equilibrium exists a member must instead stop before its first iteration on both paths (DIVERGED_DTOL, the
+          line "no equilibrium: ..."), within EARLY seconds (mesh and set-up included)
 
 Prints a markdown table (and bench/output/robust.csv): per member and ranks, each path's iterations (Krylov iterations
 of the whole body), reason, law (check_solution's largest distance to the law over the steps) and error (to the exact
 solution), then "N members x ranks: converged C of R runs, the law holds in L, within 1e-6 of the exact solution E";
 the exit status is 0 when every run passes.
 
-  bench/robust.py [--family static|paths|sliding|all] [--ranks 1,2,3,4] [--only SUBSTRING]
+  bench/robust.py [--family static|paths|sliding|floating|all] [--ranks 1,2,3,4] [--only SUBSTRING]
 
 tests/suite_robust.py runs members of the first two families (FAMILY, PATHS below) as tests, tests/suite_sliding.py
-the known answers of the third.
+the known answers of the third, tests/suite_floating.py the floating family's cases (FLOATING).
 """
 import argparse
 import csv
@@ -36,6 +40,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
@@ -150,6 +155,44 @@ SLIDING = {
 }
 
 
+SLOPE = scene("slope") + ["-level", "4"]
+TAN = math.tan(math.radians(20))
+DOWNHILL = (math.cos(math.radians(20)), 0, -math.sin(math.radians(20)))
+SQUEEZE = scene("squeeze")
+SLIDER = ["-geo", "meshes/slider.geo", "-level", "1", "-E", "1", "-nu", "0.3", "-dirichlet", "bottom", "-contact", "slider_bottom",
+          "-contact_pair_slider_bottom", "base_top", "-friction_slider_bottom", "0.5"]
+EARLY = 30  # seconds: a run without equilibrium stops within this, mesh and set-up included
+
+
+def push(pressure):
+    return "%g,0,%g" % (pressure * DOWNHILL[0], pressure * DOWNHILL[2])
+
+
+# floating members: name -> (options, whether an equilibrium exists)
+FLOATING = {
+    "slope, phi = 0 (frictionless)": (SLOPE + ["-friction_bottom", "0"], False),
+    "slope, phi / tan a = 0.5": (SLOPE + ["-friction_bottom", str(0.5 * TAN)], False),
+    "slope, phi / tan a = 0.9": (SLOPE + ["-friction_bottom", str(0.9 * TAN)], False),
+    "slope, phi / tan a = 0.999": (SLOPE + ["-friction_bottom", str(0.999 * TAN)], False),
+    "slope, phi / tan a = 1.001": (SLOPE + ["-friction_bottom", str(1.001 * TAN)], True),
+    "slope, phi / tan a = 1.02": (SLOPE + ["-friction_bottom", str(1.02 * TAN)], True),
+    "slope, phi / tan a = 1.2": (SLOPE + ["-friction_bottom", str(1.2 * TAN)], True),
+    "slope, phi / tan a = 1.37 (scene)": (SLOPE, True),
+    "slope, phi / tan a = 3": (SLOPE + ["-friction_bottom", str(3 * TAN)], True),
+    "slope, pushed downhill 400 Pa (holds)": (SLOPE + ["-traction_top", push(400)], True),
+    "slope, pushed downhill 800 Pa (slides)": (SLOPE + ["-traction_top", push(800)], False),
+    "stack, phi = 0.5": (scene("stack"), True),
+    "stack, frictionless (least norm)": (scene("stack") + ["-snes_ssstar_friction", "0"], True),
+    "stack, lid pushed by 0.4 of its weight": (scene("stack") + ["-traction_top", "1962,0,0"], True),
+    "stack, lid pushed by 0.6 of its weight": (scene("stack") + ["-traction_top", "2943,0,0"], False),
+    "squeeze, frictionless": (SQUEEZE, True),
+    # two steps: with friction the path matters, and in one step the dense route halves it where the whole body does not
+    "squeeze, phi = 0.3, two steps": (SQUEEZE + ["-friction_law_bottom_cap", "coulomb", "-friction_law_top_cap", "coulomb", "-snes_ssstar_friction", "0.3", "-steps", "2"], True),
+    "slider (pair), push 0.8 of phi N (holds)": (SLIDER + ["-traction_slider_top", "0.004,0,-0.01"], True),
+    "slider (pair), push 1.6 of phi N": (SLIDER + ["-traction_slider_top", "0.008,0,-0.01"], False),
+}
+
+
 def env():
     return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
 
@@ -161,16 +204,18 @@ def tag(name):
 def solve(options, path, ranks, h5, extra=()):
     """one run: its iterations (summed over the steps), reason, Krylov iterations"""
     cmd = ["mpiexec", "--oversubscribe", "-n", str(ranks), CONTACT] + options + ["-snes_ssstar_reduction", path, "-snes_view", "-ssstar_progress", "0", "-o", h5] + list(extra)
+    t0 = time.time()
     try:
         p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env(), timeout=TIMEOUT)
     except subprocess.TimeoutExpired:
-        return {"iters": -1, "reason": "HUNG (killed after %d s)" % TIMEOUT, "krylov": None}
+        return {"iters": -1, "reason": "HUNG (killed after %d s)" % TIMEOUT, "krylov": None, "seconds": TIMEOUT, "unbalanced": False}
     m = SUMMARY.search(p.stdout)
     if not m:
         tail = p.stdout.strip().splitlines()[-1:] or ["no output"]
-        return {"iters": -1, "reason": "ERROR: " + tail[0][:60], "krylov": None}
+        return {"iters": -1, "reason": "ERROR: " + tail[0][:60], "krylov": None, "seconds": time.time() - t0, "unbalanced": False}
     krylov = [int(k) for k in KRYLOV.findall(p.stdout)]
-    return {"iters": int(m.group(1)), "reason": m.group(3) if p.returncode == 0 else "%s (exit %d)" % (m.group(3), p.returncode), "krylov": sum(krylov) if krylov else None}
+    return {"iters": int(m.group(1)), "reason": m.group(3) if p.returncode == 0 else "%s (exit %d)" % (m.group(3), p.returncode), "krylov": sum(krylov) if krylov else None,
+            "seconds": time.time() - t0, "unbalanced": p.returncode == 2 and "no equilibrium: " in p.stdout}
 
 
 def checked(result, h5, reference):
@@ -201,11 +246,26 @@ def run_member(name, options, ranks):
     return {p: checked(solve(options, p, ranks, files[p]), files[p], REFERENCES[name]) for p in ("direct", "none")}
 
 
+def run_unbalanced(name, options, ranks):
+    """a member without equilibrium: both paths must stop before their first iteration, saying so, within EARLY s"""
+    result = {}
+    for p in ("direct", "none"):
+        r = solve(options, p, ranks, os.path.join(OUT, "%s_%s_%d.h5" % (tag(name), p, ranks)))
+        r["early"] = r["unbalanced"] and r["iters"] == 0 and r["reason"].startswith("DIVERGED_DTOL") and r["seconds"] <= EARLY
+        r.update(law=None, error=None)
+        result[p] = r
+    return result
+
+
 def passed(r):
+    if "early" in r:
+        return r["early"]
     return r["reason"].startswith("CONVERGED") and r.get("law_ok") and r["error"] <= TOLERANCE
 
 
 def cell(r):
+    if "early" in r:
+        return "%s, %d its, %.1f s%s" % ("no equilibrium" if r["unbalanced"] else r["reason"], r["iters"], r["seconds"], "" if r["early"] else " NOT EARLY")
     if r["law"] is None:
         return "%d, %s" % (r["iters"], r["reason"])
     krylov = "" if r["krylov"] is None else " (%d)" % r["krylov"]
@@ -214,16 +274,27 @@ def cell(r):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--family", choices=("static", "paths", "sliding", "all"), default="all")
+    parser.add_argument("--family", choices=("static", "paths", "sliding", "floating", "all"), default="all")
     parser.add_argument("--ranks", default="1,2,3,4")
     parser.add_argument("--only", default="")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)
     ranks = [int(r) for r in args.ranks.split(",")]
-    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING)) if args.family in (f, "all")]
+    floating = {name: options for name, (options, exists) in FLOATING.items() if exists}
+    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING), ("floating", floating)) if args.family in (f, "all")]
     print("| family | member | ranks | dense route: its, law, error | whole body: its (Krylov), law, error |")
     print("|---|---|---|---|---|")
-    rows, total, converged, lawful, exact = [], 0, 0, 0, 0
+    rows, total, converged, lawful, exact, unbalanced, early = [], 0, 0, 0, 0, 0, 0
+    for name, (options, exists) in FLOATING.items():  # the members without equilibrium: stopped early
+        if exists or args.family not in ("floating", "all") or args.only not in name:
+            continue
+        for r in ranks:
+            result = run_unbalanced(name, options, r)
+            print("| floating | %s | %d | %s | %s |" % (name, r, cell(result["direct"]), cell(result["none"])), flush=True)
+            for path, res in result.items():
+                unbalanced += 1
+                early += res["early"]
+                rows.append(["floating", name, r, path, res["iters"], res["krylov"], res["reason"], None, None, res["early"]])
     for family, members in families:
         for name, options in members.items():
             if args.only not in name:
@@ -246,7 +317,9 @@ def main():
         w.writerow(["family", "member", "ranks", "path", "iterations", "krylov", "reason", "law", "error", "passed"])
         w.writerows(rows)
     print("%d members x ranks: converged %d of %d runs, the law holds in %d, within %g of the exact solution %d" % (total // 2, converged, total, lawful, TOLERANCE, exact))
-    sys.exit(0 if converged == lawful == exact == total else 1)
+    if unbalanced:
+        print("%d members x ranks without equilibrium: stopped early in %d of %d runs" % (unbalanced // 2, early, unbalanced))
+    sys.exit(0 if converged == lawful == exact == total and early == unbalanced else 1)
 
 
 if __name__ == "__main__":

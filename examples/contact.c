@@ -231,17 +231,21 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, P
         if (t == times[k]) break;
         t = PetscMin(t + dt, times[k]); /* on to the step's time in sub-steps of the cut size */
       } else {
-        /* halve the step towards the last accepted time; the first step from its histories' start */
+        /* halve the step towards the last accepted time; the first step from its histories' start. Not where no
+           equilibrium exists at t: no sub-step reaches it */
         const PetscReal from = accepted ? tAccepted : (nknots ? PetscMin(knots[0], t) : t);
+        SSStarReason    sub  = SSSTAR_REASON_ITERATING;
 
-        if (cuts < maxCuts && t > from) {
+        if (hasContact) PetscCall(SNESSSStarGetReason(snes, &sub));
+        if (cuts < maxCuts && t > from && sub != SSSTAR_REASON_NO_EQUILIBRIUM) {
           cuts++;
           dt = (t - from) / 2;
           PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, why, (double)(from + dt)));
           t = from + dt;
           continue;
         }
-        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, why, cuts, maxCuts));
+        if (sub == SSSTAR_REASON_NO_EQUILIBRIUM) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: no equilibrium (%s): the path stops here\n", k + 1, nsteps, (double)t, why));
+        else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, why, cuts, maxCuts));
         if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts)); /* its last iterate */
         failure->step = written;
         failure->time = t;
@@ -363,6 +367,7 @@ int main(int argc, char **argv)
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s peak %.3f GB per rank\n", nodes, ncontact, (double)t_assembly,
                         (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)", peak / 1e9));
   if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nLoadSteps > 1 ? WriteLoadSteps : NULL, &steps));
+  if (hasContact) PetscCall(SSStarSceneViewNoEquilibrium(scene, snes, PETSC_VIEWER_STDOUT_WORLD));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));
 
   PetscCall(PetscFree4(steps.factor, steps.area, steps.normal_force, steps.iterations));

@@ -77,6 +77,7 @@ typedef enum {
   SSSTAR_REASON_STAGNATION,       /* ||z|| has not decreased for -snes_ssstar_stagnation_its          */
   SSSTAR_REASON_CYCLE,            /* the iterates cycle (period 2) and the remedies did not break it  */
   SSSTAR_REASON_LAW_STALLED,      /* ||z|| met its threshold, the law residual of the iterate stalled above its own */
+  SSSTAR_REASON_NO_EQUILIBRIUM,   /* no contact forces the friction laws allow balance the load on a floating body */
   SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided     */
 } SSStarReason;
 PETSC_EXTERN const char *const SSStarReasons[];
@@ -156,6 +157,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetUnbalancedMotion(SNES, Vec *, PetscInt *, PetscReal[3], PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);

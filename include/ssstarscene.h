@@ -50,6 +50,7 @@ typedef struct {
 } SSStarContactResult;
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactResult(SSStarScene, PetscInt, Vec, const SSStarState[], SSStarContactResult *);
 PETSC_EXTERN PetscErrorCode SSStarSceneContactView(SSStarScene, Vec, const SSStarState[], PetscViewer);
+PETSC_EXTERN PetscErrorCode SSStarSceneViewNoEquilibrium(SSStarScene, SNES, PetscViewer);
 
 /*
    Load paths (docs/load-paths.md): the loads as histories of a pseudo-time (-traction_<G>, -gravity), moving obstacles

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """Known answers of the shipped scenes, measured from a solution file of examples/contact (-o file.h5).
 
-  scene_answers.py hertz FILE.h5 [--E 2.1e5 --nu 0.3 --R 10]
+  scene_answers.py hertz FILE.h5 [--E 2.1e5 --nu 0.3 --R 10 --group G]
       contact radius a and peak pressure p0 against Hertz's sphere on a rigid plane (the hertz scene) or a rigid ball
       on a block (the ball scene), the contact centred on the z axis, with the force F the obstacle carries (the
-      length of the resultant of the contact reactions): a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2),
+      length of the resultant of the contact reactions; with --group, those of the contact group G alone, as each
+      plate of the squeeze scene): a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2),
       E* = E / (1 - nu^2). Measured: the pressure r_n / area of the nodes in contact well inside the contact zone
       (r < 0.8 a) fitted by p^2 = p0^2 (1 - r^2/a^2); and the bracket [outermost node in contact, innermost node out
       of contact]
@@ -37,17 +38,22 @@ import numpy as np
 TOUCHING = (1, 2, 3, 4, 5)  # states other than L (0) and LS (6)
 
 
-def contact(name):
+def contact(name, group=None):
     f = h5py.File(name, "r")
     c = f["contact"]
     d = {k: c[k][:] for k in c}
+    if group is not None:
+        names = c["group"].attrs["names"]
+        names = [n.split("->")[0] for n in (names.decode() if isinstance(names, bytes) else str(names)).split(",")]  # "G,H->M"
+        mine = d["group"] == names.index(group)
+        d = {k: (v[mine] if len(v) == len(mine) else v) for k, v in d.items()}
     d["touching"] = np.isin(d["state"], TOUCHING)
     d["rn"] = (d["reaction"] * d["normal"]).sum(axis=1)
     return d
 
 
-def hertz(name, E=2.1e5, nu=0.3, R=10.0):
-    d = contact(name)
+def hertz(name, E=2.1e5, nu=0.3, R=10.0, group=None):
+    d = contact(name, group)
     F = np.linalg.norm(d["reaction"].sum(axis=0))
     Es = E / (1 - nu ** 2)
     a = (3 * F * R / (4 * Es)) ** (1 / 3)
@@ -143,6 +149,7 @@ def main():
     h.add_argument("--E", type=float, default=2.1e5)
     h.add_argument("--nu", type=float, default=0.3)
     h.add_argument("--R", type=float, default=10.0)
+    h.add_argument("--group", default=None)
     li = sub.add_parser("line")
     li.add_argument("file")
     li.add_argument("--E", type=float, default=2.1e5)
@@ -161,7 +168,7 @@ def main():
     fc.add_argument("contact")
     args = parser.parse_args()
     if args.cmd == "hertz":
-        result = hertz(args.file, args.E, args.nu, args.R)
+        result = hertz(args.file, args.E, args.nu, args.R, args.group)
     elif args.cmd == "line":
         result = line(args.file, args.E, args.nu, args.R)
     elif args.cmd == "friction":

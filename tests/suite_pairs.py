@@ -1,6 +1,6 @@
 """Two deformable bodies (-contact_pair_<G> H, node-to-surface through the contact operator B): the contact patch
-test, a block sliding on a block, the output per pair, bad input refused naming the option, a body held only by
-contact refused naming the body; both paths (-snes_ssstar_reduction direct and none), 1 and 2 ranks."""
+test, a block sliding on a block, the output per pair, bad input refused naming the option; both paths
+(-snes_ssstar_reduction direct and none), 1 and 2 ranks."""
 import os
 import re
 
@@ -118,15 +118,13 @@ REFUSED = [
     ("obstacle and master", HELD + ["-contact_pair_slider_bottom", "base_top", "-obstacle_slider_bottom", "0,0,0,0,0,1"],
      "Options -contact_pair_slider_bottom and -obstacle_slider_bottom contradict each other"),
     ("master held fixed", HELD + ["-contact_pair_slider_bottom", "bottom"], 'the master "bottom" is held fixed'),
-    ("body held by contact only", ["-contact_pair_slider_bottom", "base_top"],
-     'The body of volume group "slider" (the mesh nodes connected to node 8, 0-based file order; one of 2 bodies) is held only by contact'),
 ]
 
 
-@test("bad pairs refused naming the option (groups of one body, a master that is a volume or unknown or held fixed, a slave not in -contact, no master, an obstacle too) and a body held only by contact refused naming it (volume group \"slider\"); the two checks that gather over the ranks on 1 and 2 ranks")
+@test("bad pairs refused naming the option (groups of one body, a master that is a volume or unknown or held fixed, a slave not in -contact, no master, an obstacle too); the check that gathers over the ranks on 1 and 2 ranks (bodies nothing holds: suite_floating.py)")
 def pairs_refused():
     for what, extra, message in REFUSED:
-        for ranks in ((1, 2) if what in ("same body", "body held by contact only") else (1,)):
+        for ranks in ((1, 2) if what == "same body" else (1,)):
             out = run(mpiexec(ranks, CONTACT, *SLIDER, *extra), expect_rc=1)
             expect(message in out, "%s (%d ranks): not refused with '%s'" % (what, ranks, message), out)
 

@@ -111,6 +111,7 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscCall(PetscFree(s->gapInitial));
   PetscCall(ISDestroy(&s->isC));
   PetscCall(PetscFree(s->body));
+  PetscCall(SSStarSceneDestroyFloating(s));
   PetscCall(PetscFree(s->frame));
   PetscCall(PetscFree3(s->masterStart, s->masterDof, s->masterWeight));
   PetscCall(MatDestroy(&s->B));

@@ -110,6 +110,9 @@ struct _n_SSStarScene {
   PetscInt   pairFallback; /* dual mortar: slave nodes the master does not cover (node-to-surface)  */
   PetscInt   nBodies;     /* connected components of the mesh                                     */
   PetscInt  *body;        /* per local vertex: its body (the smallest file index of its nodes)    */
+  PetscInt   nFloating;   /* bodies held by contact alone: their rigid-body motions are K's null space */
+  PetscInt  *floating;    /* their bodies (values of body[])                                      */
+  char     **floatingName; /* "volume group \"block\" (the mesh nodes connected to node 0, ...)" */
 
   /* the contact operator (operator.c): 3 rows (t1, t2, n) per contact node, B_i = R_i (E_i - sum_j w_ij E_{m_j}) */
   PetscReal *frame;        /* R_i, 9 per node (rows t1, t2, n): the frame of its normal            */
@@ -193,6 +196,7 @@ PETSC_INTERN PetscErrorCode SSStarSceneShareBadNode(MPI_Comm, SSStarBadNode *, P
 PETSC_INTERN PetscErrorCode SSStarSceneLastValue(SSStarHistory, PetscReal[3]);
 PETSC_INTERN PetscErrorCode SSStarSceneGroupUses(SSStarScene, PetscInt *, SSStarGroupUse **, char ***);
 PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSceneDestroyFloating(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], PetscReal, PetscReal[], PetscReal[]);

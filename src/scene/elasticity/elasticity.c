@@ -431,19 +431,21 @@ static PetscErrorCode AddGravity(DM dm, PetscReal rho, const PetscReal g[3], Vec
    (u = 0 on the Dirichlet groups is built into the dofs)
 */
 /*
-   The rigid-body modes of the body in the layout of K (the coordinates of its free dofs, block size 3), as K's
-   near-null space: algebraic multigrid (PCGAMG) builds its coarse spaces from them, which halves its iterations on
-   elasticity (the whole-body Newton step of ssstar uses it)
+   The rigid-body modes in the layout of K (the coordinates of its free dofs, block size 3): as K's near-null space, the
+   six of the whole mesh, from which algebraic multigrid (PCGAMG) builds its coarse spaces (it halves its iterations on
+   elasticity; the whole-body Newton step of ssstar uses it); as K's null space, six for each floating body (held by
+   contact alone, bodies.c), orthonormal: K does not resist them, and the solver needs to know it (docs/derivation.md
+   section 14)
 */
-static PetscErrorCode SetRigidBodyModes(DM dm, Mat K)
+static PetscErrorCode SetRigidBodyModes(SSStarScene scene, Mat K)
 {
-  DM                 cdm;
+  DM                 dm = scene->dm, cdm;
   PetscSection       sec, csec;
-  Vec                cloc, xloc, x;
-  PetscInt           vStart, vEnd;
+  Vec                cloc, xloc, x, *modes;
+  PetscInt           vStart, vEnd, nmodes = 6 * scene->nFloating;
   const PetscScalar *ca;
   PetscScalar       *xa;
-  MatNullSpace       modes;
+  MatNullSpace       nsp;
 
   PetscFunctionBegin;
   PetscCall(DMGetCoordinateDM(dm, &cdm));
@@ -453,26 +455,60 @@ static PetscErrorCode SetRigidBodyModes(DM dm, Mat K)
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMGetLocalVector(dm, &xloc));
   PetscCall(VecGetArrayRead(cloc, &ca));
-  PetscCall(VecGetArrayWrite(xloc, &xa));
-  for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt off, coff, dof;
+  PetscCall(PetscMalloc1(nmodes + 1, &modes));
+  /* mode 6 b + k of floating body b: the translation along axis k (k < 3), the rotation about axis k - 3 */
+  for (PetscInt mode = -1; mode < nmodes; mode++) {
+    PetscCall(VecGetArrayWrite(xloc, &xa));
+    for (PetscInt v = vStart; v < vEnd; v++) {
+      PetscInt off, coff, dof;
 
-    PetscCall(PetscSectionGetDof(sec, v, &dof));
-    if (dof != 3) continue;
-    PetscCall(PetscSectionGetOffset(sec, v, &off));
-    PetscCall(PetscSectionGetOffset(csec, v, &coff));
-    for (PetscInt k = 0; k < 3; k++) xa[off + k] = ca[coff + k];
+      PetscCall(PetscSectionGetDof(sec, v, &dof));
+      if (dof != 3) continue;
+      PetscCall(PetscSectionGetOffset(sec, v, &off));
+      PetscCall(PetscSectionGetOffset(csec, v, &coff));
+      for (PetscInt k = 0; k < 3; k++) xa[off + k] = mode < 0 ? ca[coff + k] : 0.0;
+      if (mode >= 0 && scene->body[v - vStart] == scene->floating[mode / 6]) {
+        const PetscInt k = mode % 6;
+
+        if (k < 3) xa[off + k] = 1;
+        else { /* e_a x x */
+          const PetscInt a = k - 3, b = (a + 1) % 3, c = (a + 2) % 3;
+
+          xa[off + b] = -ca[coff + c];
+          xa[off + c] = ca[coff + b];
+        }
+      }
+    }
+    PetscCall(VecRestoreArrayWrite(xloc, &xa));
+    PetscCall(DMCreateGlobalVector(dm, &x)); /* the held dofs are not in it */
+    PetscCall(DMLocalToGlobal(dm, xloc, INSERT_VALUES, x));
+    PetscCall(VecSetBlockSize(x, 3));
+    if (mode < 0) {
+      PetscCall(MatNullSpaceCreateRigidBody(x, &nsp));
+      PetscCall(MatSetNearNullSpace(K, nsp));
+      PetscCall(MatNullSpaceDestroy(&nsp));
+      PetscCall(VecDestroy(&x));
+    } else modes[mode] = x;
   }
-  PetscCall(VecRestoreArrayWrite(xloc, &xa));
   PetscCall(VecRestoreArrayRead(cloc, &ca));
-  PetscCall(DMCreateGlobalVector(dm, &x)); /* the held dofs are not in it */
-  PetscCall(DMLocalToGlobal(dm, xloc, INSERT_VALUES, x));
   PetscCall(DMRestoreLocalVector(dm, &xloc));
-  PetscCall(VecSetBlockSize(x, 3));
-  PetscCall(MatNullSpaceCreateRigidBody(x, &modes));
-  PetscCall(MatSetNearNullSpace(K, modes));
-  PetscCall(MatNullSpaceDestroy(&modes));
-  PetscCall(VecDestroy(&x));
+  if (nmodes) {
+    for (PetscInt k = 0; k < nmodes; k++) /* Gram-Schmidt, twice: the rotations about the body's centroid */
+      for (PetscInt pass = 0; pass < 2; pass++) {
+        for (PetscInt j = 6 * (k / 6); j < k; j++) {
+          PetscScalar dot;
+
+          PetscCall(VecDot(modes[k], modes[j], &dot));
+          PetscCall(VecAXPY(modes[k], -dot, modes[j]));
+        }
+        PetscCall(VecNormalize(modes[k], NULL));
+      }
+    PetscCall(MatNullSpaceCreate(scene->comm, PETSC_FALSE, nmodes, modes, &nsp));
+    PetscCall(MatSetNullSpace(K, nsp));
+    PetscCall(MatNullSpaceDestroy(&nsp));
+  }
+  for (PetscInt k = 0; k < nmodes; k++) PetscCall(VecDestroy(&modes[k]));
+  PetscCall(PetscFree(modes));
   PetscFunctionReturn(0);
 }
 
@@ -483,8 +519,8 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, PetscReal t, Mat *K, 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
   PetscCall(AssembleStiffness(scene, K));
-  PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
-  PetscCall(SetRigidBodyModes(dm, *K));
+  PetscCall(MatSetOption(*K, scene->nFloating ? MAT_SYMMETRIC : MAT_SPD, PETSC_TRUE)); /* floating: semidefinite */
+  PetscCall(SetRigidBodyModes(scene, *K));
 
   PetscCall(DMCreateGlobalVector(dm, b));
   PetscCall(PetscObjectSetName((PetscObject)*b, "load"));

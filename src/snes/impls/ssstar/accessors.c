@@ -162,6 +162,20 @@ static PetscErrorCode SNESSSStarGetReason_SSStar(SNES snes, SSStarReason *reason
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarGetUnbalancedMotion_SSStar(SNES snes, Vec *motion, PetscInt *body, PetscReal direction[3], PetscReal *unbalanced)
+{
+  SNES_SSStar  *ss = (SNES_SSStar *)snes->data;
+  SSStarKernel *kn = &ss->problem.kernel;
+  const PetscBool none = (PetscBool)(ss->reason != SSSTAR_REASON_NO_EQUILIBRIUM);
+
+  PetscFunctionBegin;
+  if (motion) *motion = none ? NULL : kn->motion;
+  if (body) *body = none ? -1 : kn->movingBody;
+  for (PetscInt d = 0; d < 3 && direction; d++) direction[d] = none ? 0 : kn->direction[d];
+  if (unbalanced) *unbalanced = none ? 0 : kn->unbalanced;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarGetContactNodes_SSStar(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
@@ -273,6 +287,7 @@ static const struct {
     {"SNESSSStarGetStates_C", (PetscVoidFunction)SNESSSStarGetStates_SSStar},
     {"SNESSSStarGetReason_C", (PetscVoidFunction)SNESSSStarGetReason_SSStar},
     {"SNESSSStarGetTolerance_C", (PetscVoidFunction)SNESSSStarGetTolerance_SSStar},
+    {"SNESSSStarGetUnbalancedMotion_C", (PetscVoidFunction)SNESSSStarGetUnbalancedMotion_SSStar},
     {"SNESSSStarSetLawTolerance_C", (PetscVoidFunction)SNESSSStarSetLawTolerance_SSStar},
     {"SNESSSStarGetLawResidual_C", (PetscVoidFunction)SNESSSStarGetLawResidual_SSStar},
     {"SNESSSStarGetContactNodes_C", (PetscVoidFunction)SNESSSStarGetContactNodes_SSStar},

@@ -220,6 +220,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     PetscBool refined;
 
     PetscCall(SNESSSStarRefineNewtonStep(snes, znorm, &refined));
+    if (refined) PetscCall(SNESSSStarExtendFreeStep(snes)); /* floating bodies (balance.c) */
     if (refined) PetscCall(TryFullStep(snes, &mfull));
   }
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);

@@ -182,6 +182,18 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
 {
   PetscFunctionBegin;
   nt->nSteps++;
+  if (nt->layout.kernel) { /* floating bodies: the motions the step leaves free (docs/derivation.md (14.5)) */
+    unsigned char *known;
+
+    PetscCall(PetscMalloc1(nt->layout.nnodes + 1, &known));
+    for (PetscInt i = 0; i < nt->layout.nnodes; i++) {
+      known[i] = 0;
+      for (PetscInt r = 0; r < 3; r++)
+        if (SSStarKnownRow(&S[9 * i], &T[9 * i], r)) known[i] |= (unsigned char)(1 << r);
+    }
+    PetscCall(SSStarKernelFreeMotions(nt->layout.kernel, known, T));
+    PetscCall(PetscFree(known));
+  }
   PetscCall((*nt->ops.solve)(nt, S, T, y, du, solved));
   PetscFunctionReturn(0);
 }
@@ -208,6 +220,7 @@ PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton nt, Vec y, Vec du, PetscBool 
   PetscScalar               *da;
 
   PetscFunctionBegin;
+  if (nt->layout.kernel) nt->layout.kernel->nfree = 0; /* the contact dofs hold every motion */
   if (nt->ops.solveknown) {
     nt->nSteps++;
     PetscCall((*nt->ops.solveknown)(nt, y, du, solved));

@@ -40,6 +40,8 @@ typedef struct {
   PetscInt     *moved;                     /* their global dofs                                             */
   PetscMPIInt  *movedCounts, *movedStarts; /* per rank                                                      */
   PetscScalar  *Bmoved, *tMoved, *t;       /* A_fac[R_fac, C] (local rows), values on C, a local dof vector */
+  PetscInt      nfree;                     /* floating bodies: the step's free motions (newtonimpl.h)       */
+  PetscReal    *freeAll;                   /* of every node in its frame: freeAll[g nfree + f]               */
 } Newton_Dense;
 
 static PetscErrorCode ApplyFactoredInverse(PC, Vec, Vec);
@@ -225,6 +227,8 @@ static PetscErrorCode RowMapsDestroy(RowMaps *rm)
 /*
    out[:, c] = A[R_e local rows, cols[c]] for the global dofs cols[], A = gamma S R P R^T + T with the blocks of e:
    column g = 3 j + l of P R^T is P[:, 3j..3j+2] R_j[l][.], and row a = (i, r) of A is M_a . (that column)[3i..3i+2].
+   With free motions U of floating bodies, P + (SSSTAR_FREE_STIFFNESS / gamma) U U^T: column g gains U (R U)[g, .]^T.
+   (They vanish at the known dofs, so the right-hand side's A_RK y_K does not see them.)
 */
 static PetscErrorCode AssembleColumns(SSStarNewton nt, const Elimination *e, PetscInt ncols, const PetscInt cols[], PetscScalar *out, PetscInt ldout)
 {
@@ -239,7 +243,7 @@ static PetscErrorCode AssembleColumns(SSStarNewton nt, const Elimination *e, Pet
   PetscCall(MatDenseGetLDA(nt->A, &lda));
   PetscCall(MatDenseGetArrayRead(nt->A, &pa));
   m = 3 * dn->nnodes;
-  if (dn->allFrames) PetscCall(PetscMalloc1(m, &buf));
+  if (dn->allFrames || dn->nfree) PetscCall(PetscMalloc1(m, &buf));
   for (PetscInt c = 0; c < ncols; c++) {
     const PetscInt     g = cols[c], j = g / 3, l = g % 3, jl = j - dn->nodeStart;
     const PetscScalar *col;
@@ -252,6 +256,15 @@ static PetscErrorCode AssembleColumns(SSStarNewton nt, const Elimination *e, Pet
       for (PetscInt k = 0; k < m; k++) buf[k] = p0[k] * Rj[3 * l] + p1[k] * Rj[3 * l + 1] + p2[k] * Rj[3 * l + 2];
       col = buf;
     } else col = pa + g * lda;
+    if (dn->nfree) {
+      const PetscReal  coef = SSSTAR_FREE_STIFFNESS / nt->gamma;
+      const PetscReal *ug = nt->layout.kernel->freeGlobal, *uf = &dn->freeAll[g * dn->nfree];
+
+      if (col != buf) PetscCall(PetscArraycpy(buf, col, m));
+      for (PetscInt f = 0; f < dn->nfree; f++)
+        for (PetscInt k = 0; k < m; k++) buf[k] += coef * ug[f * m + k] * uf[f];
+      col = buf;
+    }
     for (PetscInt a = 0; a < rm.n; a++) {
       const PetscScalar *cb = col + rm.base[a];
       const PetscReal   *Ma = &rm.M[3 * a];
@@ -539,6 +552,33 @@ static PetscErrorCode GatherFrames(SSStarNewton nt)
   PetscFunctionReturn(0);
 }
 
+/* The free motions of floating bodies of this step (in the nodes' frames) of every node, for the columns */
+static PetscErrorCode GatherFreeMotions(SSStarNewton nt)
+{
+  Newton_Dense *dn = (Newton_Dense *)nt->data;
+  SSStarKernel *kn = nt->layout.kernel;
+  MPI_Comm      comm = PetscObjectComm((PetscObject)nt->A);
+  PetscMPIInt   size, *counts, *starts;
+  PetscReal    *mine;
+
+  PetscFunctionBegin;
+  PetscCall(PetscFree(dn->freeAll));
+  dn->nfree = kn ? kn->nfree : 0; /* the same on every rank */
+  if (!dn->nfree) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscMalloc1(3 * dn->Nnodes * dn->nfree, &dn->freeAll));
+  PetscCall(PetscMalloc3(3 * dn->nnodes * dn->nfree + 1, &mine, size, &counts, size, &starts));
+  for (PetscInt d = 0; d < 3 * dn->nnodes; d++)
+    for (PetscInt f = 0; f < dn->nfree; f++) mine[d * dn->nfree + f] = kn->free[f * 3 * dn->nnodes + d];
+  for (PetscMPIInt r = 0; r < size; r++) {
+    counts[r] = (PetscMPIInt)(3 * dn->nodeCounts[r] * dn->nfree);
+    starts[r] = (PetscMPIInt)(3 * dn->nodeStarts[r] * dn->nfree);
+  }
+  PetscCallMPI(MPI_Allgatherv(mine, (PetscMPIInt)(3 * dn->nnodes * dn->nfree), MPIU_REAL, dn->freeAll, counts, starts, MPIU_REAL, comm));
+  PetscCall(PetscFree3(mine, counts, starts));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SSStarNewtonSolve_Dense(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
 {
   Newton_Dense *dn = (Newton_Dense *)nt->data;
@@ -546,6 +586,7 @@ static PetscErrorCode SSStarNewtonSolve_Dense(SSStarNewton nt, const PetscReal S
 
   PetscFunctionBegin;
   PetscCall(GatherFrames(nt));
+  PetscCall(GatherFreeMotions(nt));
   PetscCall(BuildElimination(nt, S, T, &dn->cur));
   reuse = (PetscBool)(dn->fac.valid && nt->reuse >= 0 && ChangedNodes(nt, &dn->cur, &dn->fac) <= nt->reuse * dn->Nnodes);
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
@@ -636,6 +677,7 @@ static PetscErrorCode SSStarNewtonReset_Dense(SSStarNewton nt)
   PetscCall(PetscFree(dn->moved));
   PetscCall(PetscFree2(dn->movedCounts, dn->movedStarts));
   PetscCall(PetscFree3(dn->Bmoved, dn->tMoved, dn->t));
+  PetscCall(PetscFree(dn->freeAll));
   PetscFunctionReturn(0);
 }
 

@@ -14,6 +14,11 @@
    to the tolerances the iteration sets (inexact Newton). The multigrid of an earlier step is kept while few nodes
    changed their known rows, and built anew (interpolation included) when more did: an interpolation built for
    other rows known, even on the same matrix pattern, costs more Krylov iterations than its set-up saves.
+
+   Floating bodies (docs/derivation.md (14.5)): where the step's states leave rigid-body motions U free, the Krylov
+   solver runs on M + Shat (c/gamma) U U^T (a shell: M and the low-rank term), preconditioned by the multigrid of M
+   with a small shift on the free motions' unknown contact dofs, which makes it regular: the preconditioned operator
+   has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.
 */
 #include "newtonimpl.h"
 
@@ -21,6 +26,8 @@
 #define SSSTAR_GMRES_RESTART 100
 /* GAMG's smoothers unless the options name others: one sweep of SOR per level and direction (bench/levers.py) */
 #define SSSTAR_SMOOTHER_OPTIONS 4
+/* floating bodies: the preconditioner's shift on the free motions' unknown contact dofs, in units of 1/gamma */
+#define SSSTAR_FREE_SHIFT (1e-2 * SSSTAR_FREE_STIFFNESS)
 
 typedef struct {
   Mat            Kr;            /* K' = Q K Q^T; K itself (a reference) when there are no frames                 */
@@ -38,6 +45,10 @@ typedef struct {
   PetscInt       nnodesGlobal;
   PetscBool      userKSPType, userTolerances, userRestart;
   PetscReal     *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
+  Mat            shell;         /* floating bodies: M + the proximal term on the step's free motions             */
+  const PetscReal *S;           /* the step's S blocks, for the shell                                            */
+  unsigned char *touched;       /* per local node: a free motion of the step moves it                            */
+  PetscInt       pcFree;        /* free motions when the multigrid was built                                     */
   char          *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
 } Newton_Full;
 
@@ -198,7 +209,7 @@ static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
   PetscCall(CreateNearNullSpace(nt));
   PetscCall(CreateRowCombination(nt));
   PetscCall(MatCreateVecs(nt->A, &nf->dv, &nf->rhs));
-  PetscCall(PetscMalloc2(3 * L->nnodes, &nf->known, L->nnodes, &nf->mask));
+  PetscCall(PetscMalloc3(3 * L->nnodes, &nf->known, L->nnodes, &nf->mask, L->nnodes, &nf->touched));
   PetscCall(PetscCalloc1(L->nnodes, &nf->pcMask));
   PetscCall(PetscMalloc2(9 * L->nnodes, &nf->Sknown, 9 * L->nnodes, &nf->Tknown));
   for (PetscInt i = 0; i < L->nnodes; i++)
@@ -229,6 +240,91 @@ static PetscErrorCode SSStarNewtonSetScaling_Full(SSStarNewton nt)
 {
   PetscFunctionBegin;
   ((Newton_Full *)nt->data)->pcBuilt = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The nodes the step's free motions move (none without floating bodies), and the step's S for the shell */
+static PetscErrorCode MarkFreeMotions(SSStarNewton nt, const PetscReal S[])
+{
+  Newton_Full        *nf = (Newton_Full *)nt->data;
+  const SSStarKernel *kn = nt->layout.kernel;
+  const PetscInt      n3 = 3 * nt->layout.nnodes;
+
+  PetscFunctionBegin;
+  nf->S = S;
+  for (PetscInt i = 0; i < nt->layout.nnodes; i++) {
+    nf->touched[i] = 0;
+    for (PetscInt f = 0; kn && f < kn->nfree; f++)
+      for (PetscInt r = 0; r < 3; r++)
+        if (kn->free[f * n3 + 3 * i + r] != 0.0) nf->touched[i] = 1;
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+   The shell of a step with free motions U of floating bodies (in the nodes' frames, zero at the known dofs):
+   y = M x - (shift / gamma) x on the touched unknown contact dofs + (c / gamma) Shat U U^T x, c = SSSTAR_FREE_STIFFNESS
+*/
+static PetscErrorCode MultFree(Mat A, Vec x, Vec y)
+{
+  SSStarNewton               nt;
+  Newton_Full               *nf;
+  const SSStarContactLayout *L;
+  const SSStarKernel        *kn;
+  const PetscScalar         *xa;
+  PetscScalar               *ya;
+  PetscReal                 *t;
+  PetscInt                   n3;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &nt));
+  nf = (Newton_Full *)nt->data;
+  L  = &nt->layout;
+  kn = L->kernel;
+  n3 = 3 * L->nnodes;
+  PetscCall(MatMult(nf->M, x, y));
+  PetscCall(PetscCalloc1(kn->nfree, &t));
+  PetscCall(VecGetArrayRead(x, &xa));
+  for (PetscInt f = 0; f < kn->nfree; f++)
+    for (PetscInt d = 0; d < n3; d++) t[f] += kn->free[f * n3 + d] * PetscRealPart(xa[L->dofs[d]]);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, t, kn->nfree, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)A)));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt i = 0; i < L->nnodes; i++) {
+    const PetscReal *S = &nf->S[9 * i];
+    PetscReal        Ut[3] = {0, 0, 0};
+
+    if (!nf->touched[i]) continue;
+    for (PetscInt f = 0; f < kn->nfree; f++)
+      for (PetscInt k = 0; k < 3; k++) Ut[k] += kn->free[f * n3 + 3 * i + k] * t[f];
+    for (PetscInt r = 0; r < 3; r++) {
+      const PetscInt d = L->dofs[3 * i + r];
+
+      if (!(nf->mask[i] & (1 << r))) continue;
+      ya[d] += (S[3 * r] * Ut[0] + S[3 * r + 1] * Ut[1] + S[3 * r + 2] * Ut[2]) * SSSTAR_FREE_STIFFNESS / nt->gamma - SSSTAR_FREE_SHIFT / nt->gamma * xa[d];
+    }
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(PetscFree(t));
+  PetscFunctionReturn(0);
+}
+
+/* The Krylov solver's operator: M, or the shell of MultFree when the step leaves motions free */
+static PetscErrorCode KrylovOperator(SSStarNewton nt, Mat *A)
+{
+  Newton_Full *nf = (Newton_Full *)nt->data;
+  PetscInt     m, M;
+
+  PetscFunctionBegin;
+  *A = nf->M;
+  if (!nt->layout.kernel || !nt->layout.kernel->nfree) PetscFunctionReturn(0);
+  if (!nf->shell) {
+    PetscCall(MatGetLocalSize(nf->M, &m, NULL));
+    PetscCall(MatGetSize(nf->M, &M, NULL));
+    PetscCall(MatCreateShell(PetscObjectComm((PetscObject)nf->M), m, m, M, M, nt, &nf->shell));
+    PetscCall(MatShellSetOperation(nf->shell, MATOP_MULT, (void (*)(void))MultFree));
+  }
+  *A = nf->shell;
   PetscFunctionReturn(0);
 }
 
@@ -269,12 +365,14 @@ static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[],
   PetscCall(MatAssemblyBegin(nf->Shat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(nf->Shat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatMatMult(nf->Shat, nf->Kr, nf->M ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &nf->M));
+  PetscCall(MarkFreeMotions(nt, S));
   for (PetscInt i = 0; i < L->nnodes; i++) {
     PetscInt    rows[3];
     PetscScalar Tv[9];
 
     for (PetscInt r = 0; r < 3; r++) rows[r] = nf->rstart + L->dofs[3 * i + r];
     for (PetscInt k = 0; k < 9; k++) Tv[k] = ig * T[9 * i + k];
+    for (PetscInt r = 0; r < 3 && nf->touched[i]; r++) Tv[4 * r] += ig * SSSTAR_FREE_SHIFT; /* known rows: replaced below */
     PetscCall(MatSetValues(nf->M, 3, rows, 3, rows, Tv, ADD_VALUES));
   }
   PetscCall(MatAssemblyBegin(nf->M, MAT_FINAL_ASSEMBLY));
@@ -292,15 +390,18 @@ static PetscErrorCode ChoosePreconditioner(SSStarNewton nt, PetscBool *reuse)
 {
   Newton_Full               *nf      = (Newton_Full *)nt->data;
   const SSStarContactLayout *L       = &nt->layout;
+  const PetscInt             nfree   = L->kernel ? L->kernel->nfree : 0;
   PetscInt                   changed = 0;
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i < L->nnodes; i++) changed += nf->mask[i] != nf->pcMask[i];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
-  *reuse = (PetscBool)(nf->pcBuilt && changed <= nt->pcReuse * nf->nnodesGlobal);
+  /* the shift of free motions changes the matrix of the multigrid: a new one when they change */
+  *reuse = (PetscBool)(nf->pcBuilt && changed <= nt->pcReuse * nf->nnodesGlobal && nfree == nf->pcFree);
   if (!*reuse) {
     PetscCall(PetscArraycpy(nf->pcMask, nf->mask, L->nnodes));
     nf->pcBuilt = PETSC_TRUE;
+    nf->pcFree  = nfree;
   }
   PetscFunctionReturn(0);
 }
@@ -310,6 +411,7 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
   Newton_Full       *nf  = (Newton_Full *)nt->data;
   KSP                ksp = nt->snes->ksp;
   KSPConvergedReason reason;
+  Mat                op;
   PetscBool          symmetric, reuse;
   PetscInt           its;
   PetscReal          rnorm, bnorm;
@@ -327,7 +429,8 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
   if (!nf->userTolerances) PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(ChoosePreconditioner(nt, &reuse));
   PetscCall(KSPSetReusePreconditioner(ksp, reuse));
-  PetscCall(KSPSetOperators(ksp, nf->M, nf->M));
+  PetscCall(KrylovOperator(nt, &op));
+  PetscCall(KSPSetOperators(ksp, op, nf->M));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
   PetscCall(KSPSetUp(ksp));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
@@ -427,7 +530,8 @@ static PetscErrorCode SSStarNewtonReset_Full(SSStarNewton nt)
   PetscCall(MatNullSpaceDestroy(&nf->nearNull));
   PetscCall(VecDestroy(&nf->rhs));
   PetscCall(VecDestroy(&nf->dv));
-  PetscCall(PetscFree2(nf->known, nf->mask));
+  PetscCall(PetscFree3(nf->known, nf->mask, nf->touched));
+  PetscCall(MatDestroy(&nf->shell));
   PetscCall(PetscFree(nf->pcMask));
   PetscCall(PetscFree2(nf->Sknown, nf->Tknown));
   for (PetscInt k = 0; k < SSSTAR_SMOOTHER_OPTIONS; k++) {

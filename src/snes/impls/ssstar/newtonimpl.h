@@ -19,6 +19,9 @@
    for du (global frame, the layout of the operator's vectors). A is P in a reduced space (no free dofs: section 5
    itself) and K on the whole body, whose free rows keep the body in equilibrium. SolveKnown is the same system with
    every contact dof known (S_i = 0, T_i = I): du_i = R_i^T y_i, and on the whole body the free dofs follow.
+
+   Floating bodies (layout.kernel, docs/derivation.md (14.5)): the rigid-body motions U the step's states leave free
+   (kernel->nfree of them, at the contact dofs) get a proximal term, A + SSSTAR_FREE_STIFFNESS / gamma U U^T.
 */
 #include "ssstarimpl.h"
 
@@ -59,6 +62,9 @@ struct _n_SSStarNewton {
   PetscInt  nFallback; /* dense: steps on an old LU that fell back to a fresh one                  */
   PetscInt  nRefined;  /* full: steps solved on to tighter tolerances after their first solve      */
 };
+
+/* the proximal term on the free motions of floating bodies, in units of 1/gamma: the approximation step's stiffness */
+#define SSSTAR_FREE_STIFFNESS 1.0
 
 /* Create_<type> fills the ops and says whether the SNES's KSP is its (snes->usesksp) */
 PETSC_INTERN PetscErrorCode SSStarNewtonCreate_Dense(SSStarNewton);

@@ -11,7 +11,7 @@
 
 /* The friction of node i for the kernels at the scaling gamma: they see gamma c (section 6), so a force of the law
    (Tresca's bound) too */
-static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i, PetscReal gamma)
+SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *ss, PetscInt i, PetscReal gamma)
 {
   SSStarFriction fr = ss->contact.nodeFriction[i];
 
@@ -31,7 +31,7 @@ void SNESSSStarNodeRotate(const SSStarContact *ct, const SSStarProblem *pb, Pets
 
 /* v_i = R_i u_i + o_i: the iterate in node i's frame, with its offset (docs/derivation.md (10.5)), o_i = g_i e3 unless
    a load path's step set the offsets */
-static void NodeIterate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *ua, PetscReal v[3])
+void SNESSSStarNodeIterate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *ua, PetscReal v[3])
 {
   SNESSSStarNodeRotate(ct, pb, i, ua, v);
   if (ct->offset)
@@ -92,11 +92,11 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
   PetscCall(VecGetArrayWrite(ss->d, &da));
   PetscCall(VecGetArrayWrite(ss->b, &ba));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i, ss->scaling);
+    const SSStarFriction fr  = SNESSSStarScaledFriction(ss, i, ss->scaling);
     const PetscInt      *dof = &pb->layoutDofs[3 * i];
     PetscReal            v[3], cv[3], z[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     SNESSSStarNodeRotate(ct, pb, i, ca, cv);
     for (PetscInt k = 0; k < 3; k++) cv[k] *= ss->scaling;
     SSStarApproximationStep(&fr, v, cv, z, &da[3 * i], &ba[3 * i]);
@@ -143,7 +143,7 @@ static PetscErrorCode LawResidual(SNES snes, Vec u, Vec c, PetscBool floors, Pet
     const PetscReal scale = ct->pointScale ? ct->pointScale[i] : 1.0;
     PetscReal       v[3], r[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     SNESSSStarNodeRotate(ct, pb, i, ca, r);
     for (PetscInt k = 0; k < 3; k++) {
       const PetscInt  dof = pb->layoutDofs[3 * i + k];
@@ -170,10 +170,10 @@ static PetscErrorCode LawResidual(SNES snes, Vec u, Vec c, PetscBool floors, Pet
   gammaw = U / F;
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     const PetscReal scale = ct->pointScale ? ct->pointScale[i] : 1.0;
-    const SSStarFriction fr   = ScaledFriction(ss, i, gammaw);
+    const SSStarFriction fr   = SNESSSStarScaledFriction(ss, i, gammaw);
     PetscReal            v[3], cv[3], z[3], d[3], b[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     SNESSSStarNodeRotate(ct, pb, i, ca, cv);
     for (PetscInt k = 0; k < 3; k++) {
       v[k] *= scale;
@@ -258,7 +258,7 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     PetscReal v[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     if (PetscRealPart(da[3 * i + 2]) == 0) moved[0] = PetscMax(moved[0], PetscSqrtReal(v[0] * v[0] + v[1] * v[1]));
     for (PetscInt k = 0; k < 3; k++) moved[1] = PetscMax(moved[1], PetscAbsScalar(ua[pb->layoutDofs[3 * i + k]]));
   }
@@ -275,7 +275,7 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
     PetscReal v[3];
 
     if (PetscRealPart(da[3 * i + 2]) != 0) continue;
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     ss->states[i] = SSSTAR_STATE_M3P;
     for (PetscInt k = 0; k < 3; k++) {
       za[pb->layoutDofs[3 * i + k]] = -v[k];
@@ -317,7 +317,7 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
   for (PetscInt i = 0; i < ct->nnodes; i++) {
     PetscReal v[3];
 
-    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeIterate(ct, pb, i, ua, v);
     for (PetscInt k = 0; k < 3; k++) {
       norms[0] = PetscMax(norms[0], PetscAbsReal(v[k]));
       norms[1] = PetscMax(norms[1], PetscAbsScalar(da[3 * i + k]));
@@ -329,7 +329,7 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
   tol_b = ss->state_tol * PetscMax(ss->scaling * ss->fnorm_inf, norms[2]);
   PetscCall(PetscArrayzero(ss->counts, SSSTAR_NUM_STATES));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr = ScaledFriction(ss, i, ss->scaling);
+    const SSStarFriction fr = SNESSSStarScaledFriction(ss, i, ss->scaling);
 
     ss->states[i] = SSStarClassify(&fr, &da[3 * i], &ba[3 * i], tol_d, tol_b);
     ss->counts[ss->states[i]]++;
@@ -402,7 +402,7 @@ PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscReal znorm, PetscReal eta, P
   PetscCall(VecGetArrayRead(ss->b, &ba));
   PetscCall(VecGetArrayWrite(ss->y, &ya));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i, ss->scaling);
+    const SSStarFriction fr  = SNESSSStarScaledFriction(ss, i, ss->scaling);
     const PetscInt      *dof = &pb->layoutDofs[3 * i];
     PetscReal           *S = &ss->S[9 * i], *T = &ss->T[9 * i];
 

@@ -167,6 +167,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
     PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
+    PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel)); /* floating bodies (floating.c): checked before any factorization */
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     pb->wholeBody = PETSC_FALSE;
     if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb));
@@ -177,6 +178,12 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
       pb->A = K;
     }
     PetscCall(ChooseNewton(pb));
+    if (pb->kernel.m) {
+      PetscBool sparse;
+
+      PetscCall(PetscStrcmp(pb->newtonType, SSSTARNEWTONSPARSE, &sparse));
+      PetscCheck(!sparse, PetscObjectComm((PetscObject)snes), PETSC_ERR_SUP, "ssstar: a sparse reduced P with a null space (floating bodies) is not supported: give P as a dense matrix, or K with its contact nodes");
+    }
     PetscCall(BuildLayout(ct, pb));
     PetscCall(MatCreateVecs(pb->A, &pb->f, NULL));
     pb->K      = K;
@@ -214,6 +221,7 @@ PetscErrorCode SSStarProblemGetLayout(SSStarContact *ct, SSStarProblem *pb, SSSt
   layout->nnodes = ct->nnodes;
   layout->dofs   = pb->layoutDofs;
   layout->frames = ct->frames;
+  layout->kernel = pb->kernel.m ? &pb->kernel : NULL;
   PetscFunctionReturn(0);
 }
 
@@ -250,6 +258,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   PetscFunctionBegin;
   if (!ct->dofs) {
     PetscCall(VecCopy(u, x));
+    PetscCall(SSStarKernelLeastNorm(&pb->kernel, x));
     PetscFunctionReturn(0);
   }
   PetscCall(VecDuplicate(x, &v));
@@ -258,6 +267,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   if (ct->T) PetscCall(MatMult(ct->T, v, x));
   else PetscCall(VecCopy(v, x));
   PetscCall(VecDestroy(&v));
+  PetscCall(SSStarKernelLeastNorm(&pb->kernel, x)); /* motions no contact resists: the least-norm solution */
   PetscFunctionReturn(0);
 }
 
@@ -301,6 +311,7 @@ PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscView
     else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", type, isauto ? " (chosen by auto)" : ""));
   } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
+  PetscCall(SSStarKernelView(&pb->kernel, viewer));
   PetscFunctionReturn(0);
 }
 
@@ -317,6 +328,7 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   PetscCall(PetscFree(pb->layoutDofs));
   PetscCall(PetscFree(pb->free));
   PetscCall(ISDestroy(&pb->isC));
+  PetscCall(SSStarKernelReset(&pb->kernel));
   pb->nfree     = 0;
   pb->K         = NULL;
   pb->built     = -1;

@@ -7,7 +7,7 @@
 #include "ssstarimpl.h"
 
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
-const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "NO_EQUILIBRIUM", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
@@ -281,8 +281,9 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
     PetscCall(SNESSSStarElasticTrial(snes, &taken));
   }
+  PetscCall(SNESSSStarCheckEquilibrium(snes)); /* floating bodies: a load no contact force can balance ends here (balance.c) */
 
-  for (PetscInt k = 0;; k++) {
+  for (PetscInt k = 0; snes->reason == SNES_CONVERGED_ITERATING; k++) {
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
@@ -368,6 +369,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         if (improved) continue;
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
+        PetscCall(SNESSSStarExtendFreeStep(snes)); /* floating bodies: free motions to the first contact (balance.c) */
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, ss->polishing, &stop));
       }

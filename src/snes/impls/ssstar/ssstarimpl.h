@@ -20,11 +20,39 @@ PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_Ne
 #define SSSTARNEWTONSPARSE "sparse" /* sparse P (the user's): the Newton matrix factored by the SNES's KSP         */
 #define SSSTARNEWTONFULL   "full"   /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
 
-/* Where the contact nodes are in the operator's vectors, and their frames */
+/*
+   K's null space (floating.c): the rigid-body motions of the bodies held by contact alone, as declared on K
+   (MatSetNullSpace()), and what the iteration derives from them (docs/derivation.md section 14): whether the friction
+   laws can balance the load at all, the motions a Newton step's states leave free, the least-norm solution
+*/
 typedef struct {
-  PetscInt         nnodes; /* local contact nodes                                              */
-  const PetscInt  *dofs;   /* 3 per node: the local offsets of its dofs in the operator's vectors */
-  const PetscReal *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
+  PetscInt   m;          /* motions (0: K is regular and nothing here acts)                                    */
+  Vec       *modes;      /* orthonormal, in the layout of the SNES vector (global axes)                        */
+  PetscInt   nnodes;     /* local contact nodes                                                                */
+  const PetscReal *frames; /* theirs (the contact's), or NULL for identities                                   */
+  PetscReal *Rc;         /* motion k at node i in its frame, (B rho_k)_i: Rc[(3 i + r) m + k]                  */
+  PetscReal *G;          /* m x m: Rc^T Rc over every node                                                     */
+  PetscInt   nbodies;    /* the floating bodies: groups of motions that move common dofs                      */
+  PetscInt  *body;       /* per motion, its body                                                               */
+  PetscInt   nfixed;     /* motions no contact point can resist (frictionless): the least-norm solution        */
+  Vec       *fixed;      /* orthonormal                                                                        */
+  Vec       *pmodes;     /* the motions in the points' variables, T^-1 rho_k (the layout of the whole body's K)   */
+  PetscInt   nfree;      /* the motions the states of the current Newton step leave free                      */
+  PetscReal *free, *freeGlobal; /* 3 nnodes x nfree, column-major: in the nodes' frames, in global axes       */
+  PetscReal *Y;          /* m x nfree: their coefficients on the motions                                     */
+  Vec        motion;     /* no equilibrium: the rigid motion whose work no admissible contact force balances    */
+  PetscInt   movingBody; /* the body it moves most                                                            */
+  PetscReal  direction[3]; /* the direction it slides in at that body's contact points (global axes, unit)      */
+  PetscReal  translation[3]; /* that body's mean translation along the motion, unit                           */
+  PetscReal  unbalanced; /* the unbalanced part of the load, relative to its part on the motions             */
+} SSStarKernel;
+
+/* Where the contact nodes are in the operator's vectors, their frames, and K's null space */
+typedef struct {
+  PetscInt            nnodes; /* local contact nodes                                              */
+  const PetscInt     *dofs;   /* 3 per node: the local offsets of its dofs in the operator's vectors */
+  const PetscReal    *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
+  SSStarKernel       *kernel; /* floating bodies, or NULL                                           */
 } SSStarContactLayout;
 
 /* the law residual's displacement scale is at least this fraction of |u_C| (and of the path's largest, as its force
@@ -166,6 +194,7 @@ typedef struct {
   const char      *newtonType;      /* the Newton step that fits A                                          */
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
+  SSStarKernel     kernel;          /* K's null space: the bodies held by contact alone                      */
 } SSStarProblem;
 
 PETSC_INTERN PetscErrorCode SSStarProblemSetUp(SNES, SSStarContact *, SSStarProblem *);
@@ -274,6 +303,17 @@ PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *
 PETSC_INTERN PetscErrorCode SNESSSStarSetLinearTolerances(SNES, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode SNESSSStarLinearFloor(SNES, PetscReal *);
 PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
+PETSC_INTERN void           SNESSSStarNodeIterate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
+PETSC_INTERN SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *, PetscInt, PetscReal);
+
+/* floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 14) */
+PETSC_INTERN PetscErrorCode SSStarKernelSetUp(SSStarContact *, Mat, SSStarKernel *);
+PETSC_INTERN PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *, const unsigned char[], const PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *, Vec);
+PETSC_INTERN PetscErrorCode SSStarKernelView(SSStarKernel *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarKernelReset(SSStarKernel *);
+PETSC_INTERN PetscErrorCode SNESSSStarCheckEquilibrium(SNES);
+PETSC_INTERN PetscErrorCode SNESSSStarExtendFreeStep(SNES);
 
 /* accessors.c: the type's composed functions (SNESSSStar*_C) on and off */
 PETSC_INTERN PetscErrorCode SNESSSStarComposeFunctions(SNES, PetscBool);

@@ -27,6 +27,12 @@ static PetscBool Frictionless_Coulomb(const SSStarFriction *fr)
   return (PetscBool)(fr->value[0] == 0.0);
 }
 
+static void Cone_Coulomb(const SSStarFriction *fr, PetscReal D[4])
+{
+  D[0] = D[3] = fr->value[0];
+  D[1] = D[2] = 0;
+}
+
 PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
 {
   PetscFunctionBegin;
@@ -45,5 +51,6 @@ PetscErrorCode SSStarLawCreate_Coulomb(SSStarLaw law)
   law->ops.margin            = Margin_Coulomb;
   law->ops.sliding           = Sliding_Coulomb;
   law->ops.frictionless      = Frictionless_Coulomb;
+  law->ops.cone              = Cone_Coulomb;
   PetscFunctionReturn(0);
 }

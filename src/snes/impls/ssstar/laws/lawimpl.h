@@ -41,6 +41,12 @@ typedef struct {
   void (*sliding)(const SSStarFriction *, const PetscReal d[3], const PetscReal b[3], PetscReal W[4], PetscReal k[2]);
   /* the node has no tangential force at all: every node in strong contact slides (section 3, "phi = 0") */
   PetscBool (*frictionless)(const SSStarFriction *);
+  /* its friction set at the normal force 1 as the image D (unit disk) of a 2 x 2 matrix D (row-major, the node's
+     frame): phi I for Coulomb, M^1/2 for the orthotropic law, 0 frictionless; so its friction cone is
+     { (D t', r_n) : |t'| <= r_n }. Floating bodies: a load these cones cannot balance has no equilibrium
+     (docs/derivation.md section 14). NULL: no such cone (a bound that does not grow with r_n, as Tresca's): no load is
+     refused for such a node */
+  void (*cone)(const SSStarFriction *, PetscReal D[4]);
   /* checks the values and puts them in the form the kernels use (a direction projected onto the tangent plane);
      NULL, or what is wrong ("the friction direction is normal to the contact plane"). Optional. */
   const char *(*prepare)(SSStarFriction *);

@@ -25,6 +25,11 @@ static PetscBool Frictionless_None(const SSStarFriction *fr)
   return PETSC_TRUE;
 }
 
+static void Cone_None(const SSStarFriction *fr, PetscReal D[4])
+{
+  D[0] = D[1] = D[2] = D[3] = 0;
+}
+
 PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
 {
   PetscFunctionBegin;
@@ -37,5 +42,6 @@ PetscErrorCode SSStarLawCreate_None(SSStarLaw law)
   law->ops.margin       = Margin_None;
   law->ops.sliding      = Sliding_None;
   law->ops.frictionless = Frictionless_None;
+  law->ops.cone         = Cone_None;
   PetscFunctionReturn(0);
 }

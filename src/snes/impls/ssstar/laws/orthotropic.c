@@ -155,6 +155,16 @@ static const char *Prepare_Orthotropic(SSStarFriction *fr)
   return NULL;
 }
 
+/* M^1/2 = phi_1 a a^T + phi_2 a' a'^T: the friction set at r_n = 1 is M^1/2 (unit disk) */
+static void Cone_Orthotropic(const SSStarFriction *fr, PetscReal D[4])
+{
+  const PetscReal c = fr->value[2], s = fr->value[3], p1 = fr->value[0], p2 = fr->value[1];
+
+  D[0] = p1 * c * c + p2 * s * s;
+  D[1] = D[2] = (p1 - p2) * c * s;
+  D[3] = p1 * s * s + p2 * c * c;
+}
+
 PetscErrorCode SSStarLawCreate_Orthotropic(SSStarLaw law)
 {
   PetscFunctionBegin;
@@ -179,6 +189,7 @@ PetscErrorCode SSStarLawCreate_Orthotropic(SSStarLaw law)
   law->ops.margin            = Margin_Orthotropic;
   law->ops.sliding           = Sliding_Orthotropic;
   law->ops.frictionless      = Frictionless_Orthotropic;
+  law->ops.cone              = Cone_Orthotropic;
   law->ops.prepare           = Prepare_Orthotropic;
   PetscFunctionReturn(0);
 }

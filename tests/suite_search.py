@@ -1,4 +1,4 @@
-"""The contact search at scene level (src/geometry/search.c through obstacles/mesh.c, pairs.c, mortar.c): the gaps and
+"""The contact search at scene level (src/geometry/search.c through contact/obstacles/mesh.c, contact/pairs/): the gaps and
 normals of a mesh obstacle and of contact pairs equal those of a brute-force search over every triangle (NumPy, from
 the mesh files), and are the same on 1, 2, 3 and 4 ranks."""
 import os

@@ -1,7 +1,7 @@
 /*
    One triangle: its closest point to a point, its normal, its bounding box (src/geometry, include/ssstargeometry.h).
-   Rigid mesh obstacles (src/scene/obstacles/mesh.c) and contact pairs (src/scene/pairs.c) find their contact points
-   with it.
+   Rigid mesh obstacles (src/scene/contact/obstacles/mesh.c) and contact pairs (src/scene/contact/pairs/) find their
+   contact points with it.
 */
 #include <ssstargeometry.h>
 

@@ -3,7 +3,7 @@
 
 #include <ssstarscene.h>
 #include <ssstarhistory.h>
-#include "obstacle.h"
+#include "contact/obstacles/obstacle.h"
 #include <ssstargeometry.h>
 
 #define SSSTAR_GROUP_NAME_LEN 128
@@ -183,6 +183,7 @@ PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarPairsCheckOptions(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPairRows(SSStarScene, PetscInt, SSStarMasters *);
+PETSC_INTERN PetscErrorCode SSStarMortarRows(SSStarScene, PetscInt, SSStarSearch, PetscReal, PetscBool[], SSStarMasters *);
 PETSC_INTERN PetscErrorCode SSStarSceneNodeVec(SSStarScene, PetscInt, const PetscReal[], Vec *);
 
 /* The friction law of a contact group (grouplaws.c) */

@@ -1,5 +1,5 @@
 /* A rigid ball touched from outside (-obstacle_<G> sphere:cx,cy,cz,R): gap |x - c| - R, normal (x - c)/|x - c| */
-#include "../obstacleimpl.h"
+#include "obstacleimpl.h"
 
 typedef struct {
   PetscReal centre[3], radius;

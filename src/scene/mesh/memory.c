@@ -1,6 +1,6 @@
 /* Memory before work: an estimate of what a mesh of N nodes needs, against what the machine has. */
 #include <ssstarscene.h>
-#include "../sys/meminfo.h"
+#include "../../sys/meminfo.h"
 
 /*
    Measured with the prism (resident memory after the assembly, one rank, the progress lines of examples/prism): reading

@@ -9,7 +9,7 @@
 
    The scene declares its contact to the solver through B alone (SNESSSStarSetContactOperator()).
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /* The rows of the nodes of rigid obstacles: gap and normal from the shape; refuses a node that starts inside it */
 static PetscErrorCode ObstacleRows(SSStarScene scene, PetscReal tol)

@@ -1,5 +1,5 @@
 /* What the shapes share to read their option's value: numbers, unit vectors (errors name the option) */
-#include "../obstacleimpl.h"
+#include "obstacleimpl.h"
 
 /* The comma-separated numbers of a value: exactly n finite values */
 PetscErrorCode SSStarObstacleParseNumbers(MPI_Comm comm, const char option[], const char spec[], const char numbers[], PetscInt n, const char form[], PetscReal v[])

@@ -3,7 +3,7 @@
    their vertices, and the faces on rank boundaries matched through a hash of their vertex triples (the rank a triple
    hashes to meets both copies), which also matches the surface groups' triangles to their faces.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 #include <petscsf.h>
 
 /* The rank a vertex triple (sorted) is matched on */

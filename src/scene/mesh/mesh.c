@@ -1,5 +1,5 @@
 /* gmsh meshes on DMPlex: generation from a .geo at a level, checks of a mesh file, reading, groups, distribution, dofs. */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 #include <petscsf.h>
 #include <stdio.h>
 #include <unistd.h>

@@ -3,7 +3,7 @@
    their body (away from the centroid of the cell they bound). Contact pairs take the master faces (pairs.c) and the
    slave faces (mortar.c) from here.
 */
-#include "sceneimpl.h"
+#include "../../sceneimpl.h"
 #include <petscsf.h>
 
 /* SSStarFacesBegin - what SSStarFaceTriangle() reads: the sections, the coordinates, the faces owned here */

@@ -4,7 +4,7 @@
    checked, shown and handed to the solver by what the table says of it (its number of values and its kind), so that a
    new law needs nothing here.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /* The parameter of this name given for the group, or NULL */
 static const SSStarGroupParameter *FindGiven(const SSStarContactGroup *cg, const char name[])

@@ -1,8 +1,11 @@
-#ifndef SSSTARPAIRS_H
-#define SSSTARPAIRS_H
+#ifndef SSSTARMASTER_H
+#define SSSTARMASTER_H
 
-/* A contact pair's master triangles (pairs.c), which the dual mortar (mortar.c) integrates the slave faces against */
-#include "sceneimpl.h"
+/*
+   The master surface of a contact pair as a search over the ranks (master.c): its triangles, which node-to-surface
+   (pairs.c) projects the slave nodes onto and the dual mortar (mortar.c) integrates the slave faces against
+*/
+#include "../../sceneimpl.h"
 
 /* A master triangle: its vertices, their global x-dofs (-1: held fixed), its unit normal out of the master body */
 typedef struct {
@@ -22,6 +25,6 @@ static inline void SSStarMasterTriangleFromHit(const SSStarSearchHit *hit, const
   }
 }
 
-PETSC_INTERN PetscErrorCode SSStarMortarRows(SSStarScene, PetscInt, SSStarSearch, PetscReal, PetscBool[], SSStarMasters *);
+PETSC_INTERN PetscErrorCode SSStarMasterSearchCreate(SSStarScene, PetscInt, SSStarSearch *, PetscInt *, PetscInt **);
 
 #endif

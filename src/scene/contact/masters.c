@@ -2,7 +2,7 @@
    The masters of the contact nodes as their contact sources find them (pairs.c, mortar.c): a growing list of (node,
    master x-dof, weight), which operator.c compresses into the rows of B.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /* SSStarMastersAdd - node's row of B gets -weight R at the master vertex whose x-dof is dof */
 PetscErrorCode SSStarMastersAdd(SSStarMasters *m, PetscInt node, PetscInt dof, PetscReal weight)

@@ -3,7 +3,7 @@
    their states, contact area and forces per group, and their kinematics (the gap and slip against the obstacle or the
    master surface, through the contact operator B) and tractions, for the views and the output.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /*@C
    SSStarSceneGetContactResult - counts, contact area and forces of the contact nodes of group g (-1: of all groups)

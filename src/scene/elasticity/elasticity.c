@@ -1,5 +1,5 @@
 /* P1 linear elasticity on tetrahedra: stiffness K (materials per volume group, springs) and load b (tractions, gravity). */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 #include <petscsf.h>
 
 /* Gradients of the four barycentric basis functions of the tetrahedron x[12]; returns its volume. */

@@ -6,7 +6,7 @@
    and records, once solved, the kinematics of (10.9): the slip increment, the slip path and the energy friction
    dissipated at every node.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /* Every history of the scene (tractions, gravity, motions) into list (NULL: count them) */
 static PetscInt Histories(SSStarScene scene, SSStarHistory list[])

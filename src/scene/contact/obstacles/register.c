@@ -2,7 +2,7 @@
    The shapes of rigid obstacles (-obstacle_<G> <shape>:...), registered by name in a PetscFunctionList: each is a file
    obstacles/<shape>.c whose SSStarObstacleCreate_<Shape>() fills an obstacle's ops (obstacleimpl.h).
 */
-#include "../obstacleimpl.h"
+#include "obstacleimpl.h"
 
 static PetscFunctionList SSStarObstacleList       = NULL;
 static PetscBool         SSStarObstacleRegistered = PETSC_FALSE;

@@ -6,7 +6,7 @@
    search over the ranks finds them (SSStarSearchFindInRegions(), the prism of the face's box along its normal).
    Where the master does not cover a slave node, the node keeps node-to-surface.
 */
-#include "pairs.h"
+#include "master.h"
 
 /* The 2D barycentric coordinates of p in the triangle a, b, c (any orientation) */
 static void Barycentric2(const PetscReal a[2], const PetscReal b[2], const PetscReal c[2], const PetscReal p[2], PetscReal l[3])

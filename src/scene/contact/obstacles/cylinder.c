@@ -2,7 +2,7 @@
    An infinite rigid cylinder touched from outside (-obstacle_<G> cylinder:px,py,pz,ax,ay,az,R), its axis through p
    along a: gap = distance to the axis - R, normal from the axis to the node
 */
-#include "../obstacleimpl.h"
+#include "obstacleimpl.h"
 
 typedef struct {
   PetscReal point[3], axis[3], radius; /* axis: a unit vector */

@@ -4,7 +4,7 @@
    motions nothing resists (K singular) and is refused, named by its volume groups. Contact pairs (pairs.c) are between
    two bodies.
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 #include <petscsf.h>
 
 #define SSSTAR_MAX_VOLUME_GROUPS 62 /* bits of the body's volume-group mask */

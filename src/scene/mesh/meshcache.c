@@ -18,7 +18,7 @@
    the local cells, and the surface groups' triangles find their faces through a hash of their vertices (each triangle
    and each local boundary face meet on the rank their vertex triple hashes to).
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 #include <petscsf.h>
 #include <hdf5.h>
 #include <gmshc.h>

@@ -4,7 +4,7 @@
    whose obstacles agree at the node), its coordinates, its dofs and its tributary area. Their gaps, normals and rows
    of the contact operator come from their groups' contact sources (operator.c).
 */
-#include "sceneimpl.h"
+#include "../sceneimpl.h"
 
 /* SSStarSceneContactTolerance - "on the obstacle up to round-off": relative to the size of the body */
 PetscErrorCode SSStarSceneContactTolerance(SSStarScene scene, PetscReal *tol)

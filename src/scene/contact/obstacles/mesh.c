@@ -10,7 +10,7 @@
    ranks whose triangles can hold it (SSStarSearchClosest(): the first in file order among the closest, as a loop over
    all would find): no rank keeps every triangle.
 */
-#include "../obstacleimpl.h"
+#include "obstacleimpl.h"
 #include <gmshc.h>
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 /* A rigid plane (-obstacle_<G> plane:px,py,pz,nx,ny,nz, or the six numbers alone): a point on it, its normal into the body */
-#include "../obstacleimpl.h"
+#include "obstacleimpl.h"
 
 typedef struct {
   PetscReal point[3], normal[3]; /* the normal: a unit vector, into the body */

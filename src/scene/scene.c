@@ -168,7 +168,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
-  PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, &scene->dm, &scene->tags));
+  PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, scene->refine, &scene->dm, &scene->tags));
   for (PetscInt k = 0; k < nuses; k++) PetscCall(PetscFree(options[k]));
   PetscCall(PetscFree(options));
   PetscCall(PetscFree(uses));

@@ -251,10 +251,10 @@ PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *n
    parallel), checks the groups the scene uses. tags: a local vector (one entry per local vertex, in vertex order) with
    each vertex's index in the file's node order.
 */
-PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], PetscInt n, const SSStarGroupUse uses[], DM *dm, Vec *tags)
+PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], PetscInt n, const SSStarGroupUse uses[], PetscInt refine, DM *dm, Vec *tags)
 {
   PetscFunctionBegin;
-  PetscCall(SSStarMeshLoadCached(comm, file, n, uses, dm, tags));
+  PetscCall(SSStarMeshLoadCached(comm, file, n, uses, refine, dm, tags));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscFunctionReturn(0);

@@ -37,6 +37,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneHasContact(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactDofs(SSStarScene, IS *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactNodes(SSStarScene, PetscInt *, const PetscReal *[], const PetscReal *[], const PetscReal *[], const PetscReal *[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetContact(SSStarScene, SNES);
+PETSC_EXTERN PetscErrorCode SSStarSceneSolveNested(SSStarScene, SNES, Vec);
 
 /* What the contact nodes of a group (or of all groups) carry at a solution */
 typedef struct {

@@ -29,6 +29,7 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   (*scene)->comm      = comm;
   (*scene)->meshScale = 1.0;
   (*scene)->level     = -1;
+  (*scene)->nested    = -1;
   PetscFunctionReturn(0);
 }
 

@@ -70,6 +70,7 @@ struct _n_SSStarScene {
   char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
   PetscInt           level;
   PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
+  PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */
   PetscReal          meshScale;
   PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;
@@ -142,6 +143,7 @@ typedef struct {
   PetscInt   ntri, *tri; /* 3 vertices (sorted) and -1 - group per triangle                   */
 } SSStarMeshSlices;
 PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
+PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
 PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscInt       SSStarSliceStart(PetscMPIInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscErrorCode SSStarExchange(MPI_Comm, const PetscMPIInt[], size_t, const void *, PetscMPIInt[], void **);

@@ -312,7 +312,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -dm_refine -mesh_scale -E -nu -density";
+static const char SceneOptionNames[] = "-mesh -geo -level -dm_refine -nested_levels -mesh_scale -E -nu -density";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -354,6 +354,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[],
 +  -mesh <file.msh> - the body, a gmsh mesh
 .  -geo <file.geo> - or a geometry meshed at -level
 .  -level <L> - the level of -geo
+.  -nested_levels <auto> - solve this many coarser meshes first (SSStarSceneSolveNested()): 0 none, auto by the size
 .  -dm_refine <0> - refine the mesh this many times in parallel (each tetrahedron 1:8, the groups carried), as PETSc's option of the name does
 .  -mesh_scale <1> - multiply the coordinates by this
 .  -E <E> - Young's modulus of the cells without -material_<G>
@@ -399,6 +400,19 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file", NULL, scene->mesh, scene->mesh, sizeof(scene->mesh), &hasMesh));
   PetscCall(PetscOptionsString("-geo", "gmsh geometry meshed at -level", NULL, scene->geo, scene->geo, sizeof(scene->geo), &hasGeo));
   PetscCall(PetscOptionsInt("-level", "Mesh level of -geo (the number L of the .geo)", NULL, scene->level, &scene->level, &hasLevel));
+  {
+    char      nested[32] = "auto";
+    PetscBool set, isauto;
+
+    PetscCall(PetscOptionsString("-nested_levels", "Coarser meshes solved first, each the start of the next (0: none; auto: by the problem's size)", "SSStarSceneSolveNested", nested, nested, sizeof(nested), &set));
+    PetscCall(PetscStrcmp(nested, "auto", &isauto));
+    if (set && !isauto) {
+      char *end;
+
+      scene->nested = (PetscInt)strtol(nested, &end, 10);
+      PetscCheck(*nested && !*end && scene->nested >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-nested_levels %s: give auto or a number >= 0 of coarser meshes", nested);
+    } else scene->nested = -1;
+  }
   PetscCall(PetscOptionsInt("-dm_refine", "Refine the mesh this many times in parallel (each tetrahedron 1:8)", NULL, scene->refine, &scene->refine, NULL));
   PetscCall(PetscOptionsReal("-mesh_scale", "Multiply the mesh coordinates by this", NULL, scene->meshScale, &scene->meshScale, NULL));
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));

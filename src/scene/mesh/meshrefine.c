@@ -171,6 +171,7 @@ static PetscErrorCode NumberEdges(MPI_Comm comm, PetscInt NV, PetscInt n, const 
   PetscCall(PetscFree(got));
   PetscCall(PetscFree(answer));
   PetscCall(PetscFree(keys));
+  PetscCall(PetscFree2(count, rcount));
   PetscFunctionReturn(0);
 }
 

@@ -117,7 +117,7 @@ static PetscErrorCode CreateNearNullSpace(SSStarNewton nt)
 static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 {
   Newton_Full *nf = (Newton_Full *)nt->data;
-  PetscOptions options = ((PetscObject)pc)->options;
+  PetscOptions options = NULL; /* PCMG's levels read the default database, whatever the PC's */
   const char  *prefix  = ((PetscObject)pc)->prefix ? ((PetscObject)pc)->prefix : "";
   const char  *names[SSSTAR_SMOOTHER_OPTIONS] = {"mg_levels_ksp_type", "mg_levels_pc_type", "mg_levels_ksp_max_it", "mg_levels_pc_sor_diagonal_shift"};
   char         values[SSSTAR_SMOOTHER_OPTIONS][32] = {"richardson", "sor", "1", ""};
@@ -404,7 +404,7 @@ static PetscErrorCode SSStarNewtonReset_Full(SSStarNewton nt)
   PetscCall(PetscFree(nf->pcMask));
   PetscCall(PetscFree4(nf->Sknown, nf->Tknown, nf->S, nf->T));
   for (PetscInt k = 0; k < SSSTAR_SMOOTHER_OPTIONS; k++) {
-    if (nf->smoother[k]) PetscCall(PetscOptionsClearValue(((PetscObject)nt->snes->ksp)->options, nf->smoother[k]));
+    if (nf->smoother[k]) PetscCall(PetscOptionsClearValue(NULL, nf->smoother[k]));
     PetscCall(PetscFree(nf->smoother[k]));
   }
   PetscCall(KSPReset(nt->snes->ksp));

@@ -6,6 +6,7 @@
    and builds the contact operator (operator.c).
 */
 #include "sceneimpl.h"
+#include "../sys/meminfo.h"
 
 /*@C
    SSStarSceneCreate - an empty scene; SSStarSceneSetFromOptions() describes it, SSStarSceneSetUp() builds it
@@ -62,13 +63,14 @@ PetscErrorCode SSStarSceneSetProgress(SSStarScene scene, PetscBool progress)
 /* With -ssstar_progress, the line of a phase that ended: what it did, the seconds since *t (restarted), the memory of the largest rank */
 PetscErrorCode SSStarSceneProgress(SSStarScene scene, PetscLogDouble *t, const char what[])
 {
-  PetscLogDouble now, memory;
+  PetscLogDouble now;
+  char           memory[128];
 
   PetscFunctionBegin;
   if (!scene->progress) PetscFunctionReturn(0);
   PetscCall(PetscTime(&now));
-  PetscCall(SSStarMemoryGetUsage(scene->comm, &memory, NULL));
-  PetscCall(PetscPrintf(scene->comm, "%s, %.3f s, %.3f GB per rank\n", what, now - *t, memory / 1e9));
+  PetscCall(SSStarMemoryText(scene->comm, memory, sizeof(memory)));
+  PetscCall(PetscPrintf(scene->comm, "%s, %.3f s, %s\n", what, now - *t, memory));
   PetscCall(PetscViewerFlush(PETSC_VIEWER_STDOUT_(scene->comm)));
   *t = now;
   PetscFunctionReturn(0);

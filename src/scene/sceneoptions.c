@@ -354,6 +354,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsed(SSStarScene scene, const char help[],
 +  -mesh <file.msh> - the body, a gmsh mesh
 .  -geo <file.geo> - or a geometry meshed at -level
 .  -level <L> - the level of -geo
+.  -ssstar_progress_ranks - the progress lines give rank 0's memory and the least rank's beside the largest one's
 .  -nested_levels <auto> - solve this many coarser meshes first (SSStarSceneSolveNested()): 0 none, auto by the size
 .  -dm_refine <0> - refine the mesh this many times in parallel (each tetrahedron 1:8, the groups carried), as PETSc's option of the name does
 .  -mesh_scale <1> - multiply the coordinates by this
@@ -419,6 +420,11 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
   PetscCall(PetscOptionsBool("-ssstar_progress", "A line as each phase ends: mesh, contact nodes, assembly, the solver's set-up and Newton steps, output", "SSStarSceneSetProgress", scene->progress, &scene->progress, NULL));
+  {
+    PetscBool ranks = PETSC_FALSE; /* read where the lines are printed (SSStarMemoryText) */
+
+    PetscCall(PetscOptionsBool("-ssstar_progress_ranks", "The progress lines' memory of rank 0 and of the least rank too, beside the largest one's", "SSStarSceneSetProgress", ranks, &ranks, NULL));
+  }
   if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
     char groups[8192];
 

@@ -155,7 +155,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   char          **options;
   PetscInt        nuses = 0, cells;
   Vec             coordinates;
-  PetscLogDouble  t;
+  PetscLogDouble  t, base;
   PetscMPIInt     size;
   char            line[PETSC_MAX_PATH_LEN + 128];
 
@@ -167,7 +167,10 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
-  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
+  PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
+  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
+  else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank", scene->mesh, scene->nodesGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base) / 1e9));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
@@ -187,8 +190,8 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
-  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
-  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base) / 1e9));
+  else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));

@@ -114,6 +114,8 @@ SETS["nested"] = [
     ("nested 1", "-nested_levels 1"),
     ("nested 2", "-nested_levels 2"),
     ("nested 3", "-nested_levels 3"),
+    ("plain aggregation", "-pc_gamg_agg_nsmooths 0"),
+    ("one multigrid", "-snes_ssstar_pc_reuse 1"),
 ]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)

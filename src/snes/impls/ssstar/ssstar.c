@@ -11,6 +11,8 @@ const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERG
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
+/* ... and of the one from u = 0 that only gives the load's scale (||gamma f||, a given u being the start): two digits */
+#define SSSTAR_SCALE_RTOL 1e-2
 
 /*
    gamma = 1/mean(diag K_CC) unless the user set it (section 6); the fixed-point baseline takes 1/(the largest sum
@@ -118,10 +120,10 @@ static PetscErrorCode Equilibrate(SNES snes)
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   PetscCall(VecCopy(ss->u, uC));
-  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame */
+  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
   PetscCall(VecZeroEntries(ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, 0.0));
+  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0));
   PetscCall(VecGetArrayRead(ss->c, &ca));
   for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
     const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);

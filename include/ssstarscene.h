@@ -82,6 +82,6 @@ PETSC_EXTERN PetscErrorCode SSStarWriteNodeFriction(SNES, PetscViewer, const cha
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarMeshFileNodes(MPI_Comm, const char[], PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, const char[]);
-PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscLogDouble *, PetscLogDouble *);
+PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscLogDouble *, PetscBool *);
 
 #endif

@@ -105,3 +105,19 @@ def refine_scenes():
     expect(m is not None and m.group(2) == "1377" and s["reason"] == "CONVERGED_FNORM_RELATIVE", "nested on -dm_refine 2: not started from the mesh refined once (1377 nodes)", out)
     out = run(mpiexec(1, PRISM, "-level", "3", "-dm_refine", "-1"), expect_rc=-1)
     expect("-dm_refine -1: the number of refinements must be >= 0" in out, "-dm_refine -1 not refused", out)
+
+
+ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank( \(plain aggregation\))?")
+
+
+@test("the memory estimate printed before the work (the mesh line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work")
+def memory_estimate():
+    for ranks, extra, plain in ((1, [], False), (2, [], False), (2, ["-snes_ssstar_memory_limit", "0.25"], True)):
+        out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_plain" if plain else ""), ranks)
+        m = ESTIMATE.search(out)
+        expect(m is not None and bool(m.group(2)) == plain, "%d ranks %s: no estimate, or not the %s aggregation" % (ranks, extra, "plain" if plain else "smoothed"), out)
+        expect(("plain aggregation: the set-up of the smoothed one would not fit" in out) == plain, "%d ranks %s: the solver's aggregation is not the estimate's" % (ranks, extra), out)
+        estimate = float(m.group(1))
+        expect(abs(estimate / s["peak_gb"] - 1) <= 0.2, "%d ranks %s: estimated %.3f GB per rank, measured %.3f" % (ranks, extra, estimate, s["peak_gb"]), out)
+    out = run(mpiexec(2, PRISM, "-level", "12", "-snes_ssstar_memory_limit", "0.15"), expect_rc=-1)
+    expect("with the multigrid's plain aggregation), more than the 0.15 GB of -snes_ssstar_memory_limit (per rank); refused before the work" in out, "a limit below the plain aggregation's peak is not refused", out)

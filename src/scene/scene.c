@@ -170,7 +170,13 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));
   if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
-  else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank", scene->mesh, scene->nodesGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base) / 1e9));
+  else {
+    PetscLogDouble peak;
+    PetscBool      plain;
+
+    PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, &peak, &plain));
+    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank%s", scene->mesh, scene->nodesGlobal, peak / 1e9, plain ? " (plain aggregation)" : ""));
+  }
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
@@ -190,7 +196,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
-  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base) / 1e9));
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base, PETSC_FALSE) / 1e9));
   else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));

@@ -3,21 +3,12 @@
 #include "../../sys/meminfo.h"
 
 /*
-   The whole run's peak per rank, beyond what each process holds before the mesh (its libraries: about 0.085 GB), per
-   mesh node of its share: the mesh (faces, no edges), K and b, the whole body's Newton matrix in K's storage, the
-   multigrid's set-up and the Krylov vectors, the nested start's coarser solves (smaller). Measured with the prism
-   (bench/memory.py: the progress lines' resident memory and the summary's peak, VmHWM): on one rank the multigrid
-   keeps little of its set-up; on several, PCGAMG's parallel Galerkin products hold more (their copies of the
-   interpolation's rows), so a node costs more there. The dense route of small problems stays below (its factors and
-   P are checked by the reduction, after MUMPS's analysis).
+   The peak of the largest of size ranks over nodes mesh nodes (3 dofs each) from what each holds before the mesh (base),
+   with smoothed aggregation or plain (sys/meminfo.h)
 */
-#define SSSTAR_NODE_BYTES_ONE_RANK 7400.0
-#define SSSTAR_NODE_BYTES_RANKS    12600.0
-
-/* The peak of the largest of size ranks over nodes mesh nodes, from what each holds before the mesh (base) */
-PetscLogDouble SSStarPeakFrom(PetscMPIInt size, PetscReal nodes, PetscLogDouble base)
+PetscLogDouble SSStarPeakFrom(PetscMPIInt size, PetscReal nodes, PetscLogDouble base, PetscBool plain)
 {
-  return base + (size == 1 ? SSSTAR_NODE_BYTES_ONE_RANK : SSSTAR_NODE_BYTES_RANKS) * nodes / size;
+  return base + (SSSTAR_BODY_BYTES(size) + SSSTAR_SOLVE_BYTES(size, plain)) * 3 * nodes / size;
 }
 
 /* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
@@ -46,10 +37,27 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
   PetscFunctionReturn(0);
 }
 
+/* The additional bytes of all the ranks and the peak of the largest from what each holds now; whether they fit */
+static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, PetscLogDouble *peak, PetscLogDouble *extra, PetscBool *fits)
+{
+  PetscMPIInt    size;
+  PetscLogDouble now;
+  PetscReal      limit, perRank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
+  *peak  = SSStarPeakFrom(size, nodes, now, plain);
+  *extra = (*peak - now) * size;
+  PetscCall(MemoryLimit(comm, &limit, &perRank));
+  *fits = (PetscBool)(limit <= 0 || (perRank > 0 ? *peak <= perRank * 1e9 : *extra <= limit)); /* no /proc/meminfo: nothing to compare with */
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarEstimateMemory - the peak memory a whole-body run over a mesh of nodes nodes is expected to reach on the
    largest of the ranks of comm: what that rank holds now (before the mesh) and its share of the mesh, the assembly and
-   the solve
+   the solve, with the multigrid the solver will take
 
    Collective
 
@@ -59,22 +67,26 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
 
    Output Parameters:
 +  peak  - bytes at the peak on the largest rank
--  extra - bytes all the ranks together will add to what they hold now (what MemAvailable must have), or NULL
+-  plain - PETSC_TRUE when the multigrid will aggregate plainly because the smoothed aggregation's set-up would not fit
+           (the solver's choice, made again when it sets up), or pass NULL
+
+   Notes:
+   Measured per dof with bench/memory.py on the prism, one rank and several (README "Memory"); the limit is
+   -snes_ssstar_memory_limit or MemAvailable (SSStarCheckMemory()).
 
    Level: intermediate
 
 .seealso: `SSStarCheckMemory()`, `SSStarMemoryGetUsage()`
 @*/
-PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscLogDouble *peak, PetscLogDouble *extra)
+PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscLogDouble *peak, PetscBool *plain)
 {
-  PetscMPIInt    size;
-  PetscLogDouble now;
+  PetscLogDouble extra;
+  PetscBool      fits;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
-  *peak = SSStarPeakFrom(size, nodes, now);
-  if (extra) *extra = (*peak - now) * size;
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, peak, &extra, &fits));
+  if (plain) *plain = (PetscBool)!fits;
+  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, peak, &extra, &fits));
   PetscFunctionReturn(0);
 }
 
@@ -93,9 +105,10 @@ PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscLogDoub
 
    Notes:
    The estimate (SSStarEstimateMemory()) is the whole run's peak on the whole body: the mesh, the assembly and the
-   solve (the path auto takes for all but small problems). The limit is MemAvailable of /proc/meminfo (summed over the
-   machines of comm; what the ranks add must fit) or -snes_ssstar_memory_limit <GB per rank> (the peak of each rank
-   must fit). The dense route's factors of K and its dense P are checked again by the reduction.
+   solve (the path auto takes for all but small problems), with smoothed aggregation where it fits and plain
+   aggregation where only that does. The limit is MemAvailable of /proc/meminfo (summed over the machines of comm;
+   what the ranks add must fit) or -snes_ssstar_memory_limit <GB per rank> (the peak of each rank must fit). The dense
+   route's factors of K and its dense P are checked again by the reduction.
 
    Level: intermediate
 
@@ -106,15 +119,16 @@ PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what
   PetscReal      limit, perRank;
   PetscLogDouble peak, extra;
   PetscMPIInt    size;
-  char           source[128];
+  PetscBool      fits;
+  char           source[160];
 
   PetscFunctionBegin;
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, &peak, &extra, &fits));
+  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, &peak, &extra, &fits));
+  if (fits) PetscFunctionReturn(0);
   PetscCall(MemoryLimit(comm, &limit, &perRank));
-  if (limit <= 0) PetscFunctionReturn(0); /* no /proc/meminfo: nothing to compare with */
-  PetscCall(SSStarEstimateMemory(comm, nodes, &peak, &extra));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (perRank > 0 ? peak <= perRank * 1e9 : extra <= limit) PetscFunctionReturn(0);
   if (perRank > 0) PetscCall(PetscSNPrintf(source, sizeof(source), "more than the %.3g GB of -snes_ssstar_memory_limit (per rank)", (double)perRank));
   else PetscCall(PetscSNPrintf(source, sizeof(source), "and the %d rank%s would add %.3g GB, more than the %.3g GB available on this machine (MemAvailable)", size, size > 1 ? "s" : "", (double)(extra / 1e9), (double)(limit / 1e9)));
-  SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need an estimated %.3g GB per rank at the peak of the run (mesh, assembly and the solve on the whole body), %s; refused before the work", what, (double)nodes, (double)(peak / 1e9), source);
+  SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need an estimated %.3g GB per rank at the peak of the run (mesh, assembly and the solve on the whole body, with the multigrid's plain aggregation), %s; refused before the work", what, (double)nodes, (double)(peak / 1e9), source);
 }

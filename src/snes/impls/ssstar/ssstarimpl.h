@@ -27,6 +27,9 @@ typedef struct {
   const PetscReal *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
 } SSStarContactLayout;
 
+/* Whether bytes per rank fit the memory limit (GB per rank, 0: each node's MemAvailable): the reductions' check (src/reduction) */
+PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, PetscBool *);
+
 /* the multigrid of an earlier Newton matrix is kept while at most this fraction of the nodes changed known rows */
 #define SSSTAR_PC_REUSE_DEFAULT 0.3
 

@@ -32,7 +32,8 @@ struct _n_SSStarFullMatrix {
   PetscInt         nrow, *row; /* row triples: 3 cross entries and the node each                              */
   PetscInt        *diag;      /* 9 cross entries per local contact node: its diagonal block                  */
   PetscInt         nnodes;    /* local contact nodes; the ghost ones follow in frames                         */
-  PetscReal       *frames;    /* 9 per node, local then ghost; NULL without frames                            */
+  PetscBool        hasFrames; /* some rank has frames (a rank without contact nodes has none of its own)      */
+  PetscReal       *frames;    /* 9 per node, local then ghost, with hasFrames                                 */
   PetscObjectState stateK;    /* A's state with its own entries                                               */
   PetscObjectState stateM;    /* of the last Newton matrix formed                                            */
   PetscBool        holdsM;    /* K holds a Newton matrix now                                                  */
@@ -41,7 +42,7 @@ struct _n_SSStarFullMatrix {
 /* R_b of a column node n (NULL: identity) */
 static inline const PetscReal *Frame(SSStarFullMatrix fm, PetscInt n)
 {
-  return fm->frames ? &fm->frames[9 * n] : NULL;
+  return fm->hasFrames ? &fm->frames[9 * n] : NULL;
 }
 
 /*
@@ -94,7 +95,7 @@ static PetscErrorCode GhostColumns(SSStarFullMatrix fm, const SSStarContactLayou
     if (PetscRealPart(g[CROSS_INFO * j]) >= 0) keys[nkeys++] = (PetscInt)PetscRealPart(g[CROSS_INFO * j]);
   PetscCall(PetscSortRemoveDupsInt(&nkeys, keys));
   *nghost = nkeys;
-  if (fm->frames) PetscCall(PetscRealloc(sizeof(PetscReal) * 9 * (fm->nnodes + nkeys), &fm->frames));
+  if (fm->hasFrames) PetscCall(PetscRealloc(sizeof(PetscReal) * (9 * (fm->nnodes + nkeys) + 1), &fm->frames));
   for (PetscInt j = 0; j < nB; j++) {
     const PetscScalar *e = &g[CROSS_INFO * j];
     PetscInt           at;
@@ -104,7 +105,7 @@ static PetscErrorCode GhostColumns(SSStarFullMatrix fm, const SSStarContactLayou
     PetscCall(PetscFindInt((PetscInt)PetscRealPart(e[0]), nkeys, keys, &at));
     (*node)[j] = fm->nnodes + at;
     (*comp)[j] = (PetscInt)PetscRealPart(e[1]);
-    if (fm->frames)
+    if (fm->hasFrames)
       for (PetscInt c = 0; c < 3; c++) fm->frames[9 * (fm->nnodes + at) + 3 * (*comp)[j] + c] = PetscRealPart(e[2 + c]);
   }
   PetscCall(VecRestoreArrayRead(ghost, &g));
@@ -139,10 +140,14 @@ static PetscErrorCode BuildCross(SSStarFullMatrix fm, const SSStarContactLayout 
 
   PetscFunctionBegin;
   PetscCall(MatGetLocalSize(fm->K, &m, NULL));
-  fm->nnodes = L->nnodes;
-  if (L->frames) {
-    PetscCall(PetscMalloc1(9 * L->nnodes, &fm->frames));
-    PetscCall(PetscArraycpy(fm->frames, L->frames, 9 * L->nnodes));
+  fm->nnodes    = L->nnodes;
+  fm->hasFrames = (PetscBool)(L->frames != NULL);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &fm->hasFrames, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)fm->K)));
+  if (fm->hasFrames) {
+    PetscCall(PetscMalloc1(9 * L->nnodes + 1, &fm->frames));
+    if (L->frames) PetscCall(PetscArraycpy(fm->frames, L->frames, 9 * L->nnodes));
+    else
+      for (PetscInt k = 0; k < 9 * L->nnodes; k++) fm->frames[k] = (PetscReal)(k % 4 == 0);
   }
   nb = fm->block[1] ? 2 : 1;
   if (fm->block[1]) PetscCall(GhostColumns(fm, L, &ghostNode, &ghostComp, &nghost));

@@ -140,11 +140,13 @@ static PetscErrorCode Equilibrate(SNES snes)
   /* a given u: its free dofs corrected from its own, relative to its own residual (not to the whole load's, from u0),
      down to the Newton steps' floor: a guess already in equilibrium (the step before on a load path) keeps its
      accuracy, which a body that nearly floats needs (from u0, a relative 1e-4 of the load left a stiff block on a
-     soft spring 300 times the stopping threshold away, and the path's release stagnated there) */
+     soft spring 300 times the stopping threshold away, and the path's release stagnated there). No tighter than the
+     first Newton step solves after it (etaMax of its own residual): the steps equilibrate the free dofs on their way
+     (a nested iteration's start at level 16: 9 -> 1 Krylov iterations, the same Newton steps) */
   PetscCall(VecCopy(uC, ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SNESSSStarLinearFloor(snes, &floor));
-  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, floor));
+  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor));
   PetscFunctionReturn(0);
 }
 

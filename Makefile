@@ -39,7 +39,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-large bench-loadpath bench-search bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -118,6 +118,11 @@ bench-search: all
 # the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
 accuracy: all
 	$(PYTHON) bench/accuracy.py
+
+# the robustness families at the default settings, both paths, 1-4 ranks: converged, the law on every step, within 1e-6
+# of the exact discrete solution (bench/output/robust.csv)
+bench-robust: all
+	$(PYTHON) bench/robust.py
 
 # what an effect costs: the prism scene with effects switched on and off (bench/output/scenes.csv)
 bench-scenes: all

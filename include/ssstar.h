@@ -69,13 +69,14 @@ PETSC_EXTERN PetscErrorCode SSStarLawGetParameterInfo(const char[], SSStarLawPar
 /* Why an ssstar solve stopped, finer than SNESConvergedReason. */
 typedef enum {
   SSSTAR_REASON_ITERATING = 0,
-  SSSTAR_REASON_CONVERGED_ABS,    /* ||z|| <= atol                                                 */
-  SSSTAR_REASON_CONVERGED_REL,    /* ||z|| <= rtol max(||u||, ||gamma f||)                         */
+  SSSTAR_REASON_CONVERGED_ABS,    /* ||z|| <= atol, and the law residual rho <= max(rtol, law_rtol) */
+  SSSTAR_REASON_CONVERGED_REL,    /* ||z|| <= rtol max(||u||, ||gamma f||), and the same rho         */
   SSSTAR_REASON_MAX_IT,           /* no convergence within -snes_max_it                            */
   SSSTAR_REASON_NAN,              /* ||z|| is NaN or Inf                                           */
   SSSTAR_REASON_SINGULAR_NEWTON,  /* the reduced Newton matrix S P + T is singular, even regularized */
   SSSTAR_REASON_STAGNATION,       /* ||z|| has not decreased for -snes_ssstar_stagnation_its          */
   SSSTAR_REASON_CYCLE,            /* the iterates cycle (period 2) and the remedies did not break it  */
+  SSSTAR_REASON_LAW_STALLED,      /* ||z|| met its threshold, the law residual of the iterate stalled above its own */
   SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided     */
 } SSStarReason;
 PETSC_EXTERN const char *const SSStarReasons[];
@@ -146,6 +147,8 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetPCReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPRtolMax(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetLawTolerance(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetLawResidual(SNES, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);

@@ -40,73 +40,130 @@ import numpy as np
 
 def coulomb(args):
     f = h5py.File(args.file, "r")
-    c = f["contact"]
-    u = c["displacement"][:]
-    r = c["reaction"][:]
+    steps = sorted((k for k in f["steps"] if k.isdigit()), key=int) if "steps" in f else []
+    # a load path's step is measured against its own forces and displacements too (those of the step before), and
+    # against 1e-6 of the path's largest so far (a step where nothing touches has forces of round-off alone)
+    before = lambda k: f["steps/%s/contact" % steps[k - 1]] if k > 0 else None  # noqa: E731
+    path = [(0.0, 0.0)]
+    for k in steps:
+        c = f["steps/%s/contact" % k]
+        path.append((max(path[-1][0], np.abs(c["displacement"][:]).max()), max(path[-1][1], np.abs(c["reaction"][:]).max())))
+    # the scales the solver measured its law residual against (at least the round-off of K u - b: a stiff body far
+    # from its reference computes its forces to no better), recorded in the file
+    solver = (f.attrs.get("law_displacement_scale", 0.0), f.attrs.get("law_force_scale", 0.0))
+    recorded = lambda k: (f["steps/law_displacement_scale"][int(k)], f["steps/law_force_scale"][int(k)]) if "steps/law_force_scale" in f else (0.0, 0.0)  # noqa: E731
+    ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver)
+    if args.steps:
+        for j, k in enumerate(steps):
+            print("-- step %s (/steps/%s/contact)" % (k, k))
+            ok &= check_law(f, f["steps/%s/contact" % k], "/steps/%s/contact" % k, args, before(j), path[j + 1], recorded(j))
+        print("%d steps checked" % len(steps))
+    if "geometry" in f:
+        ok &= check_xdmf(args.file, f)
+    return ok
+
+
+def check_law(f, c, where, args, previous=None, path=(0.0, 0.0), solver=(0.0, 0.0)):
+    """the law at every node of the contact group c (/contact, or a load path's /steps/<k>/contact, which takes the
+    normals, gaps and the laws' parameters of /contact unless it has its own); previous: the contact group of the step
+    before on a load path, whose displacements and forces the step's scales include; path: the largest displacement
+    and force of the path up to this step; solver: the scales U, F the solver measured against (0: none recorded)"""
+    top = f["contact"]
+
+    def data(name):
+        return c[name] if name in c else top[name] if name in top else None
+
+    u = data("displacement")[:]
+    r = data("reaction")[:]
     p = len(u)
-    normal = c["normal"][:] if "normal" in c else np.tile([0.0, 0.0, 1.0], (p, 1))
-    gap = c["gap"][:] if "gap" in c else np.zeros(p)
+    normal = data("normal")[:] if data("normal") is not None else np.tile([0.0, 0.0, 1.0], (p, 1))
+    gap = data("gap")[:] if data("gap") is not None else np.zeros(p)
     shapes = {"coordinates": (p, 3), "displacement": (p, 3), "reaction": (p, 3), "state": (p,), "normal": (p, 3), "gap": (p,)}
     for name, shape in shapes.items():
-        if name in c and c[name].shape != shape:
-            print("/contact/%s has shape %s, not %s" % (name, c[name].shape, shape))
+        if data(name) is not None and data(name).shape != shape:
+            print("%s/%s has shape %s, not %s" % (where, name, data(name).shape, shape))
             return False
-    if "state" in c:
-        state = c["state"][:]
-        if state.dtype.kind != "i" or state.min() < 0 or state.max() > 6:
-            print("/contact/state is not an integer state 0..6")
-            return False
+    state = data("state")[:] if data("state") is not None else None
+    if state is not None and (state.dtype.kind != "i" or state.min() < 0 or state.max() > 6):
+        print("%s/state is not an integer state 0..6" % where)
+        return False
     if not np.isfinite(u).all() or not np.isfinite(r).all():
         print("NaN or Inf in the solution")
         return False
-    laws = friction(c, p, args.phi)
+    laws = friction(top, p, args.phi)
     if laws is None:
         return False
     # the law in each node's frame, built here from the normal: w_n, w_t the relative displacement (the file's final
     # gap and slip, against the obstacle or the master surface; else from u: u.n + gap, u - (u.n) n), r_n, r_t
     rn = np.einsum("ij,ij->i", r, normal)
-    if "final_gap" in c and "slip" in c:
-        un, ut = c["final_gap"][:], c["slip"][:]
+    if data("final_gap") is not None and data("slip") is not None:
+        un, ut = data("final_gap")[:], data("slip")[:]
         if un.shape != (p,) or ut.shape != (p, 3) or not np.isfinite(un).all() or not np.isfinite(ut).all():
-            print("/contact/final_gap or /contact/slip: not one finite value (3 for the slip) per contact node")
+            print("%s/final_gap or slip: not one finite value (3 for the slip) per contact node" % where)
             return False
-        print("kinematics: /contact/final_gap and /contact/slip (relative to the obstacle or the master surface)")
-        if "slip_increment" in c:  # a load path: the law of its last step holds for the slip increment (10.2)
-            ut = c["slip_increment"][:]
-            print("tangential law on /contact/slip_increment (the last step of a load path, docs/derivation.md (10.2))")
+        print("kinematics: %s/final_gap and %s/slip (relative to the obstacle or the master surface)" % (where, where))
+        if data("slip_increment") is not None:  # a load path: the law of its step holds for the slip increment (10.2)
+            ut = data("slip_increment")[:]
+            print("tangential law on %s/slip_increment (a load path's step, docs/derivation.md (10.2))" % where)
     else:
         un = np.einsum("ij,ij->i", u, normal) + gap
         ut = u - (un - gap)[:, None] * normal
     rt = r - rn[:, None] * normal
     umax, rmax = max(np.abs(u).max(), np.abs(un).max(), np.abs(ut).max()), np.abs(r).max()
-    utn, rtn = np.linalg.norm(ut, axis=1), np.linalg.norm(rt, axis=1)
-    sliding = utn > args.tol * umax
-    # each node's friction set: how far r_t lies beyond its boundary (radially), and the force of maximum
-    # dissipation -F(w_t) a sliding node must have
-    excess, dissipative = np.zeros(p), np.zeros((p, 3))
+    if previous is not None:  # the step's changes: a released body's forces go to zero, to be measured against their change
+        umax = max(umax, np.abs(u - previous["displacement"][:]).max())
+        rmax = max(rmax, np.abs(r - previous["reaction"][:]).max())
+    umax, rmax = max(umax, 1e-6 * path[0], solver[0]), max(rmax, 1e-6 * path[1], solver[1])
+    umax, rmax = umax if umax > 0 else 1.0, rmax if rmax > 0 else 1.0
+    # the verdict (docs/derivation.md section 12): each node's (w, r) lies within tol max|w| and tol max|r| of a pair
+    # that satisfies its law exactly; the approximation step at gamma = max|w|/max|r| gives such a pair, z away
+    distance = np.zeros(p)
     for law, nodes in laws:
-        excess[nodes] = law.excess(nodes, rn[nodes], rt[nodes], normal[nodes])
+        distance[nodes] = law.distance(nodes, un[nodes], ut[nodes], rn[nodes], rt[nodes], normal[nodes], umax, rmax)
+    worst = int(np.argmax(distance))
+    # what that bound implies for each condition of the law, with a node "sliding" where its slip exceeds tol max|w|:
+    # printed with the bound each may reach
+    utn = np.linalg.norm(ut, axis=1)
+    sliding = utn > args.tol * umax
+    excess, direction = np.zeros(p), np.zeros(p)
+    for law, nodes in laws:
+        excess[nodes] = law.excess(nodes, rn[nodes], rt[nodes], normal[nodes]) / law.reach(nodes)
         slide = nodes[sliding[nodes]]
-        dissipative[slide] = -law.force(slide, rn[slide], ut[slide], normal[slide])
-    violations = {
-        "w_n >= 0": np.max(-un) / umax,
-        "r_n >= 0": np.max(-rn) / rmax,
-        "w_n r_n = 0": np.max(np.abs(un * rn)) / (umax * rmax),
-        "|r_t| <= bound": np.max(excess) / rmax,
-        "r_t = -bound w_t/|w_t|": np.max(np.abs(rt[sliding] - dissipative[sliding])) / rmax if sliding.any() else 0.0,
-    }
-    ok = True
-    for name, v in violations.items():
-        good = v <= args.tol
+        if len(slide):
+            dissipative = -law.force(slide, rn[slide], ut[slide], normal[slide])
+            # the force's direction follows the slip's to an angle 2 tol max|w| / |w_t|
+            allowed = 2 * args.tol * umax / utn[slide] * np.linalg.norm(dissipative, axis=1)
+            direction[slide] = (np.linalg.norm(rt[slide] - dissipative, axis=1) - allowed) / law.reach(slide)
+    conditions = [
+        ("w_n >= 0", np.max(-un) / umax, 1),
+        ("r_n >= 0", np.max(-rn) / rmax, 1),
+        ("w_n r_n = 0", np.max(np.abs(un * rn)) / (umax * rmax), 3),
+        ("|r_t| <= bound", np.max(excess) / rmax, 2),
+        ("r_t = -bound w_t/|w_t|", np.max(direction) / rmax if sliding.any() else 0.0, 2),
+    ]
+    ok = distance[worst] <= args.tol
+    print("%-28s %9.1e %s (node %d; tolerance %g of max|w| %.3g and max|r| %.3g)" % (
+        "distance to the law", distance[worst], "ok" if ok else "VIOLATED", worst, args.tol, umax, rmax))
+    for name, v, reach in conditions:
+        good = v <= reach * args.tol
         ok &= good
         print("%-28s %9.1e %s" % (name, v, "ok" if good else "VIOLATED"))
     separated = un > args.tol * umax
     print("nodes %d: separated %d, sliding %d, sticking %d%s" % (
         p, separated.sum(), (~separated & sliding).sum(), (~separated & ~sliding).sum(),
-        "; states " + "/".join(str((c["state"][:] == s).sum()) for s in range(7)) if "state" in c else ""))
-    if "geometry" in f:
-        ok &= check_xdmf(args.file, f)
+        "; states " + "/".join(str((state == s).sum()) for s in range(7)) if state is not None else ""))
     return ok
+
+
+def approximation_step_normal(un, rn, gamma):
+    """(1.1): z_n and the scaled normal force max(0, gamma r_n - w_n) of the approximation step"""
+    return np.maximum(-gamma * rn, -un), np.maximum(0.0, gamma * rn - un)
+
+
+def soft_threshold(v, s):
+    """(1.2): max(0, 1 - s/|v|) v, row by row"""
+    size = np.linalg.norm(v, axis=1)
+    return np.where(size > s, 1 - s / np.where(size > 0, size, 1.0), 0.0)[:, None] * v
 
 
 class Isotropic:
@@ -123,6 +180,18 @@ class Isotropic:
 
     def force(self, nodes, rn, wt, normal):
         return self.limit(nodes, rn)[:, None] * wt / np.linalg.norm(wt, axis=1)[:, None]
+
+    def reach(self, nodes):
+        """how far r_t may lie beyond the bound per unit of error of r: 1 + the coefficient"""
+        return 1.0 + (self.values[nodes] if self.name == "coulomb" else 0.0)
+
+    def distance(self, nodes, un, wt, rn, rt, normal, umax, rmax):
+        """|z|/max|w| of the approximation step at gamma = max|w|/max|r| (docs/derivation.md sections 1, 12)"""
+        gamma = umax / rmax
+        zn, force = approximation_step_normal(un, rn, gamma)
+        bound = np.zeros(len(nodes)) if self.values is None else self.values[nodes] * (force if self.name == "coulomb" else gamma)
+        zt = soft_threshold(wt - gamma * rt, bound) - wt
+        return np.maximum(np.abs(zn), np.linalg.norm(zt, axis=1)) / umax
 
     def describe(self, nodes):
         label = {"none": "frictionless", "tresca": "Tresca (s %s)", "coulomb": "Coulomb (phi %s)"}[self.name]
@@ -157,6 +226,37 @@ class Orthotropic:
         wa, wb = np.einsum("ij,ij->i", wt, a), np.einsum("ij,ij->i", wt, b)
         sigma = np.hypot(phi1 * wa, phi2 * wb)
         return (rn / sigma)[:, None] * ((phi1 ** 2 * wa)[:, None] * a + (phi2 ** 2 * wb)[:, None] * b)
+
+    def reach(self, nodes):
+        return 1.0 + np.maximum(self.phi1[nodes], self.phi2[nodes])
+
+    def distance(self, nodes, un, wt, rn, rt, normal, umax, rmax):
+        """|z|/max|w| of the approximation step (9.2) at gamma = max|w|/max|r|: d_t = v - the projection of v onto the
+        ellipse of semi-axes (phi_1, phi_2) times the scaled normal force, by the secular equation"""
+        gamma = umax / rmax
+        zn, force = approximation_step_normal(un, rn, gamma)
+        a, b, phi1, phi2 = self.axes(nodes, normal)
+        v = wt - gamma * rt
+        p = np.stack([np.einsum("ij,ij->i", v, a), np.einsum("ij,ij->i", v, b)], axis=1)
+        e = np.stack([phi1 * force, phi2 * force], axis=1)
+        inside = np.sum((p / np.where(e > 0, e, 1.0)) ** 2, axis=1) <= 1
+        inside &= (e > 0).all(axis=1)
+        t = np.zeros(len(nodes))
+        w = e * p
+        hi = np.linalg.norm(w, axis=1) - (e ** 2).min(axis=1)
+        t = np.maximum(0.0, (np.abs(w) - e ** 2).max(axis=1))
+        for _ in range(100):  # Newton from the left of the root of sum w^2/(e^2 + t)^2 = 1 (monotone)
+            q = w / (e ** 2 + t[:, None])
+            g = np.sum(q ** 2, axis=1) - 1
+            dg = -2 * np.sum(q ** 2 / (e ** 2 + t[:, None]), axis=1)
+            step = np.where((g > 0) & (dg < 0), -g / np.where(dg < 0, dg, -1.0), 0.0)
+            t = np.minimum(t + step, np.maximum(hi, t))
+            if np.all(step <= 4e-16 * np.maximum(t, 1e-300)):
+                break
+        dp = np.where(inside[:, None], 0.0, t[:, None] * p / np.where(e ** 2 + t[:, None] > 0, e ** 2 + t[:, None], 1.0))
+        dp = np.where((e == 0).any(axis=1)[:, None] & ~inside[:, None], p, dp)  # no force: the ellipse is a point
+        zt = dp[:, :1] * a + dp[:, 1:] * b - wt
+        return np.maximum(np.abs(zn), np.linalg.norm(zt, axis=1)) / umax
 
     def describe(self, nodes):
         return "%d orthotropic (phi_1 %s, phi_2 %s)" % (len(nodes), describe(self.phi1[nodes]), describe(self.phi2[nodes]))
@@ -229,12 +329,51 @@ def vertex_field(f):
     return u[np.lexsort((x[:, 2], x[:, 1], x[:, 0]))]
 
 
+def compare_steps(a, b, tol):
+    """every step of two load paths: the contact displacement and reaction and the whole field, relative to the first
+    file's step and its change from the step before, and at least 1e-6 of the path's largest so far (the step's own
+    scale, as the law's, docs/derivation.md section 12)"""
+    steps = sorted((k for k in a["steps"] if k.isdigit()), key=int)
+    if "steps" not in b or sorted((k for k in b["steps"] if k.isdigit()), key=int) != steps:
+        print("the files have different steps")
+        return False
+    order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (vertices by coordinates)
+    oa, ob = (order(a), order(b)) if "geometry" in a and "geometry" in b else (None, None)
+    worst, largest = {}, {}  # the largest of each field over the path so far: its scale is at least 1e-6 of that
+    for j, k in enumerate(steps):
+        fields = [("displacement", "contact/displacement", None), ("reaction", "contact/reaction", None)]
+        if oa is not None:
+            fields.append(("full field", "fields/displacement", (oa, ob)))
+        for name, path, vertex in fields:
+            x, y = a["steps/%s/%s" % (k, path)][:], b["steps/%s/%s" % (k, path)][:]
+            if vertex is not None:
+                x, y = x[vertex[0]], y[vertex[1]]
+            scale = np.abs(x).max()
+            largest[name] = max(largest.get(name, 0.0), scale)
+            if j > 0:
+                before = a["steps/%s/%s" % (steps[j - 1], path)][:]
+                scale = max(scale, np.abs(x - (before[vertex[0]] if vertex is not None else before)).max())
+            scale = max(scale, 1e-6 * largest[name])
+            d = np.abs(x - y).max() / (scale if scale > 0 else 1.0)
+            if d >= worst.get(name, (-1, None))[0]:
+                worst[name] = (d, k)
+    ok = True
+    for name, (d, k) in worst.items():
+        ok &= d <= tol
+        print("%-12s max difference %9.1e relative (step %s) %s" % (name, d, k, "ok" if d <= tol else "DIFFERENT"))
+    differ = sum(int((a["steps/%s/contact/state" % k][:] != b["steps/%s/contact/state" % k][:]).sum()) for k in steps)
+    print("%d steps compared; states differ at %d node-steps" % (len(steps), differ))
+    return ok
+
+
 def compare(args):
     a, b = h5py.File(args.a, "r"), h5py.File(args.b, "r")
     ok = True
     if not np.array_equal(a["contact/coordinates"][:], b["contact/coordinates"][:]):
         print("contact nodes differ (coordinates)")
         return False
+    if args.steps and "steps" in a:
+        return compare_steps(a, b, args.tol)
     for name in ("displacement", "reaction"):
         x, y = a["contact/" + name][:], b["contact/" + name][:]
         d = np.abs(x - y).max() / np.abs(x).max()
@@ -265,10 +404,12 @@ def main():
     c = sub.add_parser("coulomb", aliases=["law"])
     c.add_argument("file")
     c.add_argument("--phi", type=float, default=None, help="Coulomb coefficient of every node, for files without /contact/friction")
-    c.add_argument("--tol", type=float, default=1e-8)
+    c.add_argument("--tol", type=float, default=1e-7, help="relative to max|w| and max|r| (default 1e-7: the solver guarantees 1e-8 by its own scales at its defaults)")
+    c.add_argument("--steps", action="store_true", help="also every step of a load path (/steps/<k>/contact)")
     m = sub.add_parser("compare")
     m.add_argument("a")
     m.add_argument("b")
+    m.add_argument("--steps", action="store_true", help="every step of two load paths, each relative to its own scale (not the states)")
     m.add_argument("--tol", type=float, default=1e-10)
     args = parser.parse_args()
     ok = coulomb(args) if args.cmd in ("coulomb", "law") else compare(args)

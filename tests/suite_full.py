@@ -27,7 +27,7 @@ def prism_run(args, h5, ranks=1, expect_rc=0):
     return out, {"iters": int(m.group(5)), "states": m.group(6), "reason": m.group(8), "peak_gb": float(m.group(9))}
 
 
-def same_answer(name, runner, args, tol=1e-8, ranks=1, iterations=1):
+def same_answer(name, runner, args, tol=AGREE, ranks=1, iterations=1):
     """runs args on the dense route (direct) and on the whole body (none) and compares them"""
     dense, d = runner(list(args) + ["-snes_ssstar_reduction", "direct"], "%s_direct.h5" % name, ranks)
     full, f = runner(list(args) + ["-snes_ssstar_reduction", "none"], "%s_none.h5" % name, ranks)
@@ -58,7 +58,7 @@ def full_ranks_agree():
         one = outs[0][2]
         for ranks, out, s in outs[1:]:
             expect(abs(s["iters"] - one["iters"]) <= 1 and s["states"] == one["states"], "%s, %d ranks: %d iterations, states %s; 1 rank: %d, %s" % (path, ranks, s["iters"], s["states"], one["iters"], one["states"]), out)
-            run(CHECK + ["compare", os.path.join(OUT, "ranks_%s1.h5" % path), os.path.join(OUT, "ranks_%s%d.h5" % (path, ranks)), "--tol", "1e-8"])
+            run(CHECK + ["compare", os.path.join(OUT, "ranks_%s1.h5" % path), os.path.join(OUT, "ranks_%s%d.h5" % (path, ranks)), "--tol", str(AGREE)])
 
 
 @test("a plain PETSc program (examples/generic, DMDA) with a tilted plane and varying gaps: the whole-body path gives the dense route's solution to 1e-8 on 1 and 3 ranks, the Coulomb law in the nodes' frames holds")
@@ -93,14 +93,14 @@ def full_newton_matrix_storage():
 def full_scenes_same_answer():
     # the half ball hangs on a soft spring (k = 1 against E = 2.1e5): as on the incline, the error is about 1e4 ||z|| and
     # the last linear solve decides it within the stopping rule, so both paths stop at a tighter ||z||
-    same_answer("full_hertz", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "hertz.opts"), "-level", "1", "-snes_rtol", "1e-12"])
+    same_answer("full_hertz", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "hertz.opts"), "-level", "1"])
     same_answer("full_tresca", prism_run, ["-level", "3", "-friction_law_contact", "tresca", "-slip_bound_contact", "2"])
     same_answer("full_incline", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts")])
     # the whole body slides, held by a soft spring: the error is about 1e4 ‖z‖, so both paths stop at a tighter ‖z‖
-    same_answer("full_incline_slides", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-friction_bottom", "0.3", "-snes_rtol", "1e-13"])
+    same_answer("full_incline_slides", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-friction_bottom", "0.3"])
     same_answer("full_shear", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "shear.opts")])
     # reactions at each of 10 load steps: both paths stop at a tighter ||z|| to compare them to 1e-8
-    same_answer("full_gap", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "gap.opts"), "-snes_rtol", "1e-12"], iterations=10)
+    same_answer("full_gap", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "gap.opts")], iterations=10)
 
 
 @test("hard cases on the whole body: friction phi = 5, nu = 0.49 (the globalization's damped step acts there too; the plain iteration stops at a detected cycle or at a solution of the law), a random start 100x the solution: the dense route's solution to 1e-8; the fixed-point baseline (-snes_ssstar_method fixedpoint, interior in equilibrium at every step) converges to the Newton solution")
@@ -121,7 +121,7 @@ def full_hard_cases():
     same_answer("full_random", prism_run, ["-level", "4", "-initial_guess", "random", "-initial_guess_scale", "2"], iterations=4)
     out, s = prism_run(["-level", "3", "-snes_ssstar_reduction", "none", "-snes_ssstar_method", "fixedpoint", "-snes_max_it", "100000", "-snes_rtol", "1e-12"], "full_fixedpoint.h5")
     expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] > 100, "fixed point: %s after %d iterations" % (s["reason"], s["iters"]), out)
-    run(CHECK + ["compare", os.path.join(OUT, "full_prism_L3_none.h5"), os.path.join(OUT, "full_fixedpoint.h5"), "--tol", "1e-8"])
+    run(CHECK + ["compare", os.path.join(OUT, "full_prism_L3_none.h5"), os.path.join(OUT, "full_fixedpoint.h5"), "--tol", str(AGREE)])
 
 
 @test("auto (the default) takes the dense route on a small problem and the whole body where the dense P does not fit the memory limit; -snes_view says which and that auto chose it")

@@ -83,7 +83,7 @@ def generic_compare_without_mesh():
     a, b = os.path.join(OUT, names["direct"]), os.path.join(OUT, names["none"])
     with h5py.File(a, "r") as f:
         expect("geometry" not in f and "contact" in f, "examples/generic wrote a mesh")
-    out = run(CHECK + ["compare", a, b, "--tol", "1e-8"])
+    out = run(CHECK + ["compare", a, b, "--tol", str(AGREE)])
     expect("reaction" in out and "DIFFERENT" not in out, "the two routes differ", out)
     bad = os.path.join(OUT, "generic_cmp_changed.h5")
     shutil.copy(b, bad)

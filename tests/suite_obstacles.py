@@ -64,10 +64,10 @@ def sphere_msh():
 @test("ball (level 1, frictionless, a rigid ball R = 10 on a block pushed up by a pressure): Hertz's contact radius within 5 % (measured +3.3 %) and peak pressure within 4 % (+2.2 %), the contact bracketed; every node's gap |x - c| - R and normal (x - c)/|x - c| to 1e-12; the direct reduction and the whole body agree to 1e-8; picture written")
 def obstacle_ball():
     # frictionless, the block is held sideways by its soft spring alone (k A = 100 against E = 2.1e5): its rigid
-    # sliding is ~1e4 times less stiff than the rest, so the displacement error is ~1e4 ||z|| and both paths stop at a
-    # tighter ||z|| to compare them to 1e-8 (at the default 1e-10 they differ by 7e-7, in that rigid sliding)
+    # sliding is ~1e4 times less stiff than the rest (at the defaults the paths differed by 7e-7 there before the law
+    # residual joined the stopping rule, docs/derivation.md section 12)
     for path in PATHS:
-        out, s = contact_run(scene("ball") + ["-snes_ssstar_reduction", path, "-snes_view", "-snes_rtol", "1e-12"], h5="ball_%s.h5" % path)
+        out, s = contact_run(scene("ball") + ["-snes_ssstar_reduction", path, "-snes_view"], h5="ball_%s.h5" % path)
         expect("rigid ball of radius 10. centred at (0., 0., 10.)" in out, "the scene view does not name the ball", out)
         h = scene_answers.hertz(h5path("ball_%s.h5" % path))
         expect(abs(h["a_error"]) < 0.05 and abs(h["p0_error"]) < 0.04 and h["a_outside"] < 1.05 * h["a_hertz"] and h["a_inside"] > 0.95 * h["a_hertz"],
@@ -129,14 +129,14 @@ def obstacle_mesh_ball():
     expect(abs(a["force"] / b["force"] - 1) < 1e-3 and abs(a["nodes_in_contact"] - b["nodes_in_contact"]) <= 3, "exact ball %s, mesh %s" % (a, b))
 
 
-@test("obstacles on 2 ranks give the 1-rank solution (mesh obstacle read on rank 0 and spread over the ranks; ball): to 1e-10")
+@test("obstacles on 2 ranks give the 1-rank solution (mesh obstacle read on rank 0 and spread over the ranks; ball): to 2e-6 (harness.AGREE)")
 def obstacle_ranks():
     for ranks in (1, 2):
         contact_run(scene("prism") + ["-level", "3", "-obstacle_contact", "mesh:" + SQUARE], h5="prism_mesh_r%d.h5" % ranks, ranks=ranks)
-    run(CHECK + ["compare", h5path("prism_mesh_r1.h5"), h5path("prism_mesh_r2.h5"), "--tol", "1e-10"])
+    run(CHECK + ["compare", h5path("prism_mesh_r1.h5"), h5path("prism_mesh_r2.h5"), "--tol", str(AGREE)])
     contact_run(scene("ball"), h5="ball_r1.h5")
     contact_run(scene("ball"), h5="ball_r2.h5", ranks=2)
-    run(CHECK + ["compare", h5path("ball_r1.h5"), h5path("ball_r2.h5"), "--tol", "1e-10"])
+    run(CHECK + ["compare", h5path("ball_r1.h5"), h5path("ball_r2.h5"), "--tol", str(AGREE)])
 
 
 @test("-help lists the obstacle forms; examples/contact does not leak with a mesh obstacle (-malloc_dump)")

@@ -65,7 +65,7 @@ def prism_friction_option():
     run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5")])
 
 
-@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 1e-10 relative")
+@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 2e-6 relative (harness.AGREE)")
 def prism_ranks_agree():
     out1, s1 = prism(5, 1, h5="ranks1_L5.h5")
     out2, s2 = prism(5, 2, h5="ranks2_L5.h5")
@@ -74,16 +74,16 @@ def prism_ranks_agree():
     expect(len(z1) == len(z2), "%d iterations on 1 rank, %d on 2" % (len(z1) - 1, len(z2) - 1), out1 + out2)
     for k, (a, b) in enumerate(zip(z1, z2)):
         expect(a < 1e-10 or abs(a - b) <= 1e-8 * a, "iterate %d: |z| %.12e on 1 rank, %.12e on 2" % (k, a, b), out1 + out2)
-    run(CHECK + ["compare", os.path.join(OUT, "ranks1_L5.h5"), os.path.join(OUT, "ranks2_L5.h5"), "--tol", "1e-10"])
+    run(CHECK + ["compare", os.path.join(OUT, "ranks1_L5.h5"), os.path.join(OUT, "ranks2_L5.h5"), "--tol", str(AGREE)])
 
 
-@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 1e-10, on 1 and 2 ranks")
+@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 2e-6 (harness.AGREE), on 1 and 2 ranks")
 def prism_schur_paths_agree():
     prism(4, 1, extra=["-snes_ssstar_reduction", "mumps"], h5="mumps_L4.h5")
     prism(4, 1, extra=["-snes_ssstar_reduction", "explicit"], h5="explicit_L4.h5")
     prism(4, 2, extra=["-snes_ssstar_reduction", "explicit"], h5="explicit2_L4.h5")
-    run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit_L4.h5"), "--tol", "1e-10"])
-    run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit2_L4.h5"), "--tol", "1e-10"])
+    run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit_L4.h5"), "--tol", str(AGREE)])
+    run(CHECK + ["compare", os.path.join(OUT, "mumps_L4.h5"), os.path.join(OUT, "explicit2_L4.h5"), "--tol", str(AGREE)])
 
 
 @test("-snes_view prints the ssstar settings and -log_view shows the assembly, Schur, AS and NS events")
@@ -140,7 +140,7 @@ def prism_fixedpoint_baseline():
     expect("method: fixedpoint" in out and "gamma = 1/(largest contact row sum of K)" in out, "-snes_view does not name the method and its gamma", out)
     newton, t = prism(3, h5="newton_L3.h5")
     expect(t["states"] == s["states"], "states %s, Newton %s" % (s["states"], t["states"]), out)
-    run(CHECK + ["compare", os.path.join(OUT, "newton_L3.h5"), os.path.join(OUT, "fixedpoint_L3.h5"), "--tol", "1e-8"])
+    run(CHECK + ["compare", os.path.join(OUT, "newton_L3.h5"), os.path.join(OUT, "fixedpoint_L3.h5"), "--tol", str(AGREE)])
 
 
 PROGRESS_PHASES = [r"mesh: file \S+prism_L4\.msh, 1377 nodes", r"mesh: read and distributed over 2 ranks, \d+ cells", r"contact: 144 contact nodes in 1 group",

@@ -116,7 +116,7 @@ def scene_rotated():
     a, b = scene_answers.contact(os.path.join(OUT, "unrotated.h5")), scene_answers.contact(os.path.join(OUT, "rotated.h5"))
     for name in ("displacement", "reaction"):
         err = np.abs(a[name] @ Q.T - b[name]).max() / np.abs(a[name]).max()
-        expect(err <= 1e-8, "rotated %s differs by %g" % (name, err))
+        expect(err <= AGREE, "rotated %s differs by %g" % (name, err))
     expect(np.abs(b["gap"]).max() < 1e-12, "the rotated contact face does not lie on the rotated plane")
 
 
@@ -193,7 +193,7 @@ def scene_ranks_agree():
     extra = ["-level", "2", "-gravity", "0,0,-9.81", "-density", "1e-3"]
     contact_run(scene("gap") + extra, h5="gap_r1.h5")
     contact_run(scene("gap") + extra, h5="gap_r2.h5", ranks=2)
-    run(CHECK + ["compare", os.path.join(OUT, "gap_r1.h5"), os.path.join(OUT, "gap_r2.h5"), "--tol", "1e-10"])
+    run(CHECK + ["compare", os.path.join(OUT, "gap_r1.h5"), os.path.join(OUT, "gap_r2.h5"), "--tol", str(AGREE)])
 
 
 # ---- only the effects named ---------------------------------------------------------------------------------------

@@ -230,7 +230,7 @@ PetscErrorCode SSStarWriteRun(SSStarScene scene, hid_t file, SNES snes)
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   if (isssstar) {
     SSStarReason        sub;
-    PetscReal           tol, gamma;
+    PetscReal           tol, gamma, law, lawtol, lawU, lawF;
     PetscInt            counts[SSSTAR_NUM_STATES];
     SSStarReductionType rtype;
 
@@ -241,6 +241,11 @@ PetscErrorCode SSStarWriteRun(SSStarScene scene, hid_t file, SNES snes)
     PetscCall(SNESSSStarGetReductionType(snes, &rtype));
     PetscCall(SSStarH5AttrString(root, "sub_reason", SSStarReasons[sub]));
     PetscCall(SSStarH5AttrReal(root, "tolerance", tol));
+    PetscCall(SNESSSStarGetLawResidual(snes, &law, &lawtol, &lawU, &lawF));
+    PetscCall(SSStarH5AttrReal(root, "law_residual", law));
+    PetscCall(SSStarH5AttrReal(root, "law_tolerance", lawtol));
+    PetscCall(SSStarH5AttrReal(root, "law_displacement_scale", lawU));
+    PetscCall(SSStarH5AttrReal(root, "law_force_scale", lawF));
     PetscCall(SSStarH5AttrReal(root, "scaling", gamma));
     PetscCall(SSStarH5AttrString(root, "reduction", rtype));
     PetscCall(SSStarH5AttrInts(root, "state_counts", SSSTAR_NUM_STATES, counts));

@@ -166,6 +166,7 @@ static const StepColumn StepColumns[] = {
   {"time", 1, PETSC_FALSE},         {"iterations", 1, PETSC_TRUE},   {"reason", 1, PETSC_TRUE}, {"residual_norm", 1, PETSC_FALSE}, {"cuts", 1, PETSC_TRUE},
   {"load", 3, PETSC_FALSE},         {"normal_force", 1, PETSC_FALSE}, {"tangential_force", 3, PETSC_FALSE}, {"area", 1, PETSC_FALSE},
   {"sliding", 1, PETSC_TRUE},       {"sticking", 1, PETSC_TRUE},     {"separated", 1, PETSC_TRUE}, {"dissipation", 1, PETSC_FALSE},
+  {"law_residual", 1, PETSC_FALSE}, {"law_displacement_scale", 1, PETSC_FALSE}, {"law_force_scale", 1, PETSC_FALSE},
 };
 
 /* The moving obstacles' contact groups (their columns /steps/motion/<G> follow the fixed ones), then the surfaces */
@@ -233,7 +234,7 @@ static PetscErrorCode StepRow(SSStarScene scene, SNES snes, Vec u, PetscInt cuts
   SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
   SNESConvergedReason reason;
   PetscInt            its, c = 0;
-  PetscReal           norm, load[3];
+  PetscReal           norm, load[3], law[3] = {0, 0, 0}; /* the law residual and its scales (docs/derivation.md section 12) */
   Vec                 r, zero, b;
   const SSStarState  *states = NULL;
   PetscBool           isssstar;
@@ -255,6 +256,7 @@ static PetscErrorCode StepRow(SSStarScene scene, SNES snes, Vec u, PetscInt cuts
   if (scene->nContact && isssstar) {
     PetscCall(SNESSSStarGetStates(snes, &states, NULL));
     PetscCall(SSStarSceneGetContactResult(scene, -1, r, states, &res));
+    PetscCall(SNESSSStarGetLawResidual(snes, &law[0], NULL, &law[1], &law[2]));
   }
   row[c++] = scene->stepTime;
   row[c++] = its;
@@ -269,6 +271,7 @@ static PetscErrorCode StepRow(SSStarScene scene, SNES snes, Vec u, PetscInt cuts
   row[c++] = res.sticking;
   row[c++] = res.separated;
   row[c++] = res.dissipation;
+  for (PetscInt k = 0; k < 3; k++) row[c++] = law[k];
   for (PetscInt g = 0; g < scene->nContact; g++)
     if (scene->contact[g].motion)
       for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].d[k];
@@ -280,7 +283,8 @@ static PetscErrorCode StepRow(SSStarScene scene, SNES snes, Vec u, PetscInt cuts
    SSStarSceneOutputStep - appends a step of a load path to the file opened by SSStarSceneOutputBegin(): its fields
    (/steps/<k>/fields/displacement, /steps/<k>/contact/..., /steps/<k>/contact_faces/...) and its row of the table
    /steps (time, iterations, reason, residual_norm, cuts, load, normal_force, tangential_force, area, sliding,
-   sticking, separated, dissipation, motion/<G>, groups/<G>/displacement)
+   sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, motion/<G>,
+   groups/<G>/displacement)
 
    Collective
 

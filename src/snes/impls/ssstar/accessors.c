@@ -188,6 +188,26 @@ static PetscErrorCode SNESSSStarGetTolerance_SSStar(SNES snes, PetscReal *tol)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SNESSSStarSetLawTolerance_SSStar(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscCheck(rtol >= 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_law_rtol %g must be in (0, 1), or 0 for max(-snes_rtol, 1e-8)", (double)rtol);
+  ((SNES_SSStar *)snes->data)->lawRtol = rtol;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetLawResidual_SSStar(SNES snes, PetscReal *residual, PetscReal *tol, PetscReal *U, PetscReal *F)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  if (residual) *residual = ss->lawResidual;
+  if (tol) *tol = SNESSSStarLawTolerance(snes);
+  if (U) *U = ss->lawDisplacement;
+  if (F) *F = ss->lawForce;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SNESSSStarSetGlobalization_SSStar(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
 {
   SSStarGlobalization *glob = &((SNES_SSStar *)snes->data)->glob;
@@ -253,6 +273,8 @@ static const struct {
     {"SNESSSStarGetStates_C", (PetscVoidFunction)SNESSSStarGetStates_SSStar},
     {"SNESSSStarGetReason_C", (PetscVoidFunction)SNESSSStarGetReason_SSStar},
     {"SNESSSStarGetTolerance_C", (PetscVoidFunction)SNESSSStarGetTolerance_SSStar},
+    {"SNESSSStarSetLawTolerance_C", (PetscVoidFunction)SNESSSStarSetLawTolerance_SSStar},
+    {"SNESSSStarGetLawResidual_C", (PetscVoidFunction)SNESSSStarGetLawResidual_SSStar},
     {"SNESSSStarGetContactNodes_C", (PetscVoidFunction)SNESSSStarGetContactNodes_SSStar},
     {"SNESSSStarSetContactOffsets_C", (PetscVoidFunction)SNESSSStarSetContactOffsets_SSStar},
     {"SNESSSStarGetContactOffsets_C", (PetscVoidFunction)SNESSSStarGetContactOffsets_SSStar},

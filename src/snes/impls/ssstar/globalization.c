@@ -196,12 +196,13 @@ static PetscErrorCode TryFullStep(SNES snes, PetscReal *mfull)
 }
 
 /*
-   The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization
+   The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization,
+   or whole (a polishing step: ||z|| is at its threshold, where its decrease says nothing),
    the full step, unless ||z|| is NaN or Inf there (then reason NAN and u stays the last finite iterate). With it:
    the full step if it decreases ||z|| enough, else the first damped one that does, else a remedy: the full step
    anyway (odd failures) or a doubled gamma without a step (even failures). reason is set when nothing can be done.
 */
-PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, SSStarReason *reason)
+PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, PetscBool whole, SSStarReason *reason)
 {
   SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
   SSStarGlobalization *glob = &ss->glob;
@@ -215,14 +216,14 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, S
   PetscCall(TryFullStep(snes, &mfull));
   /* an inexact step (whole body) that fails is solved on to the floor tolerance first: its error, which the linear
      residual does not show where the body nearly floats, would mislead the damping and the remedies */
-  if (glob->on && !(mfull <= (1 - SSSTAR_SIGMA + eta) * znorm)) {
+  if (glob->on && !whole && !(mfull <= (1 - SSSTAR_SIGMA + eta) * znorm)) {
     PetscBool refined;
 
     PetscCall(SNESSSStarRefineNewtonStep(snes, znorm, &refined));
     if (refined) PetscCall(TryFullStep(snes, &mfull));
   }
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
-  if (!glob->on || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm) {
+  if (!glob->on || whole || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm) {
     if (finite) {
       PetscCall(Accept(ss, ss->ut, ss->ct));
       glob->alpha = 1;

@@ -348,6 +348,66 @@ PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
 }
 
 /*@
+   SNESSSStarSetLawTolerance - the tolerance of the law residual of a converged iterate: a solve converges only when,
+   besides ||z||, every contact point's relative displacement and force as the output writes them lie within rtol U
+   and rtol F of a pair that satisfies the friction law exactly, and the other dofs are in equilibrium to rtol F
+   (docs/derivation.md section 12; U the step's largest displacement, F the largest contact force)
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  rtol - in (0, 1), or 0 (the default): max(the SNES's rtol, 1e-8)
+
+   Options Database Key:
+.  -snes_ssstar_law_rtol <rtol> - the tolerance
+
+   Notes:
+   Where ||z|| has met its threshold and the law residual has not, the iteration takes whole Newton steps solved to
+   the floor (polishing) until it does, or stops with SSSTAR_REASON_LAW_STALLED when it no longer halves (its round-off
+   floor is above the tolerance).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetLawResidual()`, `SNESConvergedSSStar()`, `SNESSetTolerances()`
+@*/
+PetscErrorCode SNESSSStarSetLawTolerance(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLawTolerance_C", (SNES, PetscReal), (snes, rtol));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetLawResidual - the law residual of the last iterate as the output writes it (docs/derivation.md
+   section 12), the tolerance it was held to, and its scales
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  residual - rho: every contact point's (w, r) lies within rho U, rho F of a pair satisfying the law, the other dofs are
+              in equilibrium to rho F (NULL if not wanted)
+.  tol      - the law tolerance (SNESSSStarSetLawTolerance()): a converged solve has residual <= tol (NULL if not wanted)
+.  U        - the displacement scale: the largest relative displacement, or displacement in the solve (NULL if not wanted)
+-  F        - the force scale: the largest contact force (NULL if not wanted)
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetLawTolerance()`, `SNESSSStarGetTolerance()`
+@*/
+PetscErrorCode SNESSSStarGetLawResidual(SNES snes, PetscReal *residual, PetscReal *tol, PetscReal *U, PetscReal *F)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetLawResidual_C", (SNES, PetscReal *, PetscReal *, PetscReal *, PetscReal *), (snes, residual, tol, U, F));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetTolerance - the threshold the last solve's stopping rule compared ||z|| with
 
    Not Collective

@@ -9,13 +9,14 @@
 /* A Newton matrix whose estimated 1/cond is below this is treated as singular: its LU solution has no reliable digit */
 #define SSSTAR_RCOND_MIN 1e-12
 
-/* The scaled friction of node i: the kernels see gamma c (section 6), so a force of the law (Tresca's bound) too */
-static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i)
+/* The friction of node i for the kernels at the scaling gamma: they see gamma c (section 6), so a force of the law
+   (Tresca's bound) too */
+static SSStarFriction ScaledFriction(SNES_SSStar *ss, PetscInt i, PetscReal gamma)
 {
   SSStarFriction fr = ss->contact.nodeFriction[i];
 
   for (PetscInt p = 0; p < fr.law->nparams; p++)
-    if (fr.law->params[p].kind == SSSTAR_LAW_FORCE) fr.value[SSStarLawParameterOffset(fr.law, p)] *= ss->scaling;
+    if (fr.law->params[p].kind == SSSTAR_LAW_FORCE) fr.value[SSStarLawParameterOffset(fr.law, p)] *= gamma;
   return fr;
 }
 
@@ -91,7 +92,7 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
   PetscCall(VecGetArrayWrite(ss->d, &da));
   PetscCall(VecGetArrayWrite(ss->b, &ba));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i);
+    const SSStarFriction fr  = ScaledFriction(ss, i, ss->scaling);
     const PetscInt      *dof = &pb->layoutDofs[3 * i];
     PetscReal            v[3], cv[3], z[3];
 
@@ -109,6 +110,194 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
   PetscCall(VecRestoreArrayRead(u, &ua));
   PetscCall(VecNorm(ss->z, NORM_2, znorm));
   PetscCall(PetscLogEventEnd(SSSTAR_ApproxStep, snes, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The law residual of the iterate u (c = A u - f) as the output writes it (docs/derivation.md section 12): every point's
+   relative displacement w_i = d_i v_i (the file's gap and slip, its increment on a load path) and force r_i = R_i c_i
+   (the file's reaction) lie within rho U and rho F of a pair (w*, r*) that satisfies the law exactly, and the free
+   dofs are in equilibrium to rho F, with
+
+     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR |u_C|_inf)                       the step's displacements
+     F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FORCE_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
+
+   each at least SSSTAR_LAW_FLOOR times the largest of the solves since the set-up (a step of a load path where nothing
+   touches and nothing is loaded has forces of round-off alone: they are measured against the path's).
+
+   rho is |z|_inf / U of the approximation step (12.1) at (w, r) with gamma_w = U/F: (w + z, -b/gamma_w) is that pair.
+   Without floors: the step's own scales alone (the elastic trial's choice, where the rounding does not matter).
+*/
+static PetscErrorCode LawResidual(SNES snes, Vec u, Vec c, PetscBool floors, PetscReal *rho, PetscReal *Uout, PetscReal *Fout)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarContact     *ct = &ss->contact;
+  SSStarProblem     *pb = &ss->problem;
+  const PetscScalar *ua, *ca;
+  PetscReal          scales[5] = {0, 0, 0, 0, 0}, res[2] = {0, 0}, gammaw, U, F; /* |w|, |u_C - u_C(start)|, |u_C|, |r|, |r - r(start)| */
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(u, &ua));
+  PetscCall(VecGetArrayRead(c, &ca));
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const PetscReal scale = ct->pointScale ? ct->pointScale[i] : 1.0;
+    PetscReal       v[3], r[3];
+
+    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeRotate(ct, pb, i, ca, r);
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscInt  dof = pb->layoutDofs[3 * i + k];
+      const PetscReal uk = PetscRealPart(ua[dof]), ck = PetscRealPart(ca[dof]);
+
+      scales[0] = PetscMax(scales[0], PetscAbsReal(scale * v[k]));
+      scales[1] = PetscMax(scales[1], PetscAbsReal(uk - ss->start[6 * i + k]));
+      scales[2] = PetscMax(scales[2], PetscAbsReal(uk));
+      scales[3] = PetscMax(scales[3], PetscAbsReal(r[k]));
+      scales[4] = PetscMax(scales[4], PetscAbsReal(ck - ss->start[6 * i + 3 + k]));
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, scales, 5, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
+  U = PetscMax(scales[0], scales[1]);
+  F = PetscMax(scales[3], scales[4]);
+  if (floors) {
+    U = PetscMax(PetscMax(U, SSSTAR_LAW_FLOOR * scales[2]), SSSTAR_LAW_FLOOR * ss->pathDisplacement);
+    F = PetscMax(PetscMax(F, SSSTAR_LAW_FORCE_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf)), SSSTAR_LAW_FLOOR * ss->pathForce);
+  }
+  *Uout = U;
+  *Fout = F;
+  if (U == 0) U = 1; /* nothing moves: a displacement error is absolute */
+  if (F == 0) F = 1; /* no force at all: a force error is absolute */
+  gammaw = U / F;
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    const PetscReal scale = ct->pointScale ? ct->pointScale[i] : 1.0;
+    const SSStarFriction fr   = ScaledFriction(ss, i, gammaw);
+    PetscReal            v[3], cv[3], z[3], d[3], b[3];
+
+    NodeIterate(ct, pb, i, ua, v);
+    SNESSSStarNodeRotate(ct, pb, i, ca, cv);
+    for (PetscInt k = 0; k < 3; k++) {
+      v[k] *= scale;
+      cv[k] *= gammaw;
+    }
+    SSStarApproximationStep(&fr, v, cv, z, d, b);
+    for (PetscInt k = 0; k < 3; k++) res[0] = PetscMax(res[0], PetscAbsReal(z[k]) / U);
+  }
+  for (PetscInt j = 0; j < pb->nfree; j++) res[1] = PetscMax(res[1], PetscAbsScalar(ca[pb->free[j]]) / F);
+  PetscCall(VecRestoreArrayRead(c, &ca));
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, res, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
+  *rho = PetscMax(res[0], res[1]);
+  PetscFunctionReturn(0);
+}
+
+/* The law residual of (u, c) with its floors, into ss->lawResidual, lawDisplacement (U), lawForce (F) */
+PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  PetscCall(LawResidual(snes, u, c, PETSC_TRUE, &ss->lawResidual, &ss->lawDisplacement, &ss->lawForce));
+  PetscFunctionReturn(0);
+}
+
+/* The tolerance of the law residual: as set (-snes_ssstar_law_rtol), else max(rtol, SSSTAR_LAW_RTOL_DEFAULT) */
+PetscReal SNESSSStarLawTolerance(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  return ss->lawRtol > 0 ? ss->lawRtol : PetscMax(snes->rtol, SSSTAR_LAW_RTOL_DEFAULT);
+}
+
+/* The contact dofs of the first iterate u of a solve and of its c = A u - f, from which the law residual measures the
+   step's displacements and forces */
+PetscErrorCode SNESSSStarRecordStart(SNES snes, Vec u, Vec c)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarProblem     *pb = &ss->problem;
+  const PetscScalar *ua, *ca;
+
+  PetscFunctionBegin;
+  PetscCall(PetscFree(ss->start));
+  PetscCall(PetscMalloc1(6 * ss->contact.nnodes + 1, &ss->start));
+  PetscCall(VecGetArrayRead(u, &ua));
+  PetscCall(VecGetArrayRead(c, &ca));
+  for (PetscInt i = 0; i < ss->contact.nnodes; i++)
+    for (PetscInt k = 0; k < 3; k++) {
+      ss->start[6 * i + k]     = PetscRealPart(ua[pb->layoutDofs[3 * i + k]]);
+      ss->start[6 * i + 3 + k] = PetscRealPart(ca[pb->layoutDofs[3 * i + k]]);
+    }
+  PetscCall(VecRestoreArrayRead(c, &ca));
+  PetscCall(VecRestoreArrayRead(u, &ua));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The elastic trial of a load path's step (docs/derivation.md section 12.3), from its first iterate u (the last step's
+   solution) after the approximation step there: if the step's offsets moved nodes in contact (d_3 = 0) along their
+   obstacles (|v_t| above the rounding of w = R u + o), one Newton step with every such node stuck where its obstacle
+   took it (state M3+, target v = 0) and the others as classified; taken (the iterate moves there) when it lowers the law
+   residual measured with the step's own scales (not their round-off floors: a stiff body far from its reference
+   computes its forces only to round-off, and the floor would hide that the old sliding forces point the wrong way). A block dragged back by its plane sticks and comes back with it: the trial is its answer, which the
+   approximation step's own classification (the nodes sliding the way they slid) reaches only by luck.
+*/
+PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
+{
+  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
+  SSStarContact     *ct = &ss->contact;
+  SSStarProblem     *pb = &ss->problem;
+  const PetscScalar *ua;
+  PetscScalar       *za, *da, *ba;
+  PetscReal          moved[2] = {0, 0}, before, after, U, F, znorm; /* the largest |v_t| in contact, |u_C| */
+  PetscBool          solved;
+
+  PetscFunctionBegin;
+  *taken = PETSC_FALSE;
+  if (!ct->offsets) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(ss->u, &ua));
+  PetscCall(VecGetArrayRead(ss->d, (const PetscScalar **)&da));
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    PetscReal v[3];
+
+    NodeIterate(ct, pb, i, ua, v);
+    if (PetscRealPart(da[3 * i + 2]) == 0) moved[0] = PetscMax(moved[0], PetscSqrtReal(v[0] * v[0] + v[1] * v[1]));
+    for (PetscInt k = 0; k < 3; k++) moved[1] = PetscMax(moved[1], PetscAbsScalar(ua[pb->layoutDofs[3 * i + k]]));
+  }
+  PetscCall(VecRestoreArrayRead(ss->d, (const PetscScalar **)&da));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, moved, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
+  if (moved[0] <= SSSTAR_LAW_FLOOR * moved[1]) {
+    PetscCall(VecRestoreArrayRead(ss->u, &ua));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetArray(ss->z, &za));
+  PetscCall(VecGetArray(ss->d, &da));
+  PetscCall(VecGetArray(ss->b, &ba));
+  for (PetscInt i = 0; i < ct->nnodes; i++) {
+    PetscReal v[3];
+
+    if (PetscRealPart(da[3 * i + 2]) != 0) continue;
+    NodeIterate(ct, pb, i, ua, v);
+    ss->states[i] = SSSTAR_STATE_M3P;
+    for (PetscInt k = 0; k < 3; k++) {
+      za[pb->layoutDofs[3 * i + k]] = -v[k];
+      da[3 * i + k]                 = 0;
+    }
+  }
+  PetscCall(VecRestoreArray(ss->b, &ba));
+  PetscCall(VecRestoreArray(ss->d, &da));
+  PetscCall(VecRestoreArray(ss->z, &za));
+  PetscCall(VecRestoreArrayRead(ss->u, &ua));
+  PetscCall(LawResidual(snes, ss->u, ss->c, PETSC_FALSE, &before, &U, &F));
+  PetscCall(VecNorm(ss->z, NORM_2, &znorm));
+  PetscCall(SNESSSStarNewtonStep(snes, znorm, 0.0, PETSC_FALSE, &solved));
+  if (!solved) PetscFunctionReturn(0);
+  PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u));
+  PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
+  PetscCall(LawResidual(snes, ss->ut, ss->ct, PETSC_FALSE, &after, &U, &F));
+  *taken = (PetscBool)(after < before);
+  if (*taken) {
+    PetscCall(VecCopy(ss->ut, ss->u));
+    PetscCall(VecCopy(ss->ct, ss->c));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -140,7 +329,7 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
   tol_b = ss->state_tol * PetscMax(ss->scaling * ss->fnorm_inf, norms[2]);
   PetscCall(PetscArrayzero(ss->counts, SSSTAR_NUM_STATES));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr = ScaledFriction(ss, i);
+    const SSStarFriction fr = ScaledFriction(ss, i, ss->scaling);
 
     ss->states[i] = SSStarClassify(&fr, &da[3 * i], &ba[3 * i], tol_d, tol_b);
     ss->counts[ss->states[i]]++;
@@ -154,8 +343,9 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
 }
 
 /*
-   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a fraction of the
-   stopping threshold, a tenth of it
+   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a tenth of the
+   stopping threshold, and of the law's tolerance of forces (section 12) once the law residual has been measured: on a
+   stiff body gamma^-1 times the first is far above the contact forces
 */
 PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
 {
@@ -165,6 +355,7 @@ PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   *floor = 0.1 * PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale)) / ss->scaling;
+  if (ss->lawForce > 0) *floor = PetscMin(*floor, 0.1 * SNESSSStarLawTolerance(snes) * ss->lawForce);
   PetscFunctionReturn(0);
 }
 
@@ -211,7 +402,7 @@ PetscErrorCode SNESSSStarNewtonStep(SNES snes, PetscReal znorm, PetscReal eta, P
   PetscCall(VecGetArrayRead(ss->b, &ba));
   PetscCall(VecGetArrayWrite(ss->y, &ya));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction fr  = ScaledFriction(ss, i);
+    const SSStarFriction fr  = ScaledFriction(ss, i, ss->scaling);
     const PetscInt      *dof = &pb->layoutDofs[3 * i];
     PetscReal           *S = &ss->S[9 * i], *T = &ss->T[9 * i];
 

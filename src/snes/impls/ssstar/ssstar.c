@@ -7,7 +7,7 @@
 #include "ssstarimpl.h"
 
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
-const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
@@ -251,6 +251,11 @@ static PetscErrorCode SetUpSolve(SNES snes)
     ss->scale *= ss->scaling;
     PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   }
+  PetscCall(SNESSSStarRecordStart(snes, ss->u, ss->c));
+  ss->lawForce  = 0; /* not measured yet */
+  ss->lawBest   = PETSC_MAX_REAL;
+  ss->lawStalls = 0;
+  ss->polishing = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -273,11 +278,19 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 
   PetscCall(SetUpSolve(snes));
   PetscCall(SSStarGlobalizationBegin(snes));
+  {
+    PetscBool taken;
+
+    PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
+    PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
+    PetscCall(SNESSSStarElasticTrial(snes, &taken));
+  }
 
   for (PetscInt k = 0;; k++) {
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
+    PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
     PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
     PetscCall(SNESSSStarClassify(snes));
     if (ss->method == SSSTAR_METHOD_NEWTON) PetscCall(SSStarGlobalizationDetect(snes, k, znorm));
@@ -294,12 +307,28 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     PetscUseTypeMethod(snes, converged, k, xnorm, dunorm, znorm, &snes->reason, snes->cnvP);
     if (snes->reason) {
       ss->reason = SubReason(snes);
+      if (snes->reason > 0) {
+        ss->pathDisplacement = PetscMax(ss->pathDisplacement, ss->lawDisplacement);
+        ss->pathForce        = PetscMax(ss->pathForce, ss->lawForce);
+      }
       break;
     }
     if (k >= snes->max_its) {
       ss->reason   = SSSTAR_REASON_MAX_IT;
       snes->reason = SNES_DIVERGED_MAX_IT;
       break;
+    }
+    /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
+       taken whole, until it is, or it stops halving while the states stay (its round-off floor) */
+    ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);
+    if (ss->polishing) {
+      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0) ss->lawStalls++;
+      ss->lawBest = PetscMin(ss->lawBest, ss->lawResidual);
+      if (ss->lawStalls > SSSTAR_LAW_MAX_STALLS) {
+        ss->reason   = SSSTAR_REASON_LAW_STALLED;
+        snes->reason = SNES_DIVERGED_LOCAL_MIN;
+        break;
+      }
     }
     if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
       PetscCall(SNESSSStarSetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
@@ -328,7 +357,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       PetscInt remedies = 0;
 
       for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) remedies += ss->glob.counts[r];
-      const PetscReal eta = remedies || (ss->glob.changed == 0 && ss->glob.shownAlpha == 1) ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
+      const PetscReal eta = remedies || ss->polishing || (ss->glob.changed == 0 && ss->glob.shownAlpha == 1) ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
 
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
@@ -344,7 +373,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
-        PetscCall(SSStarGlobalizationStep(snes, k, znorm, &stop));
+        PetscCall(SSStarGlobalizationStep(snes, k, znorm, ss->polishing, &stop));
       }
     }
     if (stop) {
@@ -376,7 +405,9 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
    SNESConvergedSSStar - the default convergence test of ssstar: converged when ||z|| <= atol (CONVERGED_FNORM_ABS)
    or ||z|| <= rtol max(||u||, ||gamma f||, ||o_t||) (CONVERGED_FNORM_RELATIVE), with z the approximation step, gamma f
    the reduced load in displacement units (docs/derivation.md section 6), o_t the tangential contact offsets of a load
-   path's step (SNESSSStarSetContactOffsets(); 0 without) and atol, rtol from SNESSetTolerances()
+   path's step (SNESSSStarSetContactOffsets(); 0 without) and atol, rtol from SNESSetTolerances(); and in both cases
+   when the law residual of the iterate as written is within its tolerance (SNESSSStarSetLawTolerance(),
+   docs/derivation.md section 12)
 
    Collective
 
@@ -406,9 +437,14 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
 @*/
 PetscErrorCode SNESConvergedSSStar(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
 {
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscBool    law;
+
   PetscFunctionBegin;
   *reason = SNES_CONVERGED_ITERATING;
+  law = (PetscBool)(ss->lawResidual <= SNESSSStarLawTolerance(snes));
   if (PetscIsInfOrNanReal(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
+  else if (!law) *reason = SNES_CONVERGED_ITERATING;
   else if (fnorm <= snes->abstol) *reason = SNES_CONVERGED_FNORM_ABS;
   else if (fnorm <= snes->rtol * xnorm) *reason = SNES_CONVERGED_FNORM_RELATIVE;
   PetscFunctionReturn(0);
@@ -424,6 +460,8 @@ static PetscErrorCode SNESReset_SSStar(SNES snes)
   PetscCall(SSStarNewtonReset(ss->newton));
   PetscCall(PetscFree2(ss->states, ss->userStates));
   PetscCall(PetscFree2(ss->S, ss->T));
+  PetscCall(PetscFree(ss->start));
+  ss->pathDisplacement = ss->pathForce = 0;
   PetscCall(VecDestroy(&ss->u));
   for (Vec *w = &ss->c; w <= &ss->ca; w++) PetscCall(VecDestroy(w));
   PetscCall(VecDestroy(&ss->d));
@@ -475,7 +513,8 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
 .  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||); once a remedy acted, and for a step whose full step fails, the floor (a tenth of the stopping threshold)
 .  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
-.  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar())
+.  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar()) and the law residual of the iterate as written is within its tolerance
+.  -snes_ssstar_law_rtol <0> - that tolerance (0: max(rtol, 1e-8); docs/derivation.md section 12)
 -  -snes_atol <1e-50> - or when ||z|| <= atol
 
 M*/

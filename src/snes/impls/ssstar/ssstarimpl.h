@@ -29,6 +29,17 @@ typedef struct {
 
 /* Whether bytes per rank fit the memory limit (GB per rank, 0: each node's MemAvailable): the reductions' check (src/reduction) */
 PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, PetscBool *);
+/* the law residual's displacement scale is at least this fraction of |u_C| (and of the path's largest, as its force
+   scale of the path's largest force): the rounding of w = R u + o, 1e-16 of |u|, stays 100 times below the default
+   tolerance of the law */
+#define SSSTAR_LAW_FLOOR 1e-6
+/* its force scale is at least this fraction of |A| |u| + |f|: 10 times the worst round-off of r = A u - f, 2e-16 of
+   that, at the default tolerance 1e-8 (a stiff body far from its reference computes its forces to no better) */
+#define SSSTAR_LAW_FORCE_FLOOR 2e-7
+/* the tolerance of the law residual of a converged iterate is max(rtol, this) unless -snes_ssstar_law_rtol sets it */
+#define SSSTAR_LAW_RTOL_DEFAULT 1e-8
+/* polishing steps without halving the law residual before the solve stops (it is at its round-off floor) */
+#define SSSTAR_LAW_MAX_STALLS 3
 
 /* the multigrid of an earlier Newton matrix is kept while at most this fraction of the nodes changed known rows */
 #define SSSTAR_PC_REUSE_DEFAULT 0.3
@@ -221,6 +232,17 @@ typedef struct {
   SSStarReason reason;
   PetscReal    tolerance;    /* the threshold of the last convergence test: max(atol, rtol max(||u||, ||gamma f||)) */
 
+  /* what a converged iterate guarantees as written (docs/derivation.md section 12): its law residual rho is at most
+     SNESSSStarLawTolerance() */
+  PetscReal  lawRtol;                   /* the tolerance of rho as set, or 0: max(rtol, SSSTAR_LAW_RTOL_DEFAULT)      */
+  PetscReal  lawResidual;               /* rho of the last iterate                                                */
+  PetscReal  lawDisplacement, lawForce; /* U and F of it                                                          */
+  PetscReal  pathDisplacement, pathForce; /* the largest U and F of the solves since the set-up (a load path's)    */
+  PetscReal  lawBest;                   /* the smallest rho of this solve's polishing steps                       */
+  PetscInt   lawStalls;                 /* polishing steps that did not halve it                                  */
+  PetscBool  polishing;                 /* ||z|| is below its threshold, rho not: Newton steps solved to the floor */
+  PetscReal *start;                     /* u and c = A u - f at the contact dofs of the solve's first iterate (6 per node) */
+
   /* the iteration, per local node in the solver's order */
   SSStarState *states;                     /* at the last iterate                                   */
   SSStarState *userStates;                 /* the same in the user's node order                     */
@@ -243,6 +265,10 @@ PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarClassify(SNES);
+PETSC_INTERN PetscErrorCode SNESSSStarLawResidual(SNES, Vec, Vec);
+PETSC_INTERN PetscReal      SNESSSStarLawTolerance(SNES);
+PETSC_INTERN PetscErrorCode SNESSSStarRecordStart(SNES, Vec, Vec);
+PETSC_INTERN PetscErrorCode SNESSSStarElasticTrial(SNES, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarNewtonStep(SNES, PetscReal, PetscReal, PetscBool, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarRefineNewtonStep(SNES, PetscReal, PetscBool *);
 PETSC_INTERN PetscErrorCode SNESSSStarFixedPointStep(SNES, Vec, Vec, PetscBool *);
@@ -262,7 +288,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarFormatStateCounts(const PetscInt[], char[]
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBegin(SNES);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationDetect(SNES, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationRecord(SSStarGlobalization *, SSStarRemedy);
-PETSC_INTERN PetscErrorCode SSStarGlobalizationStep(SNES, PetscInt, PetscReal, SSStarReason *);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationStep(SNES, PetscInt, PetscReal, PetscBool, SSStarReason *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBreakCycle(SNES, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationFixedPoint(SNES, PetscReal, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationView(SSStarGlobalization *, PetscViewer);

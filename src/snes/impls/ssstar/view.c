@@ -135,6 +135,8 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
   if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_law_rtol", "The tolerance of the law residual of a converged iterate as written (docs/derivation.md section 12); 0: max(-snes_rtol, 1e-8)", "SNESSSStarSetLawTolerance", ss->lawRtol, &value, &set));
+  if (set) PetscCall(SNESSSStarSetLawTolerance(snes, value));
   PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));
   PetscCall(PetscOptionsInt("-snes_ssstar_lu_threads", "BLAS threads of rank 0 for the LU of the Newton matrix on several ranks (0: the cores it may run on; 1: leave the BLAS)", "SNESSSStarSetLUThreads", threads, &threads, &set));
   if (set) PetscCall(SNESSSStarSetLUThreads(snes, threads));
@@ -183,7 +185,10 @@ PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   if (ss->scaling_user > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = %g\n", (double)ss->scaling_user));
   else if (ss->method == SSSTAR_METHOD_FIXEDPOINT) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/(largest contact row sum of K)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = 1/mean(diag K_CC)%s%g\n", ss->scaling > 0 ? " = " : "", ss->scaling > 0 ? (double)ss->scaling : 0.0));
-  if (snes->ops->converged == SNESConvergedSSStar) PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
+  if (snes->ops->converged == SNESConvergedSSStar) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  stopping rule ||z|| <= max(atol, rtol max(||u||, ||gamma f||)), atol = %g, rtol = %g\n", (double)snes->abstol, (double)snes->rtol));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    and the law residual of the iterate as written <= %g (%s; docs/derivation.md section 12)\n", (double)SNESSSStarLawTolerance(snes), ss->lawRtol > 0 ? "-snes_ssstar_law_rtol" : "max(rtol, 1e-8)"));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer, "  state tolerance tau = %g\n", (double)ss->state_tol));
   PetscCall(SSStarNewtonView(ss->newton, viewer));
   PetscCall(SSStarGlobalizationView(&ss->glob, viewer));
@@ -191,7 +196,7 @@ PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
     char counts[256];
 
     PetscCall(SNESSSStarFormatStateCounts(ss->counts, counts, sizeof(counts)));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s after %" PetscInt_FMT " iterations, ||z|| = %g; contact states %s\n", SSStarReasons[ss->reason], snes->iter, (double)snes->norm, counts));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  last solve: %s after %" PetscInt_FMT " iterations, ||z|| = %g, law residual %g; contact states %s\n", SSStarReasons[ss->reason], snes->iter, (double)snes->norm, (double)ss->lawResidual, counts));
     PetscCall(SSStarGlobalizationViewCounts(&ss->glob, viewer));
   }
   PetscFunctionReturn(0);
@@ -200,6 +205,7 @@ PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
 /* With -snes_converged_reason, a line after PETSc's with the finer reason of ssstar */
 PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
 {
+  SNES_SSStar      *ss = (SNES_SSStar *)snes->data;
   PetscViewer       viewer;
   PetscViewerFormat format;
   PetscBool         flg, isssstar;
@@ -210,7 +216,7 @@ PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
   PetscCall(PetscOptionsGetViewer(PetscObjectComm((PetscObject)snes), ((PetscObject)snes)->options, ((PetscObject)snes)->prefix, "-snes_converged_reason", &viewer, &format, &flg));
   if (!flg) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g\n", SSStarReasons[((SNES_SSStar *)snes->data)->reason], (double)snes->norm));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g, law residual %g (tolerance %g)\n", SSStarReasons[ss->reason], (double)snes->norm, (double)ss->lawResidual, (double)SNESSSStarLawTolerance(snes)));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerDestroy(&viewer));
   PetscFunctionReturn(0);

@@ -4,7 +4,7 @@ with one configuration after another (options added to the default), the configu
 repeat (their order rotated from repeat to repeat) so that a noisy spell of the shared machine hits them all, and the
 AMG yardstick measured in the same repeat (bench/yardstick: one CG + GAMG solve of K, set-up + solve).
 
-  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|round4|default] [--only "a;b;..."]
+  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|round4|nested|default] [--only "a;b;..."]
                   [--config name='-opt value ...'] [--extra '-opt value']
 
 Per level and configuration, medians over the repeats: the whole run (the process's wall time, mesh to the -o file),
@@ -106,6 +106,16 @@ SETS["round4"] = [
     ("eta_max 0.3", "-snes_ssstar_ksp_rtol_max 0.3"),
     ("threshold 0.01", "-pc_gamg_threshold 0.01"),
     ("coarse 1000 eq", "-pc_gamg_coarse_eq_limit 1000"),
+]
+# the fifth round: nested iteration (-nested_levels: coarser meshes solved first; auto, the default, by the size)
+SETS["nested"] = [
+    ("default", ""),
+    ("no nesting", "-nested_levels 0"),
+    ("nested 1", "-nested_levels 1"),
+    ("nested 2", "-nested_levels 2"),
+    ("nested 3", "-nested_levels 3"),
+    ("plain aggregation", "-pc_gamg_agg_nsmooths 0"),
+    ("one multigrid", "-snes_ssstar_pc_reuse 1"),
 ]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)

@@ -3,8 +3,10 @@
 
   bench/table2.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--once-from L] [--paths direct,none]
                   [--yardsticks cholesky,amg] [--cholesky-max-level 14]
-  bench/table2.py --large          # levels 8, 16, 24, 32, 40 on the whole body, 1 and 2 ranks (make bench-large):
-                                   # medians of 3 runs up to level 24, one run at 32 and 40 (their time)
+  bench/table2.py --large          # levels 8, 16, 24, 32, 40, 48 on the whole body, 1 and 2 ranks (make bench-large):
+                                   # medians of 3 runs up to level 24, one run from 32 (their time); per run also the
+                                   # solve in AMG yardsticks, the set-up's share, the Krylov iterations, the bytes per dof
+                                   # against the estimate (table2_large_targets.png)
 
 Per level, ranks and path (direct: the dense route, P formed by MUMPS and the Newton steps by LU; none: the whole
 body, P never formed, Krylov + multigrid): the phases of the summary row (assembly = mesh to K, schur = the
@@ -37,6 +39,10 @@ CHOLESKY = re.compile(r"cholesky level \d+ ranks \d+ dofs (\d+) time (\S+) flops
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 KRYLOV_FULL = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations")
+SETUP = re.compile(r"^\s*set-up: .*, ([\d.]+) s, [\d.]+ GB per rank", re.M)
+NESTED = re.compile(r"^nested: .*, ([\d.]+) s, [\d.]+ GB per rank", re.M)
+ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank")
+DOFS = re.compile(r"^assembly: K of (\d+) dofs", re.M)
 KRYLOV_DENSE = re.compile(r"last solve: (\d+) LU factorizations .*?, (\d+) steps on an old LU \((\d+) Krylov iterations\)")
 
 
@@ -66,11 +72,14 @@ def measure(level, ranks, path):
     for name in (h5, h5[:-3] + ".xmf"):
         if os.path.exists(name):
             os.remove(name)
-    full, dense = KRYLOV_FULL.search(p.stdout), KRYLOV_DENSE.search(p.stdout)
-    steps, krylov = (int(full.group(1)), int(full.group(2))) if full else (int(dense.group(1)) + int(dense.group(2)), int(dense.group(3))) if dense else (0, 0)
+    full, dense = KRYLOV_FULL.findall(p.stdout), KRYLOV_DENSE.search(p.stdout)
+    steps, krylov = (int(full[-1][0]), int(full[-1][1])) if full else (int(dense.group(1)) + int(dense.group(2)), int(dense.group(3))) if dense else (0, 0)
+    setup, nested, estimate, dofs = SETUP.search(p.stdout), NESTED.search(p.stdout), ESTIMATE.search(p.stdout), DOFS.search(p.stdout)
     return {"assembly": float(m.group(4)), "schur": float(m.group(5)), "solve": float(m.group(7)), "iters": int(m.group(8)),
             "nodes": int(m.group(3)), "contact": int(m.group(6)), "states": m.group(10), "reason": m.group(11), "whole": whole,
-            "krylov_per_step": krylov / steps if steps else 0.0, "peak_gb": float(m.group(12))}
+            "krylov_per_step": krylov / steps if steps else 0.0, "krylov": krylov, "peak_gb": float(m.group(12)),
+            "setup": float(setup.group(1)) if setup else math.nan, "nested": float(nested.group(1)) if nested else 0.0,
+            "estimate_gb": float(estimate.group(1)) if estimate else math.nan, "dofs": int(dofs.group(1)) if dofs else 3 * int(m.group(3))}
 
 
 def yardstick(level, ranks, which):
@@ -97,7 +106,7 @@ def main():
     parser.add_argument("--large", action="store_true", help="levels 8-40 on the whole body, 1 and 2 ranks, one run from level 32 (make bench-large)")
     args = parser.parse_args()
     if args.large:
-        args.levels, args.ranks, args.paths, args.yardsticks, args.once_from = "8,16,24,32,40", "1,2", "none", "amg", 32
+        args.levels, args.ranks, args.paths, args.yardsticks, args.once_from = "8,16,24,32,40,48", "1,2", "none", "amg", 32
     os.makedirs(OUT, exist_ok=True)
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
@@ -127,8 +136,12 @@ def main():
                     continue
                 row = {"level": level, "ranks": ranks, "path": path, "nodes": runs[0]["nodes"], "contact": runs[0]["contact"],
                        "iters": runs[0]["iters"], "states": runs[0]["states"], "reason": runs[0]["reason"]}
-                for key in ("assembly", "schur", "solve", "whole", "peak_gb", "krylov_per_step"):
+                for key in ("assembly", "schur", "solve", "whole", "peak_gb", "krylov_per_step", "krylov", "setup", "nested", "estimate_gb"):
                     row[key] = statistics.median(r[key] for r in runs)
+                row["dofs"] = runs[0]["dofs"]
+                row["solve_per_amg"] = (row["solve"] + row["schur"]) / ys.get("amg", math.nan) if "amg" in ys else math.nan
+                row["setup_share"] = (row["nested"] + row["setup"]) / (row["solve"] + row["schur"]) if row["solve"] + row["schur"] > 0 else math.nan
+                row["bytes_per_dof"] = row["peak_gb"] * 1e9 * ranks / row["dofs"]
                 row["cholesky"], row["amg"] = ys.get("cholesky", math.nan), ys.get("amg", math.nan)
                 row["whole_per_cholesky"] = row["whole"] / row["cholesky"]
                 row["whole_per_amg"] = row["whole"] / row["amg"]
@@ -141,6 +154,10 @@ def main():
                     row["krylov_per_step"], row["peak_gb"], row["cholesky"], row["amg"], row["whole_per_cholesky"],
                     row["whole_per_amg"], row["states"], row["reason"]), flush=True)
                 rows.append(row)
+                if args.large:
+                    print("      solve %.2f s = %.2f AMG yardsticks; nested start %.2f s, set-up %.2f s (%.0f %% of the solve), %d Krylov iterations; peak %.3f GB per rank = %.2f kB per dof, estimated %.3f (%+.0f %%)" % (
+                        row["solve"] + row["schur"], row["solve_per_amg"], row["nested"], row["setup"], 100 * row["setup_share"], row["krylov"], row["peak_gb"],
+                        row["bytes_per_dof"] / 1e3, row["estimate_gb"], 100 * (row["estimate_gb"] / row["peak_gb"] - 1)), flush=True)
     if "direct" in paths and "none" in paths:
         for ranks in sorted({r["ranks"] for r in rows}):
             whole = {(r["level"], r["path"]): r["whole"] for r in rows if r["ranks"] == ranks}
@@ -148,9 +165,9 @@ def main():
             print("crossover, %d rank%s: the whole body is faster from level %s" % (ranks, "s" if ranks > 1 else "", faster[0] if faster else "- (not in these levels)"))
     name = "table2_large" if args.large else "table2"
     with open(os.path.join(OUT, name + ".csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["level", "ranks", "path", "nodes", "contact", "assembly", "schur", "solve", "whole", "iters",
-                                          "krylov_per_step", "peak_gb", "cholesky", "amg", "whole_per_cholesky", "whole_per_amg",
-                                          "seed_whole", "speedup", "states", "reason"])
+        w = csv.DictWriter(f, fieldnames=["level", "ranks", "path", "nodes", "dofs", "contact", "assembly", "schur", "solve", "whole", "iters",
+                                          "krylov_per_step", "krylov", "nested", "setup", "setup_share", "peak_gb", "bytes_per_dof", "estimate_gb",
+                                          "cholesky", "amg", "whole_per_cholesky", "whole_per_amg", "solve_per_amg", "seed_whole", "speedup", "states", "reason"])
         w.writeheader()
         w.writerows(rows)
     plot(rows, name)
@@ -182,6 +199,36 @@ def plot(rows, name):
     ax.legend(fontsize=7, ncol=2, loc="upper left")
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, name + ".png"), dpi=120)
+    if name == "table2_large":
+        plot_large(rows)
+
+
+def plot_large(rows):
+    """table2_large_targets.png: the solve in AMG yardsticks, the bytes per dof (measured and estimated), the Newton steps
+    and Krylov iterations, against the level, per ranks"""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
+    for ranks, style in ((1, "-o"), (2, "--s")):
+        rs = sorted((r for r in rows if r["ranks"] == ranks and r["path"] == "none"), key=lambda r: r["level"])
+        if not rs:
+            continue
+        lv = [r["level"] for r in rs]
+        axes[0].plot(lv, [r["solve_per_amg"] for r in rs], style, label="%d rank%s" % (ranks, "s" if ranks > 1 else ""))
+        axes[1].plot(lv, [r["bytes_per_dof"] / 1e3 for r in rs], style, label="peak, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
+        axes[1].plot(lv, [r["estimate_gb"] * 1e9 * ranks / r["dofs"] / 1e3 for r in rs], style, alpha=0.4, label="estimate, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
+        axes[2].plot(lv, [r["iters"] for r in rs], style, label="Newton steps, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
+        axes[2].plot(lv, [r["krylov_per_step"] for r in rs], style, alpha=0.5, label="Krylov per step, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
+    for ax, title, target in ((axes[0], "the solve / one AMG solve of K", 2.0), (axes[1], "peak memory, kB per dof (ranks together)", 2.5), (axes[2], "iterations", None)):
+        if target:
+            ax.axhline(target, color="black", lw=0.8, ls=":", label="target")
+        ax.set_xlabel("level")
+        ax.set_title(title, fontsize=9)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, "table2_large_targets.png"), dpi=110)
 
 
 if __name__ == "__main__":

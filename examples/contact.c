@@ -110,6 +110,7 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
 
     PetscCall(VecCopy(b, load));
     PetscCall(VecScale(load, factor));
+    if (nsteps == 1 && hasContact) PetscCall(SSStarSceneSolveNested(scene, snes, u)); /* -nested_levels */
     PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
     PetscCall(SNESGetConvergedReason(snes, reason));
     PetscCall(SNESGetIterationNumber(snes, &stepIts));

@@ -38,6 +38,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneHasContact(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactDofs(SSStarScene, IS *);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactNodes(SSStarScene, PetscInt *, const PetscReal *[], const PetscReal *[], const PetscReal *[], const PetscReal *[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneSetContact(SSStarScene, SNES);
+PETSC_EXTERN PetscErrorCode SSStarSceneSolveNested(SSStarScene, SNES, Vec);
 
 /* What the contact nodes of a group (or of all groups) carry at a solution */
 typedef struct {
@@ -93,5 +94,6 @@ PETSC_EXTERN PetscErrorCode SSStarWriteNodeFriction(SNES, PetscViewer, const cha
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarMeshFileNodes(MPI_Comm, const char[], PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, const char[]);
+PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscLogDouble *, PetscBool *);
 
 #endif

@@ -17,7 +17,7 @@
    the Newton step's GMRES, the factorizations), after the solve (views, reasons) or at PetscFinalize(). Prefixes,
    without the dash; none of them is checked before the work.
 */
-static const char *const LateOptions[] = {"snes_view", "snes_converged_reason", "ksp_view", "ksp_converged_reason", "pc_view", "mat_", "vec_view", "dm_", "petscpartitioner_", "viewer_", "log", "options_left", "options_view", "memory_view", "malloc_", "objects_dump", "snes_ssstar_newton_ksp_", "schur_", "interior_", "initial_mat_", "pc_factor_", "pc_mg_", "mg_"};
+static const char *const LateOptions[] = {"snes_view", "snes_converged_reason", "ksp_view", "ksp_converged_reason", "pc_view", "mat_", "vec_view", "dm_", "petscpartitioner_", "viewer_", "log", "options_left", "options_view", "memory_view", "malloc_", "objects_dump", "snes_ssstar_newton_ksp_", "schur_", "interior_", "initial_mat_", "pc_factor_", "pc_mg_", "mg_", "matmatmult_", "matptap_", "matproduct_"};
 
 /* The prefix of the scratch SNES whose -help text lists the options of a SNES of the same types */
 #define SSSTAR_KNOWN_PREFIX "ssstar_known_"
@@ -356,7 +356,8 @@ static PetscErrorCode RefuseUnread(MPI_Comm comm, NameList *unread, const char *
    An option that PETSc reads only during the work, after the solve or at PetscFinalize() is not refused here:
    -snes_view*, -snes_converged_reason, -ksp_view, -ksp_converged_reason, -pc_view, -vec_view, -log*, -options_left,
    -options_view, -memory_view, -malloc_*, -objects_dump, and the prefixes -mat_, -dm_, -petscpartitioner_, -viewer_,
-   -pc_factor_, -pc_mg_, -mg_, -schur_, -interior_, -initial_mat_, -snes_ssstar_newton_ksp_. PETSc's -options_left
+   -pc_factor_, -pc_mg_, -mg_, -matmatmult_, -matptap_, -matproduct_, -schur_, -interior_, -initial_mat_,
+   -snes_ssstar_newton_ksp_. PETSc's -options_left
    lists at PetscFinalize() those left unread.
 
    The error (PETSC_ERR_USER_INPUT) reads "Unknown option -levle (nearest known option: -level): nothing was done;

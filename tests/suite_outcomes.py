@@ -299,11 +299,11 @@ def plot_slip_key_and_layout():
         expect(os.path.getsize(out(name.replace(".h5", ".png"))) > 10000, "%s: no picture" % name)
 
 
-@test("the memory refusal before the mesh says what it counted (the mesh and the assembly; the solver's own memory on "
-      "top), not 'dense contact matrices 0 GB' (examples/prism -level 400)")
+@test("the memory refusal before the mesh says what it counted (the whole run's peak per rank: mesh, assembly and the "
+      "solve on the whole body; what the ranks would add against MemAvailable), not 'dense contact matrices 0 GB' (examples/prism -level 400)")
 def memory_refusal_wording():
     text = run(mpiexec(1, PRISM, "-level", "400"), expect_rc=1)
-    expect("for the mesh and the assembly (the solver's own memory comes on top)" in text and " 0 GB" not in text
+    expect("GB per rank at the peak of the run (mesh, assembly and the solve on the whole body), and the 1 rank would add" in text and " 0 GB" not in text
            and "refused before the work" in text, "the refusal of -level 400 does not say what it counted", text)
 
 

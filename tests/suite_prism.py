@@ -25,17 +25,23 @@ def prism_level_run(level, extra, slack):
 def prism_level(level):
     """The default (auto): the dense route up to SSSTAR_AUTO_DENSE_MAX_DOFS (20 000) dofs, the reference iterations +- 1;
     the whole body above, whose inexact steps may take up to two more (README "Large problems"), and there the dense
-    route named (-snes_ssstar_reduction direct) for the reference iterations +- 1"""
-    dense = 3 * (4 * level + 1) * (2 * level + 1) ** 2 <= 20000
-    out, s = prism_level_run(level, [], 1 if dense else 2)
+    route named (-snes_ssstar_reduction direct) for the reference iterations +- 1; above 50 000 dofs auto starts from
+    the coarser level's solution (nested iteration: fewer iterations), and from u = 0 with -nested_levels 0"""
+    dofs = 3 * (4 * level + 1) * (2 * level + 1) ** 2
+    dense, nested = dofs <= 20000, dofs > 50000
+    out, s = prism_level_run(level, ["-nested_levels", "0"] if nested else [], 1 if dense else 2)
     route = r"set-up: K reduced to \d+ contact dofs by the direct Schur complement \(chosen by auto\)" if dense else r"set-up: the whole body, \d+ dofs, P never formed \(reduction none, chosen by auto\)"
     expect(re.search(route, out) is not None, "level %d: not the route of auto (%s)" % (level, "dense" if dense else "whole body"), out)
     if not dense:
         prism_level_run(level, ["-snes_ssstar_reduction", "direct"], 1)
+    if nested:
+        out, s = prism(level, extra=["-snes_view"])
+        expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and re.search(r"^nested: 1 coarser mesh, the finest of \d+ nodes", out, re.M) is not None, "level %d: auto did not start from the coarser level" % level, out)
+        expect(s["iters"] < REFERENCE_ITERATIONS[level], "level %d: %d iterations from the coarser level's solution, %d from zero" % (level, s["iters"], REFERENCE_ITERATIONS[level]), out)
 
 
 for _L in sorted(REFERENCE_ITERATIONS):
-    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice above 20 000 dofs) without any remedy of the globalization, with the reference node counts%s"
+    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice above 20 000 dofs) without any remedy of the globalization, with the reference node counts%s; above 50 000 dofs auto starts from the coarser level's solution and takes fewer"
          % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""))(
         (lambda L: (lambda: prism_level(L)))(_L))
     TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]

@@ -6,6 +6,7 @@
    and builds the contact operator (operator.c).
 */
 #include "sceneimpl.h"
+#include "../sys/meminfo.h"
 
 /*@C
    SSStarSceneCreate - an empty scene; SSStarSceneSetFromOptions() describes it, SSStarSceneSetUp() builds it
@@ -32,6 +33,7 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   (*scene)->slidingTol      = 1e-3;
   (*scene)->slidingMaxIt    = 4;
   (*scene)->level     = -1;
+  (*scene)->nested    = -1;
   PetscFunctionReturn(0);
 }
 
@@ -64,13 +66,14 @@ PetscErrorCode SSStarSceneSetProgress(SSStarScene scene, PetscBool progress)
 /* With -ssstar_progress, the line of a phase that ended: what it did, the seconds since *t (restarted), the memory of the largest rank */
 PetscErrorCode SSStarSceneProgress(SSStarScene scene, PetscLogDouble *t, const char what[])
 {
-  PetscLogDouble now, memory;
+  PetscLogDouble now;
+  char           memory[128];
 
   PetscFunctionBegin;
   if (!scene->progress) PetscFunctionReturn(0);
   PetscCall(PetscTime(&now));
-  PetscCall(SSStarMemoryGetUsage(scene->comm, &memory, NULL));
-  PetscCall(PetscPrintf(scene->comm, "%s, %.3f s, %.3f GB per rank\n", what, now - *t, memory / 1e9));
+  PetscCall(SSStarMemoryText(scene->comm, memory, sizeof(memory)));
+  PetscCall(PetscPrintf(scene->comm, "%s, %.3f s, %s\n", what, now - *t, memory));
   PetscCall(PetscViewerFlush(PETSC_VIEWER_STDOUT_(scene->comm)));
   *t = now;
   PetscFunctionReturn(0);
@@ -157,7 +160,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   char          **options;
   PetscInt        nuses = 0, cells;
   Vec             coordinates;
-  PetscLogDouble  t;
+  PetscLogDouble  t, base;
   PetscMPIInt     size;
   char            line[PETSC_MAX_PATH_LEN + 128];
 
@@ -169,11 +172,20 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
-  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
+  PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
+  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
+  else {
+    PetscLogDouble peak;
+    PetscBool      plain;
+
+    PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, &peak, &plain));
+    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank%s", scene->mesh, scene->nodesGlobal, peak / 1e9, plain ? " (plain aggregation)" : ""));
+  }
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
-  PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, &scene->dm, &scene->tags));
+  PetscCall(SSStarMeshLoad(scene->comm, scene->mesh, nuses, uses, scene->refine, &scene->dm, &scene->tags));
   for (PetscInt k = 0; k < nuses; k++) PetscCall(PetscFree(options[k]));
   PetscCall(PetscFree(options));
   PetscCall(PetscFree(uses));
@@ -189,8 +201,8 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
-  PetscCallMPI(MPI_Comm_size(scene->comm, &size));
-  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base, PETSC_FALSE) / 1e9));
+  else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));

@@ -76,6 +76,8 @@ struct _n_SSStarScene {
   /* the description (options) */
   char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
   PetscInt           level;
+  PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
+  PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */
   PetscReal          meshScale;
   PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;
@@ -146,8 +148,25 @@ struct _n_SSStarScene {
   SSStarSceneOutput output; /* a file being written step by step, or NULL */
 };
 
-PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
-PETSC_INTERN PetscErrorCode SSStarMeshLoadCached(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], DM *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarMeshLoad(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], PetscInt, DM *, Vec *);
+PETSC_INTERN PetscErrorCode SSStarMeshLoadCached(MPI_Comm, const char[], PetscInt, const SSStarGroupUse[], PetscInt, DM *, Vec *);
+/*
+   A mesh in slices (meshcache.c reads them, meshrefine.c refines them): rank r holds the vertices [v0, v0 + nv) of the
+   NV (SSStarSliceStart()), some cells and some triangles of the surface groups, by global vertex numbers
+*/
+typedef struct {
+  PetscInt   NV, v0, nv;
+  PetscReal *coords;     /* 3 per vertex of the slice                                        */
+  PetscInt   nc, *cells; /* 4 vertices per cell                                               */
+  long long *cellGroups; /* per cell: bit g set when it is in the g-th volume group (with cells: PetscMalloc2) */
+  PetscInt   ntri, *tri; /* 3 vertices (sorted) and -1 - group per triangle                   */
+} SSStarMeshSlices;
+PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
+PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
+PETSC_INTERN PetscLogDouble SSStarPeakFrom(PetscMPIInt, PetscReal, PetscLogDouble, PetscBool);
+PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);
+PETSC_INTERN PetscInt       SSStarSliceStart(PetscMPIInt, PetscInt, PetscMPIInt);
+PETSC_INTERN PetscErrorCode SSStarExchange(MPI_Comm, const PetscMPIInt[], size_t, const void *, PetscMPIInt[], void **);
 PETSC_INTERN PetscErrorCode SSStarMeshCacheFromModel(const char[]);
 /* meshfaces.c: the faces of the cached mesh, and vertex triples matched over the ranks */
 PETSC_INTERN PetscErrorCode SSStarMeshAddFaces(DM, const PetscInt[], DM *);

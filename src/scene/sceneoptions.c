@@ -324,7 +324,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
+static const char SceneOptionNames[] = "-mesh -geo -level -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -395,6 +395,9 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 +  -mesh <file.msh> - the body, a gmsh mesh
 .  -geo <file.geo> - or a geometry meshed at -level
 .  -level <L> - the level of -geo
+.  -ssstar_progress_ranks - the progress lines give rank 0's memory and the least rank's beside the largest one's
+.  -nested_levels <auto> - solve this many coarser meshes first (SSStarSceneSolveNested()): 0 none, auto by the size
+.  -dm_refine <0> - refine the mesh this many times in parallel (each tetrahedron 1:8, the groups carried), as PETSc's option of the name does
 .  -mesh_scale <1> - multiply the coordinates by this
 .  -E <E> - Young's modulus of the cells without -material_<G>
 .  -nu <nu> - Poisson's ratio of those cells
@@ -443,6 +446,20 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file", NULL, scene->mesh, scene->mesh, sizeof(scene->mesh), &hasMesh));
   PetscCall(PetscOptionsString("-geo", "gmsh geometry meshed at -level", NULL, scene->geo, scene->geo, sizeof(scene->geo), &hasGeo));
   PetscCall(PetscOptionsInt("-level", "Mesh level of -geo (the number L of the .geo)", NULL, scene->level, &scene->level, &hasLevel));
+  {
+    char      nested[32] = "auto";
+    PetscBool set, isauto;
+
+    PetscCall(PetscOptionsString("-nested_levels", "Coarser meshes solved first, each the start of the next (0: none; auto: by the problem's size)", "SSStarSceneSolveNested", nested, nested, sizeof(nested), &set));
+    PetscCall(PetscStrcmp(nested, "auto", &isauto));
+    if (set && !isauto) {
+      char *end;
+
+      scene->nested = (PetscInt)strtol(nested, &end, 10);
+      PetscCheck(*nested && !*end && scene->nested >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-nested_levels %s: give auto or a number >= 0 of coarser meshes", nested);
+    } else scene->nested = -1;
+  }
+  PetscCall(PetscOptionsInt("-dm_refine", "Refine the mesh this many times in parallel (each tetrahedron 1:8)", NULL, scene->refine, &scene->refine, NULL));
   PetscCall(PetscOptionsReal("-mesh_scale", "Multiply the mesh coordinates by this", NULL, scene->meshScale, &scene->meshScale, NULL));
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
@@ -457,6 +474,11 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsInt("-sliding_max_it", "Large sliding: linearizations of a step at its solution before it is cut", NULL, scene->slidingMaxIt, &scene->slidingMaxIt, NULL));
   PetscCall(PetscOptionsReal("-small_sliding_tol", "Small sliding: a moved ball, cylinder or mesh obstacle is refused at a step where its first-order gap g - n.d is off the exact gap by more than this times |d|", NULL, scene->smallSlidingTol, &scene->smallSlidingTol, NULL));
   PetscCall(PetscOptionsBool("-ssstar_progress", "A line as each phase ends: mesh, contact nodes, assembly, the solver's set-up and Newton steps, output", "SSStarSceneSetProgress", scene->progress, &scene->progress, NULL));
+  {
+    PetscBool ranks = PETSC_FALSE; /* read where the lines are printed (SSStarMemoryText) */
+
+    PetscCall(PetscOptionsBool("-ssstar_progress_ranks", "The progress lines' memory of rank 0 and of the least rank too, beside the largest one's", "SSStarSceneSetProgress", ranks, &ranks, NULL));
+  }
   if (PetscOptionsObject->printhelp && PetscOptionsObject->count == 1) {
     char groups[8192];
 
@@ -471,6 +493,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCheck(!(hasMesh && hasLevel), comm, PETSC_ERR_ARG_WRONG, "Options -mesh and -level contradict each other: -level is for -geo");
   PetscCheck(!hasGeo || hasLevel, comm, PETSC_ERR_ARG_WRONG, "Option -geo %s needs -level L", scene->geo);
   PetscCheck(!hasGeo || scene->level >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-level %" PetscInt_FMT ": the mesh level must be >= 1", scene->level);
+  PetscCheck(scene->refine >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-dm_refine %" PetscInt_FMT ": the number of refinements must be >= 0", scene->refine);
   PetscCheck(!scene->hasE || (scene->E > 0 && !PetscIsInfOrNanReal(scene->E)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-E %g: Young's modulus must be a positive number", (double)scene->E);
   PetscCheck(!scene->hasNu || (scene->nu > -1 && scene->nu < 0.5), comm, PETSC_ERR_ARG_OUTOFRANGE, "-nu %g: Poisson's ratio must be in (-1, 0.5)", (double)scene->nu);
   PetscCheck(scene->slidingTol > 0 && !PetscIsInfOrNanReal(scene->slidingTol), comm, PETSC_ERR_ARG_OUTOFRANGE, "-sliding_tol %g: must be a positive number", (double)scene->slidingTol);

@@ -67,3 +67,27 @@ PetscErrorCode SSStarMemoryGetUsage(MPI_Comm comm, PetscLogDouble *current, Pets
   if (peak) *peak = mine[1];
   PetscFunctionReturn(0);
 }
+
+/*
+   The memory of a progress line: the largest rank's resident set, and with -ssstar_progress_ranks (on several ranks)
+   rank 0's and the least one's too, to see whether a phase loads one rank more than the others
+*/
+PetscErrorCode SSStarMemoryText(MPI_Comm comm, char text[], size_t len)
+{
+  PetscLogDouble mine[2], most, least, first;
+  PetscMPIInt    size;
+  PetscBool      ranks = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(ProcessMemory(&mine[0], &mine[1]));
+  PetscCall(MPIU_Allreduce(&mine[0], &most, 1, MPIU_PETSCLOGDOUBLE, MPI_MAX, comm));
+  PetscCall(PetscSNPrintf(text, len, "%.3f GB per rank", most / 1e9));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-ssstar_progress_ranks", &ranks, NULL));
+  if (size == 1 || !ranks) PetscFunctionReturn(0);
+  PetscCall(MPIU_Allreduce(&mine[0], &least, 1, MPIU_PETSCLOGDOUBLE, MPI_MIN, comm));
+  first = mine[0];
+  PetscCallMPI(MPI_Bcast(&first, 1, MPIU_PETSCLOGDOUBLE, 0, comm));
+  PetscCall(PetscSNPrintf(text + strlen(text), len - strlen(text), " (rank 0: %.3f, least: %.3f)", first / 1e9, least / 1e9));
+  PetscFunctionReturn(0);
+}

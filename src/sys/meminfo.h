@@ -6,4 +6,15 @@
 
 PETSC_INTERN PetscErrorCode SSStarMemAvailable(PetscLogDouble *);
 
+/*
+   What a whole-body run adds per dof of a rank (bench/memory.py, the prism; one rank, several: PCGAMG's parallel
+   Galerkin products keep A P, rows of K by columns of the interpolation, which one rank does not): the mesh, the
+   contact nodes, the assembly, the nested start's coarser solves and the output (BODY), and the multigrid's set-up
+   with the Krylov steps (SOLVE), with smoothed aggregation or plain (-pc_gamg_agg_nsmooths 0)
+*/
+#define SSSTAR_BODY_BYTES(size)         ((size) == 1 ? 1900.0 : 2200.0)
+#define SSSTAR_SOLVE_BYTES(size, plain) ((plain) ? ((size) == 1 ? 410.0 : 870.0) : ((size) == 1 ? 620.0 : 1960.0))
+/* "0.233 GB per rank" (the largest rank's resident memory), with -ssstar_progress_ranks " (rank 0: 0.231, least: 0.210)" */
+PETSC_INTERN PetscErrorCode SSStarMemoryText(MPI_Comm, char[], size_t);
+
 #endif

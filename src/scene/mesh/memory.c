@@ -1,17 +1,15 @@
 /* Memory before work: an estimate of what a mesh of N nodes needs, against what the machine has. */
-#include <ssstarscene.h>
+#include "../sceneimpl.h"
 #include "../../sys/meminfo.h"
 
 /*
-   Measured with the prism (resident memory after the assembly, one rank, the progress lines of examples/prism): reading
-   and distributing the mesh (faces, no edges), the assembly of K and the load take 6.0 kB per node at level 16 (0.42 GB
-   for 70 785 nodes); SSSTAR_MESH_BYTES is below that: what every path needs at least. A lower bound on purpose: the
-   factors of K and the dense P of the dense route are left to the reduction, which checks its own estimate (after
-   MUMPS's analysis) against the same limit, and auto takes the whole-body path where P does not fit (src/reduction).
-   The whole run on the whole body peaked at 9.3 kB per node on one rank at level 32 (5.1 GB), 16.9 kB on two (4.6 GB
-   each). The 30 kB of the mesh with edges (DMPlexInterpolate) refused level 40, which fits.
+   The peak of the largest of size ranks over nodes mesh nodes (3 dofs each) from what each holds before the mesh (base),
+   with smoothed aggregation or plain (sys/meminfo.h)
 */
-#define SSSTAR_MESH_BYTES 5000.0
+PetscLogDouble SSStarPeakFrom(PetscMPIInt size, PetscReal nodes, PetscLogDouble base, PetscBool plain)
+{
+  return base + (SSSTAR_BODY_BYTES(size) + SSSTAR_SOLVE_BYTES(size, plain)) * 3 * nodes / size;
+}
 
 /* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
    summed over the machines */
@@ -39,6 +37,59 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
   PetscFunctionReturn(0);
 }
 
+/* The additional bytes of all the ranks and the peak of the largest from what each holds now; whether they fit */
+static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, PetscLogDouble *peak, PetscLogDouble *extra, PetscBool *fits)
+{
+  PetscMPIInt    size;
+  PetscLogDouble now;
+  PetscReal      limit, perRank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
+  *peak  = SSStarPeakFrom(size, nodes, now, plain);
+  *extra = (*peak - now) * size;
+  PetscCall(MemoryLimit(comm, &limit, &perRank));
+  *fits = (PetscBool)(limit <= 0 || (perRank > 0 ? *peak <= perRank * 1e9 : *extra <= limit)); /* no /proc/meminfo: nothing to compare with */
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SSStarEstimateMemory - the peak memory a whole-body run over a mesh of nodes nodes is expected to reach on the
+   largest of the ranks of comm: what that rank holds now (before the mesh) and its share of the mesh, the assembly and
+   the solve, with the multigrid the solver will take
+
+   Collective
+
+   Input Parameters:
++  comm  - the ranks that will share the work
+-  nodes - mesh nodes (estimated or counted)
+
+   Output Parameters:
++  peak  - bytes at the peak on the largest rank
+-  plain - PETSC_TRUE when the multigrid will aggregate plainly because the smoothed aggregation's set-up would not fit
+           (the solver's choice, made again when it sets up), or pass NULL
+
+   Notes:
+   Measured per dof with bench/memory.py on the prism, one rank and several (README "Memory"); the limit is
+   -snes_ssstar_memory_limit or MemAvailable (SSStarCheckMemory()).
+
+   Level: intermediate
+
+.seealso: `SSStarCheckMemory()`, `SSStarMemoryGetUsage()`
+@*/
+PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscLogDouble *peak, PetscBool *plain)
+{
+  PetscLogDouble extra;
+  PetscBool      fits;
+
+  PetscFunctionBegin;
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, peak, &extra, &fits));
+  if (plain) *plain = (PetscBool)!fits;
+  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, peak, &extra, &fits));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarCheckMemory - refuses, before the work, a problem whose estimated memory exceeds what the machine has
 
@@ -53,27 +104,31 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
 .  -snes_ssstar_memory_limit <0> - GB per rank instead of MemAvailable
 
    Notes:
-   The limit is MemAvailable of /proc/meminfo (summed over the machines of comm) or -snes_ssstar_memory_limit <GB per rank>
-   times the ranks of comm. The estimate covers the mesh and the assembly, which every path needs; the factorization of K
-   and the dense P are checked later, by the reduction.
+   The estimate (SSStarEstimateMemory()) is the whole run's peak on the whole body: the mesh, the assembly and the
+   solve (the path auto takes for all but small problems), with smoothed aggregation where it fits and plain
+   aggregation where only that does. The limit is MemAvailable of /proc/meminfo (summed over the machines of comm;
+   what the ranks add must fit) or -snes_ssstar_memory_limit <GB per rank> (the peak of each rank must fit). The dense
+   route's factors of K and its dense P are checked again by the reduction.
 
    Level: intermediate
 
-.seealso: `SSStarMeshGenerate()`, `SNESSSStarSetMemoryLimit()`
+.seealso: `SSStarEstimateMemory()`, `SSStarMeshGenerate()`, `SNESSSStarSetMemoryLimit()`
 @*/
 PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what[])
 {
-  PetscReal estimate = SSSTAR_MESH_BYTES * nodes, limit, perRank;
+  PetscReal      limit, perRank;
+  PetscLogDouble peak, extra;
+  PetscMPIInt    size;
+  PetscBool      fits;
+  char           source[160];
 
   PetscFunctionBegin;
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, &peak, &extra, &fits));
+  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, &peak, &extra, &fits));
+  if (fits) PetscFunctionReturn(0);
   PetscCall(MemoryLimit(comm, &limit, &perRank));
-  if (limit <= 0) PetscFunctionReturn(0); /* no /proc/meminfo: nothing to compare with */
-  if (estimate > limit) {
-    char source[128];
-
-    if (perRank > 0) PetscCall(PetscSNPrintf(source, sizeof(source), "of -snes_ssstar_memory_limit (%g GB per rank)", (double)perRank));
-    else PetscCall(PetscSNPrintf(source, sizeof(source), "available on this machine (MemAvailable)"));
-    SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need at least %.3g GB for the mesh and the assembly (the solver's own memory comes on top), more than the %.3g GB %s; refused before the work", what, (double)nodes, (double)(estimate / 1e9), (double)(limit / 1e9), source);
-  }
-  PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (perRank > 0) PetscCall(PetscSNPrintf(source, sizeof(source), "more than the %.3g GB of -snes_ssstar_memory_limit (per rank)", (double)perRank));
+  else PetscCall(PetscSNPrintf(source, sizeof(source), "and the %d rank%s would add %.3g GB, more than the %.3g GB available on this machine (MemAvailable)", size, size > 1 ? "s" : "", (double)(extra / 1e9), (double)(limit / 1e9)));
+  SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need an estimated %.3g GB per rank at the peak of the run (mesh, assembly and the solve on the whole body, with the multigrid's plain aggregation), %s; refused before the work", what, (double)nodes, (double)(peak / 1e9), source);
 }

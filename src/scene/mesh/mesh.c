@@ -3,6 +3,7 @@
 #include <petscsf.h>
 #include <stdio.h>
 #include <unistd.h>
+#include <sys/stat.h>
 #include <gmshc.h>
 
 /* gmsh session on rank 0 with geo read at the level (the number L set before reading) */
@@ -32,13 +33,16 @@ static void GmshOpen(const char geo[], PetscInt level, int *ierr)
    A .geo may declare the node count of a level with SetNumber("ssstar/nodes", <formula of L>); the level is then
    refused before meshing when the memory it would need exceeds the machine's (SSStarCheckMemory()).
 
+   A mesh file newer than the geometry is the geometry's mesh already: it is kept (gmsh meshes the whole body on one
+   process; at level 40 of the prism that took a few seconds and a rank-0 peak of several GB, every run).
+
    Level: intermediate
 
 .seealso: `SSStarMeshFileNodes()`, `SSStarSceneSetUp()`
 @*/
 PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt level, const char msh[])
 {
-  PetscMPIInt rank, failure = 0;
+  PetscMPIInt rank, failure = 0, current = 0;
   PetscBool   exists;
   PetscReal   nodes = 0;
   int         ierr  = 0;
@@ -70,6 +74,13 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
     PetscCall(PetscSNPrintf(what, sizeof(what), "-level %" PetscInt_FMT " of %s", level, geo));
     PetscCall(SSStarCheckMemory(comm, nodes, what));
   }
+  if (rank == 0) { /* a mesh file made from the geometry as it is now: kept */
+    struct stat g, m;
+
+    current = (PetscMPIInt)(!stat(geo, &g) && !stat(msh, &m) && (m.st_mtim.tv_sec > g.st_mtim.tv_sec || (m.st_mtim.tv_sec == g.st_mtim.tv_sec && m.st_mtim.tv_nsec >= g.st_mtim.tv_nsec)));
+  }
+  PetscCallMPI(MPI_Bcast(&current, 1, MPI_INT, 0, comm));
+  if (current) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(SSSTAR_MeshGmsh, 0, 0, 0, 0));
   if (rank == 0) {
     char tmp[PETSC_MAX_PATH_LEN];
@@ -251,10 +262,10 @@ PetscErrorCode SSStarMeshFileNodes(MPI_Comm comm, const char file[], PetscInt *n
    parallel), checks the groups the scene uses. tags: a local vector (one entry per local vertex, in vertex order) with
    each vertex's index in the file's node order.
 */
-PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], PetscInt n, const SSStarGroupUse uses[], DM *dm, Vec *tags)
+PetscErrorCode SSStarMeshLoad(MPI_Comm comm, const char file[], PetscInt n, const SSStarGroupUse uses[], PetscInt refine, DM *dm, Vec *tags)
 {
   PetscFunctionBegin;
-  PetscCall(SSStarMeshLoadCached(comm, file, n, uses, dm, tags));
+  PetscCall(SSStarMeshLoadCached(comm, file, n, uses, refine, dm, tags));
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscFunctionReturn(0);

@@ -514,19 +514,15 @@ static PetscErrorCode MatchFaces(MPI_Comm comm, DM dm, const CacheGroups *g, con
   PetscFunctionReturn(0);
 }
 
-/*
-   Labels the faces of the surface groups from this rank's slice of each group's triangles: boundary faces first, then
-   interior faces (a group on an interface between volumes) for the triangles left. A triangle that is no face of the
-   tetrahedra is an error naming its group.
-*/
-static PetscErrorCode LabelFaces(MPI_Comm comm, hid_t file, const char msh[], const CacheGroups *g, DM dm, const PetscInt gvertex[])
+/* This rank's slice of each surface group's triangles: 3 vertices (sorted) and -1 - group each */
+static PetscErrorCode ReadTriangles(MPI_Comm comm, hid_t file, const CacheGroups *g, PetscInt *ntri, PetscInt **tri)
 {
   PetscMPIInt rank, size;
-  PetscInt    ntri = 0, *tri, left, unmatched = 0;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
+  *ntri = 0;
   for (PetscInt k = 0; k < g->n; k++) {
     char     set[64];
     PetscInt rows;
@@ -534,10 +530,10 @@ static PetscErrorCode LabelFaces(MPI_Comm comm, hid_t file, const char msh[], co
     if (g->dims[k] != 2) continue;
     PetscCall(PetscSNPrintf(set, sizeof(set), "faces_%d", (int)k));
     PetscCall(DatasetRows(file, set, &rows));
-    ntri += rows / size + (rank < rows % size);
+    *ntri += SSStarSliceStart(rank + 1, rows, size) - SSStarSliceStart(rank, rows, size);
   }
-  PetscCall(PetscMalloc1(4 * ntri + 1, &tri));
-  ntri = 0;
+  PetscCall(PetscMalloc1(4 * *ntri + 1, tri));
+  *ntri = 0;
   for (PetscInt k = 0; k < g->n; k++) {
     char     set[64];
     PetscInt rows, lo, cnt, *v;
@@ -545,17 +541,30 @@ static PetscErrorCode LabelFaces(MPI_Comm comm, hid_t file, const char msh[], co
     if (g->dims[k] != 2) continue;
     PetscCall(PetscSNPrintf(set, sizeof(set), "faces_%d", (int)k));
     PetscCall(DatasetRows(file, set, &rows));
-    cnt = rows / size + (rank < rows % size);
-    lo  = rank * (rows / size) + PetscMin(rank, rows % size);
+    lo  = SSStarSliceStart(rank, rows, size);
+    cnt = SSStarSliceStart(rank + 1, rows, size) - lo;
     PetscCall(PetscMalloc1(3 * cnt + 1, &v));
     PetscCall(ReadRows(file, set, H5T_NATIVE_PETSCINT, lo, cnt, 3, v));
     for (PetscInt t = 0; t < cnt; t++) {
-      for (int c = 0; c < 3; c++) tri[4 * ntri + c] = v[3 * t + c];
-      SSStarTripleSort(&tri[4 * ntri]);
-      tri[4 * ntri++ + 3] = -1 - k;
+      for (int c = 0; c < 3; c++) (*tri)[4 * *ntri + c] = v[3 * t + c];
+      SSStarTripleSort(&(*tri)[4 * *ntri]);
+      (*tri)[4 * (*ntri)++ + 3] = -1 - k;
     }
     PetscCall(PetscFree(v));
   }
+  PetscFunctionReturn(0);
+}
+
+/*
+   Labels the faces of the surface groups from this rank's triangles (taken): boundary faces first, then interior faces
+   (a group on an interface between volumes) for the triangles left. A triangle that is no face of the tetrahedra is
+   an error naming its group.
+*/
+static PetscErrorCode LabelFaces(MPI_Comm comm, const char msh[], const CacheGroups *g, DM dm, const PetscInt gvertex[], PetscInt ntri, PetscInt *tri)
+{
+  PetscInt left, unmatched = 0;
+
+  PetscFunctionBegin;
   PetscCall(MatchFaces(comm, dm, g, gvertex, PETSC_FALSE, &ntri, &tri));
   PetscCall(MPIU_Allreduce(&ntri, &left, 1, MPIU_INT, MPI_SUM, comm));
   if (left) PetscCall(MatchFaces(comm, dm, g, gvertex, PETSC_TRUE, &ntri, &tri));
@@ -590,25 +599,40 @@ static PetscErrorCode GlobalVertexNumbers(MPI_Comm comm, PetscSF vsf, PetscInt N
 }
 
 /*
-   SSStarMeshLoadCached - the distributed DMPlex of a gmsh mesh (cells, faces, vertices; no edges) through its cache (written first when
-   missing or out of date), with a label per physical group (named after it, values its tag; the groups the scene
-   uses completed with the closure of their faces and cells) and tags: each local vertex's index in the file's node
-   order. Every rank reads its slice; none holds the whole mesh.
+   The node count after refine refinements of a mesh of NV vertices and NC tetrahedra, before the work: each adds a
+   vertex per edge, and a mesh of tetrahedra has about NV + NC edges (Euler: V - E + F - C = 1 with F about 2 C)
 */
-PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n, const SSStarGroupUse uses[], DM *dm, Vec *tags)
+static PetscReal RefinedNodes(PetscInt NV, PetscInt NC, PetscInt refine)
 {
-  char         cache[PETSC_MAX_PATH_LEN];
-  long long    stamp[2];
-  PetscMPIInt  rank, size;
-  int          failure = 0;
-  hid_t        plist, file;
-  CacheGroups  groups;
-  PetscInt     NC, NV, c0, nc, v0, nv, *cells, *vadj = NULL;
-  PetscReal   *coords;
-  long long   *cellGroups;
-  PetscSF      vsf;
-  PetscScalar *ta;
-  DM           dm0;
+  PetscReal v = NV, c = NC;
+
+  for (PetscInt k = 0; k < refine; k++) {
+    v += v + c;
+    c *= 8;
+  }
+  return v;
+}
+
+/*
+   SSStarMeshLoadCached - the distributed DMPlex of a gmsh mesh (cells, faces, vertices; no edges) through its cache (written first when
+   missing or out of date), refined refine times in parallel (meshrefine.c), with a label per physical group (named
+   after it, values its tag; the groups the scene uses completed with the closure of their faces and cells) and tags:
+   each local vertex's index in the file's node order (of a refined mesh: the file's nodes, then the new ones, each
+   refinement's in the order of their edges). Every rank reads its slice; none holds the whole mesh.
+*/
+PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n, const SSStarGroupUse uses[], PetscInt refine, DM *dm, Vec *tags)
+{
+  char             cache[PETSC_MAX_PATH_LEN];
+  long long        stamp[2];
+  PetscMPIInt      rank, size;
+  int              failure = 0;
+  hid_t            plist, file;
+  CacheGroups      groups;
+  PetscInt         NC, *vadj = NULL;
+  SSStarMeshSlices m;
+  PetscSF          vsf;
+  PetscScalar     *ta;
+  DM               dm0;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -634,20 +658,30 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   PetscCall(ReadGroups(file, &groups));
   PetscCall(CheckGroups(comm, msh, &groups, n, uses));
   PetscCall(DatasetRows(file, "cells", &NC));
-  PetscCall(DatasetRows(file, "vertices", &NV));
+  PetscCall(DatasetRows(file, "vertices", &m.NV));
   PetscCheck(NC > 0, comm, PETSC_ERR_ARG_WRONG, "The mesh file %s has no tetrahedra", msh);
-  nc = NC / size + (rank < NC % size);
-  c0 = rank * (NC / size) + PetscMin(rank, NC % size);
-  nv = NV / size + (rank < NV % size);
-  v0 = rank * (NV / size) + PetscMin(rank, NV % size);
-  PetscCall(PetscMalloc3(4 * nc + 1, &cells, 3 * nv + 1, &coords, nc + 1, &cellGroups));
-  PetscCall(ReadRows(file, "cells", H5T_NATIVE_PETSCINT, c0, nc, 4, cells));
-  PetscCall(ReadRows(file, "vertices", H5T_NATIVE_DOUBLE, v0, nv, 3, coords));
-  PetscCall(ReadRows(file, "cell_groups", H5T_NATIVE_LLONG, c0, nc, 1, cellGroups));
-  for (PetscInt c = 0; c < nc; c++) PetscCall(DMPlexInvertCell(DM_POLYTOPE_TETRAHEDRON, &cells[4 * c])); /* gmsh's orientation to DMPlex's */
-  PetscCall(DMPlexCreateFromCellListParallelPetsc(comm, 3, nc, nv, NV, 4, PETSC_FALSE, cells, 3, coords, &vsf, NULL, &dm0));
-  PetscCall(GlobalVertexNumbers(comm, vsf, NV, &vadj)); /* (3.18 writes its verticesAdj through a NULL pointer) */
+  if (refine > 0) {
+    char what[PETSC_MAX_PATH_LEN + 64];
+
+    PetscCall(PetscSNPrintf(what, sizeof(what), "%s refined %" PetscInt_FMT " times (-dm_refine)", msh, refine));
+    PetscCall(SSStarCheckMemory(comm, RefinedNodes(m.NV, NC, refine), what));
+  }
+  m.nc = SSStarSliceStart(rank + 1, NC, size) - SSStarSliceStart(rank, NC, size);
+  m.v0 = SSStarSliceStart(rank, m.NV, size);
+  m.nv = SSStarSliceStart(rank + 1, m.NV, size) - m.v0;
+  PetscCall(PetscMalloc2(4 * m.nc + 1, &m.cells, m.nc + 1, &m.cellGroups));
+  PetscCall(PetscMalloc1(3 * m.nv + 1, &m.coords));
+  PetscCall(ReadRows(file, "cells", H5T_NATIVE_PETSCINT, SSStarSliceStart(rank, NC, size), m.nc, 4, m.cells));
+  PetscCall(ReadRows(file, "vertices", H5T_NATIVE_DOUBLE, m.v0, m.nv, 3, m.coords));
+  PetscCall(ReadRows(file, "cell_groups", H5T_NATIVE_LLONG, SSStarSliceStart(rank, NC, size), m.nc, 1, m.cellGroups));
+  PetscCall(ReadTriangles(comm, file, &groups, &m.ntri, &m.tri));
+  PetscCallH5(H5Fclose(file));
+  for (PetscInt k = 0; k < refine; k++) PetscCall(SSStarMeshRefine(comm, &m));
+  for (PetscInt c = 0; c < m.nc; c++) PetscCall(DMPlexInvertCell(DM_POLYTOPE_TETRAHEDRON, &m.cells[4 * c])); /* gmsh's orientation to DMPlex's */
+  PetscCall(DMPlexCreateFromCellListParallelPetsc(comm, 3, m.nc, m.nv, m.NV, 4, PETSC_FALSE, m.cells, 3, m.coords, &vsf, NULL, &dm0));
+  PetscCall(GlobalVertexNumbers(comm, vsf, m.NV, &vadj)); /* (3.18 writes its verticesAdj through a NULL pointer) */
   PetscCall(PetscSFDestroy(&vsf));
+  PetscCall(PetscFree(m.coords));
   PetscCall(PetscLogEventBegin(SSSTAR_MeshFaces, 0, 0, 0, 0));
   PetscCall(SSStarMeshAddFaces(dm0, vadj, dm));
   PetscCall(PetscLogEventEnd(SSSTAR_MeshFaces, 0, 0, 0, 0));
@@ -659,12 +693,12 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
   for (PetscInt k = 0, bit = 0; k < groups.n; k++) {
     PetscCall(DMCreateLabel(*dm, groups.names[k]));
     if (groups.dims[k] != 3) continue;
-    for (PetscInt c = 0; c < nc; c++)
-      if (cellGroups[c] & (1LL << bit)) PetscCall(DMSetLabelValue(*dm, groups.names[k], c, (PetscInt)groups.tags[k]));
+    for (PetscInt c = 0; c < m.nc; c++)
+      if (m.cellGroups[c] & (1LL << bit)) PetscCall(DMSetLabelValue(*dm, groups.names[k], c, (PetscInt)groups.tags[k]));
     bit++;
   }
-  PetscCall(LabelFaces(comm, file, msh, &groups, *dm, vadj));
-  PetscCallH5(H5Fclose(file));
+  PetscCall(PetscFree2(m.cells, m.cellGroups));
+  PetscCall(LabelFaces(comm, msh, &groups, *dm, vadj, m.ntri, m.tri));
   for (PetscInt u = 0; u < n; u++) {
     DMLabel label;
 
@@ -683,7 +717,6 @@ PetscErrorCode SSStarMeshLoadCached(MPI_Comm comm, const char msh[], PetscInt n,
     PetscCall(VecRestoreArrayWrite(*tags, &ta));
   }
   PetscCall(PetscFree(vadj));
-  PetscCall(PetscFree3(cells, coords, cellGroups));
   PetscCall(PetscFree3(groups.names, groups.dims, groups.tags));
   PetscFunctionReturn(0);
 }

@@ -90,7 +90,8 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 */
 PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A, PetscReal gamma, const SSStarContactLayout *layout)
 {
-  PetscBool sameType;
+  PetscBool        sameType;
+  PetscObjectState state;
   PetscErrorCode (*create)(SSStarNewton) = NULL;
 
   PetscFunctionBegin;
@@ -104,7 +105,8 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   nt->nRefined  = 0;
   nt->layout    = *layout;
   PetscCall(PetscStrcmp(type, nt->type, &sameType));
-  if (A == nt->A && sameType && nt->ops.setup) {
+  PetscCall(PetscObjectStateGet((PetscObject)A, &state));
+  if (A == nt->A && state == nt->Astate && sameType && nt->ops.setup) {
     if (nt->ops.setscaling) PetscCall((*nt->ops.setscaling)(nt)); /* gamma may have changed */
     PetscFunctionReturn(0);
   }
@@ -112,7 +114,8 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   PetscCall(PetscFunctionListFind(SSStarNewtonList, type, &create));
   PetscCheck(create, PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown Newton step %s", type);
   PetscCall(PetscObjectReference((PetscObject)A));
-  nt->A = A;
+  nt->A      = A;
+  nt->Astate = state;
   PetscCall(PetscStrallocpy(type, &nt->type));
   /* the SNES's KSP may be the implementation's (SNESSetFromOptions gave it the user's Jacobian: drop that), and a
      multigrid of another operator keeps its levels through a reset (GAMG's coarse solvers of the old sizes): a fresh

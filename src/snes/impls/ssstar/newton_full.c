@@ -8,12 +8,13 @@
    i.e. M = Shat K' + That / gamma with Shat = blockdiag(S_i, 1), That = blockdiag(T_i, 0). The rows with S row = 0 and
    T row = e_r (sticking nodes, the normal of a node in contact) say dv = y: they are eliminated symmetrically
    (MatZeroRowsColumns, unit rows scaled by 1/gamma). Interior and separated rows are K's; a sliding node's tangential
-   rows add phi om times its normal row of K' and W/gamma (docs/derivation.md section 5): the only unsymmetric part. The
-   system is solved by the SNES's KSP: CG where it is symmetric, GMRES (right preconditioned) where it is not, both
-   preconditioned by algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes, rotated like K'),
-   to the tolerances the iteration sets (inexact Newton). The multigrid of an earlier step is kept while few nodes
-   changed their known rows, and built anew (interpolation included) when more did: an interpolation built for
-   other rows known, even on the same matrix pattern, costs more Krylov iterations than its set-up saves.
+   rows add phi om times its normal row of K' and W/gamma (docs/derivation.md section 5): the only unsymmetric part. M
+   differs from K only in the contact rows and columns: it is formed in K's own storage for each linear solve and K is
+   put back after it (fullmatrix.c), so the step holds no copy of K. The system is solved by the SNES's KSP: CG where
+   it is symmetric, GMRES (right preconditioned) where it is not, both preconditioned by algebraic multigrid (PCGAMG
+   with K's near-null space, the rigid-body modes, rotated like K'), to the tolerances the iteration sets (inexact
+   Newton). The multigrid of an earlier step is kept while few nodes changed their known rows, and built anew
+   (its coarse operators) when more did.
 
    Floating bodies (docs/derivation.md (14.5)): where the step's states leave rigid-body motions U free, the Krylov
    solver runs on M + Shat (c/gamma) U U^T (a shell: M and the low-rank term), preconditioned by the multigrid of M
@@ -21,6 +22,7 @@
    has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.
 */
 #include "newtonimpl.h"
+#include "../../../sys/meminfo.h"
 
 /* GMRES's restart when ssstar chooses GMRES: restarts stall it on the hard steps, and its basis is affordable */
 #define SSSTAR_GMRES_RESTART 100
@@ -30,116 +32,89 @@
 #define SSSTAR_FREE_SHIFT (1e-2 * SSSTAR_FREE_STIFFNESS)
 
 typedef struct {
-  Mat            Kr;            /* K' = Q K Q^T; K itself (a reference) when there are no frames                 */
-  Mat            Qt;            /* Q^T, block diagonal; NULL without frames                                      */
-  Mat            Shat;          /* blockdiag(S_i, 1): fixed 3x3 pattern at the contact nodes                     */
-  Mat            M;             /* the Newton matrix of the step                                                 */
-  MatNullSpace   nearNull;      /* K's near-null space in the nodes' frames, or NULL                             */
-  Vec            rhs, dv;       /* of the step, dv = Q du                                                        */
-  PetscInt       rstart;        /* first row of K on this rank                                                   */
-  PetscInt       bs;            /* K's block size (3: the dofs of a node)                                        */
-  PetscInt       nknown, *known; /* global rows of the known dofs of the step                                    */
-  unsigned char *mask, *pcMask; /* per local node: bits of its unknown rows, now and when the multigrid was built */
-  PetscBool      pcBuilt;
-  PetscBool      refinable;     /* the KSP holds the last step's system and solution (SSStarNewtonRefine)         */
-  PetscInt       nnodesGlobal;
-  PetscBool      userKSPType, userTolerances, userRestart;
-  PetscReal     *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
-  Mat            shell;         /* floating bodies: M + the proximal term on the step's free motions             */
-  const PetscReal *S;           /* the step's S blocks, for the shell                                            */
-  unsigned char *touched;       /* per local node: a free motion of the step moves it                            */
-  PetscInt       pcFree;        /* free motions when the multigrid was built                                     */
-  char          *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
+  SSStarFullMatrix fm;          /* the Newton matrix in K's storage                                              */
+  MatNullSpace     nearNull;    /* K's near-null space in the nodes' frames, or NULL                             */
+  Vec              rhs, dv;     /* of the step, dv = Q du                                                        */
+  PetscInt         rstart;      /* first row of K on this rank                                                   */
+  PetscInt         nknown, *known; /* global rows of the known dofs of the step                                  */
+  unsigned char   *mask, *pcMask; /* per local node: bits of its unknown rows, now and when the multigrid was built */
+  PetscReal       *S, *T;       /* the blocks of the last step (SSStarNewtonRefine forms its matrix again)        */
+  PetscBool        pcBuilt;
+  PetscBool        refinable;   /* the KSP holds the last step's solution (SSStarNewtonRefine)                   */
+  PetscInt         nnodesGlobal;
+  PetscBool        userKSPType, userTolerances, userRestart;
+  PetscBool        plain;       /* the multigrid aggregates plainly: the smoothed one's set-up did not fit the memory */
+  PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
+  char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
+  Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarFullMatrixForm)        */
+  Mat              shell;       /* floating bodies: M + the proximal term on the step's free motions             */
+  unsigned char   *touched;     /* per local node: a free motion of the step moves it                            */
+  PetscInt         pcFree;      /* free motions when the multigrid was built                                     */
 } Newton_Full;
 
-/* Q^T: at contact node i the 3x3 block R_i^T (frame to global), identity on every other dof */
-static PetscErrorCode CreateRotation(SSStarNewton nt, Mat *Qt)
+/* dv = Q du: each contact node's 3 entries of a vector of K turned into its frame (R NULL: nothing to do) */
+static PetscErrorCode RotateToFrames(const SSStarContactLayout *L, Vec v)
 {
-  Newton_Full               *nf = (Newton_Full *)nt->data;
-  const SSStarContactLayout *L  = &nt->layout;
-  PetscInt                   m, *nnz;
+  PetscScalar *a;
 
   PetscFunctionBegin;
-  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
-  PetscCall(PetscMalloc1(m, &nnz));
-  for (PetscInt j = 0; j < m; j++) nnz[j] = 1;
-  for (PetscInt k = 0; k < 3 * L->nnodes; k++) nnz[L->dofs[k]] = 3;
-  PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)nt->A), m, m, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz, 0, NULL, Qt));
-  PetscCall(PetscFree(nnz));
-  PetscCall(MatSetBlockSize(*Qt, nf->bs));
-  for (PetscInt j = 0; j < m; j++) PetscCall(MatSetValue(*Qt, nf->rstart + j, nf->rstart + j, 1.0, INSERT_VALUES));
+  if (!L->frames) PetscFunctionReturn(0);
+  PetscCall(VecGetArray(v, &a));
   for (PetscInt i = 0; i < L->nnodes; i++) {
     const PetscReal *R = &L->frames[9 * i];
-    PetscInt         rows[3];
-    PetscScalar      RT[9];
+    const PetscInt  *d = &L->dofs[3 * i];
+    const PetscScalar x[3] = {a[d[0]], a[d[1]], a[d[2]]};
 
-
-    for (PetscInt k = 0; k < 3; k++) rows[k] = nf->rstart + L->dofs[3 * i + k];
-    for (PetscInt r = 0; r < 3; r++)
-      for (PetscInt c = 0; c < 3; c++) RT[3 * r + c] = R[3 * c + r];
-    PetscCall(MatSetValues(*Qt, 3, rows, 3, rows, RT, INSERT_VALUES));
+    for (PetscInt k = 0; k < 3; k++) a[d[k]] = R[3 * k] * x[0] + R[3 * k + 1] * x[1] + R[3 * k + 2] * x[2];
   }
-  PetscCall(MatAssemblyBegin(*Qt, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(*Qt, MAT_FINAL_ASSEMBLY));
+  PetscCall(VecRestoreArray(v, &a));
+  PetscFunctionReturn(0);
+}
+
+/* du = Q^T dv */
+static PetscErrorCode RotateBack(const SSStarContactLayout *L, Vec dv, Vec du)
+{
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(dv, du));
+  if (!L->frames) PetscFunctionReturn(0);
+  PetscCall(VecGetArray(du, &a));
+  for (PetscInt i = 0; i < L->nnodes; i++) {
+    const PetscInt   *d = &L->dofs[3 * i];
+    const PetscScalar y[3] = {a[d[0]], a[d[1]], a[d[2]]};
+    PetscScalar       x[3];
+
+    SSStarRotateBack(&L->frames[9 * i], y, x);
+    for (PetscInt k = 0; k < 3; k++) a[d[k]] = x[k];
+  }
+  PetscCall(VecRestoreArray(du, &a));
   PetscFunctionReturn(0);
 }
 
 /* K's near-null space (the rigid-body modes a scene attaches to K), rotated like K' */
 static PetscErrorCode CreateNearNullSpace(SSStarNewton nt)
 {
-  Newton_Full  *nf = (Newton_Full *)nt->data;
-  MatNullSpace  nsp;
-  PetscBool     hasConstant;
-  PetscInt      n;
-  const Vec    *vecs;
-  Vec          *rotated;
+  Newton_Full *nf = (Newton_Full *)nt->data;
+  MatNullSpace nsp;
+  PetscBool    hasConstant;
+  PetscInt     n;
+  const Vec   *vecs;
+  Vec         *rotated;
 
   PetscFunctionBegin;
   PetscCall(MatGetNearNullSpace(nt->A, &nsp));
   if (!nsp) PetscFunctionReturn(0);
-  if (!nf->Qt) {
-    PetscCall(PetscObjectReference((PetscObject)nsp));
-    nf->nearNull = nsp;
-    PetscFunctionReturn(0);
-  }
   PetscCall(MatNullSpaceGetVecs(nsp, &hasConstant, &n, &vecs));
   PetscCall(PetscMalloc1(n, &rotated));
   for (PetscInt k = 0; k < n; k++) {
     PetscCall(VecDuplicate(vecs[k], &rotated[k]));
-    PetscCall(MatMultTranspose(nf->Qt, vecs[k], rotated[k]));
+    PetscCall(VecCopy(vecs[k], rotated[k]));
+    PetscCall(RotateToFrames(&nt->layout, rotated[k]));
   }
   PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)nt->A), hasConstant, n, rotated, &nf->nearNull));
   for (PetscInt k = 0; k < n; k++) PetscCall(VecDestroy(&rotated[k]));
   PetscCall(PetscFree(rotated));
-  PetscFunctionReturn(0);
-}
-
-/* Shat with its pattern: a full 3x3 block per contact node (the identity for now), 1 on every free dof */
-static PetscErrorCode CreateRowCombination(SSStarNewton nt)
-{
-  Newton_Full               *nf = (Newton_Full *)nt->data;
-  const SSStarContactLayout *L  = &nt->layout;
-  PetscInt                   m, *nnz;
-  const PetscScalar          I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-
-  PetscFunctionBegin;
-  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
-  PetscCall(PetscMalloc1(m, &nnz));
-  for (PetscInt j = 0; j < m; j++) nnz[j] = 1;
-  for (PetscInt k = 0; k < 3 * L->nnodes; k++) nnz[L->dofs[k]] = 3;
-  PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)nt->A), m, m, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz, 0, NULL, &nf->Shat));
-  PetscCall(PetscFree(nnz));
-  PetscCall(MatSetBlockSize(nf->Shat, nf->bs)); /* M inherits it: the multigrid aggregates nodes, not dofs */
-  PetscCall(MatSetOption(nf->Shat, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
-  for (PetscInt j = 0; j < m; j++) PetscCall(MatSetValue(nf->Shat, nf->rstart + j, nf->rstart + j, 1.0, INSERT_VALUES));
-  for (PetscInt i = 0; i < L->nnodes; i++) {
-    PetscInt rows[3];
-
-    for (PetscInt k = 0; k < 3; k++) rows[k] = nf->rstart + L->dofs[3 * i + k];
-    PetscCall(MatSetValues(nf->Shat, 3, rows, 3, rows, I3, INSERT_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(nf->Shat, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(nf->Shat, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
@@ -155,7 +130,7 @@ static PetscErrorCode CreateRowCombination(SSStarNewton nt)
 static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 {
   Newton_Full *nf = (Newton_Full *)nt->data;
-  PetscOptions options = ((PetscObject)pc)->options;
+  PetscOptions options = NULL; /* PCMG's levels read the default database, whatever the PC's */
   const char  *prefix  = ((PetscObject)pc)->prefix ? ((PetscObject)pc)->prefix : "";
   const char  *names[SSSTAR_SMOOTHER_OPTIONS] = {"mg_levels_ksp_type", "mg_levels_pc_type", "mg_levels_ksp_max_it", "mg_levels_pc_sor_diagonal_shift"};
   char         values[SSSTAR_SMOOTHER_OPTIONS][32] = {"richardson", "sor", "1", ""};
@@ -185,33 +160,54 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
   PetscFunctionReturn(0);
 }
 
+/*
+   Smoothed aggregation (GAMG's default: fewer Krylov iterations) unless its set-up does not fit the memory the SNES may
+   plan for (-snes_ssstar_memory_limit, else MemAvailable) and the options do not name the smoothing steps: then plain
+   aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a sixth of the entries (measured at prism level 12 on
+   2 ranks: the set-up 0.6 kB per dof instead of 1.8, the peak 28 % lower, 58 % more Krylov iterations)
+*/
+static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
+{
+  Newton_Full *nf = (Newton_Full *)nt->data;
+  SNES_SSStar *ss = (SNES_SSStar *)nt->snes->data;
+  PetscBool      isgamg, set, fits;
+  PetscInt       m;
+  PetscMPIInt    size;
+  PetscLogDouble now = 0;
+
+  PetscFunctionBegin;
+  nf->plain = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
+  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &set));
+  if (!isgamg || set) PetscFunctionReturn(0);
+  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
+  /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
+  if (ss->problem.memoryLimit > 0) PetscCall(PetscMemoryGetCurrentUsage(&now));
+  PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
+  if (fits) PetscFunctionReturn(0);
+  PetscCall(PCGAMGSetNSmooths(pc, 0));
+  nf->plain = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
 {
   Newton_Full               *nf  = (Newton_Full *)nt->data;
   const SSStarContactLayout *L   = &nt->layout;
   KSP                        ksp = nt->snes->ksp;
   PC                         pc;
-  PetscBool                  hasFrames, isgamg, set;
+  PetscBool                  isgamg, set;
 
   PetscFunctionBegin;
   PetscCall(MatGetOwnershipRange(nt->A, &nf->rstart, NULL));
-  PetscCall(MatGetBlockSize(nt->A, &nf->bs));
   PetscCall(MPIU_Allreduce(&L->nnodes, &nf->nnodesGlobal, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
-  hasFrames = (PetscBool)(L->frames != NULL); /* a rank without contact nodes has no frames but joins the PtAP */
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hasFrames, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)nt->A)));
-  if (hasFrames) {
-    PetscCall(CreateRotation(nt, &nf->Qt));
-    PetscCall(MatPtAP(nt->A, nf->Qt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &nf->Kr));
-  } else {
-    PetscCall(PetscObjectReference((PetscObject)nt->A));
-    nf->Kr = nt->A;
-  }
+  PetscCall(SSStarFullMatrixCreate(nt->A, L, &nf->fm));
   PetscCall(CreateNearNullSpace(nt));
-  PetscCall(CreateRowCombination(nt));
   PetscCall(MatCreateVecs(nt->A, &nf->dv, &nf->rhs));
   PetscCall(PetscMalloc3(3 * L->nnodes, &nf->known, L->nnodes, &nf->mask, L->nnodes, &nf->touched));
   PetscCall(PetscCalloc1(L->nnodes, &nf->pcMask));
-  PetscCall(PetscMalloc2(9 * L->nnodes, &nf->Sknown, 9 * L->nnodes, &nf->Tknown));
+  PetscCall(PetscMalloc4(9 * L->nnodes, &nf->Sknown, 9 * L->nnodes, &nf->Tknown, 9 * L->nnodes, &nf->S, 9 * L->nnodes, &nf->T));
   for (PetscInt i = 0; i < L->nnodes; i++)
     for (PetscInt k = 0; k < 9; k++) {
       nf->Sknown[9 * i + k] = 0;
@@ -230,6 +226,7 @@ static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
   /* the smoothed aggregation's eigenvalue estimate made the Chebyshev smoothers unstable on these matrices (an
      indefinite preconditioner for an SPD Newton matrix, and GMRES 40 % slower): the smoothers estimate their own */
   if (isgamg && !set) PetscCall(PCGAMGSetUseSAEstEig(pc, PETSC_FALSE));
+  PetscCall(ChooseAggregation(nt, pc));
   PetscCall(SetSmootherDefaults(nt, pc));
   PetscCall(KSPSetFromOptions(ksp));
   PetscFunctionReturn(0);
@@ -243,15 +240,14 @@ static PetscErrorCode SSStarNewtonSetScaling_Full(SSStarNewton nt)
   PetscFunctionReturn(0);
 }
 
-/* The nodes the step's free motions move (none without floating bodies), and the step's S for the shell */
-static PetscErrorCode MarkFreeMotions(SSStarNewton nt, const PetscReal S[])
+/* The nodes the step's free motions move (none without floating bodies) */
+static PetscErrorCode MarkFreeMotions(SSStarNewton nt)
 {
   Newton_Full        *nf = (Newton_Full *)nt->data;
   const SSStarKernel *kn = nt->layout.kernel;
   const PetscInt      n3 = 3 * nt->layout.nnodes;
 
   PetscFunctionBegin;
-  nf->S = S;
   for (PetscInt i = 0; i < nt->layout.nnodes; i++) {
     nf->touched[i] = 0;
     for (PetscInt f = 0; kn && f < kn->nfree; f++)
@@ -313,15 +309,15 @@ static PetscErrorCode MultFree(Mat A, Vec x, Vec y)
 static PetscErrorCode KrylovOperator(SSStarNewton nt, Mat *A)
 {
   Newton_Full *nf = (Newton_Full *)nt->data;
-  PetscInt     m, M;
+  PetscInt     m, N;
 
   PetscFunctionBegin;
   *A = nf->M;
   if (!nt->layout.kernel || !nt->layout.kernel->nfree) PetscFunctionReturn(0);
   if (!nf->shell) {
     PetscCall(MatGetLocalSize(nf->M, &m, NULL));
-    PetscCall(MatGetSize(nf->M, &M, NULL));
-    PetscCall(MatCreateShell(PetscObjectComm((PetscObject)nf->M), m, m, M, M, nt, &nf->shell));
+    PetscCall(MatGetSize(nf->M, &N, NULL));
+    PetscCall(MatCreateShell(PetscObjectComm((PetscObject)nf->M), m, m, N, N, nt, &nf->shell));
     PetscCall(MatShellSetOperation(nf->shell, MATOP_MULT, (void (*)(void))MultFree));
   }
   *A = nf->shell;
@@ -332,7 +328,7 @@ static PetscErrorCode KrylovOperator(SSStarNewton nt, Mat *A)
    M, rhs = y / gamma with the known dofs eliminated, and whether M is symmetric: it is unless some unknown row
    combines K's rows (S row other than e_r: the sliding law's phi om) or T is unsymmetric on the unknown dofs
 */
-static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, PetscBool *symmetric)
+static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Mat *M, PetscBool *symmetric)
 {
   Newton_Full               *nf  = (Newton_Full *)nt->data;
   const SSStarContactLayout *L   = &nt->layout;
@@ -343,13 +339,10 @@ static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[],
   nf->nknown = 0;
   for (PetscInt i = 0; i < L->nnodes; i++) {
     const PetscReal *Si = &S[9 * i], *Ti = &T[9 * i];
-    PetscInt         rows[3];
-    PetscScalar      Sv[9];
 
     nf->mask[i] = 0;
     for (PetscInt r = 0; r < 3; r++) {
-      rows[r] = nf->rstart + L->dofs[3 * i + r];
-      if (SSStarKnownRow(Si, Ti, r)) nf->known[nf->nknown++] = rows[r];
+      if (SSStarKnownRow(Si, Ti, r)) nf->known[nf->nknown++] = nf->rstart + L->dofs[3 * i + r];
       else nf->mask[i] |= (unsigned char)(1 << r);
     }
     for (PetscInt r = 0; r < 3; r++) {
@@ -359,28 +352,16 @@ static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[],
         if ((nf->mask[i] & (1 << k)) && Ti[3 * r + k] != Ti[3 * k + r]) sym = PETSC_FALSE;
       }
     }
-    for (PetscInt k = 0; k < 9; k++) Sv[k] = Si[k];
-    PetscCall(MatSetValues(nf->Shat, 3, rows, 3, rows, Sv, INSERT_VALUES));
   }
-  PetscCall(MatAssemblyBegin(nf->Shat, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(nf->Shat, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatMatMult(nf->Shat, nf->Kr, nf->M ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &nf->M));
-  PetscCall(MarkFreeMotions(nt, S));
-  for (PetscInt i = 0; i < L->nnodes; i++) {
-    PetscInt    rows[3];
-    PetscScalar Tv[9];
-
-    for (PetscInt r = 0; r < 3; r++) rows[r] = nf->rstart + L->dofs[3 * i + r];
-    for (PetscInt k = 0; k < 9; k++) Tv[k] = ig * T[9 * i + k];
-    for (PetscInt r = 0; r < 3 && nf->touched[i]; r++) Tv[4 * r] += ig * SSSTAR_FREE_SHIFT; /* known rows: replaced below */
-    PetscCall(MatSetValues(nf->M, 3, rows, 3, rows, Tv, ADD_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(nf->M, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(nf->M, MAT_FINAL_ASSEMBLY));
-  if (nf->nearNull) PetscCall(MatSetNearNullSpace(nf->M, nf->nearNull));
+  PetscCall(PetscArraycpy(nf->S, S, 9 * L->nnodes));
+  PetscCall(PetscArraycpy(nf->T, T, 9 * L->nnodes));
+  PetscCall(MarkFreeMotions(nt));
+  for (PetscInt i = 0; i < L->nnodes; i++) /* the preconditioner's shift (known rows: eliminated) */
+    for (PetscInt r = 0; r < 3 && nf->touched[i]; r++) nf->T[9 * i + 4 * r] += SSSTAR_FREE_SHIFT;
   PetscCall(VecCopy(y, nf->rhs));
   PetscCall(VecScale(nf->rhs, ig));
-  PetscCall(MatZeroRowsColumns(nf->M, nf->nknown, nf->known, ig, y, nf->rhs));
+  PetscCall(SSStarFullMatrixForm(nf->fm, nf->S, nf->T, ig, nf->nknown, nf->known, y, nf->rhs, M));
+  nf->M = *M;
   PetscCall(MPIU_Allreduce(&sym, symmetric, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)nt->A)));
   PetscFunctionReturn(0);
 }
@@ -406,19 +387,69 @@ static PetscErrorCode ChoosePreconditioner(SSStarNewton nt, PetscBool *reuse)
   PetscFunctionReturn(0);
 }
 
+/* The multigrid for M (a new one or an earlier one kept), built with K's near-null space in the nodes' frames */
+static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reuse)
+{
+  Newton_Full *nf  = (Newton_Full *)nt->data;
+  KSP          ksp = nt->snes->ksp;
+  MatNullSpace own = NULL;
+  Mat          op;
+
+  PetscFunctionBegin;
+  PetscCall(KSPSetReusePreconditioner(ksp, reuse));
+  PetscCall(KrylovOperator(nt, &op));
+  PetscCall(KSPSetOperators(ksp, op, M));
+  if (nf->nearNull) { /* M is K's storage: its own near-null space goes back after the set-up */
+    PetscCall(MatGetNearNullSpace(M, &own));
+    PetscCall(PetscObjectReference((PetscObject)own));
+    PetscCall(MatSetNearNullSpace(M, nf->nearNull));
+  }
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  if (nf->nearNull) {
+    PetscCall(MatSetNearNullSpace(M, own));
+    PetscCall(MatNullSpaceDestroy(&own));
+  }
+  if (reuse) nt->nReused++;
+  else nt->nFactor++;
+  PetscFunctionReturn(0);
+}
+
+/* The Krylov solve of the step from dv (nonzero: on from the last solution), du = Q^T dv; K is put back after it */
+static PetscErrorCode KrylovSolve(SSStarNewton nt, PetscBool nonzero, Vec du, KSPConvergedReason *reason, PetscInt *its)
+{
+  Newton_Full *nf  = (Newton_Full *)nt->data;
+  KSP          ksp = nt->snes->ksp;
+
+  PetscFunctionBegin;
+  PetscCall(KSPSetInitialGuessNonzero(ksp, nonzero));
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
+  PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
+  PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
+  PetscCall(SSStarFullMatrixRestore(nf->fm));
+  PetscCall(KSPGetConvergedReason(ksp, reason));
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  nt->nKrylov += *its;
+  nt->snes->linear_its += *its;
+  if (*reason > 0 || *reason == KSP_DIVERGED_ITS) PetscCall(RotateBack(&nt->layout, nf->dv, du));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
 {
   Newton_Full       *nf  = (Newton_Full *)nt->data;
   KSP                ksp = nt->snes->ksp;
   KSPConvergedReason reason;
-  Mat                op;
   PetscBool          symmetric, reuse;
   PetscInt           its;
   PetscReal          rnorm, bnorm;
+  Mat                M;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
-  PetscCall(AssembleNewtonMatrix(nt, S, T, y, &symmetric));
+  PetscCall(AssembleNewtonMatrix(nt, S, T, y, &M, &symmetric));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
   if (!nf->userKSPType) { /* the residual unpreconditioned, in the units of the tolerances */
     PetscCall(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES));
@@ -428,21 +459,8 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
   }
   if (!nf->userTolerances) PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(ChoosePreconditioner(nt, &reuse));
-  PetscCall(KSPSetReusePreconditioner(ksp, reuse));
-  PetscCall(KrylovOperator(nt, &op));
-  PetscCall(KSPSetOperators(ksp, op, nf->M));
-  PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
-  PetscCall(KSPSetUp(ksp));
-  PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
-  if (reuse) nt->nReused++;
-  else nt->nFactor++;
-  PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
-  PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
-  PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
-  PetscCall(KSPGetConvergedReason(ksp, &reason));
-  PetscCall(KSPGetIterationNumber(ksp, &its));
-  nt->nKrylov += its;
-  nt->snes->linear_its += its;
+  PetscCall(SetUpPreconditioner(nt, M, reuse));
+  PetscCall(KrylovSolve(nt, PETSC_FALSE, du, &reason, &its));
   /* an iteration limit that still reduced the residual tenfold is an inexact step; a breakdown is a failure */
   PetscCall(KSPGetResidualNorm(ksp, &rnorm));
   PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
@@ -451,10 +469,7 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
   if (!*solved) {
     nf->pcBuilt = PETSC_FALSE;
     PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not solved: %s after %" PetscInt_FMT " iterations, residual %g of %g\n", KSPConvergedReasons[reason], its, (double)rnorm, (double)bnorm));
-    PetscFunctionReturn(0);
   }
-  if (nf->Qt) PetscCall(MatMult(nf->Qt, nf->dv, du));
-  else PetscCall(VecCopy(nf->dv, du));
   PetscFunctionReturn(0);
 }
 
@@ -470,8 +485,8 @@ static PetscErrorCode SSStarNewtonSolveKnown_Full(SSStarNewton nt, Vec y, Vec du
 }
 
 /*
-   The last step's Krylov solve continued from its solution (same matrix, right-hand side and multigrid) to the
-   tolerances set since, unless it met them already or the user fixed the tolerances (-ksp_rtol)
+   The last step's Krylov solve continued from its solution (its matrix formed again, the same right-hand side and
+   multigrid) to the tolerances set since, unless it met them already or the user fixed the tolerances (-ksp_rtol)
 */
 static PetscErrorCode SSStarNewtonRefine_Full(SSStarNewton nt, Vec du, PetscBool *refined)
 {
@@ -480,6 +495,7 @@ static PetscErrorCode SSStarNewtonRefine_Full(SSStarNewton nt, Vec du, PetscBool
   KSPConvergedReason reason;
   PetscInt           its;
   PetscReal          rnorm, bnorm;
+  Mat                M;
 
   PetscFunctionBegin;
   if (!nf->refinable || nf->userTolerances) PetscFunctionReturn(0);
@@ -487,32 +503,29 @@ static PetscErrorCode SSStarNewtonRefine_Full(SSStarNewton nt, Vec du, PetscBool
   PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
   if (rnorm <= PetscMax(nt->atol, nt->rtol * bnorm)) PetscFunctionReturn(0);
   PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
-  PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE));
-  PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
-  PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
-  PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
-  PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
-  PetscCall(KSPGetConvergedReason(ksp, &reason));
-  PetscCall(KSPGetIterationNumber(ksp, &its));
-  nt->nKrylov += its;
-  nt->snes->linear_its += its;
+  PetscCall(PetscLogEventBegin(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
+  PetscCall(SSStarFullMatrixForm(nf->fm, nf->S, nf->T, 1 / nt->gamma, nf->nknown, nf->known, NULL, NULL, &M));
+  nf->M = M;
+  PetscCall(PetscLogEventEnd(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
+  PetscCall(KrylovSolve(nt, PETSC_TRUE, du, &reason, &its));
   *refined = (PetscBool)(reason > 0 || reason == KSP_DIVERGED_ITS);
   if (!*refined) {
     nf->refinable = PETSC_FALSE;
     PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not refined: %s after %" PetscInt_FMT " iterations\n", KSPConvergedReasons[reason], its));
-    PetscFunctionReturn(0);
   }
-  if (nf->Qt) PetscCall(MatMult(nf->Qt, nf->dv, du));
-  else PetscCall(VecCopy(nf->dv, du));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode SSStarNewtonView_Full(SSStarNewton nt, PetscViewer viewer)
 {
   Newton_Full *nf = (Newton_Full *)nt->data;
+  PetscBool    inPlace;
 
   PetscFunctionBegin;
+  PetscCall(SSStarFullMatrixInPlace(nf->fm, &inPlace));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nf->nearNull ? " (multigrid with K's near-null space)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
+  if (nf->plain) PetscCall(PetscViewerASCIIPrintf(viewer, "    plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable)\n"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));
   PetscFunctionReturn(0);
@@ -523,19 +536,16 @@ static PetscErrorCode SSStarNewtonReset_Full(SSStarNewton nt)
   Newton_Full *nf = (Newton_Full *)nt->data;
 
   PetscFunctionBegin;
-  PetscCall(MatDestroy(&nf->Kr));
-  PetscCall(MatDestroy(&nf->Qt));
-  PetscCall(MatDestroy(&nf->Shat));
-  PetscCall(MatDestroy(&nf->M));
+  PetscCall(SSStarFullMatrixDestroy(&nf->fm));
   PetscCall(MatNullSpaceDestroy(&nf->nearNull));
   PetscCall(VecDestroy(&nf->rhs));
   PetscCall(VecDestroy(&nf->dv));
   PetscCall(PetscFree3(nf->known, nf->mask, nf->touched));
   PetscCall(MatDestroy(&nf->shell));
   PetscCall(PetscFree(nf->pcMask));
-  PetscCall(PetscFree2(nf->Sknown, nf->Tknown));
+  PetscCall(PetscFree4(nf->Sknown, nf->Tknown, nf->S, nf->T));
   for (PetscInt k = 0; k < SSSTAR_SMOOTHER_OPTIONS; k++) {
-    if (nf->smoother[k]) PetscCall(PetscOptionsClearValue(((PetscObject)nt->snes->ksp)->options, nf->smoother[k]));
+    if (nf->smoother[k]) PetscCall(PetscOptionsClearValue(NULL, nf->smoother[k]));
     PetscCall(PetscFree(nf->smoother[k]));
   }
   PetscCall(KSPReset(nt->snes->ksp));

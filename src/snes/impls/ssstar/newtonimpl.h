@@ -44,6 +44,7 @@ struct _n_SSStarNewton {
 
   /* the operator of the current solve */
   Mat                 A;
+  PetscObjectState    Astate; /* A's state when the implementation was set up for it */
   PetscReal           gamma;
   SSStarContactLayout layout;
 
@@ -77,6 +78,18 @@ PETSC_INTERN PetscErrorCode SSStarNewtonSetKSPDefaults(SSStarNewton, KSPType, PC
 PETSC_INTERN PetscBool SSStarKnownRow(const PetscReal[9], const PetscReal[9], PetscInt);
 /* x = R^T y, x += R^T y (R NULL: identity) */
 PETSC_INTERN void SSStarRotateBack(const PetscReal *, const PetscScalar[3], PetscScalar[3]);
+
+/*
+   The whole body's Newton matrix formed in K's own storage for each linear solve, K's entries put back after it
+   (fullmatrix.c; newton_full.c says what M is): Create reads K's contact rows and columns, Form writes M for the
+   blocks S, T (and eliminates the known rows, updating rhs), Restore puts K back.
+*/
+typedef struct _n_SSStarFullMatrix *SSStarFullMatrix;
+PETSC_INTERN PetscErrorCode SSStarFullMatrixCreate(Mat, const SSStarContactLayout *, SSStarFullMatrix *);
+PETSC_INTERN PetscErrorCode SSStarFullMatrixInPlace(SSStarFullMatrix, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix, const PetscReal[], const PetscReal[], PetscReal, PetscInt, const PetscInt[], Vec, Vec, Mat *);
+PETSC_INTERN PetscErrorCode SSStarFullMatrixRestore(SSStarFullMatrix);
+PETSC_INTERN PetscErrorCode SSStarFullMatrixDestroy(SSStarFullMatrix *);
 
 /*
    The LU of a dense matrix distributed by rows (denselu.c): the rows gathered on rank 0 and factored by LAPACK there,

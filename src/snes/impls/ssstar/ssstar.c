@@ -11,6 +11,8 @@ const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERG
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
+/* ... and of the one from u = 0 that only gives the load's scale (||gamma f||, a given u being the start): two digits */
+#define SSSTAR_SCALE_RTOL 1e-2
 
 /*
    gamma = 1/mean(diag K_CC) unless the user set it (section 6); the fixed-point baseline takes 1/(the largest sum
@@ -118,10 +120,10 @@ static PetscErrorCode Equilibrate(SNES snes)
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
   PetscCall(VecCopy(ss->u, uC));
-  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame */
+  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
   PetscCall(VecZeroEntries(ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, 0.0));
+  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0));
   PetscCall(VecGetArrayRead(ss->c, &ca));
   for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
     const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);
@@ -138,11 +140,13 @@ static PetscErrorCode Equilibrate(SNES snes)
   /* a given u: its free dofs corrected from its own, relative to its own residual (not to the whole load's, from u0),
      down to the Newton steps' floor: a guess already in equilibrium (the step before on a load path) keeps its
      accuracy, which a body that nearly floats needs (from u0, a relative 1e-4 of the load left a stiff block on a
-     soft spring 300 times the stopping threshold away, and the path's release stagnated there) */
+     soft spring 300 times the stopping threshold away, and the path's release stagnated there). No tighter than the
+     first Newton step solves after it (etaMax of its own residual): the steps equilibrate the free dofs on their way
+     (a nested iteration's start at level 16: 9 -> 1 Krylov iterations, the same Newton steps) */
   PetscCall(VecCopy(uC, ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SNESSSStarLinearFloor(snes, &floor));
-  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, floor));
+  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor));
   PetscFunctionReturn(0);
 }
 

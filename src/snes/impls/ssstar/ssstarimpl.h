@@ -55,6 +55,8 @@ typedef struct {
   SSStarKernel       *kernel; /* floating bodies, or NULL                                           */
 } SSStarContactLayout;
 
+/* Whether bytes per rank fit the memory limit (GB per rank, 0: each node's MemAvailable): the reductions' check (src/reduction) */
+PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble, PetscBool *);
 /* the law residual's displacement scale is at least this fraction of |u_C| (and of the path's largest, as its force
    scale of the path's largest force): the rounding of w = R u + o, 1e-16 of |u|, stays 100 times below the default
    tolerance of the law */

@@ -5,6 +5,7 @@
 */
 #include "ssstarimpl.h"
 #include "laws/lawimpl.h"
+#include "../../../sys/meminfo.h"
 
 /*
    A value of a list option that is not in the list, refused here with PETSc's message: PETSc 3.18's
@@ -312,25 +313,25 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
 {
   SNES_SSStar   *ss     = (SNES_SSStar *)snes->data;
   PetscViewer    viewer = vf->viewer;
-  PetscLogDouble now, memory;
+  PetscLogDouble now;
   PetscInt       krylov, factorizations;
-  char           problem[256];
+  char           problem[256], memory[128];
 
   PetscFunctionBegin;
   PetscCall(PetscTime(&now));
-  PetscCall(SSStarMemoryGetUsage(PetscObjectComm((PetscObject)snes), &memory, NULL));
+  PetscCall(SSStarMemoryText(PetscObjectComm((PetscObject)snes), memory, sizeof(memory)));
   PetscCall(SSStarNewtonGetCounts(ss->newton, &factorizations, NULL, &krylov));
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   if (its == 0) {
     PetscCall(FormatProblem(snes, problem, sizeof(problem)));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  set-up: %s, %.3f s, %.3f GB per rank\n", problem, now - ss->tStart, memory / 1e9));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  set-up: %s, %.3f s, %s\n", problem, now - ss->tStart, memory));
     PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e\n", its, (double)znorm));
   } else {
     PetscInt changed = PetscMax(ss->glob.changed, 0);
 
-    PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e, %" PetscInt_FMT " node%s changed state; step %.3f s, %" PetscInt_FMT " Krylov its%s, %.3f GB per rank\n", its, (double)znorm, changed, changed == 1 ? "" : "s", now - ss->tLast, krylov - ss->krylovLast,
-                                     factorizations > ss->factorizationsLast ? (ss->problem.wholeBody ? ", new multigrid" : ", new LU") : "", memory / 1e9));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e, %" PetscInt_FMT " node%s changed state; step %.3f s, %" PetscInt_FMT " Krylov its%s, %s\n", its, (double)znorm, changed, changed == 1 ? "" : "s", now - ss->tLast, krylov - ss->krylovLast,
+                                     factorizations > ss->factorizationsLast ? (ss->problem.wholeBody ? ", new multigrid" : ", new LU") : "", memory));
   }
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));

@@ -1,0 +1,123 @@
+"""Large problems' routes: nested iteration (-nested_levels: coarser meshes solved first, their solution the start of the
+finer one) gives the same answer in fewer fine iterations, and meshes refined in parallel (-dm_refine) are the meshes
+of the same size: the same file on any number of ranks, the groups, obstacles, pairs, gaps and load paths carried."""
+import os
+import re
+
+from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+from suite_full import prism_run, same_answer, scene_run
+
+import h5py
+import numpy as np
+
+CONTACT = os.path.join(ROOT, "examples", "contact")
+NESTED = re.compile(r"nested: (\d+) coarser mesh(?:es)?, the finest of (\d+) nodes in (\d+) iterations \((\S+)\), interpolated")
+
+
+@test("nested iteration on the whole body (prism level 8 from level 4, and from levels 4 and 2): the dense route's solution to 1e-8 with the same states, on 1 and 3 ranks, in at most 6 fine iterations where the plain start takes 10; the progress line names the coarser meshes")
+def nested_same_answer():
+    for levels, ranks in (("1", 1), ("2", 3)):
+        dense, d = prism_run(["-level", "8", "-snes_ssstar_reduction", "direct"], "nested_L8_direct.h5", ranks)
+        out, s = prism_run(["-level", "8", "-snes_ssstar_reduction", "none", "-nested_levels", levels], "nested_L8_none%s.h5" % levels, ranks)
+        m = NESTED.search(out)
+        expect(m is not None and m.group(1) == levels and m.group(4).startswith("CONVERGED"), "no nested line for %s coarser meshes" % levels, out)
+        expect(int(m.group(2)) == 1377, "the finest coarse mesh has %s nodes, not level 4's 1377" % m.group(2), out)
+        expect(s["reason"] == d["reason"] == "CONVERGED_FNORM_RELATIVE" and s["states"] == d["states"], "nested %s: %s, states %s; dense %s, %s" % (levels, s["reason"], s["states"], d["reason"], d["states"]), out)
+        expect(s["iters"] <= 6 < d["iters"], "nested %s: %d fine iterations (dense from zero: %d)" % (levels, s["iters"], d["iters"]), out)
+        run(CHECK + ["compare", os.path.join(OUT, "nested_L8_direct.h5"), os.path.join(OUT, "nested_L8_none%s.h5" % levels), "--tol", "1e-8"])
+
+
+@test("-nested_levels 0 and auto below the crossover start from zero (prism level 8: no nested line, 10 iterations); auto nests on the whole body's large problems (prism level 12); the dense route keeps its start; -nested_levels refuses what is not auto or a count")
+def nested_auto():
+    for extra in (["-nested_levels", "0"], []):
+        out, s = prism_run(["-level", "8"] + extra, "nested_auto_L8.h5")
+        expect("nested:" not in out and s["iters"] == REFERENCE_ITERATIONS[8], "level 8 %s: nested or %d iterations" % (extra, s["iters"]), out)
+    out, s = prism_run(["-level", "12", "-snes_ssstar_reduction", "none"], "nested_auto_L12.h5", 2)
+    m = NESTED.search(out)
+    expect(m is not None and s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] <= 6, "auto at level 12: no nesting or %d iterations" % s["iters"], out)
+    out = run(mpiexec(1, PRISM, "-level", "6", "-nested_levels", "1", "-snes_ssstar_reduction", "direct", "-o", os.path.join(OUT, "nested_direct.h5")))
+    expect(NESTED.search(out) is not None, "an explicit -nested_levels 1 is not taken on the dense route", out)
+    for bad in ("-1", "two", "1x"):
+        out = run(mpiexec(1, PRISM, "-level", "6", "-nested_levels", bad), expect_rc=-1)
+        expect("-nested_levels %s: give auto or a number >= 0" % bad in out, "-nested_levels %s not refused" % bad, out)
+
+
+@test("a scene through examples/contact (incline: gravity, a soft spring, a tilted plane) with -nested_levels 1: the same answer as from zero to 1e-8, the same states, the iterations within one (the plain start needs 4: nothing to gain)")
+def nested_scene():
+    # the body hangs on a soft spring: the error is about 1e4 ||z|| (suite_full), so both stop at a tighter ||z||
+    incline = ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-snes_ssstar_reduction", "none", "-snes_rtol", "1e-12"]
+    plain, p = scene_run(incline + ["-nested_levels", "0"], "nested_incline_plain.h5")
+    out, s = scene_run(incline + ["-nested_levels", "1"], "nested_incline.h5")
+    expect(NESTED.search(out) is not None, "no nested line", out)
+    expect(s["reason"] == p["reason"] and s["states"] == p["states"] and s["iters"] <= p["iters"] + 1, "nested: %s %s %d; plain: %s %s %d" % (s["reason"], s["states"], s["iters"], p["reason"], p["states"], p["iters"]), out + plain)
+    run(CHECK + ["compare", os.path.join(OUT, "nested_incline_plain.h5"), os.path.join(OUT, "nested_incline.h5"), "--tol", "1e-8"])
+
+
+@test("prism level 3 refined once in parallel (-dm_refine 1) is level 6's mesh size: 1, 2 and 3 ranks write the same file (vertices and cells identical, fields to 1e-10), its vertices are gmsh level 6's nodes, its tetrahedra positive and filling the prism, 312 contact nodes; the Coulomb law holds and the contact force is gmsh level 6's to 0.1 % (another triangulation of the same nodes)")
+def refine_same_file():
+    files = []
+    for ranks in (1, 2, 3):
+        name = "refine_L3_np%d.h5" % ranks
+        out, s = prism_run(["-level", "3", "-dm_refine", "1"], name, ranks)
+        expect(s["reason"] == "CONVERGED_FNORM_RELATIVE", "%d ranks: %s" % (ranks, s["reason"]), out)
+        expect(re.search(r"\s4225\s+\S+\s+\S+\s+312\s", out) is not None, "%d ranks: not 4225 nodes and 312 contact nodes" % ranks, out)
+        files.append(os.path.join(OUT, name))
+    with h5py.File(files[0], "r") as a:
+        for other in files[1:]:
+            with h5py.File(other, "r") as b:
+                for name in ("geometry/vertices", "viz/topology/cells", "contact/state"):
+                    expect(np.array_equal(a[name][:], b[name][:]), "%s differs between %s and %s" % (name, files[0], other))
+                for name in ("fields/displacement", "contact/reaction"):
+                    x, y = a[name][:], b[name][:]
+                    expect(np.abs(x - y).max() <= 1e-10 * np.abs(x).max(), "%s differs by %.1e between %s and %s" % (name, np.abs(x - y).max() / np.abs(x).max(), files[0], other))
+        x, cells = a["geometry/vertices"][:], a["viz/topology/cells"][:]
+        e = x[cells[:, 1:]] - x[cells[:, :1]]
+        volume = np.einsum("ij,ij->i", np.cross(e[:, 0], e[:, 1]), e[:, 2]) / 6
+        expect((volume > 0).all() and abs(volume.sum() - 2.0) < 1e-12 and len(cells) == 8 * 2592, "refined tetrahedra: %d not positive, volume %g, %d cells" % ((volume <= 0).sum(), volume.sum(), len(cells)))
+    out, g = prism_run(["-level", "6"], "refine_gmsh_L6.h5")
+    with h5py.File(files[0], "r") as a, h5py.File(os.path.join(OUT, "refine_gmsh_L6.h5"), "r") as b:
+        x, y = (np.round(f["geometry/vertices"][:] * 1e9) for f in (a, b))
+        expect(np.array_equal(x[np.lexsort(x.T)], y[np.lexsort(y.T)]), "the refined vertices are not gmsh level 6's nodes")
+    force = [f["contact/reaction"][:].sum(axis=0) for f in (h5py.File(files[0], "r"), h5py.File(os.path.join(OUT, "refine_gmsh_L6.h5"), "r"))]
+    d = np.abs(force[0] - force[1]).max() / np.abs(force[1]).max()
+    expect(d < 1e-3, "contact force %s refined, %s gmsh: %.1e apart" % (force[0], force[1], d))
+    law = run(CHECK + ["coulomb", files[1]])
+    expect("VIOLATED" not in law, "the refined solution violates the Coulomb law", law)
+
+
+@test("refined meshes carry every group and effect, each refined once: a rigid ball (-obstacle_contact sphere on the prism) and gaps with 10 load steps (gap) give the dense route's answer on the whole body to 1e-8; two bodies (the slider pair, node to surface) satisfy the Coulomb law; the slider's two volume groups survive (a stiffer -material_slider changes the answer); a load path on the pair converges; nested iteration on a mesh refined twice starts from the mesh refined once")
+def refine_scenes():
+    scenes = os.path.join(ROOT, "scenes")
+    same_answer("refine_ball", prism_run, ["-level", "2", "-dm_refine", "1", "-obstacle_contact", "sphere:1,0.5,-10,10", "-snes_rtol", "1e-12"])
+    same_answer("refine_gap", scene_run, ["-options_file", os.path.join(scenes, "gap.opts"), "-level", "2", "-dm_refine", "1", "-snes_rtol", "1e-12"], iterations=10)
+    slider = ["-options_file", os.path.join(scenes, "slider.opts"), "-dm_refine", "1"]
+    out, s = scene_run(slider, "refine_slider.h5")
+    expect(s["reason"].startswith("CONVERGED"), "slider refined: %s" % s["reason"], out)
+    law = run(CHECK + ["law", os.path.join(OUT, "refine_slider.h5")])
+    expect("VIOLATED" not in law, "slider refined: law violated", law)
+    stiff, _ = scene_run(slider + ["-material_slider", "8,0.3"], "refine_slider_stiff.h5")
+    u = [h5py.File(os.path.join(OUT, f), "r")["fields/displacement"][:] for f in ("refine_slider.h5", "refine_slider_stiff.h5")]
+    expect(np.abs(u[0] - u[1]).max() > 0.01 * np.abs(u[0]).max(), "-material_slider changes nothing on the refined mesh: its cells lost their volume group", out + stiff)
+    out = run(mpiexec(1, CONTACT, *slider, "-traction_slider_top", "0:0,0,0;1:0,0,-0.01;2:0.008,0,-0.01", "-steps", "1,1.5,2", "-o", os.path.join(OUT, "refine_slider_path.h5")))
+    expect("CONVERGED_FNORM" in out, "the slider's load path on the refined mesh did not converge", out)
+    out, s = scene_run(["-options_file", os.path.join(scenes, "prism.opts"), "-level", "2", "-dm_refine", "2", "-nested_levels", "1"], "refine_nested.h5")
+    m = NESTED.search(out)
+    expect(m is not None and m.group(2) == "1377" and s["reason"] == "CONVERGED_FNORM_RELATIVE", "nested on -dm_refine 2: not started from the mesh refined once (1377 nodes)", out)
+    out = run(mpiexec(1, PRISM, "-level", "3", "-dm_refine", "-1"), expect_rc=-1)
+    expect("-dm_refine -1: the number of refinements must be >= 0" in out, "-dm_refine -1 not refused", out)
+
+
+ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank( \(plain aggregation\))?")
+
+
+@test("the memory estimate printed before the work (the mesh line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work")
+def memory_estimate():
+    for ranks, extra, plain in ((1, [], False), (2, [], False), (2, ["-snes_ssstar_memory_limit", "0.25"], True)):
+        out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_plain" if plain else ""), ranks)
+        m = ESTIMATE.search(out)
+        expect(m is not None and bool(m.group(2)) == plain, "%d ranks %s: no estimate, or not the %s aggregation" % (ranks, extra, "plain" if plain else "smoothed"), out)
+        expect(("plain aggregation: the set-up of the smoothed one would not fit" in out) == plain, "%d ranks %s: the solver's aggregation is not the estimate's" % (ranks, extra), out)
+        estimate = float(m.group(1))
+        expect(abs(estimate / s["peak_gb"] - 1) <= 0.2, "%d ranks %s: estimated %.3f GB per rank, measured %.3f" % (ranks, extra, estimate, s["peak_gb"]), out)
+    out = run(mpiexec(2, PRISM, "-level", "12", "-snes_ssstar_memory_limit", "0.15"), expect_rc=-1)
+    expect("with the multigrid's plain aggregation), more than the 0.15 GB of -snes_ssstar_memory_limit (per rank); refused before the work" in out, "a limit below the plain aggregation's peak is not refused", out)

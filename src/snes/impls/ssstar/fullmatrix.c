@@ -37,6 +37,7 @@ struct _n_SSStarFullMatrix {
   PetscObjectState stateK;    /* A's state with its own entries                                               */
   PetscObjectState stateM;    /* of the last Newton matrix formed                                            */
   PetscBool        holdsM;    /* K holds a Newton matrix now                                                  */
+  MatNullSpace     null;      /* K's null space (floating bodies), taken off while K holds M: M has none      */
 };
 
 /* R_b of a column node n (NULL: identity) */
@@ -402,6 +403,11 @@ PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix fm, const PetscReal S[], co
   PetscReal    SR[9];
 
   PetscFunctionBegin;
+  if (!fm->holdsM) { /* the Krylov solver would project K's null space out of M's residuals */
+    PetscCall(MatGetNullSpace(fm->K, &fm->null));
+    PetscCall(PetscObjectReference((PetscObject)fm->null));
+    PetscCall(MatSetNullSpace(fm->K, NULL));
+  }
   PetscCall(PetscArraycpy(v, fm->valK, fm->ncross));
   for (PetscInt t = 0; t < fm->ncol; t++) { /* K Q^T */
     const PetscInt  *e = &fm->col[4 * t];
@@ -446,6 +452,8 @@ PetscErrorCode SSStarFullMatrixRestore(SSStarFullMatrix fm)
     PetscCall(WriteCross(fm, fm->valK));
     PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateK));
   }
+  PetscCall(MatSetNullSpace(fm->K, fm->null));
+  PetscCall(MatNullSpaceDestroy(&fm->null));
   fm->holdsM = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

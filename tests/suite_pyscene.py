@@ -265,7 +265,9 @@ def pyscene_install():
     site = os.path.dirname(os.path.dirname(m.group(2)))
     stale = out("pyscene_stale")
     shutil.rmtree(stale, ignore_errors=True)
-    shutil.copytree(os.path.join(site, "ssstar"), os.path.join(stale, "ssstar"))
+    # without the compiled modules: the edit below keeps _config.py's size and may keep its mtime's second, and Python
+    # would then import the stale __pycache__ of the true version
+    shutil.copytree(os.path.join(site, "ssstar"), os.path.join(stale, "ssstar"), ignore=shutil.ignore_patterns("__pycache__"))
     config = os.path.join(stale, "ssstar", "_config.py")
     text = open(config).read()
     open(config, "w").write(text.replace('VERSION = "%s"' % version, 'VERSION = "0.0.1"'))

@@ -37,6 +37,8 @@ struct _n_SSStarFullMatrix {
   PetscObjectState stateK;    /* A's state with its own entries                                               */
   PetscObjectState stateM;    /* of the last Newton matrix formed                                            */
   PetscBool        holdsM;    /* K holds a Newton matrix now                                                  */
+  MatNullSpace     nullK;     /* K's null space (floating bodies), detached while K holds a Newton matrix:    */
+                              /* the Newton matrix is regular and a KSP would project its residual on it     */
 };
 
 /* R_b of a column node n (NULL: identity) */
@@ -429,6 +431,11 @@ PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix fm, const PetscReal S[], co
   for (PetscInt i = 0; i < fm->nnodes; i++) /* + That / gamma */
     for (PetscInt l = 0; l < 9; l++) v[fm->diag[9 * i + l]] += ig * T[9 * i + l];
   PetscCall(WriteCross(fm, v));
+  if (!fm->holdsM) {
+    PetscCall(MatGetNullSpace(fm->K, &fm->nullK));
+    PetscCall(PetscObjectReference((PetscObject)fm->nullK));
+    PetscCall(MatSetNullSpace(fm->K, NULL));
+  }
   PetscCall(MatZeroRowsColumns(fm->K, nknown, known, ig, y, rhs));
   if (rhs) fm->stateM = PetscMax(fm->stateM, fm->stateK) + 1;
   PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateM));
@@ -446,6 +453,8 @@ PetscErrorCode SSStarFullMatrixRestore(SSStarFullMatrix fm)
     PetscCall(WriteCross(fm, fm->valK));
     PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateK));
   }
+  PetscCall(MatSetNullSpace(fm->K, fm->nullK));
+  PetscCall(MatNullSpaceDestroy(&fm->nullK));
   fm->holdsM = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -416,29 +416,18 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   PetscFunctionReturn(0);
 }
 
-/*
-   The Krylov solve of the step from dv (nonzero: on from the last solution), du = Q^T dv; K is put back after it.
-   M in K's storage would carry K's null space (a floating body's rigid motions, MatSetNullSpace()), which the KSP
-   projects out of every preconditioned vector: M has none (its known contact dofs hold the body; the free motions'
-   shell is an operator of its own), so K's is taken off for the solve and put back with K.
-*/
+/* The Krylov solve of the step from dv (nonzero: on from the last solution), du = Q^T dv; K is put back after it */
 static PetscErrorCode KrylovSolve(SSStarNewton nt, PetscBool nonzero, Vec du, KSPConvergedReason *reason, PetscInt *its)
 {
   Newton_Full *nf  = (Newton_Full *)nt->data;
   KSP          ksp = nt->snes->ksp;
-  MatNullSpace null;
 
   PetscFunctionBegin;
-  PetscCall(MatGetNullSpace(nf->M, &null));
-  PetscCall(PetscObjectReference((PetscObject)null));
-  PetscCall(MatSetNullSpace(nf->M, NULL));
   PetscCall(KSPSetInitialGuessNonzero(ksp, nonzero));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
   PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
   PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
-  PetscCall(MatSetNullSpace(nf->M, null));
-  PetscCall(MatNullSpaceDestroy(&null));
   PetscCall(SSStarFullMatrixRestore(nf->fm));
   PetscCall(KSPGetConvergedReason(ksp, reason));
   PetscCall(KSPGetIterationNumber(ksp, its));

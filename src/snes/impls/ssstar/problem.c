@@ -127,7 +127,8 @@ static PetscErrorCode CreateReduction(SNES snes, SSStarContact *ct, SSStarProble
    declares its points again at every step) is built here, with the same number of points. What the Newton step built
    in the old frames (the whole body's K in the nodes' frames) is dropped. Whether the problem set up for the old one
    stands: the reduction depends on K, the contact dofs and T only, so it is kept when the points and their dofs are the
-   same and neither declaration has master dofs (rigid obstacles whose frames and gaps changed).
+   same and neither declaration has master dofs (rigid obstacles whose frames and gaps changed); the floating bodies'
+   motions at the contact points (floating.c) are taken again in the new frames.
 */
 static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProblem *pb, Mat K)
 {
@@ -143,7 +144,10 @@ static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProble
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &other, 1, MPIU_BOOL, MPI_LOR, comm));
   PetscCheck(!other, comm, PETSC_ERR_ARG_WRONGSTATE, "ssstar: the contact points were declared again, in other numbers: a new declaration between solves keeps the points (SNESReset() for others)");
   if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
-  if (same && !ct->T && pb->Kw == K) pb->built = ct->built; /* the problem stands */
+  if (same && !ct->T && pb->Kw == K) { /* the problem stands; K's null space at the contact points is in the new frames */
+    pb->built = ct->built;
+    PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -85,15 +85,15 @@ def floating_slope_slides():
             expect(abs(float(n.group(5)) / expected - 1) <= 1e-3, "%s %d: unbalanced part %s, not sin(alpha - arctan phi) = %.4g" % (red, ranks, n.group(5), expected), out)
 
 
-@test("a load path that loses its equilibrium stops at that step and says so (scenes/slope.opts at level 2, phi = 0.5: pushed downhill by 0, 400, 800 Pa on its top, the friction holds up to 627 Pa): steps 1 and 2 converge, step 3 ends with 'no equilibrium' without halving, exit status 2, the file's failed_step 2 and failed_time 2; direct and none")
+@test("a load path that loses its equilibrium stops at that step and says so (scenes/slope.opts at level 2, phi = 0.5: pushed downhill by 0, 400, 800 Pa on its top, the friction holds up to 627 Pa): steps 1 and 2 converge, step 3 ends with 'no equilibrium' without halving, exit status 2, the file's failed_step 2 and failed_time 2; direct and none, 1 and 2 ranks")
 def floating_path_stops():
     push = ";".join("%d:%g,0,%g" % (t, p * DOWNHILL[0], p * DOWNHILL[2]) for t, p in ((0, 0), (1, 400), (2, 800)))
-    for red in ("direct", "none"):
-        out, m, f = contact(scene("slope", "-level", "2", "-snes_ssstar_reduction", red, "-traction_top", push), "floating_path_%s.h5" % red, 1, expect_rc=NOT_CONVERGED)
-        expect(re.search(r"step 3/3 t 2\.?: no equilibrium .*: the path stops here", out) is not None and "retried" not in out, "%s: step 3 does not stop at once" % red, out)
-        expect(len(re.findall(r"^step [12]/3 .* iterations", out, re.M)) == 2, "%s: steps 1 and 2 not converged" % red, out)
-        expect(f.attrs["failed_step"] == 2 and f.attrs["failed_time"] == 2, "%s: failed_step %s, failed_time %s" % (red, f.attrs["failed_step"], f.attrs["failed_time"]))
-        expect(NOEQ.search(out) is not None, "%s: no line naming the body" % red, out)
+    for red, ranks in PATHS:
+        out, m, f = contact(scene("slope", "-level", "2", "-snes_ssstar_reduction", red, "-traction_top", push), "floating_path_%s_%d.h5" % (red, ranks), ranks, expect_rc=NOT_CONVERGED)
+        expect(re.search(r"step 3/3 t 2\.?: no equilibrium .*: the path stops here", out) is not None and "retried" not in out, "%s %d: step 3 does not stop at once" % (red, ranks), out)
+        expect(len(re.findall(r"^step [12]/3 .* iterations", out, re.M)) == 2, "%s %d: steps 1 and 2 not converged" % (red, ranks), out)
+        expect(f.attrs["failed_step"] == 2 and f.attrs["failed_time"] == 2, "%s %d: failed_step %s, failed_time %s" % (red, ranks, f.attrs["failed_step"], f.attrs["failed_time"]))
+        expect(NOEQ.search(out) is not None, "%s %d: no line naming the body" % (red, ranks), out)
 
 
 @test("a ball squeezed between two rigid plates, held by them alone (scenes/squeeze.opts, level 1: R = 10, the upper plate moved down by 0.2, frictionless): the two contact forces equal to 1e-8 relative (the ball's equilibrium), each contact's radius and peak pressure within 3 % of Hertz's for its force (measured +1.1 %, +2.3 % below, +0.7 %, +2.6 % above); direct and none, 1 and 2 ranks agree to 1e-7")

@@ -144,9 +144,9 @@ static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProble
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &other, 1, MPIU_BOOL, MPI_LOR, comm));
   PetscCheck(!other, comm, PETSC_ERR_ARG_WRONGSTATE, "ssstar: the contact points were declared again, in other numbers: a new declaration between solves keeps the points (SNESReset() for others)");
   if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
-  if (same && !ct->T && pb->Kw == K) { /* the problem stands; K's null space at the contact points is in the new frames */
+  if (same && !ct->T && pb->Kw == K) { /* the problem stands; the floating bodies' motions at the points change frames */
     pb->built = ct->built;
-    PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel));
+    if (pb->kernel.m) PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel));
   }
   PetscFunctionReturn(0);
 }

@@ -6,7 +6,10 @@
   bench/table2.py --large          # levels 8, 16, 24, 32, 40, 48 on the whole body, 1 and 2 ranks (make bench-large):
                                    # medians of 3 runs up to level 24, one run from 32 (their time); per run also the
                                    # solve in AMG yardsticks, the set-up's share, the Krylov iterations, the bytes per dof
-                                   # against the estimate (table2_large_targets.png)
+                                   # against the estimate (table2_large_targets.png); --levels and --ranks still apply
+  bench/table2.py --large --levels 16,24,32,40,48 --ranks 2 --refine-from 48
+                                   # level 48 made in parallel: level 24's gmsh mesh refined once (-dm_refine 1), for the
+                                   # run and its yardstick; no process holds level 48's mesh
 
 Per level, ranks and path (direct: the dense route, P formed by MUMPS and the Newton steps by LU; none: the whole
 body, P never formed, Krylov + multigrid): the phases of the summary row (assembly = mesh to K, schur = the
@@ -58,13 +61,22 @@ def mpiexec(ranks):
     return ["mpiexec", "--oversubscribe", "-n", str(ranks)]
 
 
-def measure(level, ranks, path):
+def mesh_args(level, refine_from):
+    """-level L, or from refine_from on level L/2 refined once in parallel (-dm_refine 1: the same nodes)"""
+    if level >= refine_from and level % 2 == 0:
+        return ["-level", str(level // 2), "-dm_refine", "1"]
+    return ["-level", str(level)]
+
+
+def measure(level, ranks, path, refine_from=10**6):
     h5 = os.path.join(OUT, "table2_L%d_%d_%s.h5" % (level, ranks, path))
-    cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-snes_ssstar_reduction", path,
+    cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", "prism")] + mesh_args(level, refine_from) + ["-snes_ssstar_reduction", path,
                             "-summary_header", "0", "-snes_view", "-o", h5]
     t0 = time.perf_counter()
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     whole = time.perf_counter() - t0
+    with open(h5[:-3] + ".log", "w") as f:  # the run's progress lines, the last repeat's
+        f.write(p.stdout)
     m = ROW.search(p.stdout)
     if p.returncode or not m:
         print("  level %d, %d ranks, %s: failed (exit status %d)\n%s" % (level, ranks, path, p.returncode, p.stdout[-1500:]), flush=True)
@@ -82,31 +94,33 @@ def measure(level, ranks, path):
             "estimate_gb": float(estimate.group(1)) if estimate else math.nan, "dofs": int(dofs.group(1)) if dofs else 3 * int(m.group(3))}
 
 
-def yardstick(level, ranks, which):
+def yardstick(level, ranks, which, refine_from=10**6):
     """one MUMPS Cholesky of the whole K (seconds), or one CG + GAMG solve (set-up + solve, seconds); nan if it fails"""
     cmd = mpiexec(ranks) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", which, "-options_file",
-                            os.path.join(ROOT, "scenes", "prism.opts"), "-level", str(level)]
+                            os.path.join(ROOT, "scenes", "prism.opts")] + mesh_args(level, refine_from)
     out = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
     if which == "cholesky":
         m = CHOLESKY.search(out)
         return float(m.group(2)) if m else math.nan
     m = AMG.search(out)
-    return float(m.group(2)) + float(m.group(3)) if m else math.nan
+    return (float(m.group(2)), float(m.group(3))) if m else (math.nan, math.nan)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--levels", default="4,6,8,10,12,14,16")
-    parser.add_argument("--ranks", default="1,2")
+    parser.add_argument("--levels", default=None, help="default 4,6,8,10,12,14,16 (--large: 8,16,24,32,40,48)")
+    parser.add_argument("--ranks", default=None, help="default 1,2")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--paths", default="direct,none")
     parser.add_argument("--yardsticks", default="cholesky,amg", help="the yardsticks to measure (empty: none)")
     parser.add_argument("--cholesky-max-level", type=int, default=14, help="no Cholesky yardstick above this level (its time and memory)")
     parser.add_argument("--once-from", type=int, default=10**6, help="levels from this one run once (their time)")
-    parser.add_argument("--large", action="store_true", help="levels 8-40 on the whole body, 1 and 2 ranks, one run from level 32 (make bench-large)")
+    parser.add_argument("--large", action="store_true", help="levels 8-48 on the whole body, 1 and 2 ranks, one run from level 32 (make bench-large)")
+    parser.add_argument("--refine-from", type=int, default=10**6, help="even levels from this one: level L/2's mesh refined once in parallel (-dm_refine 1)")
     args = parser.parse_args()
     if args.large:
-        args.levels, args.ranks, args.paths, args.yardsticks, args.once_from = "8,16,24,32,40,48", "1,2", "none", "amg", 32
+        args.levels, args.paths, args.yardsticks, args.once_from = args.levels or "8,16,24,32,40,48", "none", "amg", 32
+    args.levels, args.ranks = args.levels or "4,6,8,10,12,14,16", args.ranks or "1,2"
     os.makedirs(OUT, exist_ok=True)
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
@@ -123,11 +137,15 @@ def main():
                 if s == "cholesky" and level > args.cholesky_max_level:
                     ys[s] = math.nan
                     continue
-                ys[s] = statistics.median(yardstick(level, ranks, s) for _ in range(repeat))
+                runs = [yardstick(level, ranks, s, args.refine_from) for _ in range(repeat)]
+                if s == "amg":  # set-up and solve
+                    ys["amg_setup"] = statistics.median(r[0] for r in runs)
+                    runs = [r[0] + r[1] for r in runs]
+                ys[s] = statistics.median(runs)
             measured = {path: [] for path in paths}
             for _ in range(repeat):  # the paths interleaved, so that a noisy spell hits both
                 for path in paths:
-                    r = measure(level, ranks, path)
+                    r = measure(level, ranks, path, args.refine_from)
                     if r:
                         measured[path].append(r)
             for path in paths:
@@ -142,7 +160,7 @@ def main():
                 row["solve_per_amg"] = (row["solve"] + row["schur"]) / ys.get("amg", math.nan) if "amg" in ys else math.nan
                 row["setup_share"] = (row["nested"] + row["setup"]) / (row["solve"] + row["schur"]) if row["solve"] + row["schur"] > 0 else math.nan
                 row["bytes_per_dof"] = row["peak_gb"] * 1e9 * ranks / row["dofs"]
-                row["cholesky"], row["amg"] = ys.get("cholesky", math.nan), ys.get("amg", math.nan)
+                row["cholesky"], row["amg"], row["amg_setup"] = ys.get("cholesky", math.nan), ys.get("amg", math.nan), ys.get("amg_setup", math.nan)
                 row["whole_per_cholesky"] = row["whole"] / row["cholesky"]
                 row["whole_per_amg"] = row["whole"] / row["amg"]
                 seed = SEED.get(level)
@@ -155,8 +173,8 @@ def main():
                     row["whole_per_amg"], row["states"], row["reason"]), flush=True)
                 rows.append(row)
                 if args.large:
-                    print("      solve %.2f s = %.2f AMG yardsticks; nested start %.2f s, set-up %.2f s (%.0f %% of the solve), %d Krylov iterations; peak %.3f GB per rank = %.2f kB per dof, estimated %.3f (%+.0f %%)" % (
-                        row["solve"] + row["schur"], row["solve_per_amg"], row["nested"], row["setup"], 100 * row["setup_share"], row["krylov"], row["peak_gb"],
+                    print("      solve %.2f s = %.2f AMG yardsticks; nested start %.2f s, set-up %.2f s (%.0f %% of the solve; %.2f yardstick set-ups of %.2f s), %d Krylov iterations; peak %.3f GB per rank = %.2f kB per dof, estimated %.3f (%+.0f %%)" % (
+                        row["solve"] + row["schur"], row["solve_per_amg"], row["nested"], row["setup"], 100 * row["setup_share"], row["setup"] / row["amg_setup"], row["amg_setup"], row["krylov"], row["peak_gb"],
                         row["bytes_per_dof"] / 1e3, row["estimate_gb"], 100 * (row["estimate_gb"] / row["peak_gb"] - 1)), flush=True)
     if "direct" in paths and "none" in paths:
         for ranks in sorted({r["ranks"] for r in rows}):
@@ -167,7 +185,7 @@ def main():
     with open(os.path.join(OUT, name + ".csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["level", "ranks", "path", "nodes", "dofs", "contact", "assembly", "schur", "solve", "whole", "iters",
                                           "krylov_per_step", "krylov", "nested", "setup", "setup_share", "peak_gb", "bytes_per_dof", "estimate_gb",
-                                          "cholesky", "amg", "whole_per_cholesky", "whole_per_amg", "solve_per_amg", "seed_whole", "speedup", "states", "reason"])
+                                          "cholesky", "amg", "amg_setup", "whole_per_cholesky", "whole_per_amg", "solve_per_amg", "seed_whole", "speedup", "states", "reason"])
         w.writeheader()
         w.writerows(rows)
     plot(rows, name)

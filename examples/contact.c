@@ -180,9 +180,10 @@ static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool h
     }
     PetscCall(SSStarSceneCheckStep(scene, snes, u, &consistent, &again));
   }
-  if (!consistent) {
+  if (!consistent) { /* so for the file too (its row, failed_step, converged_reason) */
     *reason = SNES_DIVERGED_MAX_IT;
     *why    = "the contact measured at its solution did not settle in -sliding_max_it linearizations";
+    PetscCall(SNESSetConvergedReason(snes, *reason));
   }
   PetscFunctionReturn(0);
 }

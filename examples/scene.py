@@ -71,6 +71,7 @@ def run(args):
         if scene.has_path:
             say("steps:", scene.knots if last is None else "last at t %g" % last.time)
         say(step_line(last))
+        say("iterations %d in all (examples/contact's summary)" % scene.iterations)
         return 0 if last.converged else 2
 
 

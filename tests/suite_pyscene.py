@@ -125,13 +125,14 @@ def pyscene_sweep():
     expect(np.abs(slips - closed).max() <= 1e-6 and abs(slips[0]) < 1e-8, "against (11.2): %s, %s" % (slips, closed))
 
 
-@test("scenes of the README's table from Python (examples/scene.py run scenes/X.opts -o: ssstar.Scene from the options file, solve(), o=...) write the files of examples/contact -options_file scenes/X.opts -o: shear (a stick-slip front), gap (-load_steps 10: /load_steps too), incline (gravity, a tilted plane) and slider (two bodies, a contact pair), every dataset within 1e-12; the incline's tangential/normal force is tan 20 degrees (README)")
+@test("scenes of the README's table from Python (examples/scene.py run scenes/X.opts -o: ssstar.Scene from the options file, solve(), o=...) write the files of examples/contact -options_file scenes/X.opts -o: shear (a stick-slip front; and with -nested_levels 1, started from the coarser mesh's solution: the same iterations), gap (-load_steps 10: /load_steps too), incline (gravity, a tilted plane) and slider (two bodies, a contact pair), every dataset within 1e-12; the incline's tangential/normal force is tan 20 degrees (README)")
 def pyscene_table_scenes():
-    for name in ("shear", "gap", "incline", "slider"):
-        c_h5, py_h5 = out("pyscene_%s_c.h5" % name), out("pyscene_%s_py.h5" % name)
+    for name, extra in (("shear", []), ("shear", ["-nested_levels", "1"]), ("gap", []), ("incline", []), ("slider", [])):
+        tag = name + "".join(extra).replace("-", "_")
+        c_h5, py_h5 = out("pyscene_%s_c.h5" % tag), out("pyscene_%s_py.h5" % tag)
         opts = os.path.join("scenes", name + ".opts")
-        run(mpiexec(1, CONTACT, "-options_file", opts, *RTOL, "-o", c_h5))
-        text = python_run(mpiexec(1, PYTHON, SCENE_PY, "run", opts, *RTOL, "-o", py_h5))
+        run(mpiexec(1, CONTACT, "-options_file", opts, *extra, *RTOL, "-o", c_h5))
+        text = python_run(mpiexec(1, PYTHON, SCENE_PY, "run", opts, *extra, *RTOL, "-o", py_h5))
         same_files(c_h5, py_h5)
         if name == "gap":
             with h5py.File(py_h5, "r") as f:
@@ -161,6 +162,41 @@ def pyscene_step_cutting():
         t, cuts, reason = f["steps/time"][()], f["steps/cuts"][()], f["steps/reason"][()]
         expect(t[2] == 1.5 and cuts[2] == 1 and reason[-1] < 0 and cuts[-1] == 4 and f.attrs["failed_step"] == len(t) - 1,
                "times %s, cuts %s, reasons %s, failed_step %s" % (t, cuts, reason, f.attrs.get("failed_step")), text)
+
+
+# Large sliding (scenes/drag.opts, scenes/track.opts): the drag's press and its first two steps along the slab (the
+# first re-linearized), and the track's block pushed back off the rim of the one it slides on (tests/suite_sliding.py)
+DRAG_START = ["-steps", "0,1,1.125,1.25"]
+OFF_THE_RIM = ["-traction_slider_top", "0:0,0,0;1:0,0,-0.01;2:-1.005,0,-0.01", "-steps", "0,1,1.5,2"]
+
+
+@test("large sliding from Python (ssstar.Scene solves each step of a path as examples/contact: solved again from its solution, linearized there, while the contact measured there moves, SSStarSceneCheckStep(); the motions of the steps checked first, SSStarSceneCheckSteps()): scenes/track.opts (a contact pair, most steps re-linearized) on 1 rank and the drag of scenes/drag.opts to t 1.25 (a moving ball) on 1 and 2 ranks (2: the whole body) write examples/contact's file within 1e-12 and count its iterations in all (its summary's, more than the rows of /steps add: the re-linearizations); the track pushed off the rim, whose contact does not settle, is cut and stops as examples/contact's (the same file: rows, reason DIVERGED_MAX_IT, failed_step; exit status 2); the drag with -sliding small is refused with examples/contact's message before any solve and file")
+def pyscene_large_sliding():
+    cases = (("track", 1, "track.opts", []), ("drag", 1, "drag.opts", DRAG_START), ("drag", 2, "drag.opts", DRAG_START), ("rim", 1, "track.opts", OFF_THE_RIM))
+    for name, ranks, opts, extra in cases:
+        opts, rc = os.path.join("scenes", opts), NOT_CONVERGED if name == "rim" else 0
+        c_h5, py_h5 = out("pyscene_sliding_%s_c_np%d.h5" % (name, ranks)), out("pyscene_sliding_%s_py_np%d.h5" % (name, ranks))
+        c_text = run(mpiexec(ranks, CONTACT, "-options_file", opts, *extra, *RTOL, *PATHS[ranks], "-o", c_h5), expect_rc=rc)
+        text = python_run(mpiexec(ranks, PYTHON, SCENE_PY, "run", opts, *extra, *RTOL, *PATHS[ranks], "-o", py_h5), expect_rc=rc)
+        same_files(c_h5, py_h5)
+        c_its, py_its = re.search(r"^summary: .* iterations (\d+) ", c_text, re.M), re.search(r"^iterations (\d+) in all", text, re.M)
+        with h5py.File(py_h5, "r") as f:
+            rows, reason, cuts = f["steps/iterations"][()], f["steps/reason"][()], f["steps/cuts"][()]
+            failed, converged = f.attrs.get("failed_step"), f.attrs["converged_reason"]
+        expect(c_its and py_its and int(py_its.group(1)) == int(c_its.group(1)) > rows.sum(),
+               "%s on %d ranks: iterations %s in all, examples/contact's %s, the rows' %d" % (name, ranks, py_its and py_its.group(1), c_its and c_its.group(1), rows.sum()), text)
+        if name == "rim":
+            expect(reason[-1] == -5 and cuts[-1] == 4 and failed == len(rows) - 1 and converged == "DIVERGED_MAX_IT" and (reason[:-1] > 0).all(),
+                   "off the rim: reasons %s, cuts %s, failed_step %s, %s" % (reason, cuts, failed, converged), text)
+    c_h5, py_h5 = out("pyscene_sliding_small_c.h5"), out("pyscene_sliding_small_py.h5")
+    for h5 in (c_h5, py_h5):
+        if os.path.exists(h5):
+            os.remove(h5)
+    c_text = run(mpiexec(1, CONTACT, "-options_file", "scenes/drag.opts", "-sliding", "small", "-o", c_h5), expect_rc=1)
+    text = python_run(mpiexec(1, PYTHON, SCENE_PY, "run", "scenes/drag.opts", "-sliding", "small", "-o", py_h5), expect_rc=1)
+    m = re.search(r"^\S*examples/contact: (Step \d+ \(t = \S+\): the obstacle of -obstacle_top .* for small sliding)$", c_text, re.M)
+    expect(m and "ssstar.Error: " + m.group(1) in text and not os.path.exists(c_h5) and not os.path.exists(py_h5),
+           "-sliding small: examples/contact's refusal %s, a file %s" % (m and m.group(1), [h5 for h5 in (c_h5, py_h5) if os.path.exists(h5)]), text)
 
 
 def onset_code():
@@ -229,7 +265,9 @@ def pyscene_install():
     site = os.path.dirname(os.path.dirname(m.group(2)))
     stale = out("pyscene_stale")
     shutil.rmtree(stale, ignore_errors=True)
-    shutil.copytree(os.path.join(site, "ssstar"), os.path.join(stale, "ssstar"))
+    # without the compiled modules: the edit below keeps _config.py's size and may keep its mtime's second, and Python
+    # would then import the stale __pycache__ of the true version
+    shutil.copytree(os.path.join(site, "ssstar"), os.path.join(stale, "ssstar"), ignore=shutil.ignore_patterns("__pycache__"))
     config = os.path.join(stale, "ssstar", "_config.py")
     text = open(config).read()
     open(config, "w").write(text.replace('VERSION = "%s"' % version, 'VERSION = "0.0.1"'))

@@ -134,3 +134,22 @@ def sliding_off_the_rim():
     t, N = f["steps/time"][:], f["steps/normal_force"][:]
     k = int(np.argmin(abs(t - 1.25)))
     expect(abs(t[k] - 1.25) < 1e-12 and abs(N[k] / N[1] - 1) <= 1e-3, "the sub-step at t = 1.25 after the failure: normal force %g against %g pressed" % (N[k], N[1]))
+
+
+@test("the contact faces' gap of a vertex held on a contact face (the prism's x = 0 edge of its bottom, against a ball under it moved by 0.5 along the face and 0.001 up): /contact_faces/gap at the last step is the held vertex's distance to the moved ball, |y - c - d| - R, to 1e-12 (the obstacle asked at y - d), not the first-order g - n.d (off by up to 0.04 there), on 1 and 2 ranks")
+def sliding_held_face_gap():
+    centre, d = np.array([1.0, 0.5, -1.0]), np.array([0.5, 0.0, 0.001])
+    for ranks in (1, 2):
+        path = os.path.join(OUT, "sliding_held_gap_%d.h5" % ranks)
+        run(mpiexec(ranks, CONTACT, "-geo", os.path.join(ROOT, "meshes", "prism.geo"), "-level", "1", "-E", "1e5", "-nu", "0.3",
+                    "-dirichlet", "dirichlet", "-contact", "contact", "-obstacle_contact", "sphere:1,0.5,-1,1",
+                    "-obstacle_contact_motion", "0:0,0,0;1:0,0,0.001;2:0.5,0,0.001", "-steps", "0,1,1.5,2",
+                    "-friction_contact", "0.3", "-ssstar_progress", "0", "-o", path))
+        with h5py.File(path, "r") as f:
+            y, gap, held = f["contact_faces/vertices"][:], f["contact_faces/gap"][:], f["contact_faces/state"][:] == -1
+        y = y[held]
+        exact = np.linalg.norm(y - centre - d, axis=1) - 1
+        n = (y - centre) / np.linalg.norm(y - centre, axis=1)[:, None]
+        first_order = np.linalg.norm(y - centre, axis=1) - 1 - n @ d
+        expect(held.sum() == 3 and np.abs(first_order - exact).max() > 0.01, "%d ranks: %d held face vertices, first-order off by %g" % (ranks, held.sum(), np.abs(first_order - exact).max()))
+        expect(np.abs(gap[held] - exact).max() <= 1e-12, "%d ranks: the held vertices' gap %s against the distance to the moved ball %s" % (ranks, gap[held], exact))

@@ -41,11 +41,14 @@ _C = {name: _declare(name, *args) for name, args in {
     "SSStarSceneGetDM": (_Handle, _P(_Handle)),
     "SSStarSceneGetSizes": (_Handle, _P(_Int), _P(_Int)),
     "SSStarSceneSetContact": (_Handle, _Handle),
+    "SSStarSceneSolveNested": (_Handle, _Handle, _Handle),
     "SSStarSceneView": (_Handle, _Handle),
     "SSStarSceneDestroy": (_P(_Handle),),
     "SSStarSceneGetKnots": (_Handle, _P(_Int), _P(_P(_Real))),
     "SSStarSceneAssembleLoad": (_Handle, _Real, _Handle),
+    "SSStarSceneCheckSteps": (_Handle, _Int, _P(_Real)),
     "SSStarSceneSetStep": (_Handle, _Handle, _Real),
+    "SSStarSceneCheckStep": (_Handle, _Handle, _Handle, _P(_Enum), _P(_Enum)),
     "SSStarSceneAcceptStep": (_Handle, _Handle, _Handle),
     "SSStarSceneSetHistory": (_Handle, ctypes.c_char_p, ctypes.c_char_p),
     "SSStarSceneGetContactGroupCount": (_Handle, _P(_Int)),
@@ -79,8 +82,9 @@ _DRIVER_HELP = b"-steps -steps_max_cuts -load_steps -o"
 _HISTORIES = ("traction", "gravity", "obstacle_motion")
 # the kinds of contact states, as SSStarSceneGetContactResult() counts them
 _KINDS = {"separated": ("L", "LS"), "sliding": ("M1", "M2"), "sticking": ("M3+", "M3-", "M4")}
-# the datasets of /steps/<k>/contact: at a state, then of a load path after a step was accepted
-_STATE_FIELDS = ("displacement", "reaction", "state", "final_gap", "pressure", "traction", "slip")
+# the datasets of /steps/<k>/contact: at a state (normal: of the frames the state was linearized at), then of a load
+# path after a step was accepted
+_STATE_FIELDS = ("displacement", "reaction", "normal", "state", "final_gap", "pressure", "traction", "slip")
 _PATH_FIELDS = ("slip_increment", "slip_path", "dissipation")
 _SCENE_FIELDS = ("coordinates", "normal", "gap", "area", "group")
 
@@ -110,6 +114,14 @@ def _text(value):
             knots.append("%s:%s" % (_number(t), ",".join(_number(x) for x in v)))
         return ";".join(knots)
     return ",".join(_number(x) for x in rows)
+
+
+def _time(t):
+    """The time of a step, a finite number"""
+    t = float(t)
+    if not math.isfinite(t):
+        raise ValueError("ssstar.Scene: the time %r of a step is not a finite number" % t)
+    return t
 
 
 def _group_option(keyword, group):
@@ -199,19 +211,27 @@ class Step:
     output file has them):
 
       time, converged, reason (SNESConvergedReason's name), iterations, residual_norm, cuts   what the step was
+                     (iterations: of its last linearization, as the file's /steps has them)
+      linearizations, total_iterations   with large sliding the solves of the step, each linearized at the solution
+                     of the one before until the contact measured there settles, and their iterations in all (a static
+                     solve: 1 and iterations); a step whose contact does not settle in sliding_max_it of them is
+                     DIVERGED_MAX_IT (and cut, as examples/contact cuts it)
       row            {column: value} of the table of the steps (/steps of the file): time, iterations, reason,
                      residual_norm, cuts, load (3), normal_force, tangential_force (3), area, sliding, sticking,
                      separated, dissipation, motion/<G> (3), groups/<G>/displacement (3)
       displacement   the displacement of every mesh node, n x 3 (/fields/displacement)
       contact        {name: array} per contact node (/contact/<name>): displacement, reaction (the force on the body),
+                     normal (of the frames the step was solved in: with large sliding the current configuration's),
                      state (codes into ssstar.STATE_NAMES), final_gap, pressure, traction, slip; on a load path once a
                      step was accepted slip_increment, slip_path, dissipation
       factor         the load factor of a static continuation (-load_steps), else None
 
     sliding(), sticking(), separated(): boolean masks of the contact nodes by state (as the row counts them)."""
 
-    def __init__(self, row, displacement, contact, factor=None):
+    def __init__(self, row, displacement, contact, factor=None, linearizations=1, total_iterations=None):
         self.row, self.displacement, self.contact, self.factor = row, displacement, contact, factor
+        self.linearizations = linearizations
+        self.total_iterations = row["iterations"] if total_iterations is None else total_iterations
         self.time = row["time"]
         self.iterations = row["iterations"]
         self.reason_code = row["reason"]
@@ -266,7 +286,8 @@ class Scene:
     refuses it; bad values raise ssstar.Error with the library's message.
 
     Solving.
-      solve()               what examples/contact does: the static problem (-load_steps N: at the loads k/N), or the
+      solve()               what examples/contact does: the static problem (-load_steps N: at the loads k/N; one
+                            solve started by nested iteration, nested_levels, SSStarSceneSolveNested()), or the
                             load path at its steps (steps=..., default the knots of the histories) with its step
                             cutting (steps_max_cuts); returns the last Step; with o=file, writes it
       steps(times=None)     the load path, a step at a time: a generator of the Step of every time of times (any
@@ -283,11 +304,16 @@ class Scene:
                             path (solve(), steps(), step()) go into it as they are solved, completed by close() or the
                             end of solve(); given after a static solve, that solution
       close()               frees the scene (collective); a with block does it
+    Each step of a path is solved as examples/contact solves it: with large sliding (sliding="large", the default)
+    solved again from its solution, linearized there, while the contact measured there moves (SSStarSceneCheckStep()),
+    at most sliding_max_it times, else DIVERGED_MAX_IT (and cut); with small sliding the motions of a list of times are
+    checked before the first solve (SSStarSceneCheckSteps()).
 
     What it holds: snes (the petsc4py SNES, ssstar or a Cholesky solve without contact), dm, K, b (the load at the
-    last knot), u (the displacement of the last solve), nodes, contact_size, has_contact, has_path, knots, vertices
-    (n x 3, file order), contact_nodes ({coordinates, normal, gap, area, group} per contact node, file order),
-    group_names, columns (the table of the steps: (name, width, integer)), view().
+    last knot), u (the displacement of the last solve), iterations (of every solve so far, as examples/contact's summary
+    counts them), nodes, contact_size, has_contact, has_path, knots, vertices (n x 3, file order), contact_nodes
+    ({coordinates, normal, gap, area, group} per contact node, file order), group_names, columns (the table of the
+    steps: (name, width, integer)), view().
 
     MPI: every rank makes the same scene (comm=PETSc.COMM_WORLD by default; a petsc4py or mpi4py communicator) and
     gets the same numpy arrays; the scene's calls are collective.
@@ -310,6 +336,8 @@ class Scene:
         self._pending = None     # a converged step not accepted yet: (time, cuts)
         self._load_steps = None  # the rows of a static continuation, for /load_steps
         self._failed = False
+        self._solves = (1, 0)    # the linearizations of the step solved last and their iterations
+        self.iterations = 0      # of every solve, as examples/contact's summary counts them
         try:
             with self._options:
                 self._make()
@@ -439,7 +467,7 @@ class Scene:
                 contact[name] = self._field("/contact/" + name)
             contact["state"] = contact["state"].astype(np.int32)
         self._steps_done += 1
-        return Step(values, self._field("/fields/displacement"), contact, factor)
+        return Step(values, self._field("/fields/displacement"), contact, factor, *self._solves)
 
     def _knots(self):
         n, times = _Int(), _P(_Real)()
@@ -492,11 +520,18 @@ class Scene:
         _call(_C["SSStarSceneView"], self._scene, _h(PETSc.Viewer.STDOUT(self.snes.getComm())))
 
     # ------------------------------------------------------------------------------------------------------ solving
-    def _solve_static(self, factor):
+    def _solve_static(self, factor, nested=False):
         self.b.copy(self._load)
         self._load.scale(factor)
+        if nested:  # -nested_levels: the start from the coarser meshes, as examples/contact's single static solve
+            _call(_C["SSStarSceneSolveNested"], self._scene, _h(self.snes), _h(self.u))
         self.snes.solve(None, self.u)  # from the previous solution
+        self._count(1, self.snes.getIterationNumber())
         return self._record(0, factor)
+
+    def _count(self, solves, its):
+        self._solves = (solves, its)
+        self.iterations += its if self.has_contact else 0  # examples/contact counts no iteration of a linear solve
 
     def _default_times(self):
         knots = self._knots()
@@ -510,15 +545,28 @@ class Scene:
         return result or [0.0]
 
     def _solve_at(self, t, cuts):
-        """Solves the step at t from the last accepted step (SolvePath() of examples/contact)"""
-        if not math.isfinite(t):
-            raise ValueError("ssstar.Scene: the time %r of a step is not a finite number" % t)
+        """Solves the step at t from the last accepted step (SolvePath() and SolveStep() of examples/contact): with
+        large sliding solved again from its solution, linearized there, while the contact measured there moves
+        (SSStarSceneCheckStep()); a contact that does not settle in sliding_max_it linearizations is DIVERGED_MAX_IT"""
+        t = _time(t)
         _call(_C["SSStarSceneAssembleLoad"], self._scene, t, _h(self._load))
         _call(_C["SSStarSceneSetStep"], self._scene, _h(self.snes), t)
         if self._u_accepted is None:
             self._u_accepted = self.u.copy()
         self._u_accepted.copy(self.u)
-        self.snes.solve(None, self.u)
+        solves, its, consistent, again = 0, 0, _Enum(), _Enum()
+        while True:
+            self.snes.solve(None, self.u)
+            solves += 1
+            its += self.snes.getIterationNumber()
+            if self.snes.getConvergedReason() <= 0:
+                break
+            _call(_C["SSStarSceneCheckStep"], self._scene, _h(self.snes), _h(self.u), ctypes.byref(consistent), ctypes.byref(again))
+            if not again.value:
+                if not consistent.value:  # for the row and the file too, as examples/contact
+                    self.snes.setConvergedReason(PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT)
+                break
+        self._count(solves, its)
         self._pending = (t, cuts) if self.snes.getConvergedReason() > 0 else None
 
     def _output_step(self, cuts):
@@ -545,7 +593,7 @@ class Scene:
         or another step() replaces it"""
         self._check_open()
         with self._options:
-            self._solve_at(float(t), 0)
+            self._solve_at(t, 0)
             if self._pending and accept:
                 return self._accept()
             return self._record(0)
@@ -588,8 +636,15 @@ class Scene:
         the histories), every accepted sub-step of a halved step included; stops after a step that fails (yielded with
         converged False). The loop may change the loads between two steps (set()), or stop."""
         self._check_open()
-        for t in (self._default_times() if times is None else times):
-            for step in self._advance(float(t)):
+        times = self._default_times() if times is None else times
+        if isinstance(times, (list, tuple, np.ndarray)) and self._accepted is None and not self._failed:
+            # the motions of every step, before any solve and file (examples/contact's SolvePath()); a lazy iterable
+            # has each step checked as it is set (SSStarSceneSetStep())
+            ts = [_time(t) for t in times]
+            with self._options:
+                _call(_C["SSStarSceneCheckSteps"], self._scene, len(ts), (_Real * max(1, len(ts)))(*ts))
+        for t in times:
+            for step in self._advance(_time(t)):
                 yield step
                 if not step.converged:
                     return
@@ -610,7 +665,7 @@ class Scene:
         rows = []
         with self._options:
             for k in range(1, n + 1):
-                last = self._solve_static(k / n)
+                last = self._solve_static(k / n, nested=n == 1 and self.has_contact)
                 rows.append((last.factor, last.row["area"], last.row["normal_force"], last.iterations if self.has_contact else 0))
                 if not last.converged:
                     break  # the next steps would start from a point that is no solution

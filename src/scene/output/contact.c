@@ -154,9 +154,14 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
     }
     nq++;
   }
-  PetscCall(SSStarSceneObstacleGaps(scene, nq, held, x, 0, gp, normal));
-  for (PetscInt i = 0; i < nq; i++) /* an obstacle moved by d */
-    if (held[i] >= 0 && scene->contact[held[i]].motion) gp[i] -= SSStarDot3(&normal[3 * i], scene->contact[held[i]].d);
+  {
+    PetscReal *q; /* a held vertex against its obstacle moved by d: the obstacle asked at x - d */
+
+    PetscCall(PetscMalloc1(3 * nq + 1, &q));
+    for (PetscInt i = 0; i < 3 * nq; i++) q[i] = x[i] - (held[i / 3] >= 0 ? scene->contact[held[i / 3]].d[i % 3] : 0);
+    PetscCall(SSStarSceneObstacleGaps(scene, nq, held, q, 0, gp, normal));
+    PetscCall(PetscFree(q));
+  }
   PetscCall(PetscFree2(held, normal));
   PetscCheck(c == scene->n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " of the %" PetscInt_FMT " contact nodes found on the contact faces", c, scene->n);
   PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));

@@ -37,7 +37,8 @@ struct _n_SSStarFullMatrix {
   PetscObjectState stateK;    /* A's state with its own entries                                               */
   PetscObjectState stateM;    /* of the last Newton matrix formed                                            */
   PetscBool        holdsM;    /* K holds a Newton matrix now                                                  */
-  MatNullSpace     null;      /* K's null space (floating bodies), taken off while K holds M: M has none      */
+  MatNullSpace     nullK;     /* K's null space (floating bodies), detached while K holds a Newton matrix:    */
+                              /* the Newton matrix is regular and a KSP would project its residual on it     */
 };
 
 /* R_b of a column node n (NULL: identity) */
@@ -403,11 +404,6 @@ PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix fm, const PetscReal S[], co
   PetscReal    SR[9];
 
   PetscFunctionBegin;
-  if (!fm->holdsM) { /* the Krylov solver would project K's null space out of M's residuals */
-    PetscCall(MatGetNullSpace(fm->K, &fm->null));
-    PetscCall(PetscObjectReference((PetscObject)fm->null));
-    PetscCall(MatSetNullSpace(fm->K, NULL));
-  }
   PetscCall(PetscArraycpy(v, fm->valK, fm->ncross));
   for (PetscInt t = 0; t < fm->ncol; t++) { /* K Q^T */
     const PetscInt  *e = &fm->col[4 * t];
@@ -435,6 +431,11 @@ PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix fm, const PetscReal S[], co
   for (PetscInt i = 0; i < fm->nnodes; i++) /* + That / gamma */
     for (PetscInt l = 0; l < 9; l++) v[fm->diag[9 * i + l]] += ig * T[9 * i + l];
   PetscCall(WriteCross(fm, v));
+  if (!fm->holdsM) {
+    PetscCall(MatGetNullSpace(fm->K, &fm->nullK));
+    PetscCall(PetscObjectReference((PetscObject)fm->nullK));
+    PetscCall(MatSetNullSpace(fm->K, NULL));
+  }
   PetscCall(MatZeroRowsColumns(fm->K, nknown, known, ig, y, rhs));
   if (rhs) fm->stateM = PetscMax(fm->stateM, fm->stateK) + 1;
   PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateM));
@@ -452,8 +453,8 @@ PetscErrorCode SSStarFullMatrixRestore(SSStarFullMatrix fm)
     PetscCall(WriteCross(fm, fm->valK));
     PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateK));
   }
-  PetscCall(MatSetNullSpace(fm->K, fm->null));
-  PetscCall(MatNullSpaceDestroy(&fm->null));
+  PetscCall(MatSetNullSpace(fm->K, fm->nullK));
+  PetscCall(MatNullSpaceDestroy(&fm->nullK));
   fm->holdsM = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -127,7 +127,8 @@ static PetscErrorCode CreateReduction(SNES snes, SSStarContact *ct, SSStarProble
    declares its points again at every step) is built here, with the same number of points. What the Newton step built
    in the old frames (the whole body's K in the nodes' frames) is dropped. Whether the problem set up for the old one
    stands: the reduction depends on K, the contact dofs and T only, so it is kept when the points and their dofs are the
-   same and neither declaration has master dofs (rigid obstacles whose frames and gaps changed).
+   same and neither declaration has master dofs (rigid obstacles whose frames and gaps changed); the floating bodies'
+   motions at the contact points (floating.c) are taken again in the new frames.
 */
 static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProblem *pb, Mat K)
 {

@@ -41,11 +41,24 @@ struct _n_SSStarDirect {
   Vec            cHost;
 };
 
+/* times a factorization whose workspace MUMPS estimated short is run again with a larger ICNTL(14) */
+#define SSSTAR_MUMPS_WORKSPACE_RETRIES 3
+
+/*
+   A phase of MUMPS (JOB = job), its error named by what. A factorization whose real workspace the analysis estimated
+   short (INFOG(1) = -9: seen on 3-4 ranks after K's Schur block changed) is run again with ICNTL(14), the workspace's
+   margin in percent, doubled, as MUMPS's guide advises
+*/
 static PetscErrorCode RunMUMPS(SSStarDirect d, MUMPS_INT job, const char what[])
 {
   PetscFunctionBegin;
   d->id.job = job;
   dmumps_c(&d->id);
+  for (PetscInt k = 0; job == 2 && d->id.INFOG(1) == -9 && k < SSSTAR_MUMPS_WORKSPACE_RETRIES; k++) {
+    d->id.ICNTL(14) = 2 * PetscMax(d->id.ICNTL(14), 20);
+    PetscCall(PetscInfo(NULL, "%s: MUMPS's workspace short by %d entries (INFOG(1) = -9): factored again with ICNTL(14) = %d\n", what, (int)d->id.INFOG(2), (int)d->id.ICNTL(14)));
+    dmumps_c(&d->id);
+  }
   PetscCall(SSStarReductionCheckMUMPS(d->comm, -1, d->id.INFOG(1), d->id.INFOG(2), d->estimate, what, d->icntl));
   PetscFunctionReturn(0);
 }

@@ -60,17 +60,17 @@ def converged(tag, level, options, max_iters=20, ranks=1):
     return s, out, error
 
 
-@test("friction far beyond 'sufficiently small' (phi = 0.6, 1, 2, 3, 5) on the default scene and under a strong tangential load (level 4): converged, Coulomb law, 1e-8 from a tight reference")
+@test("friction far beyond 'sufficiently small' (phi = 0.6, 2, 5) on the default scene and under a strong tangential load (level 4): converged, Coulomb law, 1e-8 from a tight reference")
 def hard_friction():
     for name, scene in (("default", []), ("tangential", TANGENTIAL)):
-        for phi in (0.6, 1, 2, 3, 5):
+        for phi in (0.6, 2, 5):
             converged("friction_%s_%g" % (name, phi), 4, scene + ["-snes_ssstar_friction", str(phi)])
 
 
-@test("frictionless contact (phi = 0) converges in at most 6 iterations on levels 3-8 on the dense route, with r_t = 0; "
+@test("frictionless contact (phi = 0) converges in at most 6 iterations on levels 3, 5 and 7 on the dense route, with r_t = 0; "
       "at level 8 auto's whole body (inexact steps) in at most 7")
 def hard_frictionless():
-    for level, route, most in [(level, "direct", 6) for level in range(3, 9)] + [(8, "auto", 7)]:
+    for level, route, most in [(level, "direct", 6) for level in (3, 5, 7)] + [(8, "auto", 7)]:
         tag = "frictionless_L%d_%s" % (level, route)
         out, s = prism(level, extra=["-snes_ssstar_friction", "0", "-snes_ssstar_reduction", route], h5=tag + ".h5")
         expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] <= most, "level %d, %s: %s after %d iterations" % (level, route, s["reason"], s["iters"]), out)
@@ -107,10 +107,10 @@ def hard_grazing():
     superlinear_end("grazing", out)
 
 
-@test("near incompressibility (nu = 0.45, 0.49, 0.499; levels 4, 6, 8) converges; the cycle of the plain iteration at level 4, nu = 0.49, is detected (reason CYCLE) and the globalization breaks it with a damped step")
+@test("near incompressibility (nu = 0.45, 0.499; levels 4, 6) converges; the cycle of the plain iteration at level 4, nu = 0.49, is detected (reason CYCLE) and the globalization breaks it with a damped step")
 def hard_incompressible():
-    for level in (4, 6, 8):
-        for nu in ("0.45", "0.49", "0.499"):
+    for level in (4, 6):
+        for nu in ("0.45", "0.499"):
             out, s = prism(level, extra=["-nu", nu], h5="nu%s_L%d.h5" % (nu, level))
             expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] <= 20, "level %d, nu %s: %s after %d iterations" % (level, nu, s["reason"], s["iters"]), out)
             law("nu%s_L%d" % (nu, level))

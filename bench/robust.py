@@ -127,8 +127,9 @@ PATHS = {
     "cylinder pressed 0.02 into a held block, rolled forward and back by 0.01, 8 steps": ["-geo", "meshes/roller.geo", "-level", "1", "-E", "2.1e5", "-nu", "0.3",
         "-dirichlet", "bottom", "-contact", "top", "-obstacle_top", "cylinder:0,0,10,0,1,0,10", "-friction_top", "0.5",
         "-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.02), (0.01, 0, -0.02), (-0.01, 0, -0.02), (0, 0, -0.02)), "-steps", "8"],
+    # 1.3 phi N: it slides by 0.15 on its spring; at 1.6 phi N (0.3) large sliding takes it to the base's rim
     "slider (pair): push past sliding, release, reverse, release":
-        scene("slider") + ["-traction_slider_top", history((0, 0, 0), (0, 0, -0.01), (0.008, 0, -0.01), (0, 0, -0.01), (-0.008, 0, -0.01), (0, 0, -0.01))],
+        scene("slider") + ["-traction_slider_top", history((0, 0, 0), (0, 0, -0.01), (0.0065, 0, -0.01), (0, 0, -0.01), (-0.0065, 0, -0.01), (0, 0, -0.01))],
     "mindlin (pair): P, then Q = 0.5 phi P forth and back, 4 steps per branch": mindlin_scene_args(1, 0.5, ROOT, steps_per_branch=4),
 }
 

@@ -5,9 +5,11 @@ A scene is an options file: examples/contact -options_file scenes/hertz.opts (RE
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
   -load_steps <1>                 solve at the loads k/N of the given constant ones, k = 1..N (the last is written)\n\
-  -steps <t1,t2,...|N>            a load path (histories -traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion):\n\
-                                  the times solved, or N equal steps from the first knot to the last (default: the\n\
-                                  knots), each from the step before with incremental friction (docs/load-paths.md)\n\
+  -steps <t1,t2,...|N>            a load path (histories -traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion,\n\
+                                  -obstacle_<G>_rotation): the times solved, or N equal steps from the first knot to\n\
+                                  the last (default: the knots), each from the step before with incremental friction\n\
+                                  (docs/load-paths.md); with -dynamics (-density, -initial_velocity, ...: under\n\
+                                  \"Dynamics\" below) the times of the time steps from t = 0 (docs/guide/dynamics.md)\n\
   -steps_max_cuts <4>             a step that does not converge is halved and retried, at most this many times\n\
   -o <file.h5>                    write the solution (HDF5 + XDMF; on a load path every step, /steps)\n\
   -ssstar_progress <true>         a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
@@ -20,7 +22,6 @@ lists the options and does nothing else.\n";
 
 #include <ssstar.h>
 #include <ssstarscene.h>
-#include <ssstarhistory.h>
 #include <petscviewerhdf5.h>
 
 /* What each load step gave, for the output file */
@@ -40,12 +41,6 @@ static PetscErrorCode WriteLoadSteps(PetscViewer viewer, void *ctx)
   PetscCall(SSStarWriteTable(viewer, "/load_steps", 4, names, steps->n, values));
   PetscFunctionReturn(0);
 }
-
-/* Where a load path stopped: the step (its row of /steps) and its time; the file's / says so (SSStarSceneOutputStep()) */
-typedef struct {
-  PetscInt  step;
-  PetscReal time;
-} PathFailure;
 
 /* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion */
 static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscInt n, PetscReal t, PetscInt cuts, Vec load, PetscBool hasContact)
@@ -68,14 +63,29 @@ static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscIn
   PetscCall(SSStarSceneGetContactGroupCount(scene, &ngroups));
   for (PetscInt g = 0; g < ngroups; g++) { /* the moving obstacles */
     const char *name;
-    PetscReal   d[3];
+    PetscReal   d[3], theta[3];
     PetscBool   moving;
     char        item[256];
 
-    PetscCall(SSStarSceneGetMotion(scene, g, &name, d, &moving));
+    PetscCall(SSStarSceneGetMotion(scene, g, &name, d, theta, &moving));
     if (!moving) continue;
     PetscCall(PetscSNPrintf(item, sizeof(item), ", obstacle of %s at (%.6g, %.6g, %.6g)", name, (double)d[0], (double)d[1], (double)d[2]));
     PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+    if (theta[0] != 0 || theta[1] != 0 || theta[2] != 0) {
+      PetscCall(PetscSNPrintf(item, sizeof(item), " turned by (%.6g, %.6g, %.6g)", (double)theta[0], (double)theta[1], (double)theta[2]));
+      PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+    }
+  }
+  {
+    SSStarEnergies e;
+    PetscBool      dynamics;
+    char           item[256];
+
+    PetscCall(SSStarSceneGetEnergies(scene, &e, &dynamics)); /* -dynamics: the energies and their balance */
+    if (dynamics) {
+      PetscCall(PetscSNPrintf(item, sizeof(item), ", energy: kinetic %.6g strain %.6g work %.6g friction %.6g damping %.6g impact %.6g balance %.3g", (double)e.kinetic, (double)e.strain, (double)e.work, (double)e.friction, (double)e.damping, (double)e.impact, (double)e.error));
+      PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+    }
   }
   T = PetscSqrtReal(res.tangential_force[0] * res.tangential_force[0] + res.tangential_force[1] * res.tangential_force[1] + res.tangential_force[2] * res.tangential_force[2]);
   if (cuts) PetscCall(PetscSNPrintf(cut, sizeof(cut), " (halved %" PetscInt_FMT "x)", cuts));
@@ -136,128 +146,35 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
   PetscFunctionReturn(0);
 }
 
-/* The times of a load path: -steps (stepsText; NULL: the knots of the histories), or one step at t = 0 */
-static PetscErrorCode PathTimes(SSStarScene scene, const char stepsText[], PetscInt *nsteps, PetscReal **times)
-{
-  PetscInt   nknots;
-  PetscReal *knots;
-
-  PetscFunctionBeginUser;
-  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
-  PetscCall(SSStarHistoryParseSteps(PETSC_COMM_WORLD, "-steps", stepsText, nknots, knots, nsteps, times));
-  PetscCall(PetscFree(knots));
-  if (!*nsteps) { /* constant loads and motions: one step */
-    PetscCall(PetscFree(*times));
-    PetscCall(PetscMalloc1(1, times));
-    (*times)[0] = 0;
-    *nsteps     = 1;
-  }
-  PetscFunctionReturn(0);
-}
-
-/*
-   One step of a load path, set by SSStarSceneSetStep(), from u: solved, and with large sliding solved again from its
-   solution while the contact measured there moves (SSStarSceneCheckStep()); its iterations in all. A contact that does
-   not settle in -sliding_max_it linearizations is DIVERGED_MAX_IT (the step is cut); why says which failed.
-*/
-static PetscErrorCode SolveStep(SSStarScene scene, SNES snes, Vec u, PetscBool hasContact, PetscInt *its, SNESConvergedReason *reason, const char **why)
-{
-  PetscBool consistent = PETSC_TRUE, again = PETSC_TRUE;
-
-  PetscFunctionBeginUser;
-  *its = 0;
-  *why = NULL;
-  while (again) {
-    PetscInt n;
-
-    PetscCall(SNESSolve(snes, NULL, u));
-    PetscCall(SNESGetConvergedReason(snes, reason));
-    PetscCall(SNESGetIterationNumber(snes, &n));
-    *its += hasContact ? n : 0;
-    if (*reason <= 0) {
-      *why = SNESConvergedReasons[*reason];
-      PetscFunctionReturn(0);
-    }
-    PetscCall(SSStarSceneCheckStep(scene, snes, u, &consistent, &again));
-  }
-  if (!consistent) { /* so for the file too (its row, failed_step, converged_reason) */
-    *reason = SNES_DIVERGED_MAX_IT;
-    *why    = "the contact measured at its solution did not settle in -sliding_max_it linearizations";
-    PetscCall(SNESSetConvergedReason(snes, *reason));
-  }
-  PetscFunctionReturn(0);
-}
-
 /*
    A load path (docs/load-paths.md): the steps at the times of -steps (default the knots of the histories), each from
-   the solution of the step before with incremental friction; a step that does not converge is retried from there at
-   the midpoint and goes on to its time in sub-steps of that size, at most maxCuts halvings per step, then the path
-   stops (failure->step >= 0). With out, every step (and sub-step) into the file.
+   the solution of the step before with incremental friction, by the scene library's stepper (SSStarSceneAdvance():
+   a step that does not converge is retried at the midpoint and goes on to its time in sub-steps of that size, at most
+   maxCuts halvings per step, then the path stops). One line per accepted step; with out, every step (and sub-step)
+   into the file.
 */
-static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, PetscInt nsteps, const PetscReal times[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason, PathFailure *failure)
+static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, PetscInt nsteps, const PetscReal times[], PetscInt maxCuts, PetscBool hasContact, const char out[], PetscInt *its, SNESConvergedReason *reason)
 {
-  PetscInt   nknots, written = 0;
-  PetscReal *knots, tAccepted = 0;
-  PetscBool  accepted = PETSC_FALSE;
-  Vec        uAccepted, r;
+  PetscBool stopped = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  PetscCall(SSStarSceneGetKnots(scene, &nknots, &knots));
   PetscCall(SSStarSceneCheckSteps(scene, nsteps, times)); /* the motions of every step, before any solve and file */
   if (out) PetscCall(SSStarSceneOutputBegin(scene, out));
-  PetscCall(VecDuplicate(u, &uAccepted));
-  PetscCall(VecCopy(u, uAccepted));
-  failure->step = -1;
-  for (PetscInt k = 0; k < nsteps && failure->step < 0; k++) {
-    PetscReal t    = times[k], dt = 0; /* dt: the sub-step after a cut, 0 before */
-    PetscInt  cuts = 0;
+  for (PetscInt k = 0; k < nsteps && !stopped; k++) {
+    SSStarStep step;
 
-    for (;;) {
-      PetscInt    stepIts;
-      const char *why;
-
-      PetscCall(SSStarSceneAssembleLoad(scene, t, load));
-      PetscCall(SSStarSceneSetStep(scene, snes, t));
-      PetscCall(VecCopy(uAccepted, u));
-      PetscCall(SolveStep(scene, snes, u, hasContact, &stepIts, reason, &why));
-      *its += stepIts;
-      if (*reason > 0) {
-        PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
-        PetscCall(SSStarSceneAcceptStep(scene, u, r));
-        PetscCall(StepLine(scene, snes, k, nsteps, t, cuts, load, hasContact));
-        if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts));
-        written++;
-        PetscCall(VecCopy(u, uAccepted));
-        tAccepted = t;
-        accepted  = PETSC_TRUE;
-        if (t == times[k]) break;
-        t = PetscMin(t + dt, times[k]); /* on to the step's time in sub-steps of the cut size */
-      } else {
-        /* halve the step towards the last accepted time; the first step from its histories' start. Not where no
-           equilibrium exists at t: no sub-step reaches it */
-        const PetscReal from = accepted ? tAccepted : (nknots ? PetscMin(knots[0], t) : t);
-        SSStarReason    sub  = SSSTAR_REASON_ITERATING;
-
-        if (hasContact) PetscCall(SNESSSStarGetReason(snes, &sub));
-        if (cuts < maxCuts && t > from && sub != SSSTAR_REASON_NO_EQUILIBRIUM) {
-          cuts++;
-          dt = (t - from) / 2;
-          PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)t, why, (double)(from + dt)));
-          t = from + dt;
-          continue;
-        }
-        if (sub == SSSTAR_REASON_NO_EQUILIBRIUM) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: no equilibrium (%s): the path stops here\n", k + 1, nsteps, (double)t, why));
-        else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)t, why, cuts, maxCuts));
-        if (out) PetscCall(SSStarSceneOutputStep(scene, snes, u, cuts)); /* its last iterate */
-        failure->step = written;
-        failure->time = t;
-        break;
-      }
-    }
+    do {
+      PetscCall(SSStarSceneAdvance(scene, snes, u, times[k], maxCuts, &step));
+      *its += hasContact ? step.iterations : 0;
+      *reason = step.reason;
+      if (step.accepted) PetscCall(StepLine(scene, snes, k, nsteps, step.time, step.cuts, load, hasContact));
+      else if (!step.stopped) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)step.time, step.why, (double)step.retry));
+      else if (step.noEquilibrium) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: no equilibrium (%s): the path stops here\n", k + 1, nsteps, (double)step.time, step.why));
+      else PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s) after %" PetscInt_FMT " halvings (-steps_max_cuts %" PetscInt_FMT "): the path stops here\n", k + 1, nsteps, (double)step.time, step.why, step.cuts, maxCuts));
+    } while (!step.stopped && !step.reached);
+    stopped = step.stopped;
   }
   if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, NULL, NULL));
-  PetscCall(VecDestroy(&uAccepted));
-  PetscCall(PetscFree(knots));
   PetscFunctionReturn(0);
 }
 
@@ -277,7 +194,6 @@ int main(int argc, char **argv)
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   const SSStarState  *states = NULL;
   LoadSteps           steps = {1, NULL, NULL, NULL, NULL};
-  PathFailure         failure = {-1, 0};
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(SSStarInitializePackage());
@@ -303,7 +219,7 @@ int main(int argc, char **argv)
     PetscCall(SSStarSceneHasPath(scene, &path));
     path = (PetscBool)(path || hasSteps);
     PetscCheck(!(path && hasLoadSteps), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Option -load_steps scales the constant loads of a static problem; a load path is -steps with histories (-traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion): give one of them");
-    if (path) PetscCall(PathTimes(scene, hasSteps ? stepsText : NULL, &nsteps, &times)); /* -steps refused before the mesh */
+    if (path) PetscCall(SSStarSceneGetPathTimes(scene, hasSteps ? stepsText : NULL, &nsteps, &times)); /* -steps refused before the mesh */
   }
   /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
@@ -338,8 +254,7 @@ int main(int argc, char **argv)
   PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
 
   PetscCall(VecDuplicate(b, &load));
-  PetscCall(SNESSSStarSetLinearProblem(snes, K, load)); /* F(u) = K u - load, the load set at each step */
-  if (hasContact) PetscCall(SSStarSceneSetContact(scene, snes));
+  PetscCall(SSStarSceneSetSolver(scene, snes, K, load)); /* F(u) = K u - load, the load set at each step; the contact */
   {
     DM dm;
 
@@ -351,7 +266,7 @@ int main(int argc, char **argv)
   nLoadSteps = steps.n; /* steps.n: the steps solved */
   PetscCall(PetscMalloc4(steps.n, &steps.factor, steps.n, &steps.area, steps.n, &steps.normal_force, steps.n, &steps.iterations));
   PetscCall(PetscTime(&t0));
-  if (path) PetscCall(SolvePath(scene, snes, load, u, nsteps, times, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason, &failure));
+  if (path) PetscCall(SolvePath(scene, snes, load, u, nsteps, times, maxCuts, hasContact, hasOut ? out : NULL, &its, &reason));
   else PetscCall(SolveLoadSteps(scene, snes, b, load, u, hasContact, &steps, &its, &reason));
   if (hasContact) {
     PetscCall(SNESGetFunction(snes, &r, NULL, NULL));

@@ -59,6 +59,7 @@ PETSC_EXTERN PetscErrorCode SSStarSceneViewNoEquilibrium(SSStarScene, SNES, Pets
    holds every step.
 */
 PETSC_EXTERN PetscErrorCode SSStarSceneGetKnots(SSStarScene, PetscInt *, PetscReal *[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetPathTimes(SSStarScene, const char[], PetscInt *, PetscReal *[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneHasPath(SSStarScene, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene, Vec, PetscReal[3]);
@@ -68,7 +69,39 @@ PETSC_EXTERN PetscErrorCode SSStarSceneSetHistory(SSStarScene, const char[], con
 PETSC_EXTERN PetscErrorCode SSStarSceneCheckStep(SSStarScene, SNES, Vec, PetscBool *, PetscBool *);
 PETSC_EXTERN PetscErrorCode SSStarSceneAcceptStep(SSStarScene, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene, PetscInt *);
-PETSC_EXTERN PetscErrorCode SSStarSceneGetMotion(SSStarScene, PetscInt, const char *[], PetscReal[3], PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetMotion(SSStarScene, PetscInt, const char *[], PetscReal[3], PetscReal[3], PetscBool *);
+/*
+   The stepper of a path, one for every program (path/solve.c): a step solved from the last accepted one
+   (SSStarSceneSolveStep()), or the next accepted step towards a time with step cutting (SSStarSceneAdvance())
+*/
+typedef struct {
+  PetscReal           time;           /* the time of the step solved                                                */
+  PetscInt            cuts;           /* halvings of the step of the path it belongs to (SSStarSceneAdvance())       */
+  PetscInt            linearizations; /* its solves: with large sliding, each linearized at the one before's solution */
+  PetscInt            iterations;     /* their iterations in all (SNESGetIterationNumber())                          */
+  SNESConvergedReason reason;         /* DIVERGED_MAX_IT also when the contact measured at the solution did not settle */
+  PetscBool           accepted;       /* converged and accepted: the next step starts from it                        */
+  PetscBool           reached;        /* SSStarSceneAdvance(): the step reached the target time                       */
+  PetscBool           stopped;        /* SSStarSceneAdvance(): the path stops at this step (its last iterate written)  */
+  PetscBool           noEquilibrium;  /* it stopped because no equilibrium exists at its time (no halving helps)      */
+  PetscReal           retry;          /* SSStarSceneAdvance(): the time of the next step (a failed step's midpoint)   */
+  const char         *why;            /* why the step did not converge, or NULL                                     */
+} SSStarStep;
+PETSC_EXTERN PetscErrorCode SSStarSceneSetSolver(SSStarScene, SNES, Mat, Vec);
+/* With -dynamics (docs/derivation.md section 16): the energies after the last accepted step, cumulative from t = 0 */
+typedef struct {
+  PetscReal initial;  /* the energy at t = 0: 1/2 v0^T M v0                                                  */
+  PetscReal kinetic;  /* 1/2 v^T M v                                                                         */
+  PetscReal strain;   /* 1/2 u^T K u                                                                         */
+  PetscReal work;     /* of the loads and of the moving obstacles                                             */
+  PetscReal friction; /* dissipated by friction (the sum of /contact/dissipation)                              */
+  PetscReal damping;  /* dissipated by Rayleigh damping                                                        */
+  PetscReal impact;   /* dissipated by the scheme where contact closes (16.8)                                  */
+  PetscReal error;    /* kinetic + strain + friction + damping - initial - work: gained (> 0) or lost (< 0)    */
+} SSStarEnergies;
+PETSC_EXTERN PetscErrorCode SSStarSceneGetEnergies(SSStarScene, SSStarEnergies *, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneSolveStep(SSStarScene, SNES, Vec, PetscReal, SSStarStep *);
+PETSC_EXTERN PetscErrorCode SSStarSceneAdvance(SSStarScene, SNES, Vec, PetscReal, PetscInt, SSStarStep *);
 PETSC_EXTERN PetscErrorCode SSStarSceneOutputBegin(SSStarScene, const char[]);
 PETSC_EXTERN PetscErrorCode SSStarSceneOutputStep(SSStarScene, SNES, Vec, PetscInt);
 PETSC_EXTERN PetscErrorCode SSStarSceneOutputEnd(SSStarScene, SNES, Vec, PetscErrorCode (*)(PetscViewer, void *), void *);

@@ -112,6 +112,9 @@ def refusals():
         scene.step(1)
         raises(RuntimeError, lambda: scene.write(os.path.join(OUT, "late.h5")), "before its first step")
         raises(ValueError, lambda: scene.step(float("nan")), "not a finite number")
+        raises(ssstar.Error, lambda: scene.step(0.5), "The time 0.5 of a step is before the last accepted step's, 1")  # issue 31
+    for steps, words in ((-3, ("-steps", "-3")), (0, ("-steps", "0")), ("1,0.5", ("-steps", "increas"))):  # issue 31: at construction
+        raises(ssstar.Error, lambda: ssstar.Scene(traction={"top": PATH}, steps=steps, **BLOCK), *words)
     with ssstar.Scene(traction={"top": (1, 0, -10)}, **BLOCK) as scene:
         scene.write(os.path.join(OUT, "pyscene_early.h5"))  # before the solve: the file of what comes
         raises(ssstar.Error, lambda: scene.write(os.path.join(OUT, "missing", "f.h5")), "Cannot write")

@@ -10,7 +10,7 @@ import weakref
 import numpy as np
 from petsc4py import PETSc
 
-from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, set_linear_problem, STATE_NAMES
+from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, STATE_NAMES
 
 _P = ctypes.POINTER
 _C = {name: _declare(name, *args) for name, args in {
@@ -30,7 +30,6 @@ _C = {name: _declare(name, *args) for name, args in {
     "VecRestoreArrayRead": (_Handle, _P(_P(_Real))),
     "VecDestroy": (_P(_Handle),),
     "SSStarCheckOutputFile": (_Handle, ctypes.c_char_p),
-    "SSStarHistoryParseSteps": (_Handle, ctypes.c_char_p, ctypes.c_char_p, _Int, _P(_Real), _P(_Int), _P(_P(_Real))),
     "SSStarSceneCreate": (_Handle, _P(_Handle)),
     "SSStarSceneSetFromOptions": (_Handle,),
     "SSStarSceneHasContact": (_Handle, _P(_Enum)),
@@ -40,19 +39,20 @@ _C = {name: _declare(name, *args) for name, args in {
     "SSStarSceneAssemble": (_Handle, _P(_Handle), _P(_Handle)),
     "SSStarSceneGetDM": (_Handle, _P(_Handle)),
     "SSStarSceneGetSizes": (_Handle, _P(_Int), _P(_Int)),
-    "SSStarSceneSetContact": (_Handle, _Handle),
+    "SSStarSceneSetSolver": (_Handle, _Handle, _Handle, _Handle),
     "SSStarSceneSolveNested": (_Handle, _Handle, _Handle),
     "SSStarSceneView": (_Handle, _Handle),
     "SSStarSceneDestroy": (_P(_Handle),),
     "SSStarSceneGetKnots": (_Handle, _P(_Int), _P(_P(_Real))),
     "SSStarSceneAssembleLoad": (_Handle, _Real, _Handle),
     "SSStarSceneCheckSteps": (_Handle, _Int, _P(_Real)),
-    "SSStarSceneSetStep": (_Handle, _Handle, _Real),
-    "SSStarSceneCheckStep": (_Handle, _Handle, _Handle, _P(_Enum), _P(_Enum)),
+    "SSStarSceneGetPathTimes": (_Handle, ctypes.c_char_p, _P(_Int), _P(_P(_Real))),
+    "SSStarSceneSolveStep": (_Handle, _Handle, _Handle, _Real, ctypes.c_void_p),
+    "SSStarSceneAdvance": (_Handle, _Handle, _Handle, _Real, _Int, ctypes.c_void_p),
     "SSStarSceneAcceptStep": (_Handle, _Handle, _Handle),
     "SSStarSceneSetHistory": (_Handle, ctypes.c_char_p, ctypes.c_char_p),
     "SSStarSceneGetContactGroupCount": (_Handle, _P(_Int)),
-    "SSStarSceneGetMotion": (_Handle, _Int, _P(ctypes.c_char_p), _P(_Real), _P(_Enum)),
+    "SSStarSceneGetMotion": (_Handle, _Int, _P(ctypes.c_char_p), _P(_Real), _P(_Real), _P(_Enum)),
     "SSStarSceneOutputBegin": (_Handle, ctypes.c_char_p),
     "SSStarSceneOutputStep": (_Handle, _Handle, _Handle, _Int),
     "SSStarSceneOutputEnd": (_Handle, _Handle, _Handle, _Handle, _Handle),
@@ -62,6 +62,7 @@ _C = {name: _declare(name, *args) for name, args in {
     "SSStarSceneGetStepColumn": (_Handle, _Int, ctypes.c_size_t, ctypes.c_char_p, _P(_Int), _P(_Enum)),
     "SSStarSceneGetStepRow": (_Handle, _Handle, _Handle, _Int, _P(_Real)),
     "SSStarSceneGetField": (_Handle, _Handle, _Handle, ctypes.c_char_p, _P(_Handle)),
+    "SSStarSceneGetEnergies": (_Handle, _P(_Real), _P(_Enum)),
 }.items()}
 _PETSC_ERR_FILE_OPEN = 65
 # PetscFree() is a macro over the function pointer PetscTrFree
@@ -73,13 +74,22 @@ def _petsc_free(pointer):
     _call(free, ctypes.cast(pointer, ctypes.c_void_p), 0, b"ssstar.scene", b"scene.py")
 
 
+
+
+class _Step(ctypes.Structure):
+    """SSStarStep of include/ssstarscene.h: what the library's stepper did"""
+    _fields_ = [("time", _Real), ("cuts", _Int), ("linearizations", _Int), ("iterations", _Int), ("reason", _Enum),
+                ("accepted", _Enum), ("reached", _Enum), ("stopped", _Enum), ("no_equilibrium", _Enum), ("retry", _Real),
+                ("why", ctypes.c_char_p)]
+
+
 _REASONS = _P(ctypes.c_char_p).in_dll(_lib, "SNESConvergedReasons")  # indexed by SNESConvergedReason (< 0 too)
 _EXTRA = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p)  # SSStarSceneWriteSolution()'s extra
 # examples/contact's own options, which the scene reads as examples/contact does
 _DRIVER_OPTIONS = ("steps", "steps_max_cuts", "load_steps", "o")
 _DRIVER_HELP = b"-steps -steps_max_cuts -load_steps -o"
 # the histories set() changes (SSStarSceneSetHistory())
-_HISTORIES = ("traction", "gravity", "obstacle_motion")
+_HISTORIES = ("traction", "gravity", "obstacle_motion", "obstacle_rotation")
 # the kinds of contact states, as SSStarSceneGetContactResult() counts them
 _KINDS = {"separated": ("L", "LS"), "sliding": ("M1", "M2"), "sticking": ("M3+", "M3-", "M4")}
 # the datasets of /steps/<k>/contact: at a state (normal: of the frames the state was linearized at), then of a load
@@ -125,12 +135,14 @@ def _time(t):
 
 
 def _group_option(keyword, group):
-    return "obstacle_%s_motion" % group if keyword == "obstacle_motion" else "%s_%s" % (keyword, group)
+    if keyword in ("obstacle_motion", "obstacle_rotation"):
+        return "obstacle_%s_%s" % (group, keyword[9:])
+    return "%s_%s" % (keyword, group)
 
 
 def _keyword_options(keywords):
     """(option, text) for each keyword: name=value is -name value; name={G: value} is -name_G value for each group G
-    (obstacle_motion={G: ...} is -obstacle_G_motion)"""
+    (obstacle_motion={G: ...} is -obstacle_G_motion, obstacle_rotation={G: ...} -obstacle_G_rotation)"""
     for key, value in keywords.items():
         if isinstance(value, dict):
             for group, v in value.items():
@@ -218,8 +230,11 @@ class Step:
                      DIVERGED_MAX_IT (and cut, as examples/contact cuts it)
       row            {column: value} of the table of the steps (/steps of the file): time, iterations, reason,
                      residual_norm, cuts, load (3), normal_force, tangential_force (3), area, sliding, sticking,
-                     separated, dissipation, motion/<G> (3), groups/<G>/displacement (3)
+                     separated, dissipation, with dynamics kinetic_energy, strain_energy, external_work,
+                     impact_dissipation, damping_dissipation, energy_error, motion/<G> (3), rotation/<G> (3),
+                     groups/<G>/displacement (3)
       displacement   the displacement of every mesh node, n x 3 (/fields/displacement)
+      velocity       with dynamics the velocity of every mesh node, n x 3 (/fields/velocity), else None
       contact        {name: array} per contact node (/contact/<name>): displacement, reaction (the force on the body),
                      normal (of the frames the step was solved in: with large sliding the current configuration's),
                      state (codes into ssstar.STATE_NAMES), final_gap, pressure, traction, slip; on a load path once a
@@ -228,8 +243,9 @@ class Step:
 
     sliding(), sticking(), separated(): boolean masks of the contact nodes by state (as the row counts them)."""
 
-    def __init__(self, row, displacement, contact, factor=None, linearizations=1, total_iterations=None):
+    def __init__(self, row, displacement, contact, factor=None, linearizations=1, total_iterations=None, velocity=None):
         self.row, self.displacement, self.contact, self.factor = row, displacement, contact, factor
+        self.velocity = velocity
         self.linearizations = linearizations
         self.total_iterations = row["iterations"] if total_iterations is None else total_iterations
         self.time = row["time"]
@@ -272,14 +288,16 @@ class Scene:
                              traction={"top": [(0, (0, 0, 0)), (1, (0, 0, -10)), (2, (7.5, 0, -10))]})
 
     Options. The keywords are examples/contact's options, one name per parameter as in C: name=value gives -name value,
-    name={G: value} gives -name_G value for each group G (obstacle_motion={G: ...} gives -obstacle_G_motion), keywords
-    after the file's options. Values: a number, a string, a sequence (x, y, z) or ["bottom", "top"] joined by commas,
+    name={G: value} gives -name_G value for each group G (obstacle_motion={G: ...} gives -obstacle_G_motion,
+    obstacle_rotation={G: ...} -obstacle_G_rotation), keywords after the file's options. Values: a number, a string, a sequence (x, y, z) or ["bottom", "top"] joined by commas,
     True a flag, False "false", a history a sequence of (t, (x, y, z)) pairs (or "t:x,y,z;..."). So geo, mesh, level,
     mesh_scale, E, nu, material={G: (E, nu)}, dirichlet=[...], traction={G: ...}, spring={G: k}, gravity, density,
     contact=[...], obstacle={G: "sphere:0,0,10,10" or (px, py, pz, nx, ny, nz)}, obstacle_motion={G: history},
-    friction_law={G: "tresca"}, friction={G: phi}, slip_bound, friction_1, friction_2, friction_direction ({G: ...}),
+    obstacle_rotation={G: history of (t, (ax, ay, az, angle))}, friction_law={G: "tresca"}, friction={G: phi},
+    slip_bound, friction_1, friction_2, friction_direction ({G: ...}),
     contact_pair={G: H}, pair_discretization, steps (times, or N), steps_max_cuts, load_steps, o (the file solve()
-    writes), ssstar_progress; and the solver's: snes_rtol=1e-10, snes_ssstar_reduction="none", snes_monitor=True, ...
+    writes), ssstar_progress, dynamics=True with initial_velocity, dynamics_scheme, dynamics_mass, damping, end_time;
+    and the solver's: snes_rtol=1e-10, snes_ssstar_reduction="none", snes_monitor=True, ...
     The options live in petsc4py's database while the scene works (the values there before are put back after):
     command-line options (petsc4py.init(sys.argv)) apply to every scene unless its own override them. An option of
     the scene (keyword or file) that nothing reads is refused, naming the nearest known option, as examples/contact
@@ -298,7 +316,7 @@ class Scene:
       step(t, accept=True)  one step at t from the last accepted one, without cutting; accept=False leaves it tentative:
                             accept() takes it, another step(t) replaces it
       set(traction={G: v}, gravity=v, obstacle_motion={G: v})   new values of the scene's histories (constants or
-                            histories, as the keywords), for the steps to come
+                            histories, as the keywords; also obstacle_rotation={G: v}), for the steps to come
       write(file)           the file examples/contact -o writes (o=file in the options does the same): given before
                             the solve, solve() of a static scene writes its solution there, and the steps of a load
                             path (solve(), steps(), step()) go into it as they are solved, completed by close() or the
@@ -311,7 +329,8 @@ class Scene:
 
     What it holds: snes (the petsc4py SNES, ssstar or a Cholesky solve without contact), dm, K, b (the load at the
     last knot), u (the displacement of the last solve), iterations (of every solve so far, as examples/contact's summary
-    counts them), nodes, contact_size, has_contact, has_path, knots, vertices (n x 3, file order), contact_nodes
+    counts them), nodes, contact_size, has_contact, has_path, dynamics (whether the steps are time steps, dynamics=True:
+    docs/guide/dynamics.md), knots, vertices (n x 3, file order), contact_nodes
     ({coordinates, normal, gap, area, group} per contact node, file order), group_names, columns (the table of the
     steps: (name, width, integer)), view().
 
@@ -332,7 +351,6 @@ class Scene:
         self._output = None      # the file a load path is being written to
         self._steps_done = 0     # steps solved (static solves and steps of a path)
         self._accepted = None    # the time of the last accepted step of a load path, None before
-        self._u_accepted = None  # its solution
         self._pending = None     # a converged step not accepted yet: (time, cuts)
         self._load_steps = None  # the rows of a static continuation, for /load_steps
         self._failed = False
@@ -354,8 +372,13 @@ class Scene:
         self.has_contact = self._flag("SSStarSceneHasContact")
         self._read_driver_options()
         self.has_path = self._flag("SSStarSceneHasPath") or self._steps_text is not None
+        energies, dynamics = (_Real * 8)(), _Enum()  # SSStarEnergies: is the scene one of -dynamics
+        _call(_C["SSStarSceneGetEnergies"], self._scene, energies, ctypes.byref(dynamics))
+        self.dynamics = bool(dynamics.value)
         if self.has_path and self._load_steps_n is not None:
             raise ValueError("Option -load_steps scales the constant loads of a static problem; a load path is -steps with histories (-traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion): give one of them")
+        if self.has_path:
+            self._default_times()  # a malformed steps=... refused before the mesh, as examples/contact refuses it
         if self._o is not None:
             _call(_C["SSStarCheckOutputFile"], self._comm, self._o.encode())
             self._target = self._o
@@ -377,9 +400,8 @@ class Scene:
         _call(_C["SSStarSceneGetDM"], self._scene, ctypes.byref(dm))
         self.dm = self._wrap(dm)
         self._load = self.b.duplicate()
-        set_linear_problem(self.snes, self.K, self._load)  # F(u) = K u - load, the load set at each step
-        if self.has_contact:
-            _call(_C["SSStarSceneSetContact"], self._scene, _h(self.snes))
+        # F(u) = K u - load, the load set at each step; the contact
+        _call(_C["SSStarSceneSetSolver"], self._scene, _h(self.snes), _h(self.K), _h(self._load))
         self.u = self.dm.createGlobalVec()
         self.u.zeroEntries()
         n, p = _Int(), _Int()
@@ -467,7 +489,8 @@ class Scene:
                 contact[name] = self._field("/contact/" + name)
             contact["state"] = contact["state"].astype(np.int32)
         self._steps_done += 1
-        return Step(values, self._field("/fields/displacement"), contact, factor, *self._solves)
+        velocity = self._field("/fields/velocity") if self.dynamics else None
+        return Step(values, self._field("/fields/displacement"), contact, factor, *self._solves, velocity=velocity)
 
     def _knots(self):
         n, times = _Int(), _P(_Real)()
@@ -510,7 +533,7 @@ class Scene:
         _call(_C["SSStarSceneGetContactGroupCount"], self._scene, ctypes.byref(n))
         for g in range(n.value):
             name = ctypes.c_char_p()
-            _call(_C["SSStarSceneGetMotion"], self._scene, g, ctypes.byref(name), None, None)
+            _call(_C["SSStarSceneGetMotion"], self._scene, g, ctypes.byref(name), None, None, None)
             names.append(name.value.decode())
         return names
 
@@ -534,54 +557,36 @@ class Scene:
         self.iterations += its if self.has_contact else 0  # examples/contact counts no iteration of a linear solve
 
     def _default_times(self):
-        knots = self._knots()
-        if self._steps_text is None and not knots:
-            return [0.0]  # constant loads and motions: one step
+        """The times of the path (SSStarSceneGetPathTimes(): steps=..., else the knots, else one step at 0)"""
         n, times = _Int(), _P(_Real)()
         text = None if self._steps_text is None else self._steps_text.encode()
-        _call(_C["SSStarHistoryParseSteps"], self._comm, b"-steps", text, len(knots), (_Real * max(1, len(knots)))(*knots), ctypes.byref(n), ctypes.byref(times))
+        _call(_C["SSStarSceneGetPathTimes"], self._scene, text, ctypes.byref(n), ctypes.byref(times))
         result = [times[i] for i in range(n.value)]
         _petsc_free(times)
-        return result or [0.0]
+        return result
 
-    def _solve_at(self, t, cuts):
-        """Solves the step at t from the last accepted step (SolvePath() and SolveStep() of examples/contact): with
-        large sliding solved again from its solution, linearized there, while the contact measured there moves
-        (SSStarSceneCheckStep()); a contact that does not settle in sliding_max_it linearizations is DIVERGED_MAX_IT"""
+    def _solve_at(self, t):
+        """Solves the step at t from the last accepted step (SSStarSceneSolveStep(), examples/contact's stepper): with
+        large sliding solved again from its solution, linearized there, while the contact measured there moves; a
+        contact that does not settle in sliding_max_it linearizations is DIVERGED_MAX_IT"""
         t = _time(t)
-        _call(_C["SSStarSceneAssembleLoad"], self._scene, t, _h(self._load))
-        _call(_C["SSStarSceneSetStep"], self._scene, _h(self.snes), t)
-        if self._u_accepted is None:
-            self._u_accepted = self.u.copy()
-        self._u_accepted.copy(self.u)
-        solves, its, consistent, again = 0, 0, _Enum(), _Enum()
-        while True:
-            self.snes.solve(None, self.u)
-            solves += 1
-            its += self.snes.getIterationNumber()
-            if self.snes.getConvergedReason() <= 0:
-                break
-            _call(_C["SSStarSceneCheckStep"], self._scene, _h(self.snes), _h(self.u), ctypes.byref(consistent), ctypes.byref(again))
-            if not again.value:
-                if not consistent.value:  # for the row and the file too, as examples/contact
-                    self.snes.setConvergedReason(PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT)
-                break
-        self._count(solves, its)
-        self._pending = (t, cuts) if self.snes.getConvergedReason() > 0 else None
+        step = _Step()
+        _call(_C["SSStarSceneSolveStep"], self._scene, _h(self.snes), _h(self.u), t, ctypes.byref(step))
+        self._count(step.linearizations, step.iterations)
+        self._pending = (t, 0) if step.reason > 0 else None
 
     def _output_step(self, cuts):
-        """A step of the path into the file of write() (opened at the first step)"""
+        """A step of the path into the file of write() (opened at the first step); cuts None: only opened"""
         if self._target and not self._output:
             _call(_C["SSStarSceneOutputBegin"], self._scene, self._target.encode())
             self._output, self._target = self._target, None
-        if self._output:
+        if self._output and cuts is not None:
             _call(_C["SSStarSceneOutputStep"], self._scene, _h(self.snes), _h(self.u), cuts)
 
     def _accept(self):
         t, cuts = self._pending
         _call(_C["SSStarSceneAcceptStep"], self._scene, _h(self.u), _h(self.snes.getFunction()[0]))
         self._output_step(cuts)
-        self.u.copy(self._u_accepted)
         self._accepted = t
         self._pending = None
         return self._record(cuts)
@@ -593,7 +598,7 @@ class Scene:
         or another step() replaces it"""
         self._check_open()
         with self._options:
-            self._solve_at(t, 0)
+            self._solve_at(t)
             if self._pending and accept:
                 return self._accept()
             return self._record(0)
@@ -607,29 +612,25 @@ class Scene:
             return self._accept()
 
     def _advance(self, target):
-        """The accepted (sub-)steps to the time target, halving a step that does not converge (examples/contact's
-        SolvePath()); the step that fails after steps_max_cuts halvings comes last"""
-        t, dt, cuts = target, 0.0, 0
+        """The accepted (sub-)steps to the time target, halving a step that does not converge (SSStarSceneAdvance(), as
+        examples/contact); the step that fails after steps_max_cuts halvings comes last"""
         while True:
             with self._options:
-                self._solve_at(t, cuts)
-                if self._pending:
-                    step = self._accept()
+                if self._target and not self._output:  # the file of write(): the library writes each step into it
+                    self._output_step(None)
+                st = _Step()
+                _call(_C["SSStarSceneAdvance"], self._scene, _h(self.snes), _h(self.u), _time(target), self._max_cuts, ctypes.byref(st))
+                self._count(st.linearizations, st.iterations)
+                if not st.accepted and not st.stopped:
+                    continue  # retried at the midpoint
+                if st.accepted:
+                    self._accepted = st.time
                 else:
-                    knots = self._knots()
-                    start = self._accepted if self._accepted is not None else (min(knots[0], t) if knots else t)
-                    if cuts < self._max_cuts and t > start:
-                        cuts += 1
-                        dt = (t - start) / 2
-                        t = start + dt
-                        continue
-                    self._output_step(cuts)  # its last iterate
                     self._failed = True
-                    step = self._record(cuts)
+                step = self._record(st.cuts)
             yield step
-            if not step.converged or t == target:
+            if not step.converged or st.reached:
                 return
-            t = min(t + dt, target)  # on to the step's time in sub-steps of the cut size
 
     def steps(self, times=None):
         """The load path a step at a time: yields the Step of each time of times (default: steps=..., else the knots of
@@ -677,8 +678,9 @@ class Scene:
 
     def set(self, **histories):
         """New values of the scene's histories for the steps to come: traction={G: value}, gravity=value,
-        obstacle_motion={G: value}, each a constant (x, y, z) or a history as the keywords of Scene() (SSStarSceneSetHistory():
-        only loads and motions the scene was made with)"""
+        obstacle_motion={G: value}, obstacle_rotation={G: value}, each a constant ((x, y, z); (ax, ay, az, angle) for a
+        rotation) or a history as the keywords of Scene() (SSStarSceneSetHistory(): only loads and motions the scene was
+        made with)"""
         self._check_open()
         for key in histories:
             if key not in _HISTORIES:
@@ -727,7 +729,7 @@ class Scene:
             self._closed = True
             _live.discard(self)
             _call(_C["SSStarSceneDestroy"], ctypes.byref(self._scene))
-            for name in ("u", "_u_accepted", "_load", "K", "b", "dm"):
+            for name in ("u", "_load", "K", "b", "dm"):
                 obj = getattr(self, name, None)
                 if obj is not None:
                     obj.destroy()

@@ -100,11 +100,12 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   for (PetscInt g = 0; g < s->nDirichlet; g++) PetscCall(PetscFree(s->dirichlet[g]));
   PetscCall(PetscFree(s->dirichlet));
   for (PetscInt t = 0; t < s->nTractions; t++) PetscCall(SSStarHistoryDestroy(&s->tractions[t].history));
-  PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
+  PetscCall(PetscFree4(s->materials, s->tractions, s->springs, s->velocities));
+  PetscCall(SSStarDynamicsDestroy(s));
   PetscCall(SSStarHistoryDestroy(&s->gravityHistory));
   for (PetscInt g = 0; g < s->nContact; g++) {
     PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
-    PetscCall(SSStarHistoryDestroy(&s->contact[g].motion));
+    PetscCall(SSStarMotionDestroy(&s->contact[g].motion));
     PetscCall(SSStarGroupLawDestroy(&s->contact[g]));
   }
   PetscCall(SSStarScenePathDestroy(s));
@@ -112,6 +113,7 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscCall(PetscFree4(s->tag, s->group, s->coords, s->normal));
   PetscCall(PetscFree2(s->gap, s->area));
   PetscCall(PetscFree(s->gapInitial));
+  PetscCall(PetscFree(s->obstaclePoint));
   PetscCall(ISDestroy(&s->isC));
   PetscCall(PetscFree(s->body));
   PetscCall(SSStarSceneDestroyFloating(s));
@@ -410,7 +412,15 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (scene->hasE && scene->hasNu) PetscCall(PetscViewerASCIIPrintf(viewer, "material: E = %g, nu = %g\n", (double)scene->E, (double)scene->nu));
-  for (PetscInt m = 0; m < scene->nMaterials; m++) PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g\n", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
+  for (PetscInt m = 0; m < scene->nMaterials; m++) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
+    if (scene->materials[m].count > 2) PetscCall(PetscViewerASCIIPrintf(viewer, ", density %g", (double)scene->materials[m].value[2]));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
+  }
+  for (PetscInt g = 0; g < scene->nVelocities; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "initial velocity of %s: (%g, %g, %g)\n", scene->velocities[g].name, (double)scene->velocities[g].value[0], (double)scene->velocities[g].value[1], (double)scene->velocities[g].value[2]));
+  PetscCall(SSStarDynamicsView(scene, viewer));
   for (PetscInt g = 0; g < scene->nDirichlet; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "held fixed: %s\n", scene->dirichlet[g]));
   for (PetscInt s = 0; s < scene->nSprings; s++) PetscCall(PetscViewerASCIIPrintf(viewer, "spring on %s: k = %g per unit area, every direction\n", scene->springs[s].name, (double)scene->springs[s].value[0]));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
@@ -431,9 +441,13 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
       PetscCall(PetscViewerASCIIPrintf(viewer, "contact group %s: %" PetscInt_FMT " nodes, %s, initial gaps %g .. %g", cg->name, cg->nodes, obstacle, (double)cg->gapMin, (double)cg->gapMax));
     }
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
-    if (cg->motion) {
-      PetscCall(HistoryText(cg->motion, text, sizeof(text)));
+    if (cg->motion.translation) {
+      PetscCall(HistoryText(cg->motion.translation, text, sizeof(text)));
       PetscCall(PetscViewerASCIIPrintf(viewer, ", moving by %s", text));
+    }
+    if (cg->motion.rotation) {
+      PetscCall(HistoryText(cg->motion.rotation, text, sizeof(text)));
+      PetscCall(PetscViewerASCIIPrintf(viewer, ", turning by %s (axis, angle) about (%g, %g, %g)", text, (double)cg->motion.center[0], (double)cg->motion.center[1], (double)cg->motion.center[2]));
     }
     PetscCall(SSStarGroupLawView(cg, viewer)); /* ", friction coulomb, phi = 0.5" */
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
@@ -449,6 +463,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 
     PetscCall(SSStarSceneHasPath(scene, &path));
     if (path) PetscCall(PetscStrlcat(effects, scene->nContact && scene->sliding == SSSTAR_SLIDING_LARGE ? ", load path (incremental friction, large sliding)" : ", load path (incremental friction)", sizeof(effects)));
+    if (scene->dynamics) PetscCall(PetscStrlcat(effects, ", inertia (time steps)", sizeof(effects)));
   }
   if (scene->nContact) {
     PetscInt nlaws;

@@ -31,6 +31,7 @@ typedef struct {
 typedef struct {
   char          name[SSSTAR_GROUP_NAME_LEN];
   PetscReal     value[3];
+  PetscInt      count;   /* the values given (-material_<G> E,nu or E,nu,rho) */
   SSStarHistory history; /* a traction's; NULL for the others */
 } SSStarGroupValues;
 
@@ -40,6 +41,30 @@ typedef struct {
   PetscInt  size;     /* its values: 1, or 3 for a direction */
   PetscReal value[3];
 } SSStarGroupParameter;
+
+/* Where a moving obstacle is (contact/motion.c): x = Q (X - c) + c + d for a point X of the obstacle, Q row-major */
+typedef struct {
+  PetscReal Q[9], d[3];
+} SSStarPlacement;
+
+/* The motion of a contact group's rigid obstacle (contact/motion.c, docs/derivation.md section 16) */
+typedef struct {
+  SSStarHistory   translation; /* -obstacle_<G>_motion: d(t), or NULL                                   */
+  SSStarHistory   rotation;    /* -obstacle_<G>_rotation: t:ax,ay,az,angle (radians), or NULL            */
+  PetscReal       center[3];   /* the obstacle's reference point c, about which it turns               */
+  SSStarPlacement now, before; /* in the step being solved, and after the last accepted one            */
+} SSStarMotion;
+PETSC_INTERN void           SSStarPlacementIdentity(SSStarPlacement *);
+PETSC_INTERN void           SSStarRotation(const PetscReal[3], PetscReal, PetscReal[9]);
+PETSC_INTERN void           SSStarPlacementApply(const SSStarPlacement *, const PetscReal[3], const PetscReal[3], PetscReal[3]);
+PETSC_INTERN void           SSStarPlacementInverse(const SSStarPlacement *, const PetscReal[3], const PetscReal[3], PetscReal[3]);
+PETSC_INTERN PetscBool      SSStarPlacementEqual(const SSStarPlacement *, const SSStarPlacement *);
+PETSC_INTERN PetscBool      SSStarMotionIsSet(const SSStarMotion *);
+PETSC_INTERN PetscErrorCode SSStarMotionPlacementAt(const SSStarMotion *, PetscReal, SSStarPlacement *);
+PETSC_INTERN PetscErrorCode SSStarMotionRotationVector(const SSStarMotion *, PetscReal, PetscReal[3]);
+PETSC_INTERN PetscErrorCode SSStarMotionReadRotation(MPI_Comm, const char[], SSStarHistory *);
+PETSC_INTERN PetscErrorCode SSStarMotionCheckRotation(MPI_Comm, const char[], SSStarHistory);
+PETSC_INTERN PetscErrorCode SSStarMotionDestroy(SSStarMotion *);
 
 /* A contact group: its contact source (a rigid obstacle, or the master surface of a pair) and its friction law */
 typedef struct {
@@ -52,8 +77,7 @@ typedef struct {
   PetscInt          nodes;              /* contact nodes of the group (global)                  */
   PetscReal         gapMin, gapMax;     /* initial gaps of its nodes                            */
   char              master[SSSTAR_GROUP_NAME_LEN]; /* -contact_pair_<G> H: the master surface (empty: an obstacle) */
-  SSStarHistory     motion;             /* -obstacle_<G>_motion: the obstacle's translation history, or NULL */
-  PetscReal         d[3], dPrev[3];     /* its translation in the step being solved, and after the last accepted one */
+  SSStarMotion      motion;             /* its rigid obstacle's translation and rotation (none for a pair)         */
 } SSStarContactGroup;
 
 /* Where a load path measures the contact (-sliding): at the current configuration of each step, or at the reference */
@@ -70,6 +94,22 @@ typedef enum {
 } SSStarPairDiscretization;
 PETSC_INTERN const char *const SSStarPairDiscretizations[];
 
+/* Where SSStarSceneAdvance() is on the way to its target (path/solve.c) */
+typedef struct {
+  PetscBool active;    /* a target is being reached                            */
+  PetscReal target, t; /* the target time, the time of the next step            */
+  PetscReal dt;        /* the sub-step after a cut, 0 before                    */
+  PetscInt  cuts;      /* the halvings of this target's step                    */
+} SSStarStepper;
+
+/* Elastodynamics (dynamics/, docs/derivation.md section 16) */
+typedef struct _n_SSStarDynamics *SSStarDynamics;
+typedef enum {
+  SSSTAR_DYNAMICS_STABILIZED, /* the predictor projected onto the admissible set (16.5): no energy gained at contact */
+  SSSTAR_DYNAMICS_NEWMARK     /* the trapezoidal step (16.6) from the predictor as it is                        */
+} SSStarDynamicsScheme;
+PETSC_INTERN const char *const SSStarDynamicsSchemes[];
+
 struct _n_SSStarScene {
   MPI_Comm comm;
 
@@ -82,11 +122,13 @@ struct _n_SSStarScene {
   PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;
   PetscBool          hasE, hasNu;
-  PetscInt           nMaterials, nTractions, nSprings, nDirichlet, nContact;
-  SSStarGroupValues *materials, *tractions, *springs;
+  PetscInt           nMaterials, nTractions, nSprings, nDirichlet, nContact, nVelocities;
+  SSStarGroupValues *materials, *tractions, *springs, *velocities; /* velocities: -initial_velocity_<G> */
   char             **dirichlet;
   SSStarContactGroup *contact;
-  PetscBool          hasGravity;
+  PetscBool          hasGravity, hasDensity;
+  SSStarDynamics     dynamics; /* -dynamics, or NULL                                                 */
+  PetscReal          endTime;  /* -end_time: the end of a path without knots (-steps N), 0 without     */
   PetscReal          gravity[3], density; /* gravity: its value at the last knot of its history */
   SSStarHistory      gravityHistory;
 
@@ -104,6 +146,8 @@ struct _n_SSStarScene {
   PetscReal *normal;      /* 3 per node: the normal of its obstacle or master surface, into the body */
   PetscReal *gap;         /* its initial normal gap to it                                        */
   PetscReal *area;        /* tributary area (a third of the adjacent faces of its group)         */
+  PetscReal *obstaclePoint; /* 3 per node: the point of its obstacle it faces (closest), where the obstacle's option
+                               puts it (the obstacle unmoved): its friction sees that point's motion (motion.c) */
   IS         isC;         /* the 3 global dofs of each node                                       */
 
   /* bodies (bodies.c) and contact pairs (pairs.c, mortar.c) */
@@ -141,6 +185,11 @@ struct _n_SSStarScene {
   PetscReal *slipPath;      /* the length of the slip path, per node                                  */
   PetscReal *dissipation;   /* the energy friction dissipated, per node (10.9)                        */
   Vec        offsets;       /* the offsets (10.4) handed to the SNES                                  */
+  Vec        stepLoad;      /* the SNES's load, which a step assembles (SSStarSceneSetSolver())        */
+  SNES       solver;        /* the SNES of SSStarSceneSetSolver() (not a reference)                    */
+  Vec        stepStart;     /* the solution of the last accepted step, where the next one starts      */
+  PetscReal  acceptedTime;  /* the time of the last accepted step                                    */
+  SSStarStepper stepper;    /* SSStarSceneAdvance()'s way to its target                               */
   PetscInt   nSurfaces;     /* named surface groups whose mean displacement the output follows       */
   char     **surfaces;
   Vec       *surfaceWeights; /* per surface: its consistent load of a unit traction (area / 3 per node) */
@@ -178,6 +227,20 @@ PETSC_INTERN PetscErrorCode SSStarMeshCellVertices(DM, PetscInt, PetscInt[4]);
 PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, PetscReal, Mat *, Vec *);
+PETSC_INTERN PetscReal      SSStarTetGradients(const PetscReal[12], PetscReal[4][3]);
+PETSC_INTERN PetscErrorCode SSStarCellMaterials(SSStarScene, PetscInt, PetscInt, PetscReal (*)[2], PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarVertexBlocks(DM, PetscInt, PetscInt, PetscInt **);
+PETSC_INTERN void           SSStarTetMass(PetscReal, PetscReal, PetscBool, PetscScalar[144]);
+PETSC_INTERN PetscErrorCode SSStarAssembleMass(SSStarScene, Mat, PetscBool, Mat *);
+PETSC_INTERN PetscErrorCode SSStarInitialVelocity(SSStarScene, const PetscReal[3], Vec);
+PETSC_INTERN PetscErrorCode SSStarDynamicsSetFromOptions(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarDynamicsSetUp(SSStarScene, SNES, Mat, Vec);
+PETSC_INTERN PetscErrorCode SSStarDynamicsBeginStep(SSStarScene, PetscReal, Vec, PetscBool, SNESConvergedReason *);
+PETSC_INTERN PetscErrorCode SSStarDynamicsAccept(SSStarScene, SNES, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarDynamicsGetVelocity(SSStarScene, Vec *);
+PETSC_INTERN PetscErrorCode SSStarDynamicsView(SSStarScene, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarDynamicsDescribe(SSStarScene, const char **, PetscBool *, PetscReal[2], PetscReal[3]);
+PETSC_INTERN PetscErrorCode SSStarDynamicsDestroy(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
 PETSC_INTERN PetscErrorCode SSStarAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_INTERN PetscErrorCode SSStarGroupArea(DM, const char[], PetscReal *);
@@ -218,7 +281,8 @@ PETSC_INTERN PetscErrorCode SSStarSceneFindBodies(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneDestroyFloating(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneFindContactNodes(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *);
-PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], const SSStarPlacement[], PetscReal, PetscReal[], PetscReal[]);
+PETSC_INTERN void           SSStarSceneObstacleDisplacement(SSStarScene, PetscInt, const SSStarPlacement *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarSceneMeasureContact(SSStarScene, SNES);
 PETSC_INTERN PetscErrorCode SSStarSceneRelinearizeContact(SSStarScene, SNES, Vec, PetscBool *, PetscReal *, PetscReal *);

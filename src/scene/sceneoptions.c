@@ -67,12 +67,13 @@ typedef enum {
   OPT_MATERIAL,
   OPT_TRACTION,
   OPT_SPRING,
+  OPT_VELOCITY, /* -initial_velocity_<G> (dynamics/) */
   OPT_OBSTACLE,
   OPT_FRICTION_LAW,
   OPT_CONTACT_PAIR,
   OPT_LAW_PARAMETER
 } GroupOption;
-static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-initial_velocity_", "-obstacle_", "-friction_law_", "-contact_pair_"};
 
 static PetscBool IsContactGroup(SSStarScene scene, const char name[])
 {
@@ -156,6 +157,7 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   if (kind == OPT_MATERIAL) scene->nMaterials++;
   if (kind == OPT_TRACTION) scene->nTractions++;
   if (kind == OPT_SPRING) scene->nSprings++;
+  if (kind == OPT_VELOCITY) scene->nVelocities++;
   PetscFunctionReturn(0);
 }
 
@@ -194,17 +196,24 @@ static PetscErrorCode ContactGroup(SSStarScene scene, const char group[], const 
   SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: \"%s\" is not a contact group (not in -contact; the nearest contact group is \"%s\")", option, group, scene->contact[nearest].name);
 }
 
-/* The group name G of a rest "G_motion" of -obstacle_G_motion (empty: no such rest) */
-static PetscErrorCode MotionStem(const char rest[], char stem[], size_t size)
+/* The group name G of a rest "G_motion" of -obstacle_G_motion or "G_rotation" of -obstacle_G_rotation (empty: no such
+   rest), and which: PETSC_TRUE for the rotation */
+static PetscErrorCode MotionStem(const char rest[], char stem[], size_t size, PetscBool *rotation)
 {
-  const char suffix[] = "_motion";
-  size_t     len;
+  size_t len;
 
   PetscFunctionBegin;
-  stem[0] = 0;
+  stem[0]   = 0;
+  *rotation = PETSC_FALSE;
   PetscCall(PetscStrlen(rest, &len));
-  if (len <= sizeof(suffix) - 1 || strcmp(rest + len - (sizeof(suffix) - 1), suffix)) PetscFunctionReturn(0);
-  PetscCall(PetscStrncpy(stem, rest, PetscMin(size, len - (sizeof(suffix) - 1) + 1)));
+  for (PetscInt kind = 0; kind < 2 && !stem[0]; kind++) {
+    const char  *suffix = kind ? "_rotation" : "_motion";
+    const size_t slen   = kind ? 9 : 7;
+
+    if (len <= slen || strcmp(rest + len - slen, suffix)) continue;
+    PetscCall(PetscStrncpy(stem, rest, PetscMin(size, len - slen + 1)));
+    *rotation = (PetscBool)kind;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -228,11 +237,22 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
 
   PetscFunctionBegin;
   switch (kind) {
-  case OPT_MATERIAL:
-  case OPT_SPRING:
-    gv = kind == OPT_MATERIAL ? &scene->materials[scene->nMaterials++] : &scene->springs[scene->nSprings++];
+  case OPT_MATERIAL: { /* E,nu or E,nu,rho */
+    PetscInt n = 3;
+
+    gv = &scene->materials[scene->nMaterials++];
     PetscCall(PetscStrncpy(gv->name, group, sizeof(gv->name)));
-    PetscCall(GetFiniteArray(scene->comm, option, kind == OPT_MATERIAL ? 2 : 1, kind == OPT_MATERIAL ? "E,nu" : "k", gv->value, &set));
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, option, gv->value, &n, &set));
+    PetscCall(GetFiniteArray(scene->comm, option, n == 3 ? 3 : 2, n == 3 ? "E,nu,rho" : "E,nu (or E,nu,rho)", gv->value, &set));
+    gv->count = n;
+    PetscCheck(n < 3 || gv->value[2] > 0, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s: the density %g must be positive", option, (double)gv->value[2]);
+  } break;
+  case OPT_SPRING:
+  case OPT_VELOCITY:
+    gv = kind == OPT_SPRING ? &scene->springs[scene->nSprings++] : &scene->velocities[scene->nVelocities++];
+    PetscCall(PetscStrncpy(gv->name, group, sizeof(gv->name)));
+    PetscCall(GetFiniteArray(scene->comm, option, kind == OPT_SPRING ? 1 : 3, kind == OPT_SPRING ? "k" : "vx,vy,vz", gv->value, &set));
+    gv->count = kind == OPT_SPRING ? 1 : 3;
     PetscCheck(kind != OPT_SPRING || gv->value[0] > 0, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %g: the spring stiffness must be positive", option, (double)gv->value[0]);
     break;
   case OPT_TRACTION: /* a load history, or a constant */
@@ -244,14 +264,18 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
   case OPT_OBSTACLE: {
     char spec[PETSC_MAX_PATH_LEN + 8] = "";
 
-    char stem[SSSTAR_GROUP_NAME_LEN];
+    char      stem[SSSTAR_GROUP_NAME_LEN];
+    PetscBool rotation;
 
     PetscCall(FindContactGroup(scene, group, &cg));
-    PetscCall(MotionStem(group, stem, sizeof(stem)));
-    if (!cg && stem[0]) { /* -obstacle_<G>_motion: a translation history (a group named "x_motion" is looked up first) */
+    PetscCall(MotionStem(group, stem, sizeof(stem), &rotation));
+    if (!cg && stem[0]) { /* -obstacle_<G>_motion, -obstacle_<G>_rotation: its histories (a group "x_motion" first) */
       PetscCall(ContactGroup(scene, stem, option, &cg));
-      PetscCall(SSStarHistoryDestroy(&cg->motion));
-      PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &cg->motion, &set));
+      if (rotation) PetscCall(SSStarMotionReadRotation(scene->comm, option, &cg->motion.rotation)); /* contact/motion.c */
+      else {
+        PetscCall(SSStarHistoryDestroy(&cg->motion.translation));
+        PetscCall(SSStarHistoryCreateFromOptions(scene->comm, NULL, option, 3, &cg->motion.translation, &set));
+      }
       break;
     }
     PetscCall(ContactGroup(scene, group, option, &cg));
@@ -298,7 +322,8 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
    the obstacles and the friction laws come from their registries (GroupHelp()) */
 static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
-  -material_<G> <E,nu>: material of volume group G\n\
+  -material_<G> <E,nu>: material of volume group G (E,nu,rho: with its density)\n\
+  -initial_velocity_<G> <vx,vy,vz>: with -dynamics, the initial velocity of the nodes of volume group G\n\
   -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
       t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
@@ -306,6 +331,9 @@ static const char SceneGroupHelp[] = "\
   -contact <G1,G2,...>: the contact groups (without -contact: no contact at all)\n\
   -obstacle_<G>_motion <t:x,y,z;...>: the translation history of G's rigid obstacle (indentation, sliding); with\n\
       histories or -steps the scene is a load path with incremental friction (docs/load-paths.md)\n\
+  -obstacle_<G>_rotation <t:ax,ay,az,angle;...>: the rotation history of G's rigid obstacle, the angle (radians)\n\
+      about the axis through its reference point (a plane's point, a ball's centre, a cylinder's axis point, a mesh's\n\
+      mean vertex), then translated by -obstacle_<G>_motion: a rolling cylinder, a turning punch\n\
   -contact_pair_<G> <H>: contact group G (slave) meets surface group H (master) of another body\n\
   -pair_discretization <node_to_surface>: of every pair: node_to_surface or dual_mortar (Wohlmuth's dual multipliers)\n";
 
@@ -401,7 +429,10 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -mesh_scale <1> - multiply the coordinates by this
 .  -E <E> - Young's modulus of the cells without -material_<G>
 .  -nu <nu> - Poisson's ratio of those cells
-.  -material_<G> <E,nu> - the material of volume group G
+.  -material_<G> <E,nu> - the material of volume group G (E,nu,rho: with its density)
+.  -initial_velocity_<G> <vx,vy,vz> - with -dynamics, the initial velocity of the nodes of volume group G
+.  -end_time <T> - the end of a path without knots: -steps N gives N equal steps from 0 to T
+.  -dynamics - the steps are time steps of elastodynamics (-dynamics_scheme, -dynamics_mass, -damping, -initial_velocity: SSStarSceneGetEnergies())
 .  -dirichlet <G1,G2> - groups held fixed
 .  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
@@ -410,6 +441,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -contact <G1,G2> - the contact groups
 .  -obstacle_<G> <px,py,pz,nx,ny,nz> - the rigid obstacle of G: plane:px,py,pz,nx,ny,nz (or the six numbers), sphere:cx,cy,cz,R, cylinder:px,py,pz,ax,ay,az,R or mesh:FILE.msh
 .  -obstacle_<G>_motion <t:x,y,z;...> - the translation history of G's obstacle
+.  -obstacle_<G>_rotation <t:ax,ay,az,angle;...> - the rotation history of G's obstacle about its reference point (docs/derivation.md section 16)
 .  -sliding <large> - where a load path measures the contact: large (at the current configuration of each step) or small (at the reference)
 .  -sliding_tol <1e-3> - large sliding: a step is solved again, linearized at its solution, while the contact measured there is off by more than this times the normal displacements
 .  -sliding_max_it <4> - large sliding: such linearizations of a step before it is cut
@@ -463,7 +495,8 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-mesh_scale", "Multiply the mesh coordinates by this", NULL, scene->meshScale, &scene->meshScale, NULL));
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
-  PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
+  PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity or -dynamics)", NULL, scene->density, &scene->density, &hasDensity));
+  PetscCall(PetscOptionsReal("-end_time", "The end of a path whose histories have no knots: -steps N gives N equal steps from 0 to it", "SSStarSceneGetPathTimes", scene->endTime, &scene->endTime, NULL));
   {
     PetscInt sliding = (PetscInt)scene->sliding;
 
@@ -502,8 +535,9 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 
   PetscCall(SSStarHistoryCreateFromOptions(comm, NULL, "-gravity", 3, &scene->gravityHistory, &scene->hasGravity));
   if (scene->hasGravity) PetscCall(SSStarSceneLastValue(scene->gravityHistory, scene->gravity));
-  PetscCheck(scene->hasGravity == hasDensity, comm, PETSC_ERR_ARG_WRONG, "Incomplete body force: %s needs %s", scene->hasGravity ? "-gravity" : "-density", scene->hasGravity ? "-density" : "-gravity");
   PetscCheck(!hasDensity || (scene->density >= 0 && !PetscIsInfOrNanReal(scene->density)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-density %g: the density must be a number >= 0", (double)scene->density);
+  PetscCheck(scene->endTime >= 0 && !PetscIsInfOrNanReal(scene->endTime), comm, PETSC_ERR_ARG_OUTOFRANGE, "-end_time %g: must be a number > 0", (double)scene->endTime);
+  scene->hasDensity = hasDensity;
 
   PetscCall(GetGroupList(comm, "-dirichlet", &scene->nDirichlet, &scene->dirichlet));
   PetscCall(GetGroupList(comm, "-contact", &scene->nContact, &contact));
@@ -520,11 +554,11 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscFree(contact));
 
   /* the options -<prefix><G>: count, then read */
-  scene->nMaterials = scene->nTractions = scene->nSprings = 0;
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = 0;
   PetscCall(ForEachGroupOption(scene, CountGroupOption));
-  PetscCall(PetscFree3(scene->materials, scene->tractions, scene->springs));
-  PetscCall(PetscCalloc3(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs));
-  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = 0;
+  PetscCall(PetscFree4(scene->materials, scene->tractions, scene->springs, scene->velocities));
+  PetscCall(PetscCalloc4(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs, scene->nVelocities, &scene->velocities));
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = scene->nPairs = 0;
   PetscCall(ForEachGroupOption(scene, ReadGroupOption));
   PetscCall(SSStarPairsCheckOptions(scene));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
@@ -532,10 +566,21 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
-    const SSStarContactGroup *cg = &scene->contact[g];
+    SSStarContactGroup *cg = &scene->contact[g];
 
     PetscCall(SSStarGroupLawCheck(scene, &scene->contact[g]));
-    PetscCheck(!cg->motion || !cg->master[0], comm, PETSC_ERR_ARG_WRONG, "Options -obstacle_%s_motion and -contact_pair_%s contradict each other: a pair's master surface moves with its body (load that body)", cg->name, cg->name);
+    PetscCheck(!SSStarMotionIsSet(&cg->motion) || !cg->master[0], comm, PETSC_ERR_ARG_WRONG, "Options -obstacle_%s_%s and -contact_pair_%s contradict each other: a pair's master surface moves with its body (load that body)", cg->name, cg->motion.translation ? "motion" : "rotation", cg->name);
+    SSStarObstacleReferencePoint(cg->obstacle, cg->motion.center); /* the motion turns the obstacle about it */
+    SSStarPlacementIdentity(&cg->motion.now);
+    SSStarPlacementIdentity(&cg->motion.before);
+  }
+  PetscCall(SSStarDynamicsSetFromOptions(scene)); /* dynamics/dynamics.c */
+  {
+    PetscBool groupDensity = PETSC_FALSE; /* a -material_<G> E,nu,rho */
+
+    for (PetscInt m = 0; m < scene->nMaterials; m++) groupDensity = (PetscBool)(groupDensity || scene->materials[m].count > 2);
+    PetscCheck(!scene->hasGravity || hasDensity || groupDensity, comm, PETSC_ERR_ARG_WRONG, "Incomplete body force: -gravity needs -density (or -material_<G> E,nu,rho)");
+    PetscCheck(scene->hasGravity || !hasDensity || scene->dynamics, comm, PETSC_ERR_ARG_WRONG, "Incomplete body force: -density needs -gravity (or -dynamics)");
   }
   PetscFunctionReturn(0);
 }
@@ -543,7 +588,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 /* SSStarSceneGroupUses - every group an option names, with the kind of group the option needs (for the mesh checks) */
 PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
 {
-  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs, k = 0;
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nVelocities + scene->nPairs, k = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(total, uses));
@@ -568,16 +613,16 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
     PetscCall(PetscStrallocpy(option, &(*options)[k++]));
   }
   {
-    const SSStarGroupValues *lists[3] = {scene->materials, scene->tractions, scene->springs};
-    const PetscInt           sizes[3] = {scene->nMaterials, scene->nTractions, scene->nSprings};
-    const char              *names[3] = {"-material_", "-traction_", "-spring_"};
+    const SSStarGroupValues *lists[4] = {scene->materials, scene->tractions, scene->springs, scene->velocities};
+    const PetscInt           sizes[4] = {scene->nMaterials, scene->nTractions, scene->nSprings, scene->nVelocities};
+    const char              *names[4] = {"-material_", "-traction_", "-spring_", "-initial_velocity_"};
 
-    for (PetscInt l = 0; l < 3; l++)
+    for (PetscInt l = 0; l < 4; l++)
       for (PetscInt g = 0; g < sizes[l]; g++, k++) {
         char option[SSSTAR_GROUP_NAME_LEN + 16];
 
         (*uses)[k].group = lists[l][g].name;
-        (*uses)[k].kind  = l == 0 ? SSSTAR_GROUP_VOLUME : SSSTAR_GROUP_SURFACE;
+        (*uses)[k].kind  = l == 0 || l == 3 ? SSSTAR_GROUP_VOLUME : SSSTAR_GROUP_SURFACE;
         PetscCall(PetscSNPrintf(option, sizeof(option), "%s%s", names[l], lists[l][g].name));
         PetscCall(PetscStrallocpy(option, &(*options)[k]));
       }

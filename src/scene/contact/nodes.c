@@ -51,32 +51,36 @@ static PetscErrorCode ContactAreas(SSStarScene scene, Vec *areas)
 }
 
 /*
-   SSStarSceneObstacleGaps - the gaps and normals of n points against the obstacles of their contact groups (group[i]
-   < 0: none, left as they are). Collective: every rank asks each group's obstacle, with its points of the group (a
-   mesh obstacle's triangles are spread over the ranks).
+   SSStarSceneObstacleGaps - the gaps and normals of n points x against the obstacles of their contact groups (group[i]
+   < 0: none, left as they are), each obstacle where a placement puts it (motion.c): at[g] for group g, or with at NULL
+   its motion's placement in the step being solved (the obstacle asked at Q^T (x - c - d) + c, its normal turned by
+   Q). Collective: every rank asks each group's obstacle, with its points of the group (a mesh obstacle's triangles are
+   spread over the ranks).
 */
-PetscErrorCode SSStarSceneObstacleGaps(SSStarScene scene, PetscInt n, const PetscInt group[], const PetscReal x[], PetscReal tol, PetscReal gap[], PetscReal normal[])
+PetscErrorCode SSStarSceneObstacleGaps(SSStarScene scene, PetscInt n, const PetscInt group[], const PetscReal x[], const SSStarPlacement at[], PetscReal tol, PetscReal gap[], PetscReal normal[])
 {
-  PetscInt  *at;
+  PetscInt  *idx;
   PetscReal *xg, *gg, *ng;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc4(n + 1, &at, 3 * n + 1, &xg, n + 1, &gg, 3 * n + 1, &ng));
+  PetscCall(PetscMalloc4(n + 1, &idx, 3 * n + 1, &xg, n + 1, &gg, 3 * n + 1, &ng));
   for (PetscInt g = 0; g < scene->nContact; g++) {
-    PetscInt m = 0;
+    const SSStarMotion    *motion = &scene->contact[g].motion;
+    const SSStarPlacement *p      = at ? &at[g] : &motion->now;
+    PetscInt               m      = 0;
 
     for (PetscInt i = 0; i < n; i++)
       if (group[i] == g) {
-        at[m] = i;
-        PetscCall(PetscArraycpy(&xg[3 * m++], &x[3 * i], 3));
+        idx[m] = i;
+        SSStarPlacementInverse(p, motion->center, &x[3 * i], &xg[3 * m++]);
       }
     PetscCall(SSStarObstacleGaps(scene->contact[g].obstacle, m, xg, tol, gg, ng));
     for (PetscInt j = 0; j < m; j++) {
-      gap[at[j]] = gg[j];
-      PetscCall(PetscArraycpy(&normal[3 * at[j]], &ng[3 * j], 3));
+      gap[idx[j]] = gg[j];
+      for (PetscInt k = 0; k < 3; k++) normal[3 * idx[j] + k] = SSStarDot3(&p->Q[3 * k], &ng[3 * j]);
     }
   }
-  PetscCall(PetscFree4(at, xg, gg, ng));
+  PetscCall(PetscFree4(idx, xg, gg, ng));
   PetscFunctionReturn(0);
 }
 
@@ -93,8 +97,8 @@ static PetscErrorCode SharedNodes(SSStarScene scene, PetscInt n, const PetscInt 
     ga[e] = group[2 * e];
     gb[e] = group[2 * e + 1];
   }
-  PetscCall(SSStarSceneObstacleGaps(scene, n, ga, x, tol, gap, normal));
-  PetscCall(SSStarSceneObstacleGaps(scene, n, gb, x, tol, &gap[n], &normal[3 * n]));
+  PetscCall(SSStarSceneObstacleGaps(scene, n, ga, x, NULL, tol, gap, normal));
+  PetscCall(SSStarSceneObstacleGaps(scene, n, gb, x, NULL, tol, &gap[n], &normal[3 * n]));
   for (PetscInt e = 0; e < n && twice->tag < 0; e++) {
     const PetscReal *na = &normal[3 * e], *nb = &normal[3 * (n + e)];
 

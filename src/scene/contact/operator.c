@@ -13,27 +13,28 @@
 
 /*
    The rows of the nodes of rigid obstacles: gap and normal from the shape, at the positions x (3 per node) against the
-   obstacles translated by their d (the shape asked at x - d); at the reference configuration (reference) refuses a node
-   that starts inside its obstacle
+   obstacles where their motions put them in the step (motion.c), and the point of the obstacle each node faces (where
+   the obstacle's option puts it: its friction sees that point move); at the reference configuration (reference)
+   refuses a node that starts inside its obstacle
 */
 static PetscErrorCode ObstacleRows(SSStarScene scene, const PetscReal x[], PetscBool reference, PetscReal tol)
 {
   SSStarBadNode inside = {-1, -1, -1, {0, 0, 0}, 0};
   PetscBool     found;
   PetscInt     *group;
-  PetscReal    *q;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc2(scene->n + 1, &group, 3 * scene->n + 1, &q));
+  PetscCall(PetscMalloc1(scene->n + 1, &group));
+  if (!scene->obstaclePoint) PetscCall(PetscCalloc1(3 * scene->n + 1, &scene->obstaclePoint));
+  for (PetscInt i = 0; i < scene->n; i++) group[i] = scene->contact[scene->group[i]].master[0] ? -1 : scene->group[i];
+  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, x, NULL, tol, scene->gap, scene->normal));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
+    const SSStarMotion *motion = &scene->contact[scene->group[i]].motion;
+    PetscReal           y[3];
 
-    group[i] = cg->master[0] ? -1 : scene->group[i];
-    for (PetscInt k = 0; k < 3; k++) q[3 * i + k] = x[3 * i + k] - cg->d[k];
-  }
-  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, q, tol, scene->gap, scene->normal));
-  for (PetscInt i = 0; i < scene->n; i++) {
     if (group[i] < 0) continue;
+    for (PetscInt k = 0; k < 3; k++) y[k] = x[3 * i + k] - scene->gap[i] * scene->normal[3 * i + k]; /* the closest point */
+    SSStarPlacementInverse(&motion->now, motion->center, y, &scene->obstaclePoint[3 * i]);
     if (reference && scene->gap[i] < -tol && inside.tag < 0) {
       inside.tag   = scene->tag[i];
       inside.group = scene->group[i];
@@ -42,7 +43,7 @@ static PetscErrorCode ObstacleRows(SSStarScene scene, const PetscReal x[], Petsc
     }
     if (PetscAbsReal(scene->gap[i]) <= tol) scene->gap[i] = 0.0; /* on the obstacle up to round-off: touching */
   }
-  PetscCall(PetscFree2(group, q));
+  PetscCall(PetscFree(group));
   PetscCall(SSStarSceneShareBadNode(scene->comm, &inside, &found));
   PetscCheck(!found, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Mesh node %" PetscInt_FMT " (0-based, file order) of contact group \"%s\" at (%g, %g, %g) starts %g inside the obstacle of -obstacle_%s (%s)", inside.tag, scene->contact[inside.group].name, (double)inside.x[0], (double)inside.x[1], (double)inside.x[2], (double)-inside.gap, scene->contact[inside.group].name, SSStarObstacleInsideHint(scene->contact[inside.group].obstacle));
   PetscFunctionReturn(0);
@@ -129,8 +130,8 @@ static PetscErrorCode AssembleOperator(SSStarScene scene)
 /*
    SSStarSceneBuildContactOperator - the rows of B of every contact node from its group's contact source (gap, normal,
    masters), the frames and B: at the reference configuration (u NULL; then also the gap range of each group), or at
-   the configuration displaced by u (a global displacement) with the obstacles at their translations d (large
-   sliding, sliding.c): the gaps are then those of the displaced nodes
+   the configuration displaced by u (a global displacement) with the obstacles where their motions put them in the
+   step (large sliding, sliding.c): the gaps are then those of the displaced nodes
 */
 PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene, Vec u)
 {

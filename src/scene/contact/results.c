@@ -142,8 +142,9 @@ PetscErrorCode SSStarSceneContactKinematics(SSStarScene scene, Vec u, Vec r, Pet
 }
 
 /*
-   w - g e3 of every contact node at u, in its frame (3 per node): B u, less R d for a node whose obstacle has moved by d
-   in the step set last (docs/derivation.md (10.1)); w_t is the slip relative to the obstacle or master surface
+   w - g e3 of every contact node at u, in its frame (3 per node): B u, less R d_i for a node whose obstacle's point it
+   faces has moved by d_i in the step set last (docs/derivation.md (10.1), (16.3)); w_t is the slip relative to the
+   obstacle or master surface
 */
 PetscErrorCode SSStarSceneRelativeDisplacement(SSStarScene scene, Vec u, PetscReal w[])
 {
@@ -155,9 +156,10 @@ PetscErrorCode SSStarSceneRelativeDisplacement(SSStarScene scene, Vec u, PetscRe
   PetscCall(MatMult(scene->B, u, Bu));
   PetscCall(VecGetArrayRead(Bu, &wa));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
+    PetscReal d[3];
 
-    for (PetscInt k = 0; k < 3; k++) w[3 * i + k] = PetscRealPart(wa[3 * i + k]) - (cg->motion ? SSStarDot3(&scene->frame[9 * i + 3 * k], cg->d) : 0);
+    SSStarSceneObstacleDisplacement(scene, i, &scene->contact[scene->group[i]].motion.now, d);
+    for (PetscInt k = 0; k < 3; k++) w[3 * i + k] = PetscRealPart(wa[3 * i + k]) - SSStarDot3(&scene->frame[9 * i + 3 * k], d);
   }
   PetscCall(VecRestoreArrayRead(Bu, &wa));
   PetscCall(VecDestroy(&Bu));

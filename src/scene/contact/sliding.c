@@ -2,7 +2,7 @@
    Where the contact of a load path's step is measured (-sliding, docs/derivation.md section 13).
 
    Large sliding (the default): at every step, at the current configuration -- the reference displaced by the last
-   accepted solution -- against the obstacles at their translations of the step: each node's gap, normal and frame,
+   accepted solution -- against the obstacles where their motions put them in the step: each node's gap, normal and frame,
    and a pair's master faces, found again (the search asked at the current positions), B declared again; the step
    then solves the incremental problem (10.5) linearized about that configuration.
 
@@ -42,38 +42,39 @@ static PetscErrorCode ShareWorst(MPI_Comm comm, WorstNode *w)
 
 /*
    SSStarSceneCheckSmallSliding - with small sliding, refuses the step to time t (the path's step number step, 1-based)
-   when a moved obstacle's first-order gap g - n.d is off the exact gap by more than -small_sliding_tol |d| + the contact
-   tolerance at a node of its group that is within |d| of it (by either gap). Collective.
+   when a moved obstacle's first-order gap g - n.d_i (d_i the motion of the obstacle's point the node faces, (16.3)) is
+   off the exact gap by more than -small_sliding_tol |d_i| + the contact tolerance at a node of its group that is within
+   |d_i| of it (by either gap). Collective.
 */
 PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene scene, PetscInt step, PetscReal t)
 {
-  PetscInt  *group, moved = 0;
-  PetscReal *x, *gap, *normal, *d, tol;
-  WorstNode  worst = {PETSC_MIN_REAL, {0, 0, 0, 0, 0, 0, 0, 0}};
+  PetscInt        *group, moved = 0;
+  PetscReal       *gap, *normal, *dnode, tol;
+  SSStarPlacement *at;
+  WorstNode        worst = {PETSC_MIN_REAL, {0, 0, 0, 0, 0, 0, 0, 0}};
 
   PetscFunctionBegin;
   if (scene->sliding != SSSTAR_SLIDING_SMALL) PetscFunctionReturn(0);
-  PetscCall(PetscCalloc1(3 * scene->nContact, &d)); /* the translations at t */
-  for (PetscInt g = 0; g < scene->nContact; g++)
-    if (scene->contact[g].motion && !scene->contact[g].master[0]) {
-      PetscCall(SSStarHistoryEvaluate(scene->contact[g].motion, t, &d[3 * g]));
-      moved++;
-    }
+  PetscCall(PetscMalloc1(scene->nContact, &at)); /* the placements at t */
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    PetscCall(SSStarMotionPlacementAt(&scene->contact[g].motion, t, &at[g]));
+    if (SSStarMotionIsSet(&scene->contact[g].motion) && !scene->contact[g].master[0]) moved++;
+  }
   if (!moved) {
-    PetscCall(PetscFree(d));
+    PetscCall(PetscFree(at));
     PetscFunctionReturn(0);
   }
   PetscCall(SSStarSceneContactTolerance(scene, &tol));
-  PetscCall(PetscMalloc4(scene->n + 1, &group, 3 * scene->n + 1, &x, scene->n + 1, &gap, 3 * scene->n + 1, &normal));
+  PetscCall(PetscMalloc4(scene->n + 1, &group, scene->n + 1, &gap, 3 * scene->n + 1, &normal, 3 * scene->n + 1, &dnode));
   for (PetscInt i = 0; i < scene->n; i++) {
     const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
 
-    group[i] = cg->motion && !cg->master[0] ? scene->group[i] : -1;
-    for (PetscInt k = 0; k < 3; k++) x[3 * i + k] = scene->coords[3 * i + k] - d[3 * scene->group[i] + k]; /* the obstacle moved by d: x - d against it */
+    group[i] = SSStarMotionIsSet(&cg->motion) && !cg->master[0] ? scene->group[i] : -1;
+    SSStarSceneObstacleDisplacement(scene, i, &at[scene->group[i]], &dnode[3 * i]);
   }
-  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, x, tol, gap, normal));
+  PetscCall(SSStarSceneObstacleGaps(scene, scene->n, group, scene->coords, at, tol, gap, normal));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const PetscReal *di = &d[3 * scene->group[i]], dd = PetscSqrtReal(SSStarDot3(di, di));
+    const PetscReal *di = &dnode[3 * i], dd = PetscSqrtReal(SSStarDot3(di, di));
     const PetscReal  linear = scene->gap[i] - SSStarDot3(&scene->normal[3 * i], di), excess = PetscAbsReal(gap[i] - linear) - scene->smallSlidingTol * dd - tol;
 
     if (group[i] < 0 || PetscMin(linear, gap[i]) > dd || excess <= worst.excess) continue;
@@ -85,28 +86,29 @@ PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene scene, PetscInt step, Pe
     worst.data[6] = gap[i];
     worst.data[7] = dd;
   }
-  PetscCall(PetscFree4(group, x, gap, normal));
+  PetscCall(PetscFree4(group, gap, normal, dnode));
   PetscCall(ShareWorst(scene->comm, &worst));
   if (worst.excess > 0) {
     const PetscInt            g  = (PetscInt)worst.data[0];
     const SSStarContactGroup *cg = &scene->contact[g];
-    const PetscReal          *w = worst.data, dg[3] = {d[3 * g], d[3 * g + 1], d[3 * g + 2]};
+    const PetscReal          *w = worst.data, dg[3] = {at[g].d[0], at[g].d[1], at[g].d[2]};
     char                      shape[256];
 
-    PetscCall(PetscFree(d));
+    PetscCall(PetscFree(at));
     PetscCall(SSStarObstacleDescribe(cg->obstacle, shape, sizeof(shape)));
-    SETERRQ(scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Step %" PetscInt_FMT " (t = %g): the obstacle of -obstacle_%s (%s) moved by (%g, %g, %g) (-obstacle_%s_motion): its first-order gap g - n.d = %g at mesh node %" PetscInt_FMT " (0-based, file order) at (%g, %g, %g) is off the exact gap %g by %g, more than -small_sliding_tol %g times |d| = %g: the motion is too large against the obstacle's curvature for small sliding", step, (double)t, cg->name, shape, (double)dg[0], (double)dg[1], (double)dg[2], cg->name, (double)w[5], (PetscInt)w[1], (double)w[2], (double)w[3], (double)w[4], (double)w[6], (double)PetscAbsReal(w[6] - w[5]), (double)scene->smallSlidingTol, (double)w[7]);
+    SETERRQ(scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Step %" PetscInt_FMT " (t = %g): the obstacle of -obstacle_%s (%s) moved by (%g, %g, %g)%s (-obstacle_%s_motion%s%s%s): its first-order gap g - n.d = %g at mesh node %" PetscInt_FMT " (0-based, file order) at (%g, %g, %g) is off the exact gap %g by %g, more than -small_sliding_tol %g times |d| = %g: the motion is too large against the obstacle's curvature for small sliding", step, (double)t, cg->name, shape, (double)dg[0], (double)dg[1], (double)dg[2], cg->motion.rotation ? " and turned" : "", cg->name, cg->motion.rotation ? ", -obstacle_" : "", cg->motion.rotation ? cg->name : "", cg->motion.rotation ? "_rotation" : "", (double)w[5], (PetscInt)w[1], (double)w[2], (double)w[3], (double)w[4], (double)w[6], (double)PetscAbsReal(w[6] - w[5]), (double)scene->smallSlidingTol, (double)w[7]);
   }
-  PetscCall(PetscFree(d));
+  PetscCall(PetscFree(at));
   PetscFunctionReturn(0);
 }
 
 /*
    The step's contact linearized at the configuration X + at (large sliding, docs/derivation.md (13.4)): gaps, normals,
-   frames and a pair's masters measured there against the obstacles at their translations of the step (cg->d; unless
+   frames and a pair's masters measured there against the obstacles where their motions put them in the step (unless
    measured already), B declared to the SNES again, and what the offsets of the step are made of re-expressed: the
-   gap g as the measured gap less w_n(at), so that o_n = g - B_n at, and the slip w_t^(k-1) = B_t u^(k-1) - R_t d^(k-1)
-   of the last accepted solution in the new frame. Collective.
+   gap g as the measured gap less w_n(at), so that o_n = g - B_n at, and the slip w_t^(k-1) = B_t u^(k-1) - R_t d_i^(k-1)
+   of the last accepted solution in the new frame, d_i the motion of the obstacle's point the node faces (16.3).
+   Collective.
 */
 static PetscErrorCode LinearizeAt(SSStarScene scene, SNES snes, Vec at, PetscBool measured)
 {
@@ -120,11 +122,14 @@ static PetscErrorCode LinearizeAt(SSStarScene scene, SNES snes, Vec at, PetscBoo
   for (PetscInt i = 0; i < scene->n; i++) scene->gap[i] -= w[3 * i + 2];
   if (at != scene->uAccepted) PetscCall(SSStarSceneRelativeDisplacement(scene, scene->uAccepted, w));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-    const PetscReal          *R  = &scene->frame[9 * i];
-    const PetscReal           step[3] = {cg->d[0] - cg->dPrev[0], cg->d[1] - cg->dPrev[1], cg->d[2] - cg->dPrev[2]};
+    const SSStarMotion *motion = &scene->contact[scene->group[i]].motion;
+    const PetscReal    *R      = &scene->frame[9 * i];
+    PetscReal           now[3], before[3], step[3];
 
-    for (PetscInt k = 0; k < 2; k++) scene->slipPrev[2 * i + k] = w[3 * i + k] + (cg->motion ? SSStarDot3(&R[3 * k], step) : 0);
+    SSStarSceneObstacleDisplacement(scene, i, &motion->now, now);
+    SSStarSceneObstacleDisplacement(scene, i, &motion->before, before);
+    for (PetscInt k = 0; k < 3; k++) step[k] = now[k] - before[k];
+    for (PetscInt k = 0; k < 2; k++) scene->slipPrev[2 * i + k] = w[3 * i + k] + SSStarDot3(&R[3 * k], step);
   }
   PetscCall(PetscFree(w));
   PetscCall(SSStarSceneNodeVec(scene, 1, scene->gap, &gaps));
@@ -148,10 +153,12 @@ PetscErrorCode SSStarSceneMeasureContact(SSStarScene scene, SNES snes)
   PetscFunctionBegin;
   scene->relinearizations = 0;
   for (PetscInt g = 0; g < scene->nContact; g++) {
-    const SSStarContactGroup *cg = &scene->contact[g];
+    const SSStarMotion *motion = &scene->contact[g].motion;
+    SSStarPlacement     rest;
 
-    if (SSStarDot3(cg->d, cg->d) > 0) moved = PETSC_TRUE;
-    if (cg->d[0] != cg->dPrev[0] || cg->d[1] != cg->dPrev[1] || cg->d[2] != cg->dPrev[2]) moving = PETSC_TRUE;
+    SSStarPlacementIdentity(&rest);
+    if (!SSStarPlacementEqual(&motion->now, &rest)) moved = PETSC_TRUE;
+    if (!SSStarPlacementEqual(&motion->now, &motion->before)) moving = PETSC_TRUE;
   }
   if (!scene->stepped && !moved) PetscFunctionReturn(0);
   if (scene->lastLinearization && !moving) { /* the linearization and the states of the last accepted solve */
@@ -169,7 +176,7 @@ PetscErrorCode SSStarSceneMeasureContact(SSStarScene scene, SNES snes)
 
 /* What a linearization holds (the scene's gaps, normals, frames, masters and B), to put back */
 typedef struct {
-  PetscReal *gap, *normal, *frame, *masterWeight;
+  PetscReal *gap, *normal, *point, *frame, *masterWeight;
   PetscInt  *masterStart, *masterDof, pairFallback;
   Mat        B;
 } Linearization;
@@ -200,9 +207,10 @@ static PetscErrorCode Keep(SSStarScene scene, Linearization *l)
 {
   PetscFunctionBegin;
   PetscCall(PetscMemzero(l, sizeof(*l)));
-  PetscCall(PetscMalloc2(scene->n + 1, &l->gap, 3 * scene->n + 1, &l->normal));
+  PetscCall(PetscMalloc3(scene->n + 1, &l->gap, 3 * scene->n + 1, &l->normal, 3 * scene->n + 1, &l->point));
   PetscCall(PetscArraycpy(l->gap, scene->gap, scene->n));
   PetscCall(PetscArraycpy(l->normal, scene->normal, 3 * scene->n));
+  if (scene->obstaclePoint) PetscCall(PetscArraycpy(l->point, scene->obstaclePoint, 3 * scene->n));
   Swap(scene, l);
   PetscFunctionReturn(0);
 }
@@ -214,12 +222,13 @@ static PetscErrorCode PutBack(SSStarScene scene, Linearization *l, PetscBool res
   if (restore) {
     PetscCall(PetscArraycpy(scene->gap, l->gap, scene->n));
     PetscCall(PetscArraycpy(scene->normal, l->normal, 3 * scene->n));
+    if (scene->obstaclePoint) PetscCall(PetscArraycpy(scene->obstaclePoint, l->point, 3 * scene->n));
     Swap(scene, l);
   }
   PetscCall(PetscFree(l->frame));
   PetscCall(PetscFree3(l->masterStart, l->masterDof, l->masterWeight));
   PetscCall(MatDestroy(&l->B));
-  PetscCall(PetscFree2(l->gap, l->normal));
+  PetscCall(PetscFree3(l->gap, l->normal, l->point));
   PetscFunctionReturn(0);
 }
 

@@ -108,7 +108,8 @@ static PetscErrorCode HeldThroughContact(SSStarScene scene, PetscMPIInt nent, lo
   PetscFunctionReturn(0);
 }
 
-/* Refuses a body nothing can hold (the first in file order); those held by contact alone are the floating bodies */
+/* Refuses a body nothing can hold (the first in file order; with -dynamics its mass holds it: a free flight); those
+   held by contact alone are the floating bodies */
 static PetscErrorCode RecordFloating(SSStarScene scene, PetscMPIInt nent, const long long all[], PetscInt nvol, const char *volName[])
 {
   char             name[1280];
@@ -120,7 +121,7 @@ static PetscErrorCode RecordFloating(SSStarScene scene, PetscMPIInt nent, const 
 
     if (a[0] >= 0 && !a[5] && (!loose || a[0] < loose[0])) loose = a;
   }
-  if (loose) {
+  if (loose && !scene->dynamics) {
     PetscCall(BodyName(loose, nvol, volName, name, sizeof(name)));
     SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "The body of %s, one of %" PetscInt_FMT " bodies, is held by nothing: no -dirichlet or -spring_<G> group, no contact group against an obstacle (-contact), no contact pair with a body held so. Hold it by one of them", name, scene->nBodies);
   }

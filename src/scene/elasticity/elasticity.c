@@ -3,7 +3,7 @@
 #include <petscsf.h>
 
 /* Gradients of the four barycentric basis functions of the tetrahedron x[12]; returns its volume. */
-static PetscReal TetGradients(const PetscReal x[12], PetscReal grad[4][3])
+PetscReal SSStarTetGradients(const PetscReal x[12], PetscReal grad[4][3])
 {
   PetscReal J[3][3], inv[3][3], det;
 
@@ -34,7 +34,7 @@ static PetscReal TetGradients(const PetscReal x[12], PetscReal grad[4][3])
 static void TetStiffness(const PetscReal x[12], PetscReal lambda, PetscReal mu, PetscScalar K[144])
 {
   PetscReal g[4][3];
-  PetscReal vol = TetGradients(x, g);
+  PetscReal vol = SSStarTetGradients(x, g);
 
   for (PetscInt a = 0; a < 4; a++)
     for (PetscInt b = 0; b < 4; b++) {
@@ -76,16 +76,17 @@ static PetscErrorCode LameParameters(MPI_Comm comm, PetscReal E, PetscReal nu, c
 }
 
 /*
-   The Lame parameters of every local cell: those of its -material_<G> group, else of -E, -nu. A cell in two material
-   groups, or in none without -E and -nu, is an error naming the options.
+   The Lame parameters of every local cell (lame, or NULL): those of its -material_<G> group, else of -E, -nu; and its
+   density (rho, or NULL): its group's (-material_<G> E,nu,rho), else -density's (-1 where neither is given). A cell in
+   two material groups, or in none without -E and -nu, is an error naming the options.
 */
-static PetscErrorCode CellMaterials(SSStarScene scene, PetscInt cStart, PetscInt cEnd, PetscReal (*lame)[2])
+PetscErrorCode SSStarCellMaterials(SSStarScene scene, PetscInt cStart, PetscInt cEnd, PetscReal (*lame)[2], PetscReal rho[])
 {
   PetscReal(*groupLame)[2];
   DMLabel    *labels;
   PetscInt    conflict[2] = {-1, -1}; /* two groups of one cell (found * nMaterials + m); a cell without material */
   PetscBool   hasGlobal   = (PetscBool)(scene->hasE && scene->hasNu);
-  PetscReal   global[2]   = {0, 0};
+  PetscReal   global[2]   = {0, 0}, none[2];
   char        option[SSSTAR_GROUP_NAME_LEN + 16];
 
   PetscFunctionBegin;
@@ -97,19 +98,22 @@ static PetscErrorCode CellMaterials(SSStarScene scene, PetscInt cStart, PetscInt
     PetscCall(LameParameters(scene->comm, scene->materials[m].value[0], scene->materials[m].value[1], option, &groupLame[m][0], &groupLame[m][1]));
   }
   for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt found = -1;
+    PetscReal *cell = lame ? lame[c - cStart] : none;
+    PetscInt   found = -1;
 
-    lame[c - cStart][0] = global[0];
-    lame[c - cStart][1] = global[1];
+    cell[0] = global[0];
+    cell[1] = global[1];
+    if (rho) rho[c - cStart] = scene->hasDensity ? scene->density : -1;
     for (PetscInt m = 0; m < scene->nMaterials; m++) {
       PetscInt value;
 
       PetscCall(DMLabelGetValue(labels[m], c, &value));
       if (value < 0) continue;
       if (found >= 0) conflict[0] = found * scene->nMaterials + m;
-      found               = m;
-      lame[c - cStart][0] = groupLame[m][0];
-      lame[c - cStart][1] = groupLame[m][1];
+      found   = m;
+      cell[0] = groupLame[m][0];
+      cell[1] = groupLame[m][1];
+      if (rho && scene->materials[m].count > 2) rho[c - cStart] = scene->materials[m].value[2];
     }
     if (found < 0 && !hasGlobal) conflict[1] = c;
   }
@@ -158,7 +162,7 @@ static PetscErrorCode GroupFaces(DM dm, const char group[], IS *faces, PetscInt 
 }
 
 /* The global block (node) index of every local vertex, its first global dof / 3; -1 when it is held (no dofs) */
-static PetscErrorCode VertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscInt **blocks)
+PetscErrorCode SSStarVertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscInt **blocks)
 {
   PetscSection gsec;
 
@@ -300,9 +304,9 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(cEnd - cStart, &lame));
-  PetscCall(CellMaterials(scene, cStart, cEnd, lame));
+  PetscCall(SSStarCellMaterials(scene, cStart, cEnd, lame, NULL));
   PetscCall(CellVertices(dm, cStart, cEnd, vStart, &cv));
-  PetscCall(VertexBlocks(dm, vStart, vEnd, &blocks));
+  PetscCall(SSStarVertexBlocks(dm, vStart, vEnd, &blocks));
   PetscCall(DMGetGlobalVector(dm, &global));
   PetscCall(VecGetLocalSize(global, &n));
   PetscCall(VecGetSize(global, &N));
@@ -405,24 +409,29 @@ PetscErrorCode SSStarAddTraction(DM dm, const char group[], const PetscReal t[3]
   PetscFunctionReturn(0);
 }
 
-/* Adds the consistent load of the body force rho g: vol/4 rho g per vertex of every cell. */
-static PetscErrorCode AddGravity(DM dm, PetscReal rho, const PetscReal g[3], Vec Floc)
+/* Adds the consistent load of the body force rho g: vol/4 rho g per vertex of every cell, rho the cell's density. */
+static PetscErrorCode AddGravity(SSStarScene scene, const PetscReal g[3], Vec Floc)
 {
-  PetscInt cStart, cEnd;
+  DM         dm = scene->dm;
+  PetscInt   cStart, cEnd;
+  PetscReal *rho;
 
   PetscFunctionBegin;
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(PetscMalloc1(cEnd - cStart + 1, &rho));
+  PetscCall(SSStarCellMaterials(scene, cStart, cEnd, NULL, rho));
   for (PetscInt c = cStart; c < cEnd; c++) {
     PetscScalar load[12];
     PetscReal   x[12], grad[4][3], vol;
     PetscBool   tet;
 
     PetscCall(GetVertexCoordinates(dm, c, 12, x, &tet));
-    vol = TetGradients(x, grad);
+    vol = SSStarTetGradients(x, grad);
     for (PetscInt v = 0; v < 4; v++)
-      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = vol / 4.0 * rho * g[k];
+      for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = vol / 4.0 * PetscMax(rho[c - cStart], 0) * g[k];
     PetscCall(DMPlexVecSetClosure(dm, NULL, Floc, c, load, ADD_VALUES));
   }
+  PetscCall(PetscFree(rho));
   PetscFunctionReturn(0);
 }
 
@@ -545,7 +554,7 @@ PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
   }
   if (scene->hasGravity) {
     PetscCall(SSStarHistoryEvaluate(scene->gravityHistory, t, value));
-    PetscCall(AddGravity(dm, scene->density, value, Floc));
+    PetscCall(AddGravity(scene, value, Floc));
   }
   PetscCall(VecZeroEntries(b));
   PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));

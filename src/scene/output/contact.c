@@ -154,14 +154,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
     }
     nq++;
   }
-  {
-    PetscReal *q; /* a held vertex against its obstacle moved by d: the obstacle asked at x - d */
-
-    PetscCall(PetscMalloc1(3 * nq + 1, &q));
-    for (PetscInt i = 0; i < 3 * nq; i++) q[i] = x[i] - (held[i / 3] >= 0 ? scene->contact[held[i / 3]].d[i % 3] : 0);
-    PetscCall(SSStarSceneObstacleGaps(scene, nq, held, q, 0, gp, normal));
-    PetscCall(PetscFree(q));
-  }
+  PetscCall(SSStarSceneObstacleGaps(scene, nq, held, x, NULL, 0, gp, normal)); /* a held vertex against its obstacle where it is */
   PetscCall(PetscFree2(held, normal));
   PetscCheck(c == scene->n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " of the %" PetscInt_FMT " contact nodes found on the contact faces", c, scene->n);
   PetscCall(PetscFree4(kin[0], kin[1], kin[2], kin[3]));
@@ -199,11 +192,14 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
     SSStarCross3(e1, e2, &faceNormal[3 * ntri]);
     faceGroup[ntri++] = g;
   }
-  { /* the obstacle's normal (at the face's centre) points into the body; the face's out of it */
-    PetscReal *gap, *n;
+  { /* the obstacle's normal (at the face's centre; the faces and the obstacle where their options put them) points into
+       the body; the face's out of it */
+    PetscReal       *gap, *n;
+    SSStarPlacement *rest;
 
-    PetscCall(PetscMalloc2(ntri + 1, &gap, 3 * ntri + 1, &n));
-    PetscCall(SSStarSceneObstacleGaps(scene, ntri, faceGroup, centre, 0, gap, n));
+    PetscCall(PetscMalloc3(ntri + 1, &gap, 3 * ntri + 1, &n, scene->nContact, &rest));
+    for (PetscInt g = 0; g < scene->nContact; g++) SSStarPlacementIdentity(&rest[g]);
+    PetscCall(SSStarSceneObstacleGaps(scene, ntri, faceGroup, centre, rest, 0, gap, n));
     for (PetscInt t = 0; t < ntri; t++) {
       PetscInt *verts = &tri[3 * t];
 
@@ -221,7 +217,7 @@ PetscErrorCode SSStarWriteContactFaces(SSStarScene scene, hid_t file, const char
         verts[k] = at;
       }
     }
-    PetscCall(PetscFree2(gap, n));
+    PetscCall(PetscFree3(gap, n, rest));
   }
   PetscCall(PetscFree3(faceGroup, faceNormal, centre));
   PetscCall(VecRestoreArrayRead(rC, &ra));

@@ -171,7 +171,8 @@ static PetscErrorCode VertexField(SSStarScene scene, Vec u, Vec *v)
 +  scene - the scene, after SSStarSceneSetUp() (and SSStarSceneSetContact() for the fields of the contact nodes)
 .  snes  - the SNES that solved u (its states and its function K u - b), or NULL for the fields of the scene alone
 .  u     - the displacement (a global vector of the scene's DM), or NULL for the fields of the scene alone
--  name  - the dataset: /geometry/vertices, /fields/displacement, or /contact/<field> with <field> one of
+-  name  - the dataset: /geometry/vertices, /fields/displacement, /fields/velocity (-dynamics: of the last accepted
+           step), or /contact/<field> with <field> one of
            coordinates, normal, gap, area, group (the scene's), displacement, reaction, state, final_gap, pressure,
            traction, slip (at the state u), slip_increment, slip_path, dissipation (of a load path, after
            SSStarSceneAcceptStep()); the leading / may be left out
@@ -192,13 +193,22 @@ static PetscErrorCode VertexField(SSStarScene scene, Vec u, Vec *v)
 PetscErrorCode SSStarSceneGetField(SSStarScene scene, SNES snes, Vec u, const char name[], Vec *field)
 {
   const char *path = name && name[0] == '/' ? name + 1 : name;
-  PetscBool   vertices, displacement, contact;
+  PetscBool   vertices, displacement, velocity, contact;
 
   PetscFunctionBegin;
   PetscCheck(name && field, scene->comm, PETSC_ERR_ARG_NULL, "SSStarSceneGetField(): give the name of the field and where to put it");
   PetscCheck(scene->dm, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "SSStarSceneGetField(): set the scene up first (SSStarSceneSetUp())");
   PetscCall(PetscStrcmp(path, "geometry/vertices", &vertices));
   PetscCall(PetscStrcmp(path, "fields/displacement", &displacement));
+  PetscCall(PetscStrcmp(path, "fields/velocity", &velocity));
+  if (velocity) {
+    Vec v;
+
+    PetscCall(SSStarDynamicsGetVelocity(scene, &v));
+    PetscCheck(v, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The field %s is one of -dynamics", name);
+    PetscCall(VertexField(scene, v, field));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscStrncmp(path, "contact/", 8, &contact));
   PetscCheck(!displacement || u, scene->comm, PETSC_ERR_ARG_NULL, "The field %s needs the displacement u", name);
   if (vertices || displacement) {
@@ -225,5 +235,5 @@ PetscErrorCode SSStarSceneGetField(SSStarScene scene, SNES snes, Vec u, const ch
       PetscCall(ContactField(scene, f, u, r, states, field));
       PetscFunctionReturn(0);
     }
-  SETERRQ(scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown field %s: /geometry/vertices, /fields/displacement or /contact/<field> (README \"Output\")", name);
+  SETERRQ(scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown field %s: /geometry/vertices, /fields/displacement, /fields/velocity or /contact/<field> (README \"Output\")", name);
 }

@@ -254,8 +254,8 @@ PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene scene, Vec u, Vec *nat)
   PetscFunctionReturn(0);
 }
 
-/* <prefix>/fields/displacement */
-PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
+/* <prefix>/fields/<name>: a field of 3 values per vertex (a global vector of the scene's DM; held vertices 0) */
+PetscErrorCode SSStarWriteVertexField(SSStarScene scene, hid_t file, const char prefix[], const char name[], Vec u)
 {
   Vec   nat;
   hid_t group;
@@ -266,9 +266,22 @@ PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char
   PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
-  PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
+  PetscCall(PetscStrlcat(path, "/", sizeof(path)));
+  PetscCall(PetscStrlcat(path, name, sizeof(path)));
   PetscCall(WriteVec(file, path, 3, nat));
   PetscCall(VecDestroy(&nat));
+  PetscFunctionReturn(0);
+}
+
+/* <prefix>/fields/displacement, and with -dynamics <prefix>/fields/velocity */
+PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
+{
+  Vec v;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarWriteVertexField(scene, file, prefix, "displacement", u));
+  PetscCall(SSStarDynamicsGetVelocity(scene, &v));
+  if (v) PetscCall(SSStarWriteVertexField(scene, file, prefix, "velocity", v));
   PetscFunctionReturn(0);
 }
 

@@ -93,6 +93,20 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
     PetscCall(SSStarH5AttrReal(group, "density", scene->density));
     PetscCall(HistoryAttribute(group, "gravity_history", scene->gravityHistory));
   }
+  if (scene->dynamics) { /* /scene/dynamics: the scheme, the mass, the damping, the initial velocity */
+    const char *scheme;
+    PetscBool   lumped;
+    PetscReal   damping[2], velocity[3];
+
+    PetscCall(SSStarDynamicsDescribe(scene, &scheme, &lumped, damping, velocity));
+    PetscCall(SSStarH5GroupOpen(file, "/scene/dynamics", &sub));
+    PetscCall(SSStarH5AttrString(sub, "scheme", scheme));
+    PetscCall(SSStarH5AttrString(sub, "mass", lumped ? "lumped" : "consistent"));
+    PetscCall(SSStarH5AttrReals(sub, "damping", 2, damping));
+    PetscCall(SSStarH5AttrReals(sub, "initial_velocity", 3, velocity));
+    if (scene->hasDensity) PetscCall(SSStarH5AttrReal(sub, "density", scene->density));
+    PetscCallH5(H5Gclose(sub));
+  }
   PetscCall(SSStarJoinNames(scene->nDirichlet, (const char *const *)scene->dirichlet, list, sizeof(list)));
   PetscCall(SSStarH5AttrString(group, "dirichlet", list));
   list[0] = 0;
@@ -150,7 +164,11 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
       PetscCall(SSStarObstacleDescribe(cg->obstacle, text, sizeof(text)));
       PetscCall(SSStarH5AttrString(sub, "obstacle", text));
       PetscCall(SSStarObstacleWriteAttributes(cg->obstacle, &writer));
-      if (cg->motion) PetscCall(HistoryAttribute(sub, "motion", cg->motion));
+      if (cg->motion.translation) PetscCall(HistoryAttribute(sub, "motion", cg->motion.translation));
+      if (cg->motion.rotation) {
+        PetscCall(HistoryAttribute(sub, "rotation", cg->motion.rotation));
+        PetscCall(SSStarH5AttrReals(sub, "rotation_center", 3, cg->motion.center));
+      }
     }
     PetscCall(SSStarH5AttrInt(sub, "nodes", cg->nodes));
     PetscCall(SSStarH5AttrReal(sub, "gap_min", cg->gapMin));

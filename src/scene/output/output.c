@@ -56,6 +56,10 @@ static PetscErrorCode XDMFMeshGrid(SSStarScene scene, FILE *fp, const char base[
                          time, C, C, base, N, base));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/displacement", prefix));
   PetscCall(XDMFAttribute(fp, base, "displacement", path, N, 3, PETSC_FALSE));
+  if (scene->dynamics) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/velocity", prefix));
+    PetscCall(XDMFAttribute(fp, base, "velocity", path, N, 3, PETSC_FALSE));
+  }
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
   PetscFunctionReturn(0);
 }

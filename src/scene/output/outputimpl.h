@@ -25,6 +25,7 @@ PETSC_INTERN PetscErrorCode SSStarGhostPoints(DM, PetscBool **);
 PETSC_INTERN int            SSStarCompareRows(const void *, const void *, void *);
 PETSC_INTERN PetscErrorCode SSStarWriteMesh(SSStarScene, hid_t, Vec);
 PETSC_INTERN PetscErrorCode SSStarWriteDisplacement(SSStarScene, hid_t, const char[], Vec);
+PETSC_INTERN PetscErrorCode SSStarWriteVertexField(SSStarScene, hid_t, const char[], const char[], Vec);
 PETSC_INTERN PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene, Vec, Vec *);
 PETSC_INTERN PetscErrorCode SSStarFileOrder(MPI_Comm, PetscInt, const PetscInt[], PetscInt *, PetscInt **, PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], PetscInt, PetscInt, const PetscInt[], PetscInt, const PetscReal[], PetscBool);

@@ -18,14 +18,28 @@ static const StepColumn StepColumns[] = {
   {"sliding", 1, PETSC_TRUE},       {"sticking", 1, PETSC_TRUE},     {"separated", 1, PETSC_TRUE}, {"dissipation", 1, PETSC_FALSE},
   {"law_residual", 1, PETSC_FALSE}, {"law_displacement_scale", 1, PETSC_FALSE}, {"law_force_scale", 1, PETSC_FALSE},
 };
-#define NFIXED ((PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns))
+/* With -dynamics, the energies after the fixed columns (SSStarSceneGetEnergies(), docs/derivation.md (16.8)) */
+static const StepColumn EnergyColumns[] = {
+  {"kinetic_energy", 1, PETSC_FALSE},      {"strain_energy", 1, PETSC_FALSE},       {"external_work", 1, PETSC_FALSE},
+  {"impact_dissipation", 1, PETSC_FALSE},  {"damping_dissipation", 1, PETSC_FALSE}, {"energy_error", 1, PETSC_FALSE},
+};
+#define NSTEP   ((PetscInt)PETSC_STATIC_ARRAY_LENGTH(StepColumns))
+#define NENERGY ((PetscInt)PETSC_STATIC_ARRAY_LENGTH(EnergyColumns))
+#define NFIXED  (NSTEP + (scene->dynamics ? NENERGY : 0))
 
-/* The moving obstacles' contact groups (their columns motion/<G> follow the fixed ones, then the surfaces') */
+/* The fixed column c < NFIXED */
+static const StepColumn *Fixed(SSStarScene scene, PetscInt c)
+{
+  return c < NSTEP ? &StepColumns[c] : &EnergyColumns[c - NSTEP];
+}
+
+/* The moving obstacles' columns: motion/<G> (the translation) of every moving obstacle, rotation/<G> (the rotation
+   vector) of every turning one, in the order of the groups; they follow the fixed columns, then come the surfaces' */
 static PetscInt MovingGroups(SSStarScene scene)
 {
   PetscInt n = 0;
 
-  for (PetscInt g = 0; g < scene->nContact; g++) n += scene->contact[g].motion ? 1 : 0;
+  for (PetscInt g = 0; g < scene->nContact; g++) n += (SSStarMotionIsSet(&scene->contact[g].motion) ? 1 : 0) + (scene->contact[g].motion.rotation ? 1 : 0);
   return n;
 }
 
@@ -44,9 +58,10 @@ static PetscInt MovingGroups(SSStarScene scene)
 
    Notes:
    The columns are time, iterations, reason, residual_norm, cuts, load (3), normal_force, tangential_force (3), area,
-   sliding, sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, then motion/<G>
-   (3) for each contact group with a moving obstacle and groups/<G>/displacement (3) for each traction, spring and
-   contact group (README "Load paths").
+   sliding, sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, with -dynamics
+   kinetic_energy, strain_energy, external_work, impact_dissipation, damping_dissipation, energy_error, then motion/<G>
+   (3) for each contact group with a moving obstacle (and rotation/<G> (3) after it for one that turns) and
+   groups/<G>/displacement (3) for each traction, spring and contact group (README "Load paths").
 
    Level: intermediate
 
@@ -58,7 +73,7 @@ PetscErrorCode SSStarSceneGetStepColumns(SSStarScene scene, PetscInt *ncolumns, 
 
   PetscFunctionBegin;
   PetscCall(SSStarSceneFollowSurfaces(scene));
-  for (PetscInt c = 0; c < NFIXED; c++) width += StepColumns[c].width;
+  for (PetscInt c = 0; c < NFIXED; c++) width += Fixed(scene, c)->width;
   if (ncolumns) *ncolumns = NFIXED + MovingGroups(scene) + scene->nSurfaces;
   if (rowsize) *rowsize = width + 3 * (MovingGroups(scene) + scene->nSurfaces);
   PetscFunctionReturn(0);
@@ -76,7 +91,7 @@ PetscErrorCode SSStarSceneGetStepColumns(SSStarScene scene, PetscInt *ncolumns, 
 -  len   - the size of name
 
    Output Parameters:
-+  name    - its name: time, ..., dissipation, motion/<G>, groups/<G>/displacement
++  name    - its name: time, ..., dissipation, motion/<G>, rotation/<G>, groups/<G>/displacement
 .  width   - its values per row, 1 or 3, or pass NULL
 -  integer - whether they are integers (stored as reals in a row), or pass NULL
 
@@ -91,15 +106,21 @@ PetscErrorCode SSStarSceneGetStepColumn(SSStarScene scene, PetscInt c, size_t le
   PetscFunctionBegin;
   PetscCall(SSStarSceneGetStepColumns(scene, &ncolumns, NULL));
   PetscCheck(c >= 0 && c < ncolumns, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Column %" PetscInt_FMT " of the table of the steps: it has %" PetscInt_FMT, c, ncolumns);
-  if (width) *width = c < NFIXED ? StepColumns[c].width : 3;
-  if (integer) *integer = c < NFIXED ? StepColumns[c].integer : PETSC_FALSE;
-  if (c < NFIXED) PetscCall(PetscStrncpy(name, StepColumns[c].name, len));
+  if (width) *width = c < NFIXED ? Fixed(scene, c)->width : 3;
+  if (integer) *integer = c < NFIXED ? Fixed(scene, c)->integer : PETSC_FALSE;
+  if (c < NFIXED) PetscCall(PetscStrncpy(name, Fixed(scene, c)->name, len));
   else if (c < NFIXED + moving) {
-    PetscInt g = 0;
+    PetscInt  g = 0, m = -1;
+    PetscBool rotation = PETSC_FALSE;
 
-    for (PetscInt m = -1; g < scene->nContact; g++)
-      if (scene->contact[g].motion && ++m == c - NFIXED) break;
-    PetscCall(PetscSNPrintf(name, len, "motion/%s", scene->contact[g].name));
+    for (; g < scene->nContact; g++) {
+      if (SSStarMotionIsSet(&scene->contact[g].motion) && ++m == c - NFIXED) break;
+      if (scene->contact[g].motion.rotation && ++m == c - NFIXED) {
+        rotation = PETSC_TRUE;
+        break;
+      }
+    }
+    PetscCall(PetscSNPrintf(name, len, "%s/%s", rotation ? "rotation" : "motion", scene->contact[g].name));
   } else PetscCall(PetscSNPrintf(name, len, "groups/%s/displacement", scene->surfaces[c - NFIXED - moving]));
   PetscFunctionReturn(0);
 }
@@ -122,11 +143,12 @@ PetscErrorCode SSStarSceneGetStepColumn(SSStarScene scene, PetscInt c, size_t le
 
    Notes:
    time is the one of SSStarSceneSetStep(); iterations, reason (SNESConvergedReason) and residual_norm the SNES's;
-   load the resultant of the step's load b = -F(0); normal_force, tangential_force, area, sliding, sticking,
+   load the resultant of the step's load (the scene's load at the step's time; b = -F(0) for a program's own SNES
+   problem); normal_force, tangential_force, area, sliding, sticking,
    separated and dissipation those of SSStarSceneGetContactResult() for every group; law_residual and its scales
    law_displacement_scale, law_force_scale the solver's (SNESSSStarGetLawResidual(), docs/derivation.md section 12);
    motion/<G> the obstacle's
-   translation; groups/<G>/displacement the mean displacement of the group, weighted like a uniform traction's load
+   translation; rotation/<G> its rotation vector (the angle in radians times the unit axis); groups/<G>/displacement the mean displacement of the group, weighted like a uniform traction's load
    (so that the work of a uniform traction on G is its force times this). SSStarSceneOutputStep() writes this row.
 
    Level: intermediate
@@ -149,14 +171,17 @@ PetscErrorCode SSStarSceneGetStepRow(SSStarScene scene, SNES snes, Vec u, PetscI
   PetscCall(SNESGetIterationNumber(snes, &its));
   PetscCall(SNESGetFunctionNorm(snes, &norm));
   PetscCall(SNESGetFunction(snes, &r, NULL, NULL)); /* K u - b: the contact forces at the contact dofs */
-  PetscCall(VecDuplicate(u, &zero));                  /* b = -F(0), the step's load */
-  PetscCall(VecDuplicate(u, &b));
-  PetscCall(VecZeroEntries(zero));
-  PetscCall(SNESComputeFunction(snes, zero, b));
-  PetscCall(VecScale(b, -1.0));
-  PetscCall(SSStarSceneGetLoadResultant(scene, b, load));
-  PetscCall(VecDestroy(&zero));
-  PetscCall(VecDestroy(&b));
+  if (scene->stepLoad) PetscCall(SSStarSceneGetLoadResultant(scene, scene->stepLoad, load)); /* SSStarSceneSetSolver()'s */
+  else {
+    PetscCall(VecDuplicate(u, &zero)); /* b = -F(0), the step's load */
+    PetscCall(VecDuplicate(u, &b));
+    PetscCall(VecZeroEntries(zero));
+    PetscCall(SNESComputeFunction(snes, zero, b));
+    PetscCall(VecScale(b, -1.0));
+    PetscCall(SSStarSceneGetLoadResultant(scene, b, load));
+    PetscCall(VecDestroy(&zero));
+    PetscCall(VecDestroy(&b));
+  }
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   if (scene->nContact && isssstar) {
     PetscCall(SNESSSStarGetStates(snes, &states, NULL));
@@ -177,9 +202,25 @@ PetscErrorCode SSStarSceneGetStepRow(SSStarScene scene, SNES snes, Vec u, PetscI
   row[c++] = res.separated;
   row[c++] = res.dissipation;
   for (PetscInt k = 0; k < 3; k++) row[c++] = law[k];
+  if (scene->dynamics) {
+    SSStarEnergies e;
+
+    PetscCall(SSStarSceneGetEnergies(scene, &e, NULL));
+    row[c++] = e.kinetic;
+    row[c++] = e.strain;
+    row[c++] = e.work;
+    row[c++] = e.impact;
+    row[c++] = e.damping;
+    row[c++] = e.error;
+  }
   for (PetscInt g = 0; g < scene->nContact; g++)
-    if (scene->contact[g].motion)
-      for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].d[k];
+    if (SSStarMotionIsSet(&scene->contact[g].motion)) {
+      for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].motion.now.d[k];
+      if (scene->contact[g].motion.rotation) {
+        PetscCall(SSStarMotionRotationVector(&scene->contact[g].motion, scene->stepTime, &row[c]));
+        c += 3;
+      }
+    }
   PetscCall(SSStarSceneSurfaceDisplacements(scene, u, &row[c]));
   c += 3 * scene->nSurfaces;
   PetscCheck(c == rowsize, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the row of a step has %" PetscInt_FMT " values, not %" PetscInt_FMT, c, rowsize);

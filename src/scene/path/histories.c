@@ -4,8 +4,11 @@
 */
 #include "../sceneimpl.h"
 
-/* The history of -traction_<G>, -gravity or -obstacle_<G>_motion, to be replaced; the value at its last knot, if any */
-static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStarHistory **history, PetscReal **last)
+/*
+   The history of -traction_<G>, -gravity, -obstacle_<G>_motion or -obstacle_<G>_rotation, to be replaced; the value at
+   its last knot, if any; its components (3, or 4 for a rotation)
+*/
+static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStarHistory **history, PetscReal **last, PetscInt *ncomp)
 {
   PetscBool match;
   size_t    len;
@@ -13,6 +16,7 @@ static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStar
   PetscFunctionBegin;
   *history = NULL;
   *last    = NULL;
+  *ncomp   = 3;
   PetscCall(PetscStrcmp(option, "-gravity", &match));
   if (match) {
     PetscCheck(scene->hasGravity, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: the scene has no gravity (give -gravity and -density when it is made)", option);
@@ -34,17 +38,23 @@ static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStar
   }
   PetscCall(PetscStrlen(option, &len));
   PetscCall(PetscStrncmp(option, "-obstacle_", 10, &match));
-  if (match && len > 17 && !strcmp(option + len - 7, "_motion"))
+  for (PetscInt kind = 0; kind < 2 && match && !*history; kind++) { /* _motion, _rotation */
+    const char  *suffix = kind ? "_rotation" : "_motion";
+    const size_t slen   = kind ? 9 : 7;
+
+    if (len <= 10 + slen || strcmp(option + len - slen, suffix)) continue;
     for (PetscInt g = 0; g < scene->nContact && !*history; g++) {
-      size_t glen;
+      SSStarMotion *motion = &scene->contact[g].motion;
+      size_t        glen;
 
       PetscCall(PetscStrlen(scene->contact[g].name, &glen));
-      if (glen == len - 17 && !strncmp(option + 10, scene->contact[g].name, glen)) {
-        PetscCheck(scene->contact[g].motion, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: the obstacle of %s has no motion (give -obstacle_%s_motion when the scene is made, 0,0,0 if need be)", option, scene->contact[g].name, scene->contact[g].name);
-        *history = &scene->contact[g].motion;
-      }
+      if (glen != len - 10 - slen || strncmp(option + 10, scene->contact[g].name, glen)) continue;
+      *history = kind ? &motion->rotation : &motion->translation;
+      PetscCheck(**history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: the obstacle of %s has no %s (give -obstacle_%s%s when the scene is made, %s if need be)", option, scene->contact[g].name, kind ? "rotation" : "motion", scene->contact[g].name, suffix, kind ? "0,0,1,0" : "0,0,0");
+      *ncomp = kind ? 4 : 3;
     }
-  PetscCheck(*history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: not a history of the scene (-traction_<G>, -gravity, -obstacle_<G>_motion)", option);
+  }
+  PetscCheck(*history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: not a history of the scene (-traction_<G>, -gravity, -obstacle_<G>_motion, -obstacle_<G>_rotation)", option);
   PetscFunctionReturn(0);
 }
 
@@ -56,10 +66,10 @@ static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStar
 
    Input Parameters:
 +  scene  - the scene, after SSStarSceneSetFromOptions()
-.  option - the option: -traction_<G> (a traction the scene has), -gravity (if the scene has gravity) or
-            -obstacle_<G>_motion (a motion the scene has)
--  value  - its new value: a constant x,y,z, or a history t:x,y,z;t:x,y,z;... (linear between the knots, constant
-            outside)
+.  option - the option: -traction_<G> (a traction the scene has), -gravity (if the scene has gravity),
+            -obstacle_<G>_motion or -obstacle_<G>_rotation (a translation or rotation the scene's obstacle has)
+-  value  - its new value: a constant x,y,z (ax,ay,az,angle for a rotation), or a history t:x,y,z;t:x,y,z;... (linear
+            between the knots, constant outside)
 
    Notes:
    The next step (SSStarSceneAssembleLoad(), SSStarSceneSetStep()) takes the new value at its time; the steps solved
@@ -76,11 +86,18 @@ PetscErrorCode SSStarSceneSetHistory(SSStarScene scene, const char option[], con
 {
   SSStarHistory *history, h;
   PetscReal     *last;
+  PetscInt       ncomp;
 
   PetscFunctionBegin;
   PetscCheck(option && value, scene->comm, PETSC_ERR_ARG_NULL, "SSStarSceneSetHistory(): give the option and its value");
-  PetscCall(FindHistory(scene, option, &history, &last));
-  PetscCall(SSStarHistoryCreateFromString(scene->comm, option, value, 3, &h));
+  PetscCall(FindHistory(scene, option, &history, &last, &ncomp));
+  PetscCall(SSStarHistoryCreateFromString(scene->comm, option, value, ncomp, &h));
+  if (ncomp == 4) {
+    PetscErrorCode ierr = SSStarMotionCheckRotation(scene->comm, option, h);
+
+    if (ierr) PetscCall(SSStarHistoryDestroy(&h));
+    PetscCall(ierr);
+  }
   PetscCall(SSStarHistoryDestroy(history));
   *history = h;
   if (last) PetscCall(SSStarSceneLastValue(h, last));

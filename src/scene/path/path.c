@@ -1,14 +1,15 @@
 /*
    A scene's load path (docs/load-paths.md, docs/derivation.md section 10): its loads as histories of a pseudo-time t
-   (-traction_<G>, -gravity), its rigid obstacles' translations (-obstacle_<G>_motion), and the steps t_1 < t_2 < ...
-   solved one after the other with incremental friction. Each step hands the solver the offsets (10.4) of its contact
-   nodes, computed from what the accepted step before left (the slip w_t^(k-1), the obstacles' translations d^(k-1)),
+   (-traction_<G>, -gravity), its rigid obstacles' motions (-obstacle_<G>_motion, -obstacle_<G>_rotation: contact/
+   motion.c), and the steps t_1 < t_2 < ... solved one after the other with incremental friction. Each step hands the
+   solver the offsets (10.4) of its contact nodes, computed from what the accepted step before left (the slip
+   w_t^(k-1), where the obstacles were),
    and records, once solved, the kinematics of (10.9): the slip increment, the slip path and the energy friction
    dissipated at every node.
 */
 #include "../sceneimpl.h"
 
-/* Every history of the scene (tractions, gravity, motions) into list (NULL: count them) */
+/* Every history of the scene (tractions, gravity, obstacles' translations and rotations) into list (NULL: count them) */
 static PetscInt Histories(SSStarScene scene, SSStarHistory list[])
 {
   PetscInt n = 0;
@@ -19,11 +20,18 @@ static PetscInt Histories(SSStarScene scene, SSStarHistory list[])
     if (list) list[n] = scene->gravityHistory;
     n++;
   }
-  for (PetscInt g = 0; g < scene->nContact; g++)
-    if (scene->contact[g].motion) {
-      if (list) list[n] = scene->contact[g].motion;
+  for (PetscInt g = 0; g < scene->nContact; g++) {
+    const SSStarMotion *motion = &scene->contact[g].motion;
+
+    if (motion->translation) {
+      if (list) list[n] = motion->translation;
       n++;
     }
+    if (motion->rotation) {
+      if (list) list[n] = motion->rotation;
+      n++;
+    }
+  }
   return n;
 }
 
@@ -84,9 +92,9 @@ PetscErrorCode SSStarSceneHasPath(SSStarScene scene, PetscBool *path)
   PetscFunctionBegin;
   PetscCall(SSStarSceneGetKnots(scene, &n, &times));
   PetscCall(PetscFree(times));
-  *path = (PetscBool)(n > 0);
+  *path = (PetscBool)(n > 0 || scene->dynamics); /* -dynamics: the steps are time steps */
   for (PetscInt g = 0; g < scene->nContact; g++)
-    if (scene->contact[g].motion) *path = PETSC_TRUE;
+    if (SSStarMotionIsSet(&scene->contact[g].motion)) *path = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -171,12 +179,11 @@ static PetscErrorCode SetOffsets(SSStarScene scene, SNES snes)
   PetscFunctionBegin;
   PetscCall(VecGetArrayWrite(scene->offsets, &oa));
   for (PetscInt i = 0; i < scene->n; i++) {
-    const SSStarContactGroup *cg = &scene->contact[scene->group[i]];
-    const PetscReal          *R  = &scene->frame[9 * i];
-    PetscReal                 Rd[3] = {0, 0, 0};
+    const PetscReal *R = &scene->frame[9 * i];
+    PetscReal        d[3], Rd[3];
 
-    if (cg->motion)
-      for (PetscInt k = 0; k < 3; k++) Rd[k] = SSStarDot3(&R[3 * k], cg->d);
+    SSStarSceneObstacleDisplacement(scene, i, &scene->contact[scene->group[i]].motion.now, d); /* (16.3) */
+    for (PetscInt k = 0; k < 3; k++) Rd[k] = SSStarDot3(&R[3 * k], d);
     oa[3 * i]     = -scene->slipPrev[2 * i] - Rd[0];
     oa[3 * i + 1] = -scene->slipPrev[2 * i + 1] - Rd[1];
     oa[3 * i + 2] = scene->gap[i] - Rd[2];
@@ -214,8 +221,9 @@ PetscErrorCode SSStarSceneCheckSteps(SSStarScene scene, PetscInt n, const PetscR
 }
 
 /*@C
-   SSStarSceneSetStep - sets up the step of a load path to the time t: each moving obstacle's translation d at t and
-   the offsets of the contact nodes (docs/derivation.md (10.4)), handed to the SNES (SNESSSStarSetContactOffsets())
+   SSStarSceneSetStep - sets up the step of a load path to the time t: where each moving obstacle is at t (its
+   translation and rotation, docs/derivation.md section 16) and the offsets of the contact nodes (docs/derivation.md
+   (10.4)), handed to the SNES (SNESSSStarSetContactOffsets())
 
    Collective
 
@@ -226,18 +234,19 @@ PetscErrorCode SSStarSceneCheckSteps(SSStarScene scene, PetscInt n, const PetscR
 
    Notes:
    The step starts from the last step accepted by SSStarSceneAcceptStep() (the reference configuration before the
-   first): a node against an obstacle gets o = (-w_t^(k-1) - R_t d, g - n.d), a slave node of a contact pair
-   o = (-w_t^(k-1), g), w_t^(k-1) its slip after that step. So a node that sticks keeps its position relative to its
+   first): a node against an obstacle gets o = (-w_t^(k-1) - R_t d_i, g - n.d_i), d_i the displacement of the
+   obstacle's point it faces (a translation's d, or what a rotation does to that point as well), a slave node of a
+   contact pair o = (-w_t^(k-1), g), w_t^(k-1) its slip after that step. So a node that sticks keeps its position relative to its
    obstacle (or master surface), a sliding one is resisted against the direction of its increment. Solve the step
    from the previous solution with the load at t (SSStarSceneAssembleLoad()); a step that fails may be set again at
    another time.
 
    With large sliding (-sliding large, the default) the contact is measured again at the current configuration, the
-   reference displaced by the last accepted solution, against the obstacles at their translations of the step: gaps,
+   reference displaced by the last accepted solution, against the obstacles where they are in the step: gaps,
    normals, frames and a pair's master faces there (the search asked at the current positions), B declared to the SNES
    again (a rigid obstacle's reduction is kept; a pair's new masters reduce K again), g and w_t^(k-1) taken at that
    configuration (docs/derivation.md section 13). With small sliding (-sliding small) every step keeps the reference
-   configuration: the normal offset g - n.d is exact for a plane and first order in |d| for a ball, cylinder or mesh,
+   configuration: the normal offset g - n.d is exact for a translated plane and first order in |d| otherwise,
    and a step where it is off the exact gap by more than -small_sliding_tol times |d| at a node within |d| of the
    obstacle is refused with an error that names the obstacle, the step (its row in the file's /steps) and the error.
 
@@ -250,11 +259,7 @@ PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
   PetscFunctionBegin;
   PetscCall(PathArrays(scene));
   scene->stepTime = t;
-  for (PetscInt g = 0; g < scene->nContact; g++) {
-    SSStarContactGroup *cg = &scene->contact[g];
-
-    if (cg->motion) PetscCall(SSStarHistoryEvaluate(cg->motion, t, cg->d));
-  }
+  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(SSStarMotionPlacementAt(&scene->contact[g].motion, t, &scene->contact[g].motion.now));
   PetscCall(SSStarSceneCheckSmallSliding(scene, scene->accepted + 1, t));
   if (scene->sliding == SSSTAR_SLIDING_LARGE) PetscCall(SSStarSceneMeasureContact(scene, snes));
   PetscCall(SetOffsets(scene, snes));
@@ -352,8 +357,12 @@ PetscErrorCode SSStarSceneAcceptStep(SSStarScene scene, Vec u, Vec r)
   PetscCall(VecRestoreArrayRead(rC, &ra));
   PetscCall(VecRestoreSubVector(r, scene->isC, &rC));
   PetscCall(PetscFree(w));
-  for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(PetscArraycpy(scene->contact[g].dPrev, scene->contact[g].d, 3));
+  if (scene->dynamics) PetscCall(SSStarDynamicsAccept(scene, scene->solver, u, r)); /* with u^n and the obstacles' last places */
+  for (PetscInt g = 0; g < scene->nContact; g++) scene->contact[g].motion.before = scene->contact[g].motion.now;
   if (scene->uAccepted) PetscCall(VecCopy(u, scene->uAccepted)); /* large sliding: the next step's configuration */
+  if (!scene->stepStart) PetscCall(VecDuplicate(u, &scene->stepStart));
+  PetscCall(VecCopy(u, scene->stepStart)); /* the next step starts here (SSStarSceneSolveStep()) */
+  scene->acceptedTime = scene->stepTime;
   scene->lastLinearization = PETSC_TRUE;
   scene->stepped = PETSC_TRUE;
   scene->accepted++;
@@ -383,8 +392,8 @@ PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene scene, PetscInt *n)
 }
 
 /*@C
-   SSStarSceneGetMotion - the name of contact group g and the translation of its rigid obstacle in the step set last
-   (SSStarSceneSetStep())
+   SSStarSceneGetMotion - the name of contact group g and where its rigid obstacle is in the step set last
+   (SSStarSceneSetStep()): its translation and its rotation
 
    Not Collective
 
@@ -395,19 +404,25 @@ PetscErrorCode SSStarSceneGetContactGroupCount(SSStarScene scene, PetscInt *n)
    Output Parameters:
 +  name   - its name, or pass NULL
 .  d      - its obstacle's translation (0 before the first step, or without -obstacle_<G>_motion), or pass NULL
--  moving - whether the group has a motion (-obstacle_<G>_motion), or pass NULL
+.  theta  - its rotation vector, the angle (radians) times the unit axis about the obstacle's reference point (0 before
+            the first step, or without -obstacle_<G>_rotation), or pass NULL
+-  moving - whether the group's obstacle moves (-obstacle_<G>_motion or -obstacle_<G>_rotation), or pass NULL
 
    Level: intermediate
 
 .seealso: `SSStarSceneSetStep()`, `SSStarSceneGetContactGroupCount()`
 @*/
-PetscErrorCode SSStarSceneGetMotion(SSStarScene scene, PetscInt g, const char *name[], PetscReal d[3], PetscBool *moving)
+PetscErrorCode SSStarSceneGetMotion(SSStarScene scene, PetscInt g, const char *name[], PetscReal d[3], PetscReal theta[3], PetscBool *moving)
 {
   PetscFunctionBegin;
   PetscCheck(g >= 0 && g < scene->nContact, scene->comm, PETSC_ERR_ARG_OUTOFRANGE, "Contact group %" PetscInt_FMT ": the scene has %" PetscInt_FMT, g, scene->nContact);
   if (name) *name = scene->contact[g].name;
-  if (d) PetscCall(PetscArraycpy(d, scene->contact[g].d, 3));
-  if (moving) *moving = (PetscBool)(scene->contact[g].motion != NULL);
+  if (d) PetscCall(PetscArraycpy(d, scene->contact[g].motion.now.d, 3));
+  if (theta) {
+    theta[0] = theta[1] = theta[2] = 0;
+    if (scene->offsets) PetscCall(SSStarMotionRotationVector(&scene->contact[g].motion, scene->stepTime, theta)); /* a step was set */
+  }
+  if (moving) *moving = SSStarMotionIsSet(&scene->contact[g].motion);
   PetscFunctionReturn(0);
 }
 
@@ -477,6 +492,8 @@ PetscErrorCode SSStarScenePathDestroy(SSStarScene scene)
   PetscCall(PetscFree4(scene->slipPrev, scene->slipIncrement, scene->slipPath, scene->dissipation));
   PetscCall(VecDestroy(&scene->offsets));
   PetscCall(VecDestroy(&scene->uAccepted));
+  PetscCall(VecDestroy(&scene->stepStart));
+  PetscCall(VecDestroy(&scene->stepLoad));
   for (PetscInt s = 0; s < scene->nSurfaces; s++) {
     PetscCall(PetscFree(scene->surfaces[s]));
     PetscCall(VecDestroy(&scene->surfaceWeights[s]));

@@ -17,7 +17,7 @@ static PetscErrorCode SetFromString_Cylinder(SSStarObstacle ob, MPI_Comm comm, c
   PetscCall(SSStarObstacleParseNumbers(comm, option, spec, numbers, 7, "px,py,pz,ax,ay,az,R", v));
   PetscCall(SSStarObstacleUnitVector(comm, option, spec, "axis", &v[3], cyl->axis));
   PetscCheck(v[6] > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %s: the radius %g must be positive", option, spec, (double)v[6]);
-  for (PetscInt k = 0; k < 3; k++) cyl->point[k] = v[k];
+  for (PetscInt k = 0; k < 3; k++) cyl->point[k] = ob->reference[k] = v[k];
   cyl->radius = v[6];
   PetscFunctionReturn(0);
 }

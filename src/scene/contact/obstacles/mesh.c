@@ -167,6 +167,8 @@ static PetscErrorCode SetFromString_Mesh(SSStarObstacle ob, MPI_Comm comm, const
   PetscCheck(failure != 2, comm, PETSC_ERR_FILE_READ, "Option %s mesh:%s: gmsh cannot read the file as a mesh", option, mesh->file);
   PetscCheck(failure != 3, comm, PETSC_ERR_ARG_WRONG, "Option %s mesh:%s: the file has no triangles (3-node triangles, gmsh element type 2): an obstacle is given by its surface", option, mesh->file);
   if (rank == 0) {
+    for (PetscInt v = 0; v < nv; v++) /* the reference point: the mean of the vertices */
+      for (PetscInt k = 0; k < 3; k++) ob->reference[k] += xv[3 * v + k] / nv;
     PetscCall(PetscMalloc1(PSEUDO_NORMALS * mesh->nt, &pn));
     PetscCall(SSStarSurfacePseudoNormals(nv, xv, mesh->nt, tri, pn, &check));
     defect[0] = (PetscInt)check.defect;
@@ -178,6 +180,7 @@ static PetscErrorCode SetFromString_Mesh(SSStarObstacle ob, MPI_Comm comm, const
   }
   PetscCallMPI(MPI_Bcast(defect, 6, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&mesh->nt, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(ob->reference, 3, MPIU_REAL, 0, comm));
   if (defect[0] == (PetscInt)SSSTAR_SURFACE_OK) PetscCall(SpreadTriangles(comm, nv, xv, mesh->nt, tri, pn, &mesh->search));
   PetscCall(PetscFree(xv));
   PetscCall(PetscFree(tri));

@@ -105,3 +105,10 @@ const char *SSStarObstacleInsideHint(SSStarObstacle ob)
 {
   return ob->ops.insideHint;
 }
+
+/* SSStarObstacleReferencePoint - the point a rotation of the obstacle turns about: a plane's point, a ball's centre, a
+   cylinder's point on its axis, the mean of a mesh obstacle's vertices */
+void SSStarObstacleReferencePoint(SSStarObstacle ob, PetscReal c[3])
+{
+  for (PetscInt k = 0; k < 3; k++) c[k] = ob->reference[k];
+}

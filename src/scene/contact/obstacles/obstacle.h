@@ -26,5 +26,6 @@ PETSC_INTERN PetscErrorCode SSStarObstacleGaps(SSStarObstacle, PetscInt, const P
 PETSC_INTERN PetscErrorCode SSStarObstacleDescribe(SSStarObstacle, char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarObstacleWriteAttributes(SSStarObstacle, SSStarAttributeWriter *);
 PETSC_INTERN const char    *SSStarObstacleInsideHint(SSStarObstacle);
+PETSC_INTERN void           SSStarObstacleReferencePoint(SSStarObstacle, PetscReal[3]);
 
 #endif

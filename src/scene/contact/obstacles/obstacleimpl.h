@@ -23,6 +23,7 @@ struct _n_SSStarObstacle {
   char              type[32];
   SSStarObstacleOps ops;
   void             *data;
+  PetscReal         reference[3]; /* the point it turns about (-obstacle_<G>_rotation): set by its setfromstring */
 };
 
 PETSC_INTERN PetscErrorCode SSStarObstacleRegister(const char[], const char[], PetscErrorCode (*)(SSStarObstacle));

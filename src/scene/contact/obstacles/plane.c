@@ -13,7 +13,7 @@ static PetscErrorCode SetFromString_Plane(SSStarObstacle ob, MPI_Comm comm, cons
   PetscFunctionBegin;
   PetscCall(SSStarObstacleParseNumbers(comm, option, spec, numbers, 6, "px,py,pz,nx,ny,nz", v));
   PetscCall(SSStarObstacleUnitVector(comm, option, spec, "normal", &v[3], plane->normal));
-  for (PetscInt k = 0; k < 3; k++) plane->point[k] = v[k];
+  for (PetscInt k = 0; k < 3; k++) plane->point[k] = ob->reference[k] = v[k];
   PetscFunctionReturn(0);
 }
 

@@ -13,7 +13,7 @@ static PetscErrorCode SetFromString_Sphere(SSStarObstacle ob, MPI_Comm comm, con
   PetscFunctionBegin;
   PetscCall(SSStarObstacleParseNumbers(comm, option, spec, numbers, 4, "cx,cy,cz,R", v));
   PetscCheck(v[3] > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %s %s: the radius %g must be positive", option, spec, (double)v[3]);
-  for (PetscInt k = 0; k < 3; k++) ball->centre[k] = v[k];
+  for (PetscInt k = 0; k < 3; k++) ball->centre[k] = ob->reference[k] = v[k];
   ball->radius = v[3];
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,28 @@
+// A rod 0.1 x 0.1 x 1 standing on the plane z = 0 (the dynamics' rod on a rigid wall, docs/guide/dynamics.md):
+// "tip" its face z = 0, "top" its face z = 1, "rod" its volume. Structured tetrahedra, 2 x 2 x (20L + 1) nodes:
+// one cell across, 20L along (the wave's resolution).
+If (!Exists(L))
+  L = 1;
+EndIf
+SetNumber("ssstar/nodes", 4*(20*L+1));
+SetFactory("Built-in");
+Point(1) = {0, 0, 0};    Point(2) = {0.1, 0, 0};    Point(3) = {0.1, 0.1, 0};    Point(4) = {0, 0.1, 0};
+Point(5) = {0, 0, 1};    Point(6) = {0.1, 0, 1};    Point(7) = {0.1, 0.1, 1};    Point(8) = {0, 0.1, 1};
+Line(1) = {1, 2};  Line(2) = {2, 3};  Line(3) = {3, 4};  Line(4) = {4, 1};
+Line(5) = {5, 6};  Line(6) = {6, 7};  Line(7) = {7, 8};  Line(8) = {8, 5};
+Line(9) = {1, 5};  Line(10) = {2, 6}; Line(11) = {3, 7}; Line(12) = {4, 8};
+Curve Loop(1) = {1, 2, 3, 4};      Plane Surface(1) = {1};   // tip
+Curve Loop(2) = {5, 6, 7, 8};      Plane Surface(2) = {2};   // top
+Curve Loop(3) = {9, -8, -12, 4};   Plane Surface(3) = {3};
+Curve Loop(4) = {2, 11, -6, -10};  Plane Surface(4) = {4};
+Curve Loop(5) = {1, 10, -5, -9};   Plane Surface(5) = {5};
+Curve Loop(6) = {3, 12, -7, -11};  Plane Surface(6) = {6};
+Surface Loop(1) = {1, 2, 3, 4, 5, 6};
+Volume(1) = {1};
+Transfinite Curve {1, 2, 3, 4, 5, 6, 7, 8} = 2;
+Transfinite Curve {9, 10, 11, 12} = 20*L + 1;
+Transfinite Surface {1, 2, 3, 4, 5, 6};
+Transfinite Volume {1};
+Physical Surface("tip") = {1};
+Physical Surface("top") = {2};
+Physical Volume("rod") = {1};

@@ -22,13 +22,19 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
           several phi / tan alpha, pushed slopes, stacks, squeezed balls, a slider pushed on its base. Where no
           equilibrium exists a member must instead stop before its first iteration on both paths (DIVERGED_DTOL, the
           line "no equilibrium: ..."), within EARLY seconds (mesh and set-up included)
+  dynamics: -dynamics (issue 32, docs/guide/dynamics.md): a rod on a wall at several v0, steps and meshes and with the
+          lumped mass, a ball dropped on a plane at two v0, blocks released on slopes at several phi / tan alpha, a
+          block on a belt, a stack of floating bodies. Besides the law at every step, a member must gain no energy
+          (energy_error <= 1e-9 of the energy) and its error to the exact solution is measured on the displacement
+          and velocity fields and the normal force of every step, each relative to its path's largest (a reaction
+          after a release is the inertial terms' round-off, not a scale of its own)
 
 Prints a markdown table (and bench/output/robust.csv): per member and ranks, each path's iterations (Krylov iterations
 of the whole body), reason, law (check_solution's largest distance to the law over the steps) and error (to the exact
 solution), then "N members x ranks: converged C of R runs, the law holds in L, within 1e-6 of the exact solution E";
 the exit status is 0 when every run passes.
 
-  bench/robust.py [--family static|paths|sliding|floating|all] [--ranks 1,2,3,4] [--only SUBSTRING]
+  bench/robust.py [--family static|paths|sliding|floating|dynamics|all] [--ranks 1,2,3,4] [--only SUBSTRING]
 
 tests/suite_robust.py runs members of the first two families (FAMILY, PATHS below) as tests, tests/suite_sliding.py
 the known answers of the third, tests/suite_floating.py the floating family's cases (FLOATING).
@@ -194,6 +200,56 @@ FLOATING = {
 }
 
 
+ROD = ["-geo", "meshes/rod.geo", "-level", "2", "-E", "1", "-nu", "0", "-density", "1", "-dynamics", "-contact", "tip",
+       "-friction_law_tip", "none", "-end_time", "3"]
+DROP = ["-geo", "meshes/hertz.geo", "-level", "1", "-E", "1e4", "-nu", "0.3", "-density", "1", "-dynamics", "-contact", "cap",
+        "-friction_law_cap", "none", "-end_time", "1.8", "-steps", "24"]
+SLOPED = ["-geo", "meshes/incline.geo", "-level", "2", "-E", "1e7", "-nu", "0.3", "-density", "1000", "-gravity", "0,0,-9.81",
+          "-contact", "bottom", "-obstacle_bottom", "0,0,0,0.3420201433256687,0,0.9396926207859084", "-dynamics", "-damping", "0,0.003",
+          "-end_time", "1", "-steps", "100"]
+
+# dynamics members: name -> options
+DYNAMICS = {
+    "rod on a wall, v0 0.01, 40 elements, 120 steps": ROD + ["-initial_velocity", "0,0,-0.01", "-steps", "120"],
+    "rod on a wall, v0 0.1": ROD + ["-initial_velocity", "0,0,-0.1", "-steps", "120"],
+    "rod on a wall, 60 steps (2 elements a step)": ROD + ["-initial_velocity", "0,0,-0.01", "-steps", "60"],
+    "rod on a wall, 80 elements, 240 steps": ROD + ["-initial_velocity", "0,0,-0.01", "-steps", "240", "-level", "4"],
+    "rod on a wall, lumped mass": ROD + ["-initial_velocity", "0,0,-0.01", "-steps", "120", "-dynamics_mass", "lumped"],
+    "ball dropped, v0 0.3": DROP + ["-initial_velocity", "0,0,-0.3"],
+    "ball dropped, v0 0.1": DROP + ["-initial_velocity", "0,0,-0.1"],
+    "slope released, phi / tan a = 0.5": SLOPED + ["-friction_bottom", str(0.5 * TAN)],
+    "slope released, phi / tan a = 0.9": SLOPED + ["-friction_bottom", str(0.9 * TAN)],
+    "slope released, phi / tan a = 1.1": SLOPED + ["-friction_bottom", str(1.1 * TAN)],
+    "slope released, phi / tan a = 2": SLOPED + ["-friction_bottom", str(2 * TAN)],
+    "block on a belt (scenes/belt.opts)": scene("belt"),
+    "stack of floating bodies dropped into place": scene("stack") + ["-level", "1", "-dynamics", "-damping", "0,1e-3", "-end_time", "0.2", "-steps", "20"],
+}
+
+
+def dynamics_error(reference, h5):
+    """the largest difference of the displacement and velocity fields and the normal force over the steps, each
+    relative to its largest over the reference's path; and the energy gained (energy_error over the energy scale)"""
+    import h5py
+    import numpy as np
+
+    a, b = h5py.File(reference, "r"), h5py.File(h5, "r")
+    steps = sorted((k for k in a["steps"] if k.isdigit()), key=int)
+    if sorted((k for k in b["steps"] if k.isdigit()), key=int) != steps:
+        return float("inf"), float("inf")
+    order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (the partition orders the vertices)
+    oa, ob = order(a), order(b)
+    error = 0.0
+    for field in ("displacement", "velocity"):
+        x = np.array([a["steps/%s/fields/%s" % (k, field)][:][oa] for k in steps])
+        y = np.array([b["steps/%s/fields/%s" % (k, field)][:][ob] for k in steps])
+        error = max(error, np.abs(x - y).max() / max(np.abs(x).max(), 1e-300))
+    N, M = a["steps/normal_force"][:], b["steps/normal_force"][:]
+    error = max(error, np.abs(N - M).max() / max(np.abs(N).max(), 1e-300))
+    st = b["steps"]
+    scale = max(np.abs(st["kinetic_energy"][:]).max(), np.abs(st["external_work"][:]).max(), np.abs(st["strain_energy"][:]).max(), 1e-300)
+    return error, st["energy_error"][:].max() / scale
+
+
 def env():
     return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
 
@@ -227,6 +283,9 @@ def checked(result, h5, reference):
     law = subprocess.run(CHECK + ["coulomb", h5, "--steps"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     result["law"] = max(float(x) for x in DISTANCE.findall(law.stdout)) if law.returncode in (0, 1) and DISTANCE.search(law.stdout) else float("inf")
     result["law_ok"] = law.returncode == 0
+    if "-dynamics" in result.get("options", ()):
+        result["error"], result["gain"] = dynamics_error(reference, h5)
+        return result
     cmp = subprocess.run(CHECK + ["compare", reference, h5, "--steps", "--tol", str(TOLERANCE)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     found = DIFFERENCE.findall(cmp.stdout)
     result["error"] = max(float(x) for x in found) if found else float("inf")
@@ -244,7 +303,7 @@ def run_member(name, options, ranks):
         REFERENCES[name] = reference if solve(options, "direct", 1, reference, ("-snes_rtol", "1e-13"))["reason"].startswith("CONVERGED") else None
     if REFERENCES[name] is None:
         return None
-    return {p: checked(solve(options, p, ranks, files[p]), files[p], REFERENCES[name]) for p in ("direct", "none")}
+    return {p: checked(dict(solve(options, p, ranks, files[p]), options=options), files[p], REFERENCES[name]) for p in ("direct", "none")}
 
 
 def run_unbalanced(name, options, ranks):
@@ -261,7 +320,7 @@ def run_unbalanced(name, options, ranks):
 def passed(r):
     if "early" in r:
         return r["early"]
-    return r["reason"].startswith("CONVERGED") and r.get("law_ok") and r["error"] <= TOLERANCE
+    return r["reason"].startswith("CONVERGED") and r.get("law_ok") and r["error"] <= TOLERANCE and r.get("gain", 0.0) <= 1e-9
 
 
 def cell(r):
@@ -270,19 +329,20 @@ def cell(r):
     if r["law"] is None:
         return "%d, %s" % (r["iters"], r["reason"])
     krylov = "" if r["krylov"] is None else " (%d)" % r["krylov"]
-    return "%d%s, law %.1e%s, error %.1e" % (r["iters"], krylov, r["law"], "" if r["law_ok"] else " VIOLATED", r["error"])
+    gain = "" if "gain" not in r else ", energy %+.1e%s" % (r["gain"], "" if r["gain"] <= 1e-9 else " GAINED")
+    return "%d%s, law %.1e%s, error %.1e%s" % (r["iters"], krylov, r["law"], "" if r["law_ok"] else " VIOLATED", r["error"], gain)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--family", choices=("static", "paths", "sliding", "floating", "all"), default="all")
+    parser.add_argument("--family", choices=("static", "paths", "sliding", "floating", "dynamics", "all"), default="all")
     parser.add_argument("--ranks", default="1,2,3,4")
     parser.add_argument("--only", default="")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)
     ranks = [int(r) for r in args.ranks.split(",")]
     floating = {name: options for name, (options, exists) in FLOATING.items() if exists}
-    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING), ("floating", floating)) if args.family in (f, "all")]
+    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING), ("floating", floating), ("dynamics", DYNAMICS)) if args.family in (f, "all")]
     print("| family | member | ranks | dense route: its, law, error | whole body: its (Krylov), law, error |")
     print("|---|---|---|---|---|")
     rows, total, converged, lawful, exact, unbalanced, early = [], 0, 0, 0, 0, 0, 0

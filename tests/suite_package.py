@@ -70,6 +70,25 @@ def help_lists_every_option():
             expect(re.search(pattern, text) is not None, "examples/%s -help does not list %s with its default" % (program, name), text)
 
 
+@test("docs/options.md, the one table of every option, is what docs/mkoptions.py makes from the examples' -help today (make docs; --check), and it has a row for every option the library, the scenes and each example read: each -snes_ssstar_* option of src/ (with its default), each scene option of src/scene, each option an example reads")
+def options_table_fresh():
+    run([PYTHON, os.path.join(ROOT, "docs", "mkoptions.py"), "--check"])
+    table = open(os.path.join(ROOT, "docs", "options.md")).read()
+    rows = set(re.findall(r"^\| `(-[\w<>]+)[^`]*` \|", table, re.M))
+    sources = glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)
+    library = {o for o in options_in(sources) if o.startswith("-snes_ssstar")}
+    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "scene", "**", "*.c"), recursive=True), LITERAL) if not o.startswith("-dm_") or o == "-dm_refine"}
+    examples = set()
+    for source in glob.glob(os.path.join(ROOT, "examples", "*.c")):
+        examples |= {o for o in options_in([source], LITERAL) if not o.startswith(("-snes_type", "-pc_", "-ksp_", "-da_"))}
+    expect(len(library) >= 15 and len(scene) >= 10 and len(examples) >= 10, "found only %s, %s and %s" % (sorted(library), sorted(scene), sorted(examples)))
+    missing = sorted(o for o in library | scene | examples if o not in rows and (o + "<G>") not in rows and not any(r.startswith(o + "<G>") for r in rows))
+    expect(not missing, "docs/options.md has no row for %s" % missing)
+    for name in library:
+        if name in rows and not name.startswith(("-snes_ssstar_monitor", "-snes_ssstar_newton")):
+            expect(re.search(r"^\| `%s` \| `[^`]+`" % re.escape(name), table, re.M) is not None, "docs/options.md gives no default for %s" % name)
+
+
 PY_LINE = re.compile(r"petsc4py \+ ssstar: (\S+) after (\d+) iterations; (\d+) contact nodes; Coulomb law violation (\S+); \|u - u_C\|/\|u_C\| = (\S+)")
 
 

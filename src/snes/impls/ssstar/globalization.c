@@ -1,6 +1,6 @@
 /*
    The globalization of ssstar: the plain iteration of docs/derivation.md section 7 converges from a good starting point
-   only, and may cycle or stall far from the solution (README, "When it does not converge"). Here:
+   only, and may cycle or stall far from the solution (docs/guide/converged.md, "When it does not converge"). Here:
 
    - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the
      solutions, in the units of u);

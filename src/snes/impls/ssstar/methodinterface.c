@@ -332,7 +332,7 @@ PetscErrorCode SNESSSStarGetStates(SNES snes, const SSStarState *states[], Petsc
 .  reason - the sub-reason (SSStarReason; SSStarReasons[] names it)
 
    Notes:
-   -snes_converged_reason prints it on the line "ssstar: ..."; README "When it does not converge" maps each onto the
+   -snes_converged_reason prints it on the line "ssstar: ..."; docs/guide/converged.md ("When it does not converge") maps each onto the
    SNESConvergedReason.
 
    Level: beginner
@@ -490,7 +490,7 @@ PetscErrorCode SNESSSStarGetTolerance(SNES snes, PetscReal *tol)
 -  -snes_ssstar_stagnation_its <20> - stagnationIts
 
    Notes:
-   Cycles and stagnation are detected in both cases; without globalization they end the solve. README, "When it does
+   Cycles and stagnation are detected in both cases; without globalization they end the solve. docs/guide/converged.md, "When it does
    not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
 
    Level: advanced

@@ -89,6 +89,19 @@ def options_table_fresh():
             expect(re.search(r"^\| `%s` \| `[^`]+`" % re.escape(name), table, re.M) is not None, "docs/options.md gives no default for %s" % name)
 
 
+@test("README.md, docs/guide/*.md and docs/options.md link only to files that exist and to headings those pages have (tests/doc_commands.py), and the README links the guide's index and every page of docs/guide/")
+def guide_links_resolve():
+    import doc_commands
+    broken = doc_commands.broken_links()
+    expect(not broken, "broken links: %s" % broken)
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    unlinked = [os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "docs", "guide", "*.md")) if "docs/guide/" + os.path.basename(p) not in readme]
+    expect(not unlinked, "the README does not link these guide pages: %s" % unlinked)
+    index = open(os.path.join(ROOT, "docs", "guide", "README.md")).read()
+    missing = [os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "docs", "guide", "*.md")) if os.path.basename(p) != "README.md" and "(%s)" % os.path.basename(p) not in index]
+    expect(not missing, "docs/guide/README.md does not list these pages: %s" % missing)
+
+
 PY_LINE = re.compile(r"petsc4py \+ ssstar: (\S+) after (\d+) iterations; (\d+) contact nodes; Coulomb law violation (\S+); \|u - u_C\|/\|u_C\| = (\S+)")
 
 
@@ -137,7 +150,7 @@ def manual_synopses_compile():
     expect(not ok and "incompatible" in out, "a drifted synopsis compiles", out)
 
 
-@test("the derivation lives in the project (docs/derivation.md, cited by README and the code) and its checks hold: tests/derivation_check.py on a random 16-node problem gives (d, b) in gph Q, the 6p and 3p Newton steps equal to 1e-12, T G = S H, quadratic convergence with omega = +d_t/|d_t| and at least twice the iterations with the slides' sign, and the library's kernels equal to the page's blocks")
+@test("the derivation lives in the project (docs/derivation.md, cited by the README and the code) and its checks hold: tests/derivation_check.py on a random 16-node problem gives (d, b) in gph Q, the 6p and 3p Newton steps equal to 1e-12, T G = S H, quadratic convergence with omega = +d_t/|d_t| and at least twice the iterations with the slides' sign, and the library's kernels equal to the page's blocks")
 def derivation_checks():
     page = open(os.path.join(ROOT, "docs", "derivation.md")).read()
     for equation in ("(1.1)", "(3.2)", "(4.1)", "(5.1)", "(5.2)", "(6.1)"):

@@ -2,7 +2,7 @@
    The contact of the SNES type "ssstar": what the user declared (the contact points with their rows of the contact
    operator B, the friction laws and their parameters) and what the solver derives from it per node, in its order.
    One route: SNESSSStarSetContactNodes() declares points against rigid planes, whose rows of B (each node's own dofs
-   turned into its frame) are built here and go the way of SNESSSStarSetContactOperator()'s B (operator.c).
+   turned into its frame) are built here and go the way of SNESSSStarSetContactOperator()'s B (contactoperator.c).
 
    Every check of the declaration is collective (SSStarCheckAllRanks()): a wrong entry on one rank ends every rank with
    its message, so that no rank waits in a collective call.

@@ -10,7 +10,7 @@ PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSear
 PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
-   The Newton step (newton.c and one file per implementation, newtonimpl.h, registered by name): for the per-node
+   The Newton step (newton/: newton.c and one file per implementation, newtonimpl.h, registered by name): for the per-node
    blocks S, T of docs/derivation.md section 5 it solves the Newton system on the operator A of the solve (P, or K on
    the whole body) and returns du in the global frame. Created with the SNES (it keeps the settings); each SNESSolve
    gives it the operator, the name of the implementation that fits it and the contact nodes' layout. Counts are of the
@@ -21,7 +21,7 @@ PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_Ne
 #define SSSTARNEWTONFULL   "full"   /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
 
 /*
-   K's null space (floating.c): the rigid-body motions of the bodies held by contact alone, as declared on K
+   K's null space (floating/floating.c): the rigid-body motions of the bodies held by contact alone, as declared on K
    (MatSetNullSpace()), and what the iteration derives from them (docs/derivation.md section 14): whether the friction
    laws can balance the load at all, the motions a Newton step's states leave free, the least-norm solution
 */
@@ -100,7 +100,7 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonDestroy(SSStarNewton *);
 /*
    The contact (contact.c): what the user declared (the contact points with their rows of the contact operator B, the
    friction laws and their parameters) and what the solver derives from it per node. A point i has three own dofs and
-   w_i = B_i u + g_i in its frame (t1, t2, n), w_i3 >= 0 (operator.c). SNESSSStarSetContactNodes() declares points
+   w_i = B_i u + g_i in its frame (t1, t2, n), w_i3 >= 0 (contactoperator.c). SNESSSStarSetContactNodes() declares points
    against rigid planes: B's rows are built from the normals (each node's own dofs turned into its frame).
 */
 
@@ -161,7 +161,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES, PetscInt,
 PETSC_INTERN PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES, const char[], PetscInt, PetscReal[]);
 PETSC_INTERN PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactSetUpOffsets(MPI_Comm, SSStarContact *, PetscReal *);
-/* operator.c: the frames and scales of the points from B, and the change of variables T */
+/* contactoperator.c: the frames and scales of the points from B, and the change of variables T */
 PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Mat, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
 PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, Vec);
@@ -308,7 +308,7 @@ PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SS
 PETSC_INTERN void           SNESSSStarNodeIterate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
 PETSC_INTERN SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *, PetscInt, PetscReal);
 
-/* floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 14) */
+/* floating/: floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 14) */
 PETSC_INTERN PetscErrorCode SSStarKernelSetUp(SSStarContact *, Mat, SSStarKernel *);
 PETSC_INTERN PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *, const unsigned char[], const PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *, Vec);

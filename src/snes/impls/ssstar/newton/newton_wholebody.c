@@ -10,7 +10,7 @@
    (MatZeroRowsColumns, unit rows scaled by 1/gamma). Interior and separated rows are K's; a sliding node's tangential
    rows add phi om times its normal row of K' and W/gamma (docs/derivation.md section 5): the only unsymmetric part. M
    differs from K only in the contact rows and columns: it is formed in K's own storage for each linear solve and K is
-   put back after it (fullmatrix.c), so the step holds no copy of K. The system is solved by the SNES's KSP: CG where
+   put back after it (wholebodymatrix.c), so the step holds no copy of K. The system is solved by the SNES's KSP: CG where
    it is symmetric, GMRES (right preconditioned) where it is not, both preconditioned by algebraic multigrid (PCGAMG
    with K's near-null space, the rigid-body modes, rotated like K'), to the tolerances the iteration sets (inexact
    Newton). The multigrid of an earlier step is kept while few nodes changed their known rows, and built anew
@@ -22,7 +22,7 @@
    has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.
 */
 #include "newtonimpl.h"
-#include "../../../sys/meminfo.h"
+#include "../../../../sys/meminfo.h"
 
 /* GMRES's restart when ssstar chooses GMRES: restarts stall it on the hard steps, and its basis is affordable */
 #define SSSTAR_GMRES_RESTART 100

@@ -12,8 +12,8 @@
      the least-norm solution (14.6): motions no contact point can resist at all (a frictionless body on a plane: its
        sliding along the plane) leave a family of solutions; the one of smallest ||u|| is returned.
 */
-#include "ssstarimpl.h"
-#include "laws/lawimpl.h"
+#include "../ssstarimpl.h"
+#include "../laws/lawimpl.h"
 #include <petscblaslapack.h>
 
 /* a motion the contact points move by less than this (the eigenvalue of Rc^T Rc relative to the largest) is not held */

@@ -8,7 +8,7 @@
      newton_dense.c   P dense (a Schur complement): the known dofs eliminated, LU of the rest (denselu.c), GMRES on an
                       older LU while few nodes changed
      newton_sparse.c  P sparse (a reduced problem given by the user): the Newton matrix formed and factored by a KSP
-     newton_full.c    the whole body, P never formed: K with each contact node's rows, Krylov + algebraic multigrid
+     newton_wholebody.c    the whole body, P never formed: K with each contact node's rows, Krylov + algebraic multigrid
 
    Every implementation solves, for the per-node blocks S, T (row-major 3x3, nodes' frames) and y in the layout of the
    operator's vectors (the contact nodes' entries in their frames, the other entries free dofs),
@@ -23,7 +23,7 @@
    Floating bodies (layout.kernel, docs/derivation.md (14.5)): the rigid-body motions U the step's states leave free
    (kernel->nfree of them, at the contact dofs) get a proximal term, A + SSSTAR_FREE_STIFFNESS / gamma U U^T.
 */
-#include "ssstarimpl.h"
+#include "../ssstarimpl.h"
 
 typedef struct _SSStarNewtonOps *SSStarNewtonOps;
 struct _SSStarNewtonOps {
@@ -81,7 +81,7 @@ PETSC_INTERN void SSStarRotateBack(const PetscReal *, const PetscScalar[3], Pets
 
 /*
    The whole body's Newton matrix formed in K's own storage for each linear solve, K's entries put back after it
-   (fullmatrix.c; newton_full.c says what M is): Create reads K's contact rows and columns, Form writes M for the
+   (wholebodymatrix.c; newton_wholebody.c says what M is): Create reads K's contact rows and columns, Form writes M for the
    blocks S, T (and eliminates the known rows, updating rhs), Restore puts K back.
 */
 typedef struct _n_SSStarFullMatrix *SSStarFullMatrix;

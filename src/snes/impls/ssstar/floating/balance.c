@@ -17,8 +17,8 @@
    exists (Farkas' lemma), whatever the elasticity. Solved by accelerated projected gradients (FISTA with restarts)
    from the contact forces of the first iterate; a load within round-off of the limit is left to the iteration.
 */
-#include "ssstarimpl.h"
-#include "laws/lawimpl.h"
+#include "../ssstarimpl.h"
+#include "../laws/lawimpl.h"
 
 /* the balance by accelerated projected gradients: iterations, and a test of the dual motion every this many */
 #define SSSTAR_BALANCE_MAX_IT   20000

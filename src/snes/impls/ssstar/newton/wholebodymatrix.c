@@ -1,5 +1,5 @@
 /*
-   The whole body's Newton matrix without a copy of K (newton_full.c): it differs from K only in the entries of the
+   The whole body's Newton matrix without a copy of K (newton_wholebody.c): it differs from K only in the entries of the
    contact rows and the contact columns (the "cross"), so it is formed in K's own storage for each linear solve and
    K's entries are put back after it, bit for bit. With Q the rotation into the nodes' frames at the contact dofs
    (identity elsewhere),

@@ -153,14 +153,19 @@ PETSC_INTERN PetscErrorCode SSStarContactSetLaw(SSStarContact *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarContactSetParameter(MPI_Comm, SSStarContact *, const char[], PetscInt, const PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarContactGetParameter(SSStarContact *, const char[], PetscInt *, PetscReal[], PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarContactViewParameters(SSStarContact *, PetscViewer);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES, IS, Vec, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES, IS, Mat, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetNodeLawParameter_SSStar(SNES, const char[], Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const PetscInt[]);
-PETSC_INTERN PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES, PetscInt, PetscInt[]);
-PETSC_INTERN PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES, const char[], PetscInt, PetscReal[]);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactSetUpOffsets(MPI_Comm, SSStarContact *, PetscReal *);
+/* contact.c's checks and helpers of a declaration, shared with friction.c (the laws and their parameters) */
+#define SSSTAR_MESSAGE_LEN 512 /* the message of the first failed check of this rank; checks after it are skipped */
+PETSC_INTERN PetscErrorCode SSStarContactCheckNodeVector(MPI_Comm, Vec, PetscInt, PetscInt, const char[]);
+PETSC_INTERN PetscErrorCode SSStarContactCheckNodeArrays(SNES, SSStarContact *, PetscInt, const char[]);
+PETSC_INTERN PetscErrorCode SSStarContactReplaceVec(Vec *, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactDeclaredNodes(SSStarContact *, PetscInt *);
+PETSC_INTERN PetscErrorCode SSStarContactFindSetting(SSStarContact *, const char[], SSStarLawSetting **);
+/* Every declaration change invalidates the per-node data and the problem */
+static inline void SSStarContactDeclared(SSStarContact *ct)
+{
+  ct->declared++;
+}
 /* contactoperator.c: the frames and scales of the points from B, and the change of variables T */
 PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Mat, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
@@ -317,8 +322,30 @@ PETSC_INTERN PetscErrorCode SSStarKernelReset(SSStarKernel *);
 PETSC_INTERN PetscErrorCode SNESSSStarCheckEquilibrium(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarExtendFreeStep(SNES);
 
-/* accessors.c: the type's composed functions (SNESSSStar*_C) on and off */
-PETSC_INTERN PetscErrorCode SNESSSStarComposeFunctions(SNES, PetscBool);
+/*
+   The type's implementations of the public functions (SNESSSStar*_C), each beside its public function in the file of
+   its concept, composed on the SNES by that file's table: on (SNESCreate_SSStar()) and off (SNESDestroy_SSStar()).
+   Setters are no-ops on a SNES of another type (PetscTryMethod), so a program may declare its contact nodes and still
+   run with -snes_type ksponly. Every collective entry checks its input on every rank (SSStarCheckAllRanks()).
+*/
+typedef struct {
+  const char       *name;
+  PetscVoidFunction fn;
+} SSStarComposed;
+
+static inline PetscErrorCode SNESSSStarComposeTable(SNES snes, const SSStarComposed table[], size_t n, PetscBool on)
+{
+  PetscFunctionBegin;
+  for (size_t k = 0; k < n; k++) PetscCall(PetscObjectComposeFunction((PetscObject)snes, table[k].name, on ? table[k].fn : NULL));
+  PetscFunctionReturn(0);
+}
+PETSC_INTERN PetscErrorCode SNESSSStarComposeContact(SNES, PetscBool);       /* contact.c       */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeFriction(SNES, PetscBool);      /* friction.c      */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeProblem(SNES, PetscBool);       /* problem.c       */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeNewton(SNES, PetscBool);        /* newton/newton.c */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeNodeSteps(SNES, PetscBool);     /* nodesteps.c     */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeGlobalization(SNES, PetscBool); /* globalization.c */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeFloating(SNES, PetscBool);      /* floating/balance.c */
 /* view.c: options, -snes_view, -snes_converged_reason's line */
 PETSC_INTERN PetscErrorCode SNESSetFromOptions_SSStar(SNES, PetscOptionItems *);
 PETSC_INTERN PetscErrorCode SNESView_SSStar(SNES, PetscViewer);

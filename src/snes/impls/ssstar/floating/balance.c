@@ -527,3 +527,68 @@ PetscErrorCode SNESSSStarExtendFreeStep(SNES snes)
   PetscCall(PetscFree(t));
   PetscFunctionReturn(0);
 }
+
+/*@
+   SNESSSStarGetUnbalancedMotion - after a solve that found no equilibrium (SSSTAR_REASON_NO_EQUILIBRIUM): the rigid
+   motion of a floating body along which the load does work that no contact force the friction laws allow resists
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  motion     - the motion, a combination of the vectors of K's null space in the layout of the SNES vector (owned by
+                the SNES), or NULL when the last solve did not stop for this reason; pass NULL if not wanted
+.  body       - the floating body it moves most: the vectors of K's null space that move common dofs make one body,
+                numbered in the order of their first vector (-1 when there is no motion); or NULL
+.  direction  - the direction the body slides in (unit, global axes): the mean tangential part of the motion at its
+                contact points, or where it only lifts off its mean translation; or NULL
+-  unbalanced - the part of the load on the body's rigid-body motions that no admissible contact force balances,
+                relative to the whole (a block on a slope of angle alpha with friction phi < tan alpha:
+                sin(alpha - arctan phi)); or NULL
+
+   Notes:
+   A floating body is one held by contact alone: its rigid-body motions are declared as K's null space
+   (MatSetNullSpace()). Before its first iteration every solve checks that contact forces inside the friction cones
+   can balance the load on those motions (docs/derivation.md section 14); where they cannot, no equilibrium exists,
+   and the solve stops with SNES_DIVERGED_DTOL and this motion (down a slope steeper than its friction angle allows,
+   lifting off the slope at that angle; along a push on a frictionless plane).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetReason()`, `MatSetNullSpace()`
+@*/
+PetscErrorCode SNESSSStarGetUnbalancedMotion(SNES snes, Vec *motion, PetscInt *body, PetscReal direction[3], PetscReal *unbalanced)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetUnbalancedMotion_C", (SNES, Vec *, PetscInt *, PetscReal[3], PetscReal *), (snes, motion, body, direction, unbalanced));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetUnbalancedMotion_SSStar(SNES snes, Vec *motion, PetscInt *body, PetscReal direction[3], PetscReal *unbalanced)
+{
+  SNES_SSStar  *ss = (SNES_SSStar *)snes->data;
+  SSStarKernel *kn = &ss->problem.kernel;
+  const PetscBool none = (PetscBool)(ss->reason != SSSTAR_REASON_NO_EQUILIBRIUM);
+
+  PetscFunctionBegin;
+  if (motion) *motion = none ? NULL : kn->motion;
+  if (body) *body = none ? -1 : kn->movingBody;
+  for (PetscInt d = 0; d < 3 && direction; d++) direction[d] = none ? 0 : kn->direction[d];
+  if (unbalanced) *unbalanced = none ? 0 : kn->unbalanced;
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarGetUnbalancedMotion_C", (PetscVoidFunction)SNESSSStarGetUnbalancedMotion_SSStar},
+};
+
+PetscErrorCode SNESSSStarComposeFloating(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
+  PetscFunctionReturn(0);
+}

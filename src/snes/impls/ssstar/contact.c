@@ -326,7 +326,7 @@ static PetscErrorCode BuildInterior(MPI_Comm comm, SSStarContact *ct, Vec x)
    The rows of B of nodes against rigid planes: node i's own dofs turned into its frame (t1, t2, n) from the normal n
    (SSStarNodeFrame(); the identity without normals). The normals must be unit vectors.
 */
-static PetscErrorCode BuildNodeOperator(MPI_Comm comm, SSStarContact *ct, Vec x, Mat *B)
+static PetscErrorCode BuildNodeContactOperator(MPI_Comm comm, SSStarContact *ct, Vec x, Mat *B)
 {
   const PetscScalar *na = NULL;
   const PetscInt    *idx;
@@ -478,8 +478,8 @@ PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct, PetscBool *rebui
     for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(SSStarContactCheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
     PetscCall(BuildOrder(comm, ct));
     PetscCall(BuildInterior(comm, ct, snes->vec_func));
-    if (!B) PetscCall(BuildNodeOperator(comm, ct, snes->vec_func, &B));
-    PetscCall(SSStarContactBuildOperator(comm, ct, B, snes->vec_func));
+    if (!B) PetscCall(BuildNodeContactOperator(comm, ct, snes->vec_func, &B));
+    PetscCall(SSStarContactOperatorSetUp(comm, ct, B, snes->vec_func));
     if (!ct->B) PetscCall(MatDestroy(&B));
   } else {
     PetscCall(VecGetLocalSize(snes->vec_func, &n));

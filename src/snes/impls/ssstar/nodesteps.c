@@ -20,7 +20,7 @@ SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *ss, PetscInt i, PetscReal g
   return fr;
 }
 
-/* y = R x (R NULL: identity), x the entries of node i in a vector of the operator */
+/* y = R x (R NULL: identity), x the entries of node i in a vector of the stiffness A */
 void SNESSSStarNodeRotate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *a, PetscReal y[3])
 {
   const PetscInt  *dof = &pb->layoutDofs[3 * i];

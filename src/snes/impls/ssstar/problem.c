@@ -100,7 +100,7 @@ static PetscErrorCode ChooseNewton(SSStarProblem *pb)
 
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pb->A, &dense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
-  pb->newtonType = pb->wholeBody ? SSSTARNEWTONFULL : dense ? SSSTARNEWTONDENSE : SSSTARNEWTONSPARSE;
+  pb->newtonType = pb->wholeBody ? SSSTARNEWTONWHOLEBODY : dense ? SSSTARNEWTONDENSE : SSSTARNEWTONSPARSE;
   PetscFunctionReturn(0);
 }
 
@@ -146,7 +146,7 @@ static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProble
   if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
   if (same && !ct->T && pb->Kw == K) { /* the problem stands; the floating bodies' motions at the points change frames */
     pb->built = ct->built;
-    if (pb->kernel.m) PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel));
+    if (pb->floating.m) PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating));
   }
   PetscFunctionReturn(0);
 }
@@ -171,7 +171,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
     PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
-    PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel)); /* floating bodies (floating.c): checked before any factorization */
+    PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating)); /* floating bodies (floating.c): checked before any factorization */
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     pb->wholeBody = PETSC_FALSE;
     if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb));
@@ -182,7 +182,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
       pb->A = K;
     }
     PetscCall(ChooseNewton(pb));
-    if (pb->kernel.m) {
+    if (pb->floating.m) {
       PetscBool sparse;
 
       PetscCall(PetscStrcmp(pb->newtonType, SSSTARNEWTONSPARSE, &sparse));
@@ -225,7 +225,7 @@ PetscErrorCode SSStarProblemGetLayout(SSStarContact *ct, SSStarProblem *pb, SSSt
   layout->nnodes = ct->nnodes;
   layout->dofs   = pb->layoutDofs;
   layout->frames = ct->frames;
-  layout->kernel = pb->kernel.m ? &pb->kernel : NULL;
+  layout->floating = pb->floating.m ? &pb->floating : NULL;
   PetscFunctionReturn(0);
 }
 
@@ -262,7 +262,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   PetscFunctionBegin;
   if (!ct->dofs) {
     PetscCall(VecCopy(u, x));
-    PetscCall(SSStarKernelLeastNorm(&pb->kernel, x));
+    PetscCall(SSStarFloatingLeastNorm(&pb->floating, x));
     PetscFunctionReturn(0);
   }
   PetscCall(VecDuplicate(x, &v));
@@ -271,7 +271,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   if (ct->T) PetscCall(MatMult(ct->T, v, x));
   else PetscCall(VecCopy(v, x));
   PetscCall(VecDestroy(&v));
-  PetscCall(SSStarKernelLeastNorm(&pb->kernel, x)); /* motions no contact resists: the least-norm solution */
+  PetscCall(SSStarFloatingLeastNorm(&pb->floating, x)); /* motions no contact resists: the least-norm solution */
   PetscFunctionReturn(0);
 }
 
@@ -315,7 +315,7 @@ PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscView
     else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", type, isauto ? " (chosen by auto)" : ""));
   } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
-  PetscCall(SSStarKernelView(&pb->kernel, viewer));
+  PetscCall(SSStarFloatingView(&pb->floating, viewer));
   PetscFunctionReturn(0);
 }
 
@@ -332,7 +332,7 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   PetscCall(PetscFree(pb->layoutDofs));
   PetscCall(PetscFree(pb->free));
   PetscCall(ISDestroy(&pb->isC));
-  PetscCall(SSStarKernelReset(&pb->kernel));
+  PetscCall(SSStarFloatingReset(&pb->floating));
   pb->nfree     = 0;
   pb->K         = NULL;
   pb->built     = -1;
@@ -430,7 +430,7 @@ PetscErrorCode SNESSSStarSetLinearProblem(SNES snes, Mat K, Vec b)
 .  snes - the SNES, after SNESSolve()
 
    Output Parameters:
-+  P - the reduced operator (owned by the SNES), or pass NULL
++  P - the reduced stiffness (owned by the SNES), or pass NULL
 -  f - the reduced load (owned by the SNES), or pass NULL
 
    Notes:

@@ -1,6 +1,6 @@
 /*
    The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (docs/derivation.md section 7), on the contact
-   dofs of a reduced problem or on the whole body (problem.c says which: the layout of the operator's vectors). The
+   dofs of a reduced problem or on the whole body (problem.c says which: the layout of the stiffness A's vectors). The
    iteration is here; the per-node work in nodesteps.c, the globalization in globalization.c, the declaration in
    contact.c and friction.c, the problem in problem.c, options and views in view.c. Each public function sits beside the
    type's implementation in the file of its concept, composed from there (SNESSSStarComposeFunctions()).
@@ -60,7 +60,7 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscFunctionReturn(0);
 }
 
-/* The vectors of the iteration, in the layout of the operator A (they change with it) */
+/* The vectors of the iteration, in the layout of the stiffness A (they change with it) */
 static PetscErrorCode CreateWorkVectors(SNES snes)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
@@ -242,7 +242,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   PetscCall(CreateWorkVectors(snes));
   PetscCall(SNESSSStarComputeScaling(snes));
   PetscCall(SSStarProblemGetLayout(ct, pb, &layout));
-  PetscCall(SSStarNewtonSetOperator(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
+  PetscCall(SSStarNewtonSetStiffness(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
   PetscCall(SSStarProblemGetInitialGuess(ct, pb, snes->vec_sol, ss->u));
   PetscCall(CheckProblem(snes));
   if (pb->wholeBody) PetscCall(Equilibrate(snes)); /* the free dofs in equilibrium with the contact dofs */

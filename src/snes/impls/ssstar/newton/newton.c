@@ -1,6 +1,6 @@
 /*
    The Newton step of ssstar: what every implementation shares (newtonimpl.h). The SNES creates one SSStarNewton and
-   keeps it; each SNESSolve gives it the operator and the name of the implementation that fits it (registered by
+   keeps it; each SNESSolve gives it the stiffness A and the name of the implementation that fits it (registered by
    newtonregall.c).
 */
 #include "newtonimpl.h"
@@ -56,7 +56,7 @@ PetscErrorCode SSStarNewtonGetPCReuse(SSStarNewton nt, PetscReal *fraction)
   PetscFunctionReturn(0);
 }
 
-/* Takes effect with the next operator */
+/* Takes effect with the next stiffness A */
 PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton nt, PetscInt threads)
 {
   PetscFunctionBegin;
@@ -71,7 +71,7 @@ PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton nt, PetscInt *threads)
   PetscFunctionReturn(0);
 }
 
-/* Drops everything built for an operator (the settings stay) */
+/* Drops everything built for a stiffness A (the settings stay) */
 PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 {
   PetscFunctionBegin;
@@ -85,10 +85,10 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 }
 
 /*
-   The operator A (P, or K on the whole body) with the given implementation, the scaling gamma and the contact nodes'
-   layout, for one SNESSolve: the counts start afresh; what was built for another operator is dropped
+   The stiffness A (P, or K on the whole body) with the given implementation, the scaling gamma and the contact nodes'
+   layout, for one SNESSolve: the counts start afresh; what was built for another A is dropped
 */
-PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A, PetscReal gamma, const SSStarContactLayout *layout)
+PetscErrorCode SSStarNewtonSetStiffness(SSStarNewton nt, const char type[], Mat A, PetscReal gamma, const SSStarContactLayout *layout)
 {
   PetscBool        sameType;
   PetscObjectState state;
@@ -118,7 +118,7 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   nt->Astate = state;
   PetscCall(PetscStrallocpy(type, &nt->type));
   /* the SNES's KSP may be the implementation's (SNESSetFromOptions gave it the user's Jacobian: drop that), and a
-     multigrid of another operator keeps its levels through a reset (GAMG's coarse solvers of the old sizes): a fresh
+     multigrid of another A keeps its levels through a reset (GAMG's coarse solvers of the old sizes): a fresh
      preconditioner, its type from the implementation's defaults and the options again */
   PetscCall(KSPReset(nt->snes->ksp));
   {
@@ -132,7 +132,7 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   PetscFunctionReturn(0);
 }
 
-/* A new gamma for the same operator (the globalization's rescaling): the factorizations of the old one do not apply */
+/* A new gamma for the same A (the globalization's rescaling): the factorizations of the old one do not apply */
 PetscErrorCode SSStarNewtonSetScaling(SSStarNewton nt, PetscReal gamma)
 {
   PetscFunctionBegin;
@@ -185,7 +185,7 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
 {
   PetscFunctionBegin;
   nt->nSteps++;
-  if (nt->layout.kernel) { /* floating bodies: the motions the step leaves free (docs/derivation.md (14.5)) */
+  if (nt->layout.floating) { /* floating bodies: the motions the step leaves free (docs/derivation.md (14.5)) */
     unsigned char *known;
 
     PetscCall(PetscMalloc1(nt->layout.nnodes + 1, &known));
@@ -194,7 +194,7 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
       for (PetscInt r = 0; r < 3; r++)
         if (SSStarKnownRow(&S[9 * i], &T[9 * i], r)) known[i] |= (unsigned char)(1 << r);
     }
-    PetscCall(SSStarKernelFreeMotions(nt->layout.kernel, known, T));
+    PetscCall(SSStarFloatingFreeMotions(nt->layout.floating, known, T));
     PetscCall(PetscFree(known));
   }
   PetscCall((*nt->ops.solve)(nt, S, T, y, du, solved));
@@ -223,7 +223,7 @@ PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton nt, Vec y, Vec du, PetscBool 
   PetscScalar               *da;
 
   PetscFunctionBegin;
-  if (nt->layout.kernel) nt->layout.kernel->nfree = 0; /* the contact dofs hold every motion */
+  if (nt->layout.floating) nt->layout.floating->nfree = 0; /* the contact dofs hold every motion */
   if (nt->ops.solveknown) {
     nt->nSteps++;
     PetscCall((*nt->ops.solveknown)(nt, y, du, solved));
@@ -273,7 +273,7 @@ PetscErrorCode SSStarNewtonGetSteps(SSStarNewton nt, PetscInt *steps)
 PetscErrorCode SSStarNewtonView(SSStarNewton nt, PetscViewer viewer)
 {
   PetscFunctionBegin;
-  if (!nt->ops.view) PetscFunctionReturn(0); /* no operator yet */
+  if (!nt->ops.view) PetscFunctionReturn(0); /* no stiffness A yet */
   PetscCall((*nt->ops.view)(nt, viewer));
   PetscFunctionReturn(0);
 }

@@ -1,5 +1,10 @@
 # ssstar: `make` builds lib/libssstar.so and the examples, `make run` solves the prism,
-# `make test` runs the test suite, `make bench` the timing table. configure.py runs first if needed.
+# `make test` runs the test suite (`make test-full` with its slow tests), `make bench` the timing table. configure.py runs first if needed.
+
+# builds on every core unless make -j N says otherwise
+ifeq ($(filter -j%,$(MAKEFLAGS)),)
+MAKEFLAGS += -j$(shell nproc)
+endif
 
 -include config/ssstar.mk
 ifneq ($(PETSC_DIR),)
@@ -39,7 +44,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test test-full bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -97,8 +102,12 @@ print-cflags:
 run: all
 	$(MPIEXEC_SSSTAR) -n 2 examples/prism -level 6 -snes_converged_reason -o prism_L6.h5
 
+# the default suite, several tests at a time (tests/run.py -j, default the number of cores); test-full adds the slow ones
 test: all
 	$(PYTHON) tests/run.py
+
+test-full: all
+	$(PYTHON) tests/run.py --full
 
 bench: all
 	$(PYTHON) bench/table2.py

@@ -5,7 +5,9 @@ import re
 import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-OUT = os.path.join(ROOT, "tests", "output")
+# tests/run.py runs every test in a process of its own with SSSTAR_TEST_OUT = tests/output/<test>: tests that run at
+# the same time never share a file
+OUT = os.environ.get("SSSTAR_TEST_OUT", os.path.join(ROOT, "tests", "output"))
 LIB = os.path.join(ROOT, "lib", "libssstar.so")
 PYTHON = "/usr/bin/python3"  # Debian's, with h5py
 PRISM = os.path.join(ROOT, "examples", "prism")
@@ -100,11 +102,14 @@ def last_znorm(out):
     return float(norms[-1])
 
 
+# (name, requirement, function, full): full tests run only in make test-full (tests/run.py --full)
 TESTS = []
 
 
-def test(requirement):
+def test(requirement, full=False):
+    """Registers a test. full=True: a slow test whose capability has a quicker test in the default run; it runs in
+    make test-full only."""
     def register(fn):
-        TESTS.append((fn.__name__, requirement, fn))
+        TESTS.append((fn.__name__, requirement, fn, full))
         return fn
     return register

@@ -19,7 +19,7 @@ PREFIX   ?= /usr/local
 PYTHON_DIR ?= $(PREFIX)/lib/python3/dist-packages
 LIB      := lib/lib$(LIBNAME).so
 LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
-            $(wildcard src/snes/impls/ssstar/*.c) $(wildcard src/snes/impls/ssstar/laws/*.c) $(wildcard src/reduction/*.c) \
+            $(wildcard src/snes/impls/ssstar/*.c src/snes/impls/ssstar/*/*.c) $(wildcard src/reduction/*.c) \
             $(wildcard src/geometry/*.c) $(wildcard src/scene/*.c src/scene/*/*.c src/scene/*/*/*.c) \
             $(wildcard src/history/*.c)
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
@@ -51,7 +51,7 @@ all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 config/ssstar.mk: configure.py
 	python3 configure.py
 
-build/%.o: src/%.c $(wildcard include/*.h src/*/*.h src/*/*/*.h src/*/*/*/*.h src/snes/impls/ssstar/*.h src/snes/impls/ssstar/laws/*.h) config/ssstar.mk
+build/%.o: src/%.c $(wildcard include/*.h src/*/*.h src/*/*/*.h src/*/*/*/*.h src/snes/impls/ssstar/*.h src/snes/impls/ssstar/*/*.h) config/ssstar.mk
 	@mkdir -p $(dir $@)
 	$(SAY) "  CC      $<"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) -c $< -o $@

@@ -310,6 +310,17 @@ PetscErrorCode SSStarLawGetParameter(const char name[], const SSStarLawParameter
   SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_UNKNOWN_TYPE, "No friction law has a parameter %s: the parameters are %s", name, list);
 }
 
+/* What is wrong with the values of a parameter ("-0.1: the friction coefficient must be a number >= 0"), or "" */
+PetscErrorCode SSStarLawCheckValues(const SSStarLawParameter *par, const PetscReal v[], char msg[], size_t len)
+{
+  PetscFunctionBegin;
+  msg[0] = 0;
+  if (par->kind == SSSTAR_LAW_DIRECTION) {
+    if (PetscIsInfOrNanReal(v[0]) || PetscIsInfOrNanReal(v[1]) || PetscIsInfOrNanReal(v[2]) || (v[0] == 0 && v[1] == 0 && v[2] == 0)) PetscCall(PetscSNPrintf(msg, len, "%g,%g,%g: the %s must be a nonzero vector", (double)v[0], (double)v[1], (double)v[2], par->description));
+  } else if (PetscIsInfOrNanReal(v[0]) || v[0] < 0) PetscCall(PetscSNPrintf(msg, len, "%g: the %s must be a number >= 0", (double)v[0], par->description));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarLawGetParameterSize - the number of values per node of a parameter of the friction laws
 

@@ -75,6 +75,7 @@ PETSC_INTERN PetscErrorCode SSStarLawGet(PetscInt, SSStarLaw *);
 PETSC_INTERN PetscErrorCode SSStarLawFind(const char[], SSStarLaw *);
 PETSC_INTERN PetscInt       SSStarLawFindParameter(SSStarLaw, const char[]);
 PETSC_INTERN PetscErrorCode SSStarLawGetParameter(const char[], const SSStarLawParameter **);
+PETSC_INTERN PetscErrorCode SSStarLawCheckValues(const SSStarLawParameter *, const PetscReal[], char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarLawDestroyAll(void);
 PETSC_EXTERN PetscBool      SSStarLawRegisterAllCalled;
 

@@ -8,11 +8,13 @@
 */
 #include "../sceneimpl.h"
 
-/* Every history of the scene (tractions, gravity, motions) into list (NULL: count them) */
+/* Every history of the scene (tractions, gravity, motions, prescribed displacements) into list (NULL: count them) */
 static PetscInt Histories(SSStarScene scene, SSStarHistory list[])
 {
   PetscInt n = 0;
 
+  for (PetscInt d = 0; d < scene->nDisplacements; d++, n++)
+    if (list) list[n] = scene->displacements[d].history;
   for (PetscInt t = 0; t < scene->nTractions; t++, n++)
     if (list) list[n] = scene->tractions[t].history;
   if (scene->hasGravity) {
@@ -28,8 +30,8 @@ static PetscInt Histories(SSStarScene scene, SSStarHistory list[])
 }
 
 /*@C
-   SSStarSceneGetKnots - the times of the knots of every history of the scene (tractions, gravity, obstacle motions),
-   sorted, each once: the default steps of its load path
+   SSStarSceneGetKnots - the times of the knots of every history of the scene (tractions, gravity, obstacle motions,
+   prescribed displacements), sorted, each once: the default steps of its load path
 
    Not Collective
 

@@ -119,6 +119,7 @@ struct _n_SSStarScene {
   Vec       lastLoad;     /* the load SSStarAssembleLoad() assembled last (a copy), to find a load's factor     */
   PetscReal loadFree[3];  /* of that load: the resultant of the tractions and gravity on the dofs not held        */
   PetscReal *loadHeld;    /* and on the held dofs of each held group (3 per held group)                          */
+  char     **heldNames;   /* the held groups' names (SSStarSceneGetHeldGroups())                                */
 
   /* the owned contact nodes, in vertex order (their global dofs increase) */
   PetscInt   n, nGlobal;
@@ -230,6 +231,7 @@ PETSC_INTERN PetscErrorCode SSStarHeldLift(SSStarScene, const SSStarCells *, con
 PETSC_INTERN PetscErrorCode SSStarHeldPrescribe(SSStarScene, const PetscReal[], Vec);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckPartlyHeld(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSetRigidBodyModes(SSStarScene, Mat);
+PETSC_INTERN PetscErrorCode SSStarSceneLoadFactor(SSStarScene, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, PetscReal, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
 PETSC_INTERN PetscErrorCode SSStarAssembleLoad(SSStarScene, PetscReal, Vec);

@@ -111,6 +111,7 @@ PetscErrorCode SSStarPrescribedDestroy(SSStarScene scene)
   scene->nDisplacements = 0;
   PetscCall(PetscFree(scene->heldBy));
   PetscCall(PetscFree(scene->loadHeld));
+  PetscCall(PetscFree(scene->heldNames));
   PetscCall(VecDestroy(&scene->diagK));
   PetscCall(VecDestroy(&scene->lastLoad));
   PetscFunctionReturn(0);

@@ -3,6 +3,7 @@
 
      /geometry/vertices, /fields/displacement  every mesh vertex in the mesh file's node order (fileorder.c)
      /viz/topology/cells                       the tetrahedra by their vertices' file numbers, in a canonical order
+     /groups/<G>/reaction                      the force of each held group (-dirichlet, -displacement_<G>) on the body
      /contact/...                              per contact node, in file order (contact.c)
      /contact_faces/...                        the contact faces' triangles and the point fields ParaView colours them by
      /scene/...                                what was simulated: mesh, material, loads, contact groups (metadata.c)
@@ -308,6 +309,33 @@ static PetscErrorCode WriteStepTable(SSStarScene scene, SSStarSceneOutput out)
   PetscFunctionReturn(0);
 }
 
+/* /groups/<G>/reaction of every held group: the force its prescription exerts on the body at u (3, rank 0 writes) */
+static PetscErrorCode WriteReactions(SSStarScene scene, hid_t file, SNES snes, Vec u)
+{
+  PetscInt           nheld;
+  const char *const *names;
+  PetscReal         *reaction;
+  PetscMPIInt        rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
+  PetscCall(SSStarSceneGetHeldGroups(scene, &nheld, &names));
+  PetscCall(PetscMalloc1(3 * nheld + 1, &reaction));
+  PetscCall(SSStarSceneGetReactions(scene, snes, u, reaction));
+  for (PetscInt h = 0; h < nheld; h++) {
+    char  path[PETSC_MAX_PATH_LEN];
+    hid_t group;
+
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/groups/%s", names[h]));
+    PetscCall(SSStarH5GroupOpen(file, path, &group));
+    PetscCallH5(H5Gclose(group));
+    PetscCall(PetscStrlcat(path, "/reaction", sizeof(path)));
+    PetscCall(SSStarH5WriteRows(scene->comm, file, path, rank ? 0 : 3, 0, &reaction[3 * h], NULL));
+  }
+  PetscCall(PetscFree(reaction));
+  PetscFunctionReturn(0);
+}
+
 /* The top level (the state u with what the SNES did), the table of the steps, the caller's extra, into the open file */
 static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SNES snes, Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx, PetscInt *nfaceVertices, PetscInt *ntriangles)
 {
@@ -319,6 +347,7 @@ static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SN
 
   PetscFunctionBegin;
   PetscCall(SSStarWriteMesh(scene, out->file, u));
+  PetscCall(WriteReactions(scene, out->file, snes, u));
   PetscCall(SSStarWriteRun(scene, out->file, snes));
   {
     PetscInt *laws; /* the groups' laws, for an SNES that is no ssstar */

@@ -6,6 +6,7 @@ bad input refused by name, Hertz's subsurface stress, a cantilever against beam 
 import json
 import os
 import re
+import subprocess
 
 import h5py
 import numpy as np
@@ -174,3 +175,96 @@ def displacement_refused():
     # no contact: the lid held in z alone leaves rigid motions free
     out = run([CONTACT, "-mesh", half, "-E", "1000", "-nu", "0.3", "-displacement_top", "free,free,-0.01"], expect_rc=1)
     expect(re.search(r"The body of volume group \"block\" .* is held in some directions only: its prescribed displacements .* leave 3 of its rigid-body motions free, and there is no contact to hold them", out) is not None, "a partly held body without contact is not refused by name", out)
+
+
+@test("the stresses in the XDMF file: VTK's vtkXdmfReader (what ParaView uses) reads the compression's file (a load path) with the cell arrays strain, stress (full symmetric tensors, 9 components, built from the file's xx, yy, zz, yz, xz, xy) and von_mises and the point array stress_nodal at every time, their means the HDF5 file's")
+def displacement_xdmf():
+    from suite_loadpath import vtk_python
+    h5 = os.path.join(OUT, "displacement_compression_none_2.h5")
+    if not os.path.exists(h5):
+        contact(BLOCK + ["-contact", "bottom", "-friction_law_bottom", "none", "-displacement_top", "0:free,free,0;1:free,free,-0.005;2:free,free,-0.01", "-snes_ssstar_reduction", "none"], os.path.basename(h5), 2)
+    py = vtk_python()
+    expect(py is not None, "no Python with VTK's vtkXdmfReader: pip install vtk (or set SSSTAR_VTK_PYTHON)")
+    steps = json.loads(run([py, os.path.join(ROOT, "tests", "xdmf_check.py"), h5.replace(".h5", ".xmf")]))
+    f = h5py.File(h5, "r")
+    full = lambda s: s[:, [0, 5, 4, 5, 1, 3, 4, 3, 2]]  # noqa: E731 (xx, yy, zz, yz, xz, xy as VTK's 3 x 3 rows)
+    for k, s in enumerate(steps):
+        mesh = s["grids"]["mesh"]
+        for name in ("strain", "stress", "von_mises"):
+            data = f["steps/%d/fields/%s" % (k, name)][:]
+            mean = (full(data) if data.ndim == 2 else data[:, None]).mean(axis=0)
+            got = np.array(mesh["cell_means"].get(name, []))
+            expect(got.shape == mean.shape and np.allclose(got, mean, rtol=1e-12, atol=1e-15 * max(1, np.abs(mean).max())), "step %d: the XDMF's cell array %s has the means %s, the file %s" % (k, name, got, mean))
+        mean = full(f["steps/%d/fields/stress_nodal" % k][:]).mean(axis=0)
+        got = np.array(mesh["means"].get("stress_nodal", []))
+        expect(got.shape == mean.shape and np.allclose(got, mean, rtol=1e-12, atol=1e-12 * max(1, np.abs(mean).max())), "step %d: the XDMF's point array stress_nodal has the means %s, the file %s" % (k, got, mean))
+
+
+def hertz_on_axis(z, nu):
+    """Hertz's stresses on the axis under a sphere, in p0 (Johnson, Contact Mechanics, (3.45)): the von Mises stress
+    |sigma_r - sigma_z| at the depth z in a"""
+    sz = -1 / (1 + z ** 2)
+    sr = -(1 + nu) * (1 - z * np.arctan(1 / z)) + 0.5 / (1 + z ** 2)
+    return np.abs(sr - sz)
+
+
+@test("Hertz's subsurface stress (scenes/hertz.opts at level 1, nu = 0.3, mesh size h = 0.2 near the pole): the largest von Mises stress of the cells on the axis (centroid within h/2) is 0.62 p0 at the depth 0.48 a, within what cells of size h resolve: the value within 0.62 p0 - min(vm(0.48 a - h), vm(0.48 a + h)) = 0.056 p0 and the depth within h, with a and p0 Hertz's for the measured normal force; the law holds")
+def displacement_hertz_stress():
+    out, f = contact(["-options_file", os.path.join(ROOT, "scenes", "hertz.opts"), "-level", "1"], "displacement_hertz_L1.h5")
+    law("displacement_hertz_L1.h5")
+    nu, E, R, h = 0.3, 2.1e5, 10.0, 0.2
+    F = f["contact/reaction"][:, 2].sum()
+    a = (3 * F * R / (4 * E / (1 - nu ** 2))) ** (1 / 3)
+    p0 = 3 * F / (2 * np.pi * a ** 2)
+    zz = np.linspace(0.01, 3, 30000)
+    theory = hertz_on_axis(zz, nu)
+    zmax, vmax = zz[theory.argmax()], theory.max()
+    expect(abs(vmax - 0.62) < 0.005 and abs(zmax - 0.48) < 0.005, "Hertz's on-axis maximum %.4f p0 at %.4f a, not 0.62 at 0.48" % (vmax, zmax))
+    tol = vmax - min(hertz_on_axis(np.array([zmax - h / a, zmax + h / a]), nu))
+    x, cells, vm = f["geometry/vertices"][:], f["viz/topology/cells"][:], f["fields/von_mises"][:]
+    centre = x[cells].mean(axis=1)
+    axis = (np.hypot(centre[:, 0], centre[:, 1]) < h / 2) & (centre[:, 2] < 2 * a)
+    j = np.argmax(vm[axis])
+    value, depth = vm[axis][j] / p0, centre[axis][j, 2] / a
+    expect(abs(value - vmax) <= tol and abs(depth - zmax) <= h / a, "the largest von Mises stress on the axis is %.4f p0 at %.3f a (Hertz %.4f at %.3f; tolerances %.3f p0, %.3f a)" % (value, depth, vmax, zmax, tol, h / a), out)
+
+
+@test("a cantilever beam 10 x 1 x 1 (meshes/cantilever.geo, E = 1000, nu = 0.3) clamped at its root (-dirichlet root), a tip load P = 1 (-traction_tip 0,0,-1): away from the ends (x = 2.5, 5, 7.5) the shear force of the cells' stresses over a section is P to 1e-6 and their bending moment is beam theory's P (L - x), short by P1 tetrahedra's bending error, which falls as h^2: 15-25 % at level 2, 4-9 % at level 4, 3x or more from one to the other (1.8 % at level 8); the root's reaction /groups/root/reaction balances the load (0, 0, P) to 1e-8")
+def displacement_cantilever():
+    errors = {}
+    for level in (2, 4):
+        out, f = contact(["-geo", os.path.join(ROOT, "meshes", "cantilever.geo"), "-level", str(level), "-E", "1000", "-nu", "0.3", "-dirichlet", "root", "-traction_tip", "0,0,-1"], "displacement_cantilever_L%d.h5" % level)
+        law("displacement_cantilever_L%d.h5" % level)
+        x, cells, s = f["geometry/vertices"][:], f["viz/topology/cells"][:], f["fields/stress"][:]
+        X = x[cells]
+        centre, e = X.mean(axis=1), X[:, 1:] - X[:, :1]
+        vol = np.abs(np.einsum("ij,ij->i", np.cross(e[:, 0], e[:, 1]), e[:, 2])) / 6
+        h = 10.0 / (20 * level)
+        reaction = f["groups/root/reaction"][:]
+        expect(np.abs(reaction - [0, 0, 1]).max() <= 1e-8, "level %d: the root's reaction %s does not balance the load" % (level, reaction))
+        for xs in (2.5, 5.0, 7.5):
+            slab = np.abs(centre[:, 0] - xs) < h  # the cells between the node planes xs - h and xs + h
+            V = (vol[slab] * s[slab, 4]).sum() / (2 * h)
+            M = (vol[slab] * s[slab, 0] * centre[slab, 2]).sum() / (2 * h)
+            expect(abs(V + 1) <= 1e-6, "level %d, x = %g: the section's shear force %g, not -P" % (level, xs, V))
+            errors.setdefault(level, []).append(M / (10 - xs) - 1)
+    e2, e4 = np.array(errors[2]), np.array(errors[4])
+    expect((-0.25 < e2).all() and (e2 < -0.15).all() and (-0.09 < e4).all() and (e4 < -0.04).all() and (e2 / e4 > 3).all(), "the bending moments' errors %s (level 2), %s (level 4) do not fall as h^2" % (e2, e4))
+
+
+@test("the Python module: ssstar.Scene(displacement={\"top\": [(t, (None, None, -delta)), ...]}) (None or \"free\": a free component) solves the compression's steps with Step.row[\"groups/top/reaction\"] = (0, 0, -E A delta/h) to 1e-8; Scene.set(displacement=...) moves the lid on (t = 3: delta 0.02, reaction -40); a new pattern of free components is refused naming the option; the file it writes is examples/contact's (the same steps to 2e-6) and passes check_solution.py law --steps; no memory left (-malloc_dump)")
+def displacement_python():
+    h5 = os.path.join(OUT, "displacement_python.h5")
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+    p = subprocess.run([PYTHON, os.path.join(ROOT, "tests", "displacement_python.py"), h5, "-malloc_dump"], cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300)
+    expect(p.returncode == 0 and not LEAK.findall(p.stdout), "tests/displacement_python.py failed or leaked", p.stdout)
+    rows = {float(t): (json.loads(r), float(n)) for t, r, n in re.findall(r"^t (\S+) reaction (\[.*?\]) normal_force (\S+)$", p.stdout, re.M)}
+    expect(sorted(rows) == [0, 1, 2, 3], "the steps %s, not 0, 1, 2, 3" % sorted(rows), p.stdout)
+    for t, (reaction, normal) in rows.items():
+        delta = 0.005 * t if t <= 2 else 0.02
+        expect(np.abs(np.array(reaction) - [0, 0, -E * AREA * delta / HEIGHT]).max() <= 1e-8 * max(1, E * delta / HEIGHT) and abs(normal - E * AREA * delta / HEIGHT) <= 1e-8 * max(1, E * delta / HEIGHT), "t %g: reaction %s, normal force %g" % (t, reaction, normal), p.stdout)
+    expect(re.search(r"^refused: Option -displacement_top 0,free,-0\.02: the free components of a prescribed displacement are fixed", p.stdout, re.M) is not None, "a new pattern of free components is not refused", p.stdout)
+    law("displacement_python.h5")
+    c = "displacement_python_c.h5"
+    contact(BLOCK + ["-contact", "bottom", "-friction_law_bottom", "none", "-displacement_top", "0:free,free,0;1:free,free,-0.005;2:free,free,-0.01;3:free,free,-0.02"], c)
+    run(CHECK + ["compare", os.path.join(OUT, c), h5, "--steps", "--tol", str(AGREE)])

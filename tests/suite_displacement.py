@@ -20,6 +20,18 @@ STUCK = 24.6  # -reaction z of the clamped lid on a base with phi = 100 (every n
 PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
 
 
+@test("docs/derivation.md section 15 holds (tests/displacement_check.py, numpy, independent of the C code): the identity rows give u_D = g and the lifted free equations, the reaction is the constraint's multiplier, the reduction of K' is that of K_FF with the lifted load (to 1e-12); a P1 cube held in z on its top keeps 3 rigid motions; a contact node held in x on a plane of symmetry (Coulomb) has u_x = 0 and no force along x; the P1 strain of a linear field is exact; Hertz's on-axis von Mises maximum is 0.62 p0 at 0.48 a")
+def displacement_derivation():
+    out = run([PYTHON, os.path.join(ROOT, "tests", "displacement_check.py")])
+    expect(out.count("PASS") == 6 and "FAIL" not in out, "tests/displacement_check.py", out)
+
+
+@test("the P1 tetrahedron's kernels give hand-computed values (tests/test_stress.c): the strain of u = A x + c is sym(A) on a unit and a distorted tetrahedron, whatever the vertices' order, zero for a small rotation; Hooke's stress of (1, -nu, -nu) is (E, 0, 0) and of a shear 2 mu eps; von Mises |s|, sqrt(3) |tau|, 0 for a hydrostatic stress, sqrt(234) for (1, ..., 6)")
+def displacement_kernels():
+    out = run([os.path.join(ROOT, "tests", "test_stress")])
+    expect("passed: 0 failures" in out, "tests/test_stress", out)
+
+
 def contact(args, h5, ranks=1, expect_rc=0):
     out = run(mpiexec(ranks, CONTACT, *args, "-o", os.path.join(OUT, h5)), expect_rc=expect_rc)
     return out, h5py.File(os.path.join(OUT, h5), "r")

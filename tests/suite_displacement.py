@@ -280,3 +280,27 @@ def displacement_python():
     c = "displacement_python_c.h5"
     contact(BLOCK + ["-contact", "bottom", "-friction_law_bottom", "none", "-displacement_top", "0:free,free,0;1:free,free,-0.005;2:free,free,-0.01;3:free,free,-0.02"], c)
     run(CHECK + ["compare", os.path.join(OUT, c), h5, "--steps", "--tol", str(AGREE)])
+
+
+@test("the force-displacement picture (examples/plot_contact.py on the compression's load path): FILE_reaction.png is drawn, one panel per prescribed group, its line the file's /steps/groups/<G>/displacement and /steps/groups/<G>/reaction in the prescribed component that moves most (z), labelled with the group, the component and the units; the other pictures are drawn too, also for a load path with a -dirichlet group (its /steps/groups/<G> has a reaction and no displacement: a lid held fixed, the base pushed up by a moving plane, held in x on its plane of symmetry)")
+def displacement_plot():
+    import importlib.util
+    h5 = "displacement_plot.h5"
+    _, f = contact(BLOCK + ["-contact", "bottom", "-friction_law_bottom", "none", "-displacement_top", "0:free,free,0;1:free,free,-0.005;2:free,free,-0.01"], h5)
+    half = os.path.join(OUT, "halfblock_L1.msh")
+    run(["gmsh", "-3", "-setnumber", "L", "1", "-format", "msh22", os.path.join(ROOT, "meshes", "halfblock.geo"), "-o", half])
+    contact(["-mesh", half, "-E", "1000", "-nu", "0.3", "-dirichlet", "top", "-contact", "bottom", "-obstacle_bottom_motion", "0:0,0,0;1:0,0,0.01", "-displacement_sym", "0,free,free"], "displacement_plot_held.h5")
+    for name in ("displacement_plot", "displacement_plot_held"):
+        out = run([PYTHON, os.path.join(ROOT, "examples", "plot_contact.py"), os.path.join(OUT, name + ".h5")])
+        for png in (name + ".png", name + "_history.png", name + "_reaction.png"):
+            expect(os.path.exists(os.path.join(OUT, png)) and "wrote " + os.path.join(OUT, png) in out, "%s is not drawn" % png, out)
+    spec = importlib.util.spec_from_file_location("plot_contact", os.path.join(ROOT, "examples", "plot_contact.py"))
+    plot = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(plot)
+    fig = plot.draw_reactions(os.path.join(OUT, h5))
+    expect(fig is not None and len(fig.axes) == 1, "draw_reactions(): not one panel for the one prescribed group")
+    ax = fig.axes[0]
+    x, y = ax.lines[0].get_xdata(), ax.lines[0].get_ydata()
+    expect(np.array_equal(x, f["steps/groups/top/displacement"][:, 2]) and np.array_equal(y, f["steps/groups/top/reaction"][:, 2]), "the line is not the file's z displacement and reaction of top")
+    expect("$u_z$ of top" in ax.get_xlabel() and "$R_z$ at top" in ax.get_ylabel() and "length" in ax.get_xlabel() and "E unit" in ax.get_ylabel(), "labels %r, %r" % (ax.get_xlabel(), ax.get_ylabel()))
+    expect(abs(y[-1] + 20) < 1e-8 * 20, "the last reaction %g is not -E A delta/h" % y[-1])

@@ -161,7 +161,7 @@ def displacement_symmetry_plane():
         expect(np.abs(h["groups/sym/reaction"][:][[1, 2]]).max() == 0, "%s: the plane's reaction has a y or z component: %s" % (what, h["groups/sym/reaction"][:]))
 
 
-@test("bad prescribed displacements are refused with one line naming the option, group or node, and no file: every component free; a value that is not a number; a history whose times do not increase; a node prescribed twice with different values (naming the node and both groups); a group both -dirichlet and -displacement_<G>; a contact node with a prescribed component that is no plane of symmetry (a value other than 0, naming the node, its contact group and the prescribing group); an unknown group; a body held by prescribed displacements in some directions only, without contact")
+@test("bad prescribed displacements are refused with one line naming the option, group or node, and no file: every component free; a value that is not a number; a history whose times do not increase; a node prescribed twice with different values (naming the node and both groups); a group both -dirichlet and -displacement_<G>; a contact node with a prescribed component that is no plane of symmetry (a value other than 0, a normal along it, a contact pair's slave: naming the node, its contact group and the prescribing group); a prescribed node on a pair's master surface; an unknown group; a body held by prescribed displacements in some directions only, without contact")
 def displacement_refused():
     half = os.path.join(OUT, "halfblock_L1.msh")
     run(["gmsh", "-3", "-setnumber", "L", "1", "-format", "msh22", os.path.join(ROOT, "meshes", "halfblock.geo"), "-o", half])
@@ -184,6 +184,12 @@ def displacement_refused():
         out = run([CONTACT] + base + extra + ["-o", h5], expect_rc=1)
         expect(re.search(message, out) is not None, "case %d %s: not refused with %r" % (k, extra, message), out)
         expect(not os.path.exists(h5), "case %d: a refused run wrote %s" % (k, h5))
+    # contact pairs: a prescribed master node; a slave node with a prescribed component
+    hertz2 = ["-options_file", os.path.join(ROOT, "scenes", "hertz2.opts")]
+    for extra, message in ((["-displacement_block_top", "0,0,0"], r"Mesh node \d+ \(0-based, file order\) of the master surface block_top of contact pair cap has a displacement prescribed by -displacement_block_top: a pair's master nodes may not be prescribed"),
+                           (["-displacement_cap", "free,free,0"], r"of contact group \"cap\" has its z displacement prescribed by -displacement_cap: .*; here its group's contact is a contact pair")):
+        out = run([CONTACT] + hertz2 + extra, expect_rc=1)
+        expect(re.search(message, out) is not None, "%s: not refused with %r" % (extra, message), out)
     # no contact: the lid held in z alone leaves rigid motions free
     out = run([CONTACT, "-mesh", half, "-E", "1000", "-nu", "0.3", "-displacement_top", "free,free,-0.01"], expect_rc=1)
     expect(re.search(r"The body of volume group \"block\" .* is held in some directions only: its prescribed displacements .* leave 3 of its rigid-body motions free, and there is no contact to hold them", out) is not None, "a partly held body without contact is not refused by name", out)

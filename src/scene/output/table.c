@@ -47,7 +47,7 @@ static PetscInt MovingGroups(SSStarScene scene)
    sliding, sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, then motion/<G>
    (3) for each contact group with a moving obstacle, groups/<G>/displacement (3) for each traction, spring, contact
    and prescribed-displacement surface group and groups/<G>/reaction (3) for each held group, -dirichlet or
-   -displacement_<G> (README "Load paths").
+   -displacement_<G> (docs/guide/load-paths.md).
 
    Level: intermediate
 

@@ -23,7 +23,12 @@ and the sliding nodes against the time; (iv) the loop of (i) less its linear ela
 force times the slope fitted through the loop: the bodies' compliance, which adds no area), where the slip shows. The
 contact faces are drawn at the last step.
 
-As a module: draw(read(file)) returns the matplotlib figure, draw_history(read(file)) the history's (or None)."""
+A load path with prescribed displacements (-displacement_<G>: /steps/groups/<G>/reaction) gets FILE_reaction.png, the
+force-displacement picture of each prescribed group: the reaction force the prescription exerts on the body against
+the group's displacement, in the prescribed component that moves most (draw_reactions()).
+
+As a module: draw(read(file)) returns the matplotlib figure, draw_history(read(file)) the history's (or None),
+draw_reactions(file) the force-displacement picture's (or None)."""
 import argparse
 
 import h5py
@@ -66,7 +71,7 @@ def read_path(f):
     """The table /steps of a load path, with the histories of the tractions and the motions of the obstacles"""
     st = f["steps"]
     path = {k: st[k][:] for k in st if isinstance(st[k], h5py.Dataset)}
-    path["groups"] = {g: st["groups"][g]["displacement"][:] for g in st["groups"]} if "groups" in st else {}
+    path["groups"] = {g: st["groups"][g]["displacement"][:] for g in st["groups"] if "displacement" in st["groups"][g]} if "groups" in st else {}
     path["motion"] = {g: st["motion"][g][:] for g in st["motion"]} if "motion" in st else {}
     path["tractions"] = {}
     if "scene/traction" in f:
@@ -289,6 +294,54 @@ def draw(d):
     return fig
 
 
+def read_reactions(name):
+    """For each prescribed group of a load path (/scene/displacement/<G> with /steps/groups/<G>/reaction): its
+    displacement (the file's mean of the group, or its prescribed history at the steps' times), its reaction, its free
+    components and the units of the file ({} without)"""
+    f = h5py.File(name, "r")
+    if "steps/groups" not in f or "scene/displacement" not in f:
+        return {}
+    st, groups = f["steps"], {}
+    times = st["time"][:]
+    for g, grp in f["scene/displacement"].items():
+        if g not in st["groups"] or "reaction" not in st["groups"][g]:
+            continue
+        if "displacement" in st["groups"][g]:
+            u = st["groups"][g]["displacement"][:]
+        else:  # a volume group: its prescribed values at the steps' times
+            text = grp.attrs["displacement"]
+            text = text.decode() if isinstance(text, bytes) else str(text)
+            knots = [k.split(":") for k in text.replace("free", "nan").split(";")] if ":" in text else [("0", text.replace("free", "nan"))]
+            t = np.array([float(k[0]) for k in knots])
+            v = np.array([[float(x) for x in k[1].split(",")] for k in knots])
+            u = np.array([[np.interp(s, t, v[:, c]) for c in range(3)] for s in times])
+        groups[g] = {"displacement": u, "reaction": st["groups"][g]["reaction"][:], "free": grp.attrs["free"][:], "time": times}
+    return groups
+
+
+def draw_reactions(name):
+    """The force-displacement picture of a load path's prescribed groups (read_reactions()): one panel per group, its
+    reaction against its displacement in the prescribed component whose displacement varies most; None without"""
+    groups = read_reactions(name)
+    if not groups:
+        return None
+    f = h5py.File(name, "r")
+    length = f["scene"].attrs.get("length_unit", "mesh length unit")
+    force = f["scene"].attrs.get("force_unit", "E unit x length$^2$")
+    fig, axes = plt.subplots(1, len(groups), figsize=(5.2 * len(groups), 4.2), squeeze=False, layout="constrained")
+    for ax, (g, d) in zip(axes[0], sorted(groups.items())):
+        held = [k for k in range(3) if not d["free"][k]]
+        k = max(held, key=lambda c: np.ptp(d["displacement"][:, c]))
+        axis = "xyz"[k]
+        ax.plot(d["displacement"][:, k], d["reaction"][:, k], "o-", color="tab:blue")
+        ax.axhline(0, color="0.7", lw=0.8)
+        ax.axvline(0, color="0.7", lw=0.8)
+        ax.set_xlabel("displacement $u_%s$ of %s (%s)" % (axis, g, length))
+        ax.set_ylabel("reaction $R_%s$ at %s (%s)" % (axis, g, force))
+        ax.set_title("%s: reaction on the body against displacement, %d steps" % (g, len(d["time"])), fontsize=10)
+    return fig
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file")
@@ -303,6 +356,11 @@ def main():
     fig = draw_history(data)
     if fig is not None:
         out = args.history or args.file.rsplit(".", 1)[0] + "_history.png"
+        fig.savefig(out, dpi=110, bbox_inches="tight")
+        print("wrote " + out)
+    fig = draw_reactions(args.file)
+    if fig is not None:
+        out = args.file.rsplit(".", 1)[0] + "_reaction.png"
         fig.savefig(out, dpi=110, bbox_inches="tight")
         print("wrote " + out)
 

@@ -9,7 +9,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -traction_right <-200,30,200> traction on the group right\n\
   -initial_guess <zero>      the solver's starting point: zero, elastic (K u = b, no contact) or random\n\
   -initial_guess_scale <1>   random: entries uniform in [-scale, scale]\n\
-  -o <file.h5>               write the solution (HDF5 + XDMF)\n\
+  -o <file.h5>               write the solution (HDF5 + XDMF): displacement, contact, the held group's reaction\n\
+                             /groups/dirichlet/reaction, the cells' strain, stress and von Mises stress\n\
   -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary);\n\
                              it sets -snes_ssstar_reduction direct unless a reduction is given\n\
   -summary_header <true>     print the header line of the summary table\n\

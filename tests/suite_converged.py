@@ -30,9 +30,10 @@ def h5(name):
 
 
 def law_distance(path, *extra):
-    """check_solution.py's largest distance to the law over the file's steps (it passes at its default 1e-7)"""
+    """check_solution.py's largest distance to the law over the file's steps (it passes at its default 1e-7; a file
+    without contact, a cantilever's, has no law: 0, its fields checked all the same)"""
     out = run(CHECK + ["coulomb", path, "--steps", *extra])
-    return max(float(x) for x in LAW.findall(out))
+    return max([float(x) for x in LAW.findall(out)], default=0.0)
 
 
 @test("docs/derivation.md section 12 holds (tests/stopping_check.py, numpy): the approximation step at gamma_w = U/F gives a pair that satisfies the law exactly within |z| of the iterate (12.1), 0 at points of the law; on a stiff body sliding on a soft spring (E/k = 1e8) iterates that ||z|| <= 1e-10 accepts have forces off by more than 1e-6 of max|r|, and at most two Newton steps bring the law residual below 1e-8 and the solution within 1e-6 (12.2)-(12.4); a node dragged back by its plane reaches its stuck answer from the sliding state only for gamma >= 1/(2k), the elastic trial at once (12.5)")

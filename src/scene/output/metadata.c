@@ -116,6 +116,19 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
     PetscCall(HistoryAttribute(sub, "history", scene->tractions[t].history));
     PetscCallH5(H5Gclose(sub));
   }
+  for (PetscInt d = 0; d < scene->nDisplacements; d++) { /* "free,free,-0.01" or the knots "0:free,free,0;1:..." */
+    const SSStarPrescribed *p = &scene->displacements[d];
+    PetscInt                free[3];
+    char                    text[4096];
+
+    for (PetscInt k = 0; k < 3; k++) free[k] = (p->free >> k) & 1;
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/displacement/%s", p->name));
+    PetscCall(SSStarH5GroupOpen(file, path, &sub));
+    PetscCall(SSStarPrescribedText(p, text, sizeof(text)));
+    PetscCall(SSStarH5AttrString(sub, "displacement", strncmp(text, "history ", 8) ? text : text + 8));
+    PetscCall(SSStarH5AttrInts(sub, "free", 3, free));
+    PetscCallH5(H5Gclose(sub));
+  }
   for (PetscInt s = 0; s < scene->nSprings; s++) {
     PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/spring/%s", scene->springs[s].name));
     PetscCall(SSStarH5GroupOpen(file, path, &sub));

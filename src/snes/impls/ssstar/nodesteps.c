@@ -39,14 +39,14 @@ void SNESSSStarNodeIterate(const SSStarContact *ct, const SSStarProblem *pb, Pet
   else if (ct->gap) v[2] += ct->gap[i];
 }
 
-/* c = A u - f, or from F itself for a residual treated as nonlinear (nonlinear.c) */
+/* c = A u - f, or from F itself for a residual treated as nonlinear (problem.c, docs/derivation.md section 17) */
 PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
 {
   SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
 
   PetscFunctionBegin;
   if (pb->nonlinear) {
-    PetscCall(SSStarNonlinearResidual(snes, u, c));
+    PetscCall(SSStarProblemFunctionResidual(snes, u, c));
     PetscFunctionReturn(0);
   }
   PetscCall(MatMult(pb->A, u, c));

@@ -4,74 +4,13 @@
    SNESSSStarSetAffine()) they are c = A u - f with the A of the set-up, and F is checked against that model at the
    solution. Any other F is treated as nonlinear, on the whole body (problem.c refuses a Schur reduction):
 
-     c(u) = T^T F(T u) at every iterate and trial point (an F evaluation each: the merit ||z|| is that of F itself);
+     c(u) = T^T F(T u) at every iterate and trial point (an F evaluation each, problem.c: the merit ||z|| is F's);
      its Jacobian evaluated again at the iterates as -snes_lag_jacobian says (A, the Newton step and the floating
        bodies' motions follow);
      the contact measured again at every iterate when the program gives a contact update (SNESSSStarSetContactUpdate():
        normals, gaps, offsets, master weights at the current configuration), which makes the problem nonlinear too.
 */
 #include "ssstarimpl.h"
-
-/*
-   x, the SNES vector of the solver's u: T v with v = u on the whole body and in the reduced use, u at the contact
-   dofs of a problem whose every dof is a contact dof
-*/
-PetscErrorCode SSStarNonlinearSolution(SSStarContact *ct, SSStarProblem *pb, Vec u, Vec x)
-{
-  PetscFunctionBegin;
-  if (!ct->dofs) {
-    PetscCall(VecCopy(u, x));
-    PetscFunctionReturn(0);
-  }
-  if (pb->wholeBody) PetscCall(VecCopy(u, pb->v));
-  else PetscCall(VecISCopy(pb->v, ct->isC, SCATTER_FORWARD, u));
-  if (ct->T) PetscCall(MatMult(ct->T, pb->v, x));
-  else PetscCall(VecCopy(pb->v, x));
-  PetscFunctionReturn(0);
-}
-
-/* c from F(x): T^T F, at the contact dofs unless on the whole body */
-static PetscErrorCode ContactResidual(SSStarContact *ct, SSStarProblem *pb, Vec F, Vec c)
-{
-  Vec w = F, wC;
-
-  PetscFunctionBegin;
-  if (!ct->dofs) {
-    PetscCall(VecCopy(F, c));
-    PetscFunctionReturn(0);
-  }
-  if (ct->T) {
-    PetscCall(MatMultTranspose(ct->T, F, pb->v));
-    w = pb->v;
-  }
-  if (pb->wholeBody) PetscCall(VecCopy(w, c));
-  else {
-    PetscCall(VecGetSubVector(w, ct->isC, &wC));
-    PetscCall(VecCopy(wC, c));
-    PetscCall(VecRestoreSubVector(w, ct->isC, &wC));
-  }
-  PetscFunctionReturn(0);
-}
-
-/*
-   c = c(u) from F itself. A point where the program's F is not defined (SNESSetFunctionDomainError(): an inverted
-   element of a hyperelastic body) has c = Inf: the line search damps a step that leads there, as a NaN.
-*/
-PetscErrorCode SSStarNonlinearResidual(SNES snes, Vec u, Vec c)
-{
-  SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
-  SSStarProblem *pb = &ss->problem;
-  PetscBool      outside;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarNonlinearSolution(&ss->contact, pb, u, pb->x));
-  PetscCall(SNESComputeFunction(snes, pb->x, pb->Fx));
-  PetscCall(MPIU_Allreduce(&snes->domainerror, &outside, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)snes)));
-  snes->domainerror = PETSC_FALSE;
-  if (outside) PetscCall(VecSet(c, PETSC_INFINITY));
-  else PetscCall(ContactResidual(&ss->contact, pb, pb->Fx, c));
-  PetscFunctionReturn(0);
-}
 
 /* Before the set-up of a solve: the contact update at the initial guess, so that the set-up takes what it declares */
 PetscErrorCode SSStarNonlinearMeasureAtStart(SNES snes)
@@ -98,7 +37,7 @@ PetscErrorCode SSStarNonlinearBegin(SNES snes)
   if (!pb->x)
     for (Vec *w = &pb->x; w <= &pb->xMeasured; w++) PetscCall(VecDuplicate(snes->vec_sol, w));
   if (!pb->nonlinear) PetscFunctionReturn(0);
-  PetscCall(SSStarNonlinearSolution(&ss->contact, pb, ss->u, pb->xJ));
+  PetscCall(SSStarProblemIterateVector(&ss->contact, pb, ss->u, pb->xJ));
   PetscCall(VecCopy(pb->xJ, pb->xMeasured));
   PetscFunctionReturn(0);
 }
@@ -118,7 +57,7 @@ PetscErrorCode SSStarNonlinearMeasureContact(SNES snes)
 
   PetscFunctionBegin;
   if (!ct->update) PetscFunctionReturn(0);
-  PetscCall(SSStarNonlinearSolution(ct, pb, ss->u, pb->x));
+  PetscCall(SSStarProblemIterateVector(ct, pb, ss->u, pb->x));
   PetscCall(VecEqual(pb->x, pb->xMeasured, &same));
   if (same) PetscFunctionReturn(0);
   PetscCall(VecCopy(pb->x, pb->xMeasured));
@@ -157,7 +96,7 @@ PetscErrorCode SSStarNonlinearJacobian(SNES snes, PetscInt k)
   if (snes->lagjacobian == -2) snes->lagjacobian = -1;
   else if (snes->lagjacobian == -1) PetscFunctionReturn(0);
   else if (snes->lagjacobian > 1 && (k + snes->jac_iter) % snes->lagjacobian) PetscFunctionReturn(0);
-  PetscCall(SSStarNonlinearSolution(ct, pb, ss->u, pb->x));
+  PetscCall(SSStarProblemIterateVector(ct, pb, ss->u, pb->x));
   PetscCall(VecEqual(pb->x, pb->xJ, &same));
   if (same) PetscFunctionReturn(0);
   PetscCall(VecCopy(pb->x, pb->xJ));
@@ -259,7 +198,7 @@ PetscErrorCode SSStarNonlinearView(SNES snes, PetscViewer viewer)
   else if (snes->lagjacobian == 1) PetscCall(PetscSNPrintf(lag, sizeof(lag), "at every iterate"));
   else PetscCall(PetscSNPrintf(lag, sizeof(lag), "every %" PetscInt_FMT " iterations", snes->lagjacobian));
   if (affine) PetscCall(PetscViewerASCIIPrintf(viewer, "  residual: affine, F(u) = K u - b (%s): the Jacobian evaluated once per solve, F checked at the solution\n", pb->affineSet ? "declared, SNESSSStarSetAffine()" : "SNESSSStarSetLinearProblem()"));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "  residual: nonlinear (not declared affine): F evaluated at every iterate and trial point, the Jacobian %s (-snes_lag_jacobian), on the whole body\n", lag));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  residual: nonlinear (not declared affine): F evaluated at every iterate and trial point, the Jacobian %s (-snes_lag_jacobian)%s\n", lag, ss->contact.dofs ? ", on the whole body" : ""));
   if (ss->contact.update) PetscCall(PetscViewerASCIIPrintf(viewer, "  contact measured again at every iterate (SNESSSStarSetContactUpdate())\n"));
   if (ss->reason != SSSTAR_REASON_ITERATING) {
     char counts[256];

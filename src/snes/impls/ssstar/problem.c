@@ -2,7 +2,8 @@
    The problem the iteration of the SNES type "ssstar" runs on, c(u) = A u - f: the user's reduced P and f, or the
    user's K reduced to the contact dofs (a Schur complement P, src/reduction/), or K itself on the whole body (the
    reduction none). The reduction says which (SSStarReductionIsWholeBody()); the Newton step that fits A is chosen
-   here, by name.
+   here, by name. A residual that is not affine (nonlinear.c) runs on c(u) = T^T F(T u) with A its Jacobian at the
+   iterate, on the whole body or in the reduced use.
 */
 #include "ssstarimpl.h"
 
@@ -282,7 +283,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
 
   PetscFunctionBegin;
   if (pb->nonlinear) { /* u is where F was evaluated: no recovery, no least-norm motion (F is not K u - b) */
-    PetscCall(SSStarNonlinearSolution(ct, pb, u, x));
+    PetscCall(SSStarProblemIterateVector(ct, pb, u, x));
     PetscFunctionReturn(0);
   }
   if (!ct->dofs) {
@@ -363,6 +364,67 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   pb->K         = NULL;
   pb->built     = -1;
   pb->wholeBody = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   x, the SNES vector of the solver's u: T v with v = u on the whole body and in the reduced use, u at the contact
+   dofs of a problem whose every dof is a contact dof
+*/
+PetscErrorCode SSStarProblemIterateVector(SSStarContact *ct, SSStarProblem *pb, Vec u, Vec x)
+{
+  PetscFunctionBegin;
+  if (!ct->dofs) {
+    PetscCall(VecCopy(u, x));
+    PetscFunctionReturn(0);
+  }
+  if (pb->wholeBody) PetscCall(VecCopy(u, pb->v));
+  else PetscCall(VecISCopy(pb->v, ct->isC, SCATTER_FORWARD, u));
+  if (ct->T) PetscCall(MatMult(ct->T, pb->v, x));
+  else PetscCall(VecCopy(pb->v, x));
+  PetscFunctionReturn(0);
+}
+
+/* c from F(x): T^T F, at the contact dofs unless on the whole body */
+static PetscErrorCode ContactResidual(SSStarContact *ct, SSStarProblem *pb, Vec F, Vec c)
+{
+  Vec w = F, wC;
+
+  PetscFunctionBegin;
+  if (!ct->dofs) {
+    PetscCall(VecCopy(F, c));
+    PetscFunctionReturn(0);
+  }
+  if (ct->T) {
+    PetscCall(MatMultTranspose(ct->T, F, pb->v));
+    w = pb->v;
+  }
+  if (pb->wholeBody) PetscCall(VecCopy(w, c));
+  else {
+    PetscCall(VecGetSubVector(w, ct->isC, &wC));
+    PetscCall(VecCopy(wC, c));
+    PetscCall(VecRestoreSubVector(w, ct->isC, &wC));
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+   c = c(u) from F itself. A point where the program's F is not defined (SNESSetFunctionDomainError(): an inverted
+   element of a hyperelastic body) has c = Inf: the line search damps a step that leads there, as a NaN.
+*/
+PetscErrorCode SSStarProblemFunctionResidual(SNES snes, Vec u, Vec c)
+{
+  SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
+  SSStarProblem *pb = &ss->problem;
+  PetscBool      outside;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarProblemIterateVector(&ss->contact, pb, u, pb->x));
+  PetscCall(SNESComputeFunction(snes, pb->x, pb->Fx));
+  PetscCall(MPIU_Allreduce(&snes->domainerror, &outside, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)snes)));
+  snes->domainerror = PETSC_FALSE;
+  if (outside) PetscCall(VecSet(c, PETSC_INFINITY));
+  else PetscCall(ContactResidual(&ss->contact, pb, pb->Fx, c));
   PetscFunctionReturn(0);
 }
 
@@ -472,11 +534,14 @@ PetscErrorCode SSStarProblemIsAffine(SNES snes, SSStarProblem *pb, PetscBool *af
    Works with any SNES type; the SNES keeps references to K and b, so a program that changes b's values between
    solves (load steps) changes the load. After SNESSolve(), SNESGetFunction() holds K u - b: at the contact nodes the
    contact forces. A whole body declares its contact nodes (SNESSSStarSetContactNodes() or
-   SNESSSStarSetContactOperator()); without a declaration every dof is a contact dof (the reduced use).
+   SNESSSStarSetContactOperator()); without a declaration every dof is a contact dof (the reduced use). This F is
+   affine (SNESSSStarGetAffine()): ssstar evaluates K once per solve and may reduce it to the contact dofs; a program's own
+   SNESSetFunction() and SNESSetJacobian() give a residual ssstar treats as nonlinear unless declared affine
+   (SNESSSStarSetAffine(); docs/guide/nonlinear-residuals.md).
 
    Level: beginner
 
-.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`, `SNESSetFunction()`, `SNESSetJacobian()`
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`, `SNESSSStarSetAffine()`, `SNESSetFunction()`, `SNESSetJacobian()`
 @*/
 PetscErrorCode SNESSSStarSetLinearProblem(SNES snes, Mat K, Vec b)
 {

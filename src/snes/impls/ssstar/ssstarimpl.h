@@ -183,7 +183,9 @@ PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, 
      whole body, a Schur reduction of K:  A = P = K_CC - K_CI K_II^-1 K_IC, load f, u = u_C
      whole body, reduction none:          A = K, load b, u = the whole displacement (P never formed)
 
-   It is kept while K and the declaration are unchanged.
+   It is kept while K and the declaration are unchanged. A residual treated as nonlinear (nonlinear.c, docs/derivation.md
+   section 17) has c(u) = T^T F(T u) from F itself and A = T^T J T with J evaluated again at the iterates: on the whole
+   body (reduction none) or in the reduced use, never through a Schur reduction.
 */
 typedef struct {
   /* settings */
@@ -225,20 +227,20 @@ PETSC_INTERN PetscErrorCode SSStarProblemSetReductionType(SSStarProblem *, const
 PETSC_INTERN PetscErrorCode SSStarProblemGetReductionType(SSStarProblem *, const char *[]);
 PETSC_INTERN PetscErrorCode SSStarProblemView(SSStarContact *, SSStarProblem *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarProblemReset(SSStarProblem *);
+PETSC_INTERN PetscErrorCode SSStarProblemIterateVector(SSStarContact *, SSStarProblem *, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemFunctionResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarProblemComputeJacobian(SNES, Vec, Mat *);
 PETSC_INTERN PetscErrorCode SSStarProblemTakeJacobian(SNES, SSStarContact *, SSStarProblem *, Mat);
 PETSC_INTERN PetscErrorCode SSStarProblemTakeMeasuredContact(SNES, SSStarContact *, SSStarProblem *, PetscBool *, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarProblemIsAffine(SNES, SSStarProblem *, PetscBool *);
 
 /*
-   The residual treated as nonlinear (nonlinear.c, docs/derivation.md section 17): c(u) from F itself, the Jacobian
-   evaluated again at the iterates (-snes_lag_jacobian), the contact measured again at them (SNESSSStarSetContactUpdate),
-   and a residual declared affine checked at the solution
+   The residual treated as nonlinear (nonlinear.c, docs/derivation.md section 17): c(u) from F itself (problem.c's
+   SSStarProblemFunctionResidual()), the Jacobian evaluated again at the iterates (-snes_lag_jacobian), the contact
+   measured again at them (SNESSSStarSetContactUpdate), and a residual declared affine checked at the solution
 */
 PETSC_INTERN PetscErrorCode SSStarNonlinearMeasureAtStart(SNES);
 PETSC_INTERN PetscErrorCode SSStarNonlinearBegin(SNES);
-PETSC_INTERN PetscErrorCode SSStarNonlinearSolution(SSStarContact *, SSStarProblem *, Vec, Vec);
-PETSC_INTERN PetscErrorCode SSStarNonlinearResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarNonlinearMeasureContact(SNES);
 PETSC_INTERN PetscErrorCode SSStarNonlinearJacobian(SNES, PetscInt);
 PETSC_INTERN PetscErrorCode SSStarNonlinearCheckAffine(SNES);

@@ -250,7 +250,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarComposeNonlinear(SNES, PetscBool);
 
 /*
    The globalization (globalization.c): damped steps on the merit function ||z||, detection of cycles and
-   stagnation, and the remedies of SSStarRemedy. README, "When it does not converge".
+   stagnation, and the remedies of SSStarRemedy. docs/guide/converged.md, "When it does not converge".
 */
 typedef enum {
   SSSTAR_DETECTED_NONE,

@@ -222,7 +222,7 @@ PetscErrorCode SSStarNonlinearView(SNES snes, PetscViewer viewer)
 -  affine - PETSC_TRUE: affine; PETSC_FALSE: nonlinear
 
    Options Database Key:
-.  -snes_ssstar_affine <bool> - the declaration
+.  -snes_ssstar_affine <auto> - true or false: the declaration; auto: none (F decides)
 
    Notes:
    Without a declaration F is affine when it is SNESSSStarSetLinearProblem()'s and nonlinear otherwise: a program that

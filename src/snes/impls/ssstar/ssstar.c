@@ -706,7 +706,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
    Options Database Keys:
 +  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 .  -snes_ssstar_friction <0.3> - Coulomb friction coefficient
-.  -snes_ssstar_affine <bool> - F(u) = K u - b: the Jacobian once per solve (default: true for SNESSSStarSetLinearProblem()'s F, else false: F evaluated at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body)
+.  -snes_ssstar_affine <auto> - true: F(u) = K u - b, the Jacobian once per solve; false: F evaluated at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body; auto: true for SNESSSStarSetLinearProblem()'s F, false for a program's own
 .  -snes_ssstar_reduction <auto> - whole-body use: K reduced to the contact dofs (direct, mumps, explicit), none (the Newton step on the whole body, P never formed) or auto (direct on small problems, none on large ones)
 .  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag K_CC), the contact block of K)

@@ -90,6 +90,31 @@ static PetscErrorCode SetReductionFromOptions(SNES snes, PetscOptionItems *Petsc
   PetscFunctionReturn(0);
 }
 
+/*
+   -snes_ssstar_affine: true or false (as a PETSc bool: 1, 0, yes, no; alone: true) declares F, auto (the default) leaves
+   it to F (SNESSSStarSetLinearProblem()'s is affine, a program's own is not), which is not known when the options are
+   read
+*/
+static PetscErrorCode SetAffineFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
+{
+  SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
+  char           value[16];
+  PetscBool      set, isauto, affine = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrncpy(value, pb->affineSet ? (pb->affineDeclared ? "true" : "false") : "auto", sizeof(value)));
+  PetscCall(PetscOptionsString("-snes_ssstar_affine", "Whether F is affine, K u - b: true (the Jacobian once per solve, the Schur reduction may run), false (F at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body) or auto: true for SNESSSStarSetLinearProblem()'s F, false for a program's own", "SNESSSStarSetAffine", value, value, sizeof(value), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscStrcasecmp(value, "auto", &isauto));
+  if (isauto) {
+    pb->affineSet = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  if (value[0]) PetscCall(PetscOptionsStringToBool(value, &affine));
+  PetscCall(SNESSSStarSetAffine(snes, affine));
+  PetscFunctionReturn(0);
+}
+
 /* -help: the options of the Newton step's GMRES (-snes_ssstar_newton_ksp_*), which the set-up creates */
 static PetscErrorCode HelpNewtonKSP(SNES snes)
 {
@@ -119,13 +144,7 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
   PetscOptionsHeadBegin(PetscOptionsObject, "SNES ssstar options (semismooth* Newton for contact with friction)");
   PetscCall(SetLawsFromOptions(snes, PetscOptionsObject));
   PetscCall(SetReductionFromOptions(snes, PetscOptionsObject));
-  {
-    PetscBool affine;
-
-    PetscCall(SSStarProblemIsAffine(snes, &ss->problem, &affine));
-    PetscCall(PetscOptionsBool("-snes_ssstar_affine", "F(u) = K u - b: the Jacobian once per solve (default: true for SNESSSStarSetLinearProblem()'s F, false for others: F at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body)", "SNESSSStarSetAffine", affine, &affine, &set));
-    if (set) PetscCall(SNESSSStarSetAffine(snes, affine));
-  }
+  PetscCall(SetAffineFromOptions(snes, PetscOptionsObject));
   PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ss->problem.memoryLimit, &value, &set));
   if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));

@@ -152,3 +152,16 @@ def nonlinear_refusals_and_pairs():
                "-snes_converged_reason", "-o", b])
     expect("ssstar: residual nonlinear" in out, "the patch declared nonlinear", out)
     run(CHECK + ["compare", a, b, "--tol", str(AGREE)])
+
+
+@test("the reduced use (no contact nodes declared: every dof a contact dof, the Jacobian itself the Newton matrix) with a nonlinear residual "
+      "P u + kappa u^3 - f (tests/test_plain_contact -kappa 2, through -dll_append): sparse (the SNES's KSP) and dense J, 1 and 2 ranks, "
+      "converged with the Coulomb law to 1e-8 and its Jacobian evaluated at every iterate")
+def nonlinear_reduced_use():
+    for ranks in (1, 2):
+        for dense in ("0", "1"):
+            out = run(mpiexec(ranks, os.path.join(ROOT, "tests", "test_plain_contact"), "-dll_append", LIB, "-snes_type", "ssstar", "-kappa", "2",
+                              "-dense", dense, "-snes_converged_reason"))
+            m = re.search(r"residual nonlinear: (\d+) Jacobian evaluations", out)
+            its = re.search(r"CONVERGED_FNORM_RELATIVE after (\d+) iterations", out)
+            expect(m is not None and its is not None and int(m.group(1)) == int(its.group(1)), "%d ranks, dense %s" % (ranks, dense), out)

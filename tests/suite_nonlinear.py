@@ -165,3 +165,21 @@ def nonlinear_reduced_use():
             m = re.search(r"residual nonlinear: (\d+) Jacobian evaluations", out)
             its = re.search(r"CONVERGED_FNORM_RELATIVE after (\d+) iterations", out)
             expect(m is not None and its is not None and int(m.group(1)) == int(its.group(1)), "%d ranks, dense %s" % (ranks, dense), out)
+
+
+@test("a contact update that declares a contact operator with master dofs again at every iterate (tests/test_operator -update: two chains "
+      "pressed together through B, the change of variables T taken again, the iterate expressed in its points' variables): the contact law on "
+      "w = B u + g to 1e-8, the same u as the whole body without updates to 1e-8, one update per iterate and the start's; 1 and 2 ranks")
+def nonlinear_update_with_masters():
+    import numpy as np
+    plain = os.path.join(OUT, "operator_plain.bin")
+    run(mpiexec(1, os.path.join(ROOT, "tests", "test_operator"), "-snes_ssstar_reduction", "none", "-o", plain))
+    ref = np.fromfile(plain, dtype=">f8")[-72:]
+    for ranks in (1, 2):
+        name = os.path.join(OUT, "operator_update_%d.bin" % ranks)
+        out = run(mpiexec(ranks, os.path.join(ROOT, "tests", "test_operator"), "-update", "-o", name))
+        law = re.search(r"contact law on w: worst violation (\S+)", out)
+        m = re.search(r"contact updates: (\d+) in (\d+) iterations", out)
+        expect(law is not None and float(law.group(1)) <= 1e-8 and m is not None and int(m.group(1)) == int(m.group(2)) + 2, "%d ranks" % ranks, out)
+        u = np.fromfile(name, dtype=">f8")[-72:]
+        expect(np.abs(u - ref).max() <= 1e-8 * np.abs(ref).max(), "%d ranks: u differs from the run without updates by %.1e" % (ranks, np.abs(u - ref).max() / np.abs(ref).max()))

@@ -265,7 +265,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
   SSStarContact *ct = &ss->contact;
   SSStarProblem *pb = &ss->problem;
-  PetscReal      znorm, unorm, xnorm, dunorm = 0, z0 = 0;
+  PetscReal      znorm, unorm, xnorm, dunorm = 0, duprev = 0, z0 = 0; /* the last two Newton steps' lengths */
   PetscBool      solved;
 
   PetscFunctionBegin;
@@ -321,11 +321,17 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
     /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
-       taken whole, until it is, or it stops halving while the states stay (its round-off floor) */
+       taken whole, until it is, or it stops halving while the states stay and the steps stop growing (its round-off
+       floor). Steps that grow while rho decreases are no floor: the creep of the iteration at a kink of the law, where
+       a slow mode's slip is set by the curvature of the sliding directions and Newton lengthens it by 3/2 per step
+       (docs/derivation.md section 19) */
     ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);
     if (ss->polishing) {
-      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0) ss->lawStalls++;
+      const PetscBool creeping = (PetscBool)(dunorm > duprev && ss->lawResidual < ss->lawBest);
+
+      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0 && !creeping) ss->lawStalls++;
       ss->lawBest = PetscMin(ss->lawBest, ss->lawResidual);
+      PetscCall(PetscInfo(snes, "Polishing at iteration %" PetscInt_FMT ": law residual %g, steps %g after %g%s, %" PetscInt_FMT " stalls\n", k, (double)ss->lawResidual, (double)dunorm, (double)duprev, creeping ? " (creeping)" : "", ss->lawStalls));
       if (ss->lawStalls > SSSTAR_LAW_MAX_STALLS) {
         ss->reason   = SSSTAR_REASON_LAW_STALLED;
         snes->reason = SNES_DIVERGED_LOCAL_MIN;
@@ -375,6 +381,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
         PetscCall(SNESSSStarExtendFreeStep(snes)); /* floating bodies: free motions to the first contact (balance.c) */
+        duprev = dunorm;
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, ss->polishing, &stop));
       }

@@ -198,8 +198,8 @@ FLOATING = {
 # step's blocks are ambiguous and strict complementarity fails (docs/derivation.md section 19, docs/guide/kinks.md).
 # The block of BLOCK (level 2, 1 x 1 x 0.5 on the plane z = 0) on a spring of k per unit area on its top, E = 2e8
 # (stiff: E/k = 5e6 and 1e7) or 1e6 (soft), pressed by 1 against phi = 0.5
-def block(E, k):
-    return ["-geo", "meshes/block.geo", "-level", "2", "-E", E, "-nu", "0.3", "-spring_top", k, "-contact", "bottom", "-friction_bottom", "0.5"]
+def block(E, k, level="2"):
+    return ["-geo", "meshes/block.geo", "-level", level, "-E", E, "-nu", "0.3", "-spring_top", k, "-contact", "bottom", "-friction_bottom", "0.5"]
 
 
 # pressed, sheared to 0.8 > phi P (it slides until the spring holds 0.3), released, sheared back, released: in 20 steps
@@ -208,6 +208,7 @@ BACK = ["-traction_top", history((0, 0, 0), (0, 0, -1), (0.8, 0, -1), (0, 0, -1)
 DEGENERATE = {
     "onset of sliding back, stiff (E/k = 5e6), 20 steps (issue 34's)": block("2e8", "40") + BACK,
     "onset of sliding back, stiff (E/k = 1e7), 20 steps": block("2e8", "20") + BACK,
+    "onset of sliding back, stiffer (E/k = 2e7), level 1, 20 steps": block("2e8", "10", level="1") + BACK,
     "onset of sliding back, soft (E/k = 2.5e4), 20 steps": block("1e6", "40") + BACK,
     "onset of sliding, static: sheared by exactly phi P, stiff (E/k = 1e7)": block("2e8", "20") + ["-traction_top", "0.5,0,-1"],
     "onset of sliding, static: sheared by exactly phi P, soft": block("1e6", "40") + ["-traction_top", "0.5,0,-1"],

@@ -1,5 +1,6 @@
 # ssstar: `make` builds lib/libssstar.so and the examples, `make run` solves the prism,
-# `make test` runs the test suite (`make test-full` with its slow tests), `make bench` the timing table. configure.py runs first if needed.
+# `make test` runs the test suite (`make test-full` with its slow tests), `make bench` the timing table, `make docs`
+# regenerates docs/options.md and docs/manual.md. configure.py runs first if needed.
 
 # builds on every core unless make -j N says otherwise
 ifeq ($(filter -j%,$(MAKEFLAGS)),)
@@ -44,7 +45,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test test-full bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -108,6 +109,12 @@ test: all
 
 test-full: all
 	$(PYTHON) tests/run.py --full
+
+# the generated documentation: docs/options.md from the examples' -help, docs/manual.md from the sources (make test
+# fails when either is stale)
+docs: all
+	$(PYTHON) docs/mkoptions.py
+	$(PYTHON) docs/mkmanual.py
 
 bench: all
 	$(PYTHON) bench/table2.py

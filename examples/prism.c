@@ -15,10 +15,10 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -summary_header <true>     print the header line of the summary table\n\
   -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                              Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
-The solver's options (-snes_ssstar_*, README \"The solver\") apply: -snes_ssstar_reduction <auto> reduces K to the\n\
+The solver's options (-snes_ssstar_*, docs/options.md) apply: -snes_ssstar_reduction <auto> reduces K to the\n\
 contact dofs by a Schur complement (direct: the seed's route) up to SSSTAR_AUTO_DENSE_MAX_DOFS dofs and solves on the\n\
 whole body (none: Krylov + multigrid, P never formed) above; the friction coefficient is\n\
--snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
+-snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (docs/guide/scenes.md):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
 no -save_reduced file), PETSc's error code for bad input (one\n\
@@ -31,7 +31,7 @@ line naming the option or file; -ssstar_traceback adds PETSc's report). -help li
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-/* The prism scene (README "The prism") unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
+/* The prism scene (docs/guide/prism.md) unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
    writes P: the dense route unless a reduction is named */
 static PetscErrorCode SetPrismDefaults(void)
 {

@@ -41,7 +41,7 @@ def malloc_check(cmd):
     return ["-malloc_dump"] if parallel else ["-malloc_debug", "-malloc_dump"]
 
 
-# README "What converged means": a solve at the default settings ends within 1e-6 of the exact discrete solution
+# docs/guide/converged.md: a solve at the default settings ends within 1e-6 of the exact discrete solution
 # (displacements relative to the largest, forces to the largest; a load path's steps each to their own scale), so two
 # such runs (other ranks, the other path, another reduction, the scene turned) agree to twice that: the bound of every
 # comparison of runs that are not the same computation (issue 23: a bound at round-off fails on another machine's BLAS)

@@ -290,7 +290,7 @@ static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
    auto: the Schur complement (direct) where the dense route is the faster one and P fits in memory, else none.
    The dense route costs a factorization of K with a dense Schur block (~N^2 flops in 3D) and dense LUs of 3p x 3p;
    the whole-body path a few multigrid solves per Newton step (~N). SSSTAR_AUTO_DENSE_MAX_DOFS is the crossover
-   measured on the prism (README, section "Large problems").
+   measured on the prism (docs/guide/large-problems.md, "auto").
 */
 static PetscErrorCode ResolveAuto(SSStarReduction red, Mat K)
 {

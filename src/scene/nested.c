@@ -7,7 +7,7 @@
 */
 #include "sceneimpl.h"
 
-/* auto starts from a coarser mesh above this many dofs of K (the crossover measured: README "Nested iteration") */
+/* auto starts from a coarser mesh above this many dofs of K (the crossover measured: docs/guide/large-problems.md, "Nested iteration") */
 #define SSSTAR_AUTO_NESTED_MIN_DOFS 50000
 /* the relative tolerance of the coarse solves: a start needs no more digits than the finer mesh changes */
 #define SSSTAR_NESTED_RTOL 1e-6

@@ -71,7 +71,7 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
            (the solver's choice, made again when it sets up), or pass NULL
 
    Notes:
-   Measured per dof with bench/memory.py on the prism, one rank and several (README "Memory"); the limit is
+   Measured per dof with bench/memory.py on the prism, one rank and several (docs/guide/large-problems.md, "Where the memory goes"); the limit is
    -snes_ssstar_memory_limit or MemAvailable (SSStarCheckMemory()).
 
    Level: intermediate

@@ -1,6 +1,6 @@
 /*
    The globalization of ssstar: the plain iteration of docs/derivation.md section 7 converges from a good starting point
-   only, and may cycle or stall far from the solution (README, "When it does not converge"). Here:
+   only, and may cycle or stall far from the solution (docs/guide/converged.md, "When it does not converge"). Here:
 
    - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the
      solutions, in the units of u);
@@ -348,7 +348,7 @@ PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscVie
 -  -snes_ssstar_stagnation_its <20> - stagnationIts
 
    Notes:
-   Cycles and stagnation are detected in both cases; without globalization they end the solve. README, "When it does
+   Cycles and stagnation are detected in both cases; without globalization they end the solve. docs/guide/converged.md, "When it does
    not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
 
    Level: advanced

@@ -542,7 +542,7 @@ static PetscErrorCode SNESSSStarGetMethod_SSStar(SNES snes, SSStarMethod *method
 .  reason - the sub-reason (SSStarReason; SSStarReasons[] names it)
 
    Notes:
-   -snes_converged_reason prints it on the line "ssstar: ..."; README "When it does not converge" maps each onto the
+   -snes_converged_reason prints it on the line "ssstar: ..."; docs/guide/converged.md ("When it does not converge") maps each onto the
    SNESConvergedReason.
 
    Level: beginner

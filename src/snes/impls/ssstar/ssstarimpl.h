@@ -215,7 +215,7 @@ PETSC_INTERN PetscErrorCode SSStarProblemReset(SSStarProblem *);
 
 /*
    The globalization (globalization.c): damped steps on the merit function ||z||, detection of cycles and
-   stagnation, and the remedies of SSStarRemedy. README, "When it does not converge".
+   stagnation, and the remedies of SSStarRemedy. docs/guide/converged.md, "When it does not converge".
 */
 typedef enum {
   SSSTAR_DETECTED_NONE,

@@ -27,7 +27,8 @@
       those shapes, with von_mises the von Mises stress of stress; /groups/<G>/reaction has 3 finite values. A file
       without contact (no /contact) has these checks alone.
   check_solution.py compare A.h5 B.h5 [--tol 1e-10]
-      the contact displacement and reaction of two runs agree (relative to their max norms), and so do the
+      the contact displacement and reaction of two runs agree (relative to their max norms, at least the scales A's
+      solver measured its law against: /law_displacement_scale, /law_force_scale), and so do the
       displacement on the whole mesh and the contact states where both files have them (a file of examples/generic
       has /contact alone)
 Exit status 0 when the check passes.
@@ -369,6 +370,7 @@ def compare_steps(a, b, tol):
     order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (vertices by coordinates)
     oa, ob = (order(a), order(b)) if "geometry" in a and "geometry" in b else (None, None)
     worst, largest = {}, {}  # the largest of each field over the path so far: its scale is at least 1e-6 of that
+    recorded = lambda name, j: a["steps/law_%s_scale" % name][j] if "steps/law_%s_scale" % name in a else 0.0  # noqa: E731
     for j, k in enumerate(steps):
         fields = [("displacement", "contact/displacement", None), ("reaction", "contact/reaction", None)]
         if oa is not None:
@@ -382,7 +384,7 @@ def compare_steps(a, b, tol):
             if j > 0:
                 before = a["steps/%s/%s" % (steps[j - 1], path)][:]
                 scale = max(scale, np.abs(x - (before[vertex[0]] if vertex is not None else before)).max())
-            scale = max(scale, 1e-6 * largest[name])
+            scale = max(scale, 1e-6 * largest[name], floor(name, recorded("force", j), recorded("displacement", j)))
             d = np.abs(x - y).max() / (scale if scale > 0 else 1.0)
             if d >= worst.get(name, (-1, None))[0]:
                 worst[name] = (d, k)
@@ -395,9 +397,18 @@ def compare_steps(a, b, tol):
     return ok
 
 
-def relative(x, y):
-    """max|x - y| relative to max|x|; absolute where x is zero (every contact node stuck where it started)"""
-    scale = np.abs(x).max()
+def floor(name, force, displacement):
+    """the least scale of a contact field: the force and displacement scales the solver measured the law against
+    (docs/derivation.md (12.2), /law_force_scale, /law_displacement_scale): where nothing presses (a body exactly
+    touching its obstacle, section 19) the reactions are round-off of the terms |K| |u|, which the law's force scale
+    counts; their relative difference would compare noise with noise"""
+    return {"reaction": force, "displacement": displacement}.get(name, 0.0)
+
+
+def relative(x, y, least=0.0):
+    """max|x - y| relative to max|x| (at least least); absolute where both are zero (every contact node stuck where it
+    started)"""
+    scale = max(np.abs(x).max(), least)
     return np.abs(x - y).max() / (scale if scale > 0 else 1.0)
 
 
@@ -411,7 +422,7 @@ def compare(args):
         return compare_steps(a, b, args.tol)
     for name in ("displacement", "reaction"):
         x, y = a["contact/" + name][:], b["contact/" + name][:]
-        d = relative(x, y)
+        d = relative(x, y, floor(name, a.attrs.get("law_force_scale", 0.0), a.attrs.get("law_displacement_scale", 0.0)))
         good = d <= args.tol
         ok &= good
         print("%-12s max difference %9.1e relative %s" % (name, d, "ok" if good else "DIFFERENT"))

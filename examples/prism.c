@@ -3,6 +3,9 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -level <6>                 mesh level L of meshes/prism.geo: (4L+1)x(2L+1)x(2L+1) nodes\n\
   -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -geo, -level)\n\
   -geo <file.geo>            the geometry meshed for -level (default: meshes/prism.geo of the source tree)\n\
+  -mesh_cache <folder>       where the meshes of -geo are made and kept: <folder>/<folder of the .geo>-<hash>/\n\
+                             <name>_L<level>.msh (default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar; the mesh\n\
+                             line names the file); nothing is written into the source tree\n\
   -mesh_scale <1>            multiply the mesh coordinates by this (a change of length unit, e.g. 1e-3 for mm -> m)\n\
   -E <2.1e5> -nu <0.3>       Young's modulus and Poisson ratio\n\
   -traction_top <0,0,-500>   traction on the group top\n\

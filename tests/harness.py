@@ -15,6 +15,19 @@ REFERENCE_ITERATIONS = {3: 7, 4: 7, 5: 8, 6: 9, 7: 9, 8: 10, 9: 9, 10: 10}
 REFERENCE_STATES = {3: "14/55/15", 4: "26/89/29", 6: "51/182/79"}
 
 
+def mesh_of(geo, level, cache=None):
+    """The mesh file the programs make of geo (a path relative to the source tree, or absolute) at level: in the mesh
+    cache, out of the source tree (SSStarMeshCacheFile(): <cache>/<folder of geo>-<djb2 hash of its real path>/
+    <name>_L<level>.msh; cache -mesh_cache, else $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)"""
+    xdg = os.environ.get("XDG_CACHE_HOME", "")
+    cache = cache or (os.path.join(xdg, "ssstar") if xdg.startswith("/") else os.path.expanduser("~/.cache/ssstar"))
+    path = os.path.realpath(os.path.join(ROOT, geo))
+    h = 5381
+    for c in path.encode():
+        h = (33 * h + c) & 0xFFFFFFFF
+    return os.path.join(cache, "%s-%08x" % (os.path.basename(os.path.dirname(path)), h), os.path.basename(path)[:-4] + "_L%d.msh" % level)
+
+
 def mpiexec(n, *args):
     return ["mpiexec", "--oversubscribe", "-n", str(n)] + list(args)
 

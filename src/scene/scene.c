@@ -124,18 +124,6 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscFunctionReturn(0);
 }
 
-/* The mesh file of -geo at -level: meshes/prism.geo at level 6 -> meshes/prism_L6.msh */
-static PetscErrorCode MeshFileOfLevel(SSStarScene scene)
-{
-  size_t len;
-
-  PetscFunctionBegin;
-  PetscCall(PetscStrlen(scene->geo, &len));
-  PetscCheck(len > 4 && !strcmp(scene->geo + len - 4, ".geo"), scene->comm, PETSC_ERR_ARG_WRONG, "-geo %s: expected a .geo file", scene->geo);
-  PetscCall(PetscSNPrintf(scene->mesh, sizeof(scene->mesh), "%.*s_L%" PetscInt_FMT ".msh", (int)(len - 4), scene->geo, scene->level));
-  PetscFunctionReturn(0);
-}
-
 /*@C
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
    distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups), finds the bodies (connected parts of the
@@ -168,7 +156,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(PetscLogEventBegin(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscCall(PetscTime(&t));
   if (scene->geo[0]) {
-    PetscCall(MeshFileOfLevel(scene));
+    PetscCall(SSStarMeshCacheFile(scene->comm, scene->meshCache, scene->geo, scene->level, scene->mesh));
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));

@@ -75,6 +75,7 @@ struct _n_SSStarScene {
 
   /* the description (options) */
   char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
+  char               meshCache[PETSC_MAX_PATH_LEN]; /* -mesh_cache: where meshes of -geo go ("": the default) */
   PetscInt           level;
   PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
   PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */

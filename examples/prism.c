@@ -19,8 +19,9 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                              Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
 The solver's options (-snes_ssstar_*, README \"The solver\") apply: -snes_ssstar_reduction <auto> reduces K to the\n\
-contact dofs by a Schur complement (direct: the seed's route) up to SSSTAR_AUTO_DENSE_MAX_DOFS dofs and solves on the\n\
-whole body (none: Krylov + multigrid, P never formed) above; the friction coefficient is\n\
+contact dofs by a Schur complement (direct: the seed's route) where that costs less than the whole body (none: Krylov\n\
++ multigrid, P never formed) by auto's estimate (docs/guide/choosing-a-route.md; the prism: up to level 7); the\n\
+friction coefficient is\n\
 -snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\

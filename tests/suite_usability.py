@@ -44,3 +44,16 @@ def mesh_cache():
            "-mesh_cache: not the one mesh and its cache in %s: %s" % (os.path.dirname(msh), os.listdir(os.path.dirname(msh))))
     out = run(mpiexec(1, PRISM, "-level", "2", "-mesh_cache", "/proc/no_such_folder"), expect_rc=-1)
     expect("-mesh_cache /proc/no_such_folder: cannot make the folder or write to it" in out, "an impossible -mesh_cache is not refused by name", out)
+
+
+@test("the set-up line of a solve says what its set-up did, and only then: on the gap's ten load steps (one K) the "
+      "first says K was reduced (the dense route) or taken whole (reduction none), the nine others that it was kept and "
+      "only the load changed")
+def setup_line_says_what_was_done():
+    for route, built, kept in (("direct", r"set-up: K reduced to \d+ contact dofs by the direct Schur complement, ",
+                                r"set-up: K's reduction to \d+ contact dofs \(direct\) kept from the last solve, the new load reduced, "),
+                               ("none", r"set-up: the whole body, \d+ dofs, P never formed \(reduction none\), ",
+                                r"set-up: the whole body's K \(\d+ dofs\) kept from the last solve, the free dofs in equilibrium with the new load, ")):
+        out = run(mpiexec(1, CONTACT, "-options_file", os.path.join(ROOT, "scenes", "gap.opts"), "-snes_ssstar_reduction", route))
+        expect(len(re.findall(built, out)) == 1 and len(re.findall(kept, out)) == 9 and len(re.findall("set-up: ", out)) == 10,
+               "%s: the set-up lines do not say once that K was %s and nine times that it was kept" % (route, "reduced" if route == "direct" else "taken whole"), out)

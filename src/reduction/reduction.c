@@ -286,29 +286,6 @@ static PetscErrorCode CheckInteriorSolve(SSStarReduction red, Mat K)
 }
 
 
-/*
-   auto: the Schur complement (direct) where the dense route is the faster one and P fits in memory, else none.
-   The dense route costs a factorization of K with a dense Schur block (~N^2 flops in 3D) and dense LUs of 3p x 3p;
-   the whole-body path a few multigrid solves per Newton step (~N). SSSTAR_AUTO_DENSE_MAX_DOFS is the crossover
-   measured on the prism (README, section "Large problems").
-*/
-static PetscErrorCode ResolveAuto(SSStarReduction red, Mat K)
-{
-  PetscInt    N, NC, mC;
-  PetscBool   fits;
-  const char *type;
-
-  PetscFunctionBegin;
-  PetscCall(MatGetSize(K, &N, NULL));
-  PetscCall(ISGetSize(red->isC, &NC));
-  PetscCall(ISGetLocalSize(red->isC, &mC));
-  PetscCall(SSStarReductionFitsMemory(red->comm, red->memoryLimit, 0, 8.0 * NC * (1 + SSSTAR_DENSE_WORK) * (PetscLogDouble)mC, &fits));
-  type = N <= SSSTAR_AUTO_DENSE_MAX_DOFS && fits ? SSSTARREDUCTIONDIRECT : SSSTARREDUCTIONNONE;
-  PetscCall(PetscInfo(K, "auto: %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact dofs, dense P %s: %s\n", N, NC, fits ? "fits" : "does not fit", type));
-  PetscCall(SSStarReductionSetType(red, type));
-  PetscFunctionReturn(0);
-}
-
 /*@C
    SSStarReductionCreate - a reduction of K u = F to a subset of its dofs, of type auto until SSStarReductionSetType()
 
@@ -442,7 +419,7 @@ PetscErrorCode SSStarReductionSetUp(SSStarReduction red, Mat K, IS isC, IS isI)
   red->isC = isC;
   red->isI = isI;
   PetscCall(PetscStrcmp(red->type, SSSTARREDUCTIONAUTO, &isauto));
-  if (isauto) PetscCall(ResolveAuto(red, K));
+  if (isauto) PetscCall(SSStarReductionResolveAuto(red, K)); /* auto.c */
   PetscCall(PetscFunctionListFind(SSStarReductionList, red->type, &create));
   PetscCheck(create, red->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown reduction type %s", red->type);
   PetscCall(PetscLogEventBegin(SSSTAR_Schur, K, 0, 0, 0));

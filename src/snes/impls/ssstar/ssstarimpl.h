@@ -197,6 +197,7 @@ typedef struct {
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
   SSStarKernel     kernel;          /* K's null space: the bodies held by contact alone                      */
+  PetscInt         builds;          /* times A was built (K reduced, or taken whole): the progress line's    */
 } SSStarProblem;
 
 PETSC_INTERN PetscErrorCode SSStarProblemSetUp(SNES, SSStarContact *, SSStarProblem *);
@@ -288,6 +289,7 @@ typedef struct {
   /* -snes_ssstar_monitor_progress: when the solve started, and the time, Krylov iterations, LUs (multigrids) at the last iterate */
   PetscLogDouble tStart, tLast;
   PetscInt       krylovLast, factorizationsLast;
+  PetscInt       buildsShown; /* the problem's builds the progress lines have reported */
 } SNES_SSStar;
 
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */

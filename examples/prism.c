@@ -15,7 +15,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
   -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary);\n\
                              it sets -snes_ssstar_reduction direct unless a reduction is given\n\
-  -summary_header <true>     print the header line of the summary table\n\
+  -summary_header <true>     print the header line of the summary table (its level reads 4r1 for level 4 refined\n\
+                             once by -dm_refine 1: level 8's number of nodes; -1 for -mesh)\n\
   -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                              Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
 The solver's options (-snes_ssstar_*, README \"The solver\") apply: -snes_ssstar_reduction <auto> reduces K to the\n\
@@ -169,10 +170,10 @@ static PetscErrorCode SaveReduced(const char file[], SSStarScene scene, SNES sne
 int main(int argc, char **argv)
 {
   SSStarScene         scene;
-  PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
+  PetscInt            level = -1, refine = 0, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
   PetscLogDouble      peak;
-  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
+  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "", levelText[32];
   PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar, hasHelp;
   DM                  dm;
   Vec                 u, r;
@@ -193,6 +194,7 @@ int main(int argc, char **argv)
   PetscCall(SetPrismDefaults());
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &hasMesh));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-level", &level, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-dm_refine", &refine, NULL));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Prism contact problem", "ssstar");
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
   PetscCall(PetscOptionsString("-save_reduced", "Write P, f, u_C and the contact coordinates to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
@@ -249,8 +251,10 @@ int main(int argc, char **argv)
   else PetscCall(PetscArrayzero(counts, SSSTAR_NUM_STATES));
   PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
   if (header) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "level ranks  nodes assembly[s] schur[s] contact solve[s] iters  L/M1/M2/M3+/M3-/M4  separated/sliding/sticking reason peak[GB/rank]\n"));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%5" PetscInt_FMT " %5d %6" PetscInt_FMT " %11.3f %8.3f %7" PetscInt_FMT " %8.3f %5" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s %.3f\n",
-                        hasMesh ? -1 : level, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
+  if (refine > 0) PetscCall(PetscSNPrintf(levelText, sizeof(levelText), "%" PetscInt_FMT "r%" PetscInt_FMT, hasMesh ? -1 : level, refine)); /* 4r1: level 4 refined once */
+  else PetscCall(PetscSNPrintf(levelText, sizeof(levelText), "%" PetscInt_FMT, hasMesh ? -1 : level));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%5s %5d %6" PetscInt_FMT " %11.3f %8.3f %7" PetscInt_FMT " %8.3f %5" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s %.3f\n",
+                        levelText, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
                         SNESConvergedReasons[reason], peak / 1e9));
 
   /* the solution file says how the solve ended; the reduced problem's u_C is written only as a solution */

@@ -90,7 +90,7 @@ def expect(cond, message, output=""):
         raise Failure(message + ("\n" + output[-3000:] if output else ""))
 
 
-SUMMARY = re.compile(r"^\s*(-?\d+)\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
+SUMMARY = re.compile(r"^\s*(-?\d+)(?:r(\d+))?\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 
 
 def prism(level, ranks=1, extra=(), h5=None, expect_rc=0):
@@ -102,9 +102,9 @@ def prism(level, ranks=1, extra=(), h5=None, expect_rc=0):
     out = run(cmd, expect_rc=expect_rc)
     m = SUMMARY.search(out)
     expect(m is not None, "no summary row", out)
-    return out, {"level": int(m.group(1)), "ranks": int(m.group(2)), "nodes": int(m.group(3)), "contact": int(m.group(4)),
-                 "iters": int(m.group(5)), "states": m.group(6), "sep_sl_st": m.group(7), "reason": m.group(8),
-                 "peak_gb": float(m.group(9))}
+    return out, {"level": int(m.group(1)), "refined": int(m.group(2) or 0), "ranks": int(m.group(3)), "nodes": int(m.group(4)), "contact": int(m.group(5)),
+                 "iters": int(m.group(6)), "states": m.group(7), "sep_sl_st": m.group(8), "reason": m.group(9),
+                 "peak_gb": float(m.group(10))}
 
 
 def last_znorm(out):

@@ -113,7 +113,7 @@ def prism_user_mesh():
     run(["gmsh", "-3", "-setnumber", "L", "3", "-format", "msh41", os.path.join(ROOT, "meshes", "prism.geo"), "-o", msh])
     out = run(mpiexec(2, PRISM, "-mesh", msh, "-snes_converged_reason"))
     m = SUMMARY.search(out)
-    expect(m is not None and m.group(7) == REFERENCE_STATES[3] and m.group(8) == "CONVERGED_FNORM_RELATIVE", "different result from -mesh", out)
+    expect(m is not None and m.group(8) == REFERENCE_STATES[3] and m.group(9) == "CONVERGED_FNORM_RELATIVE", "different result from -mesh", out)
 
 
 @test("bad input is refused with an error naming it: a missing mesh file, a mesh without a physical group, a negative friction, an output file that cannot be written")

@@ -110,7 +110,7 @@ typedef struct {
   PetscInt  size;    /* values per node: 1, or 3 for a direction                   */
   PetscBool set;     /* value is the default of the nodes without their own         */
   PetscReal value[3];
-  Vec       perNode; /* size entries per contact node (PETSC_DEFAULT: the default), or NULL */
+  Vec       perNode; /* size entries per contact node (SSSTAR_NOT_GIVEN: the default), or NULL */
 } SSStarLawSetting;
 
 typedef struct {

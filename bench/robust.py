@@ -18,7 +18,7 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
   sliding: large sliding (issue 24): balls, cylinders and flat punches dragged along a slab and back by several of
           their sizes (scenes/drag.opts, scenes/punch.opts), a punch off the slab's end, blocks slid across a block by
           twice their length and part of the way back (scenes/track.opts), node-to-surface and dual mortar
-  floating: bodies held by contact alone, no spring (issue 25, README "Bodies held by contact alone"): slopes at
+  floating: bodies held by contact alone, no spring (issue 25, docs/guide/floating-bodies.md): slopes at
           several phi / tan alpha, pushed slopes, stacks, squeezed balls, a slider pushed on its base. Where no
           equilibrium exists a member must instead stop before its first iteration on both paths (DIVERGED_DTOL, the
           line "no equilibrium: ..."), within EARLY seconds (mesh and set-up included)
@@ -54,7 +54,7 @@ KRYLOV = re.compile(r"last solve: \d+ linear solves, (\d+) Krylov iterations")
 DISTANCE = re.compile(r"^distance to the law\s+(\S+)", re.M)
 DIFFERENCE = re.compile(r"^(?:displacement|reaction|full field)\s+max difference\s+(\S+)", re.M)
 TIMEOUT = 600  # seconds: a run this long at these sizes hangs
-TOLERANCE = 1e-6  # the error to the exact discrete solution at the defaults (README "What converged means")
+TOLERANCE = 1e-6  # the error to the exact discrete solution at the defaults (docs/guide/converged.md)
 
 
 def scene(name):

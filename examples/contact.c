@@ -1,7 +1,7 @@
 static const char help[] = "Contact of elastic bodies with rigid obstacles and with each other: solves the scene the options\n\
 describe, and only what they name (no contact group: one linear solve; frictionless groups: no friction work; no\n\
 -gravity: no body force).\n\
-A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
+A scene is an options file: examples/contact -options_file scenes/hertz.opts (docs/guide/scenes.md).\n\
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
   -mesh_cache <folder>            where the meshes of -geo are made and kept (default $XDG_CACHE_HOME/ssstar, else\n\

@@ -19,11 +19,11 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
                              once by -dm_refine 1: level 8's number of nodes; -1 for -mesh)\n\
   -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                              Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
-The solver's options (-snes_ssstar_*, README \"The solver\") apply: -snes_ssstar_reduction <auto> reduces K to the\n\
+The solver's options (-snes_ssstar_*, docs/options.md) apply: -snes_ssstar_reduction <auto> reduces K to the\n\
 contact dofs by a Schur complement (direct: the seed's route) where that costs less than the whole body (none: Krylov\n\
 + multigrid, P never formed) by auto's estimate (docs/guide/choosing-a-route.md; the prism: up to level 7); the\n\
-friction coefficient is\n\
--snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
+friction coefficient is -snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies\n\
+too (docs/guide/scenes.md):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
 no -save_reduced file), PETSc's error code for bad input (one\n\
@@ -36,7 +36,7 @@ line naming the option or file; -ssstar_traceback adds PETSc's report). -help li
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-/* The prism scene (README "The prism") unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
+/* The prism scene (docs/guide/prism.md) unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
    writes P: the dense route unless a reduction is named */
 static PetscErrorCode SetPrismDefaults(void)
 {

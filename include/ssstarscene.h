@@ -16,7 +16,7 @@ PETSC_EXTERN PetscLogEvent SSSTAR_MeshGmsh, SSSTAR_MeshCache, SSSTAR_MeshBuild, 
 
 /*
    A scene: the body, its material, supports and loads, and its contact groups, read from the options
-   (README "Scenes": -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -traction_<G>, -spring_<G>, -gravity,
+   (docs/guide/scenes.md: -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -traction_<G>, -spring_<G>, -gravity,
    -density, -contact, -obstacle_<G>, -friction_law_<G> and -<parameter>_<G> for every parameter of the table of laws
    (-friction_<G>, -slip_bound_<G>, -friction_1_<G>, ...), -mesh_scale; two bodies: -contact_pair_<G> H,
    -pair_discretization).

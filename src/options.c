@@ -1,5 +1,5 @@
 /*
-   What ssstar's programs promise a scripted user (README, "What a scripted user can rely on"): an option that nobody
+   What ssstar's programs promise a scripted user (docs/guide/scripting.md): an option that nobody
    read is refused before any work, naming it and the nearest option the program knows; a solve that did not converge
    ends with the exit status SSSTAR_EXIT_NOT_CONVERGED, and the file it writes says so.
 */

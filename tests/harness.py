@@ -5,7 +5,9 @@ import re
 import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-OUT = os.path.join(ROOT, "tests", "output")
+# tests/run.py runs every test in a process of its own with SSSTAR_TEST_OUT = tests/output/<test>: tests that run at
+# the same time never share a file
+OUT = os.environ.get("SSSTAR_TEST_OUT", os.path.join(ROOT, "tests", "output"))
 LIB = os.path.join(ROOT, "lib", "libssstar.so")
 PYTHON = "/usr/bin/python3"  # Debian's, with h5py
 PRISM = os.path.join(ROOT, "examples", "prism")
@@ -52,7 +54,7 @@ def malloc_check(cmd):
     return ["-malloc_dump"] if parallel else ["-malloc_debug", "-malloc_dump"]
 
 
-# README "What converged means": a solve at the default settings ends within 1e-6 of the exact discrete solution
+# docs/guide/converged.md: a solve at the default settings ends within 1e-6 of the exact discrete solution
 # (displacements relative to the largest, forces to the largest; a load path's steps each to their own scale), so two
 # such runs (other ranks, the other path, another reduction, the scene turned) agree to twice that: the bound of every
 # comparison of runs that are not the same computation (issue 23: a bound at round-off fails on another machine's BLAS)
@@ -113,11 +115,14 @@ def last_znorm(out):
     return float(norms[-1])
 
 
+# (name, requirement, function, full): full tests run only in make test-full (tests/run.py --full)
 TESTS = []
 
 
-def test(requirement):
+def test(requirement, full=False):
+    """Registers a test. full=True: a slow test whose capability has a quicker test in the default run; it runs in
+    make test-full only."""
     def register(fn):
-        TESTS.append((fn.__name__, requirement, fn))
+        TESTS.append((fn.__name__, requirement, fn, full))
         return fn
     return register

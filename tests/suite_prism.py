@@ -24,7 +24,7 @@ def prism_level_run(level, extra, slack):
 
 def prism_level(level):
     """The default (auto): the dense route up to level 7 (auto's cost model, src/reduction/auto.c), the reference iterations +- 1;
-    the whole body above, whose inexact steps may take up to two more (README "Large problems"), and there the dense
+    the whole body above, whose inexact steps may take up to two more (docs/guide/large-problems.md), and there the dense
     route named (-snes_ssstar_reduction direct) for the reference iterations +- 1; above 50 000 dofs auto starts from
     the coarser level's solution (nested iteration: fewer iterations), and from u = 0 with -nested_levels 0"""
     dofs = 3 * (4 * level + 1) * (2 * level + 1) ** 2

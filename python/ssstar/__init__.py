@@ -1,7 +1,7 @@
 """ssstar from Python: the SNES type "ssstar" (semismooth* Newton for 3D contact with friction) over petsc4py.
 
 Importing the module loads libssstar.so (ctypes) and registers the type; the functions take petsc4py objects and call
-the C API of include/ssstar.h with their handles (README "Python", docs/manual.md for each C function):
+the C API of include/ssstar.h with their handles (docs/guide/python.md, docs/manual.md for each C function):
 
     from petsc4py import PETSc
     import ssstar

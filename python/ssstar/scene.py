@@ -262,7 +262,7 @@ class Step:
 
 
 class Scene:
-    """A scene of examples/contact (README "Scenes", "Load paths"): a body meshed by gmsh, its material, supports,
+    """A scene of examples/contact (docs/guide/scenes.md, docs/guide/load-paths.md): a body meshed by gmsh, its material, supports,
     loads, contact groups against rigid obstacles or other bodies with a friction law each, solved by the solver ssstar,
     through the same C scene library and calls as examples/contact, so with its answers.
 
@@ -689,7 +689,7 @@ class Scene:
 
     # ------------------------------------------------------------------------------------------------------ output
     def write(self, file):
-        """Writes the file examples/contact -o writes (HDF5 + XDMF, README "Output"). Before anything is solved: the file
+        """Writes the file examples/contact -o writes (HDF5 + XDMF, docs/guide/output.md). Before anything is solved: the file
         of what comes (o=file does the same): solve() of a static scene writes its solution there; the steps of a load
         path (solve(), steps(), step()) go into it as they are solved, and close() (or the end of solve()) completes it.
         After a static solve: its solution (with /load_steps after -load_steps N)"""

@@ -7,7 +7,7 @@
 */
 #include "sceneimpl.h"
 
-/* auto starts from a coarser mesh above this many dofs of K (the crossover measured: README "Nested iteration") */
+/* auto starts from a coarser mesh above this many dofs of K (the crossover measured: docs/guide/large-problems.md, "Nested iteration") */
 #define SSSTAR_AUTO_NESTED_MIN_DOFS 50000
 /* auto's coarsest mesh has at most this many dofs of K (a problem of about a second on either route) */
 #define SSSTAR_NESTED_COARSEST_DOFS 20000

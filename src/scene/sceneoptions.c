@@ -1,5 +1,5 @@
 /*
-   The scene's description from the options database (README "Scenes"): the body, its material, supports, loads and
+   The scene's description from the options database (docs/guide/scenes.md): the body, its material, supports, loads and
    contact groups, each option checked where it is read, with errors that name the option; the groups the options
    name, for the checks against the mesh; the refusal of unread options with the scene's own among the known ones.
 */
@@ -383,7 +383,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 }
 
 /*@C
-   SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
+   SSStarSceneSetFromOptions - reads the scene from the options database (docs/guide/scenes.md), with errors that name the
    option for unknown, contradictory or incomplete entries
 
    Collective

@@ -83,9 +83,10 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
            (the solver's choice, made again when it sets up), or pass NULL
 
    Notes:
-   Measured per dof with bench/memory.py on the prism, one rank and several (README "Memory"), and on the dense route
-   with bench/auto.py (docs/guide/choosing-a-route.md); the limit is -snes_ssstar_memory_limit or MemAvailable
-   (SSStarCheckMemory()). auto takes the dense route only where it costs less time and fits.
+   Measured per dof with bench/memory.py on the prism, one rank and several (docs/guide/large-problems.md, "Where the
+   memory goes"), and on the dense route with bench/auto.py (docs/guide/choosing-a-route.md); the limit is
+   -snes_ssstar_memory_limit or MemAvailable (SSStarCheckMemory()). auto takes the dense route only where it costs
+   less time and fits.
 
    Level: intermediate
 

@@ -1,5 +1,5 @@
 /*
-   HDF5 output of a scene's solution, the same file on any number of ranks (README "Output"):
+   HDF5 output of a scene's solution, the same file on any number of ranks (docs/guide/output.md):
 
      /geometry/vertices, /fields/displacement  every mesh vertex in the mesh file's node order (fileorder.c)
      /viz/topology/cells                       the tetrahedra by their vertices' file numbers, in a canonical order
@@ -353,7 +353,7 @@ static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SN
 
 /*@C
    SSStarSceneOutputEnd - completes the file opened by SSStarSceneOutputBegin(): the top-level datasets and
-   attributes of the state u (those of SSStarSceneWriteSolution(), README "Output"), the table of the steps, the
+   attributes of the state u (those of SSStarSceneWriteSolution(), docs/guide/output.md), the table of the steps, the
    caller's datasets, and the XDMF file (temporal collections of the steps when there are steps); then renames both
    files to their names
 
@@ -438,7 +438,7 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
    (/scene: mesh, material, loads, contact groups with their laws) and, as attributes of /, the run: ssstar_version,
    petsc_version, command_line, ranks, snes_type, converged_reason, converged_reason_code, iterations, residual_norm
    (||z|| for ssstar), rtol, atol, max_it and, for ssstar, sub_reason, tolerance, scaling, reduction, state_counts,
-   state_names. README "Output" lists them all. It is SSStarSceneOutputBegin() and SSStarSceneOutputEnd() without steps.
+   state_names. docs/guide/output.md lists them all. It is SSStarSceneOutputBegin() and SSStarSceneOutputEnd() without steps.
 
    Both files are written to temporary names and renamed when complete: a failure leaves no file behind.
 

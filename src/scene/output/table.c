@@ -46,7 +46,7 @@ static PetscInt MovingGroups(SSStarScene scene)
    The columns are time, iterations, reason, residual_norm, cuts, load (3), normal_force, tangential_force (3), area,
    sliding, sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, then motion/<G>
    (3) for each contact group with a moving obstacle and groups/<G>/displacement (3) for each traction, spring and
-   contact group (README "Load paths").
+   contact group (docs/guide/load-paths.md).
 
    Level: intermediate
 

@@ -50,7 +50,7 @@ static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStar
 
 /*@C
    SSStarSceneSetHistory - changes a load or an obstacle's motion of the scene: gives one of its history options a new
-   value, as the option would (README "Load paths"), between the steps of a load path
+   value, as the option would (docs/guide/load-paths.md), between the steps of a load path
 
    Collective
 

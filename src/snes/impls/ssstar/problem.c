@@ -100,7 +100,7 @@ static PetscErrorCode ChooseNewton(SSStarProblem *pb)
 
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pb->A, &dense, MATDENSE, MATMPIDENSE, MATSEQDENSE, ""));
-  pb->newtonType = pb->wholeBody ? SSSTARNEWTONFULL : dense ? SSSTARNEWTONDENSE : SSSTARNEWTONSPARSE;
+  pb->newtonType = pb->wholeBody ? SSSTARNEWTONWHOLEBODY : dense ? SSSTARNEWTONDENSE : SSSTARNEWTONSPARSE;
   PetscFunctionReturn(0);
 }
 
@@ -146,7 +146,7 @@ static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProble
   if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
   if (same && !ct->T && pb->Kw == K) { /* the problem stands; the floating bodies' motions at the points change frames */
     pb->built = ct->built;
-    if (pb->kernel.m) PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel));
+    if (pb->floating.m) PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating));
   }
   PetscFunctionReturn(0);
 }
@@ -171,7 +171,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
     PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
-    PetscCall(SSStarKernelSetUp(ct, K, &pb->kernel)); /* floating bodies (floating.c): checked before any factorization */
+    PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating)); /* floating bodies (floating.c): checked before any factorization */
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     pb->wholeBody = PETSC_FALSE;
     if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb));
@@ -182,7 +182,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
       pb->A = K;
     }
     PetscCall(ChooseNewton(pb));
-    if (pb->kernel.m) {
+    if (pb->floating.m) {
       PetscBool sparse;
 
       PetscCall(PetscStrcmp(pb->newtonType, SSSTARNEWTONSPARSE, &sparse));
@@ -226,7 +226,7 @@ PetscErrorCode SSStarProblemGetLayout(SSStarContact *ct, SSStarProblem *pb, SSSt
   layout->nnodes = ct->nnodes;
   layout->dofs   = pb->layoutDofs;
   layout->frames = ct->frames;
-  layout->kernel = pb->kernel.m ? &pb->kernel : NULL;
+  layout->floating = pb->floating.m ? &pb->floating : NULL;
   PetscFunctionReturn(0);
 }
 
@@ -263,7 +263,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   PetscFunctionBegin;
   if (!ct->dofs) {
     PetscCall(VecCopy(u, x));
-    PetscCall(SSStarKernelLeastNorm(&pb->kernel, x));
+    PetscCall(SSStarFloatingLeastNorm(&pb->floating, x));
     PetscFunctionReturn(0);
   }
   PetscCall(VecDuplicate(x, &v));
@@ -272,7 +272,7 @@ PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Ve
   if (ct->T) PetscCall(MatMult(ct->T, v, x));
   else PetscCall(VecCopy(v, x));
   PetscCall(VecDestroy(&v));
-  PetscCall(SSStarKernelLeastNorm(&pb->kernel, x)); /* motions no contact resists: the least-norm solution */
+  PetscCall(SSStarFloatingLeastNorm(&pb->floating, x)); /* motions no contact resists: the least-norm solution */
   PetscFunctionReturn(0);
 }
 
@@ -321,7 +321,7 @@ PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscView
     if (chosen) PetscCall(PetscViewerASCIIPrintf(viewer, "    auto's estimates (flops of a dense LU): the dense route %.3g, the whole body %.3g (K holds the body by %.2g)\n", (double)dense, (double)whole, (double)holding));
   } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
-  PetscCall(SSStarKernelView(&pb->kernel, viewer));
+  PetscCall(SSStarFloatingView(&pb->floating, viewer));
   PetscFunctionReturn(0);
 }
 
@@ -338,10 +338,249 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   PetscCall(PetscFree(pb->layoutDofs));
   PetscCall(PetscFree(pb->free));
   PetscCall(ISDestroy(&pb->isC));
-  PetscCall(SSStarKernelReset(&pb->kernel));
+  PetscCall(SSStarFloatingReset(&pb->floating));
   pb->nfree     = 0;
   pb->K         = NULL;
   pb->built     = -1;
   pb->wholeBody = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  Mat K;
+  Vec b;
+} LinearProblem;
+
+static PetscErrorCode LinearProblemFunction(SNES snes, Vec u, Vec r, void *ctx)
+{
+  LinearProblem *lp = (LinearProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(lp->K, u, r));
+  PetscCall(VecAXPY(r, -1.0, lp->b));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LinearProblemJacobian(SNES snes, Vec u, Mat J, Mat Jpre, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscFunctionReturn(0); /* J = K, constant */
+}
+
+static PetscErrorCode LinearProblemDestroy(void *ctx)
+{
+  LinearProblem *lp = (LinearProblem *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&lp->K));
+  PetscCall(VecDestroy(&lp->b));
+  PetscCall(PetscFree(lp));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLinearProblem - sets the SNES function F(u) = K u - b and the Jacobian K of a linear elastic body (or
+   c(u) = P u - f and P of a reduced contact problem, 3 dofs per contact node)
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+.  K    - the stiffness, SPD (Dirichlet dofs eliminated or given identity rows); or the reduced P
+-  b    - the load, laid out like K's rows; or the reduced f
+
+   Notes:
+   Works with any SNES type; the SNES keeps references to K and b, so a program that changes b's values between
+   solves (load steps) changes the load. After SNESSolve(), SNESGetFunction() holds K u - b: at the contact nodes the
+   contact forces. A whole body declares its contact nodes (SNESSSStarSetContactNodes() or
+   SNESSSStarSetContactOperator()); without a declaration every dof is a contact dof (the reduced use).
+
+   Level: beginner
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`, `SNESSetFunction()`, `SNESSetJacobian()`
+@*/
+PetscErrorCode SNESSSStarSetLinearProblem(SNES snes, Mat K, Vec b)
+{
+  LinearProblem *lp;
+  PetscContainer container;
+  Vec            r;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(K, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(b, VEC_CLASSID, 3);
+  PetscCall(PetscNew(&lp));
+  PetscCall(PetscObjectReference((PetscObject)K));
+  PetscCall(PetscObjectReference((PetscObject)b));
+  lp->K = K;
+  lp->b = b;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)snes), &container));
+  PetscCall(PetscContainerSetPointer(container, lp));
+  PetscCall(PetscContainerSetUserDestroy(container, LinearProblemDestroy));
+  PetscCall(PetscObjectCompose((PetscObject)snes, "SNESSSStarLinearProblem", (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscCall(VecDuplicate(b, &r));
+  PetscCall(SNESSetFunction(snes, r, LinearProblemFunction, lp));
+  PetscCall(VecDestroy(&r));
+  PetscCall(SNESSetJacobian(snes, K, K, LinearProblemJacobian, lp));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetReducedProblem - P and f of the last solve: c(u) = P u - f on the contact dofs (global axes, in the
+   order of the contact nodes sorted by their first dof)
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES, after SNESSolve()
+
+   Output Parameters:
++  P - the reduced stiffness (owned by the SNES), or pass NULL
+-  f - the reduced load (owned by the SNES), or pass NULL
+
+   Notes:
+   An error before the first solve, and after a solve on the whole body (reduction none), which never forms P.
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetLinearProblem()`, `SNESSSStarSetReductionType()`
+@*/
+PetscErrorCode SNESSSStarGetReducedProblem(SNES snes, Mat *P, Vec *f)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetReducedProblem_C", (SNES, Mat *, Vec *), (snes, P, f));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetReducedProblem_SSStar(SNES snes, Mat *P, Vec *f)
+{
+  SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
+
+  PetscFunctionBegin;
+  PetscCheck(pb->A, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: no reduced problem before SNESSolve()");
+  PetscCheck(!pb->wholeBody, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "SNESSSStarGetReducedProblem: the last solve ran on the whole body (reduction none): no P was formed");
+  if (P) *P = pb->A;
+  if (f) *f = pb->f;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarSetReductionType - how K is reduced to the contact dofs in the whole-body use: a Schur complement P
+   (direct, mumps, explicit), none (the Newton steps on the whole body, P never formed) or auto (direct where the dense
+   P is the faster route and fits the memory, else none); default auto
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  type - SSSTARREDUCTIONDIRECT ("direct"), SSSTARREDUCTIONMUMPS, SSSTARREDUCTIONEXPLICIT, SSSTARREDUCTIONNONE (no
+          reduction: the Newton steps on the whole body), another registered type (SSStarReductionRegister()), or
+          SSSTARREDUCTIONAUTO ("auto", the default: direct or none, by size and memory)
+
+   Options Database Key:
+.  -snes_ssstar_reduction <auto> - direct, mumps, explicit, none or auto
+
+   Notes:
+   The options of the reduction's solvers take the SNES's prefix: -<prefix>schur_direct_mumps_icntl_<i> (direct),
+   -<prefix>schur_mat_mumps_* (mumps), -<prefix>interior_ksp_*, -<prefix>interior_pc_* (explicit).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetReductionType()`, `SSStarReductionSetType()`, `SNESSSStarSetMemoryLimit()`
+@*/
+PetscErrorCode SNESSSStarSetReductionType(SNES snes, SSStarReductionType type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidCharPointer(type, 2);
+  PetscTryMethod(snes, "SNESSSStarSetReductionType_C", (SNES, SSStarReductionType), (snes, type));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetReductionType_SSStar(SNES snes, SSStarReductionType type)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarProblemSetReductionType(&((SNES_SSStar *)snes->data)->problem, type));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetReductionType - the reduction of the last SNESSolve() (auto resolved to direct or none), or the one
+   set before the first
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  type - "direct", "mumps", "explicit", "none" or (before the first solve) "auto"; owned by the SNES
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetReductionType()`
+@*/
+PetscErrorCode SNESSSStarGetReductionType(SNES snes, SSStarReductionType *type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetReductionType_C", (SNES, SSStarReductionType *), (snes, type));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetReductionType_SSStar(SNES snes, SSStarReductionType *type)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarProblemGetReductionType(&((SNES_SSStar *)snes->data)->problem, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetMemoryLimit - the memory the reduction of K may plan for; it refuses before factorizing K when its
+   estimate exceeds it
+
+   Logically Collective
+
+   Input Parameters:
++  snes      - the SNES
+-  gigabytes - GB (1e9 bytes) per rank; 0 (the default): MemAvailable of each node split over its ranks
+
+   Options Database Key:
+.  -snes_ssstar_memory_limit <0> - the limit
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetReductionType()`, `SSStarCheckMemory()`
+@*/
+PetscErrorCode SNESSSStarSetMemoryLimit(SNES snes, PetscReal gigabytes)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMemoryLimit_C", (SNES, PetscReal), (snes, gigabytes));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetMemoryLimit_SSStar(SNES snes, PetscReal gigabytes)
+{
+  PetscFunctionBegin;
+  PetscCheck(gigabytes >= 0 && !PetscIsInfOrNanReal(gigabytes), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_memory_limit %g: the limit must be > 0 GB (or 0 for the available memory)", (double)gigabytes);
+  ((SNES_SSStar *)snes->data)->problem.memoryLimit = gigabytes;
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarGetReducedProblem_C", (PetscVoidFunction)SNESSSStarGetReducedProblem_SSStar},
+    {"SNESSSStarSetReductionType_C", (PetscVoidFunction)SNESSSStarSetReductionType_SSStar},
+    {"SNESSSStarGetReductionType_C", (PetscVoidFunction)SNESSSStarGetReductionType_SSStar},
+    {"SNESSSStarSetMemoryLimit_C", (PetscVoidFunction)SNESSSStarSetMemoryLimit_SSStar},
+};
+
+PetscErrorCode SNESSSStarComposeProblem(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
   PetscFunctionReturn(0);
 }

@@ -1,8 +1,9 @@
 /*
    The SNES type "ssstar": semismooth* Newton method for 0 in c(u) + Q(u) (docs/derivation.md section 7), on the contact
-   dofs of a reduced problem or on the whole body (problem.c says which: the layout of the operator's vectors). The
+   dofs of a reduced problem or on the whole body (problem.c says which: the layout of the stiffness A's vectors). The
    iteration is here; the per-node work in nodesteps.c, the globalization in globalization.c, the declaration in
-   contact.c, the problem in problem.c, options and views in view.c, the composed setters in accessors.c.
+   contact.c and friction.c, the problem in problem.c, options and views in view.c. Each public function sits beside the
+   type's implementation in the file of its concept, composed from there (SNESSSStarComposeFunctions()).
 */
 #include "ssstarimpl.h"
 
@@ -59,7 +60,7 @@ static PetscErrorCode SNESSetUp_SSStar(SNES snes)
   PetscFunctionReturn(0);
 }
 
-/* The vectors of the iteration, in the layout of the operator A (they change with it) */
+/* The vectors of the iteration, in the layout of the stiffness A (they change with it) */
 static PetscErrorCode CreateWorkVectors(SNES snes)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
@@ -241,7 +242,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   PetscCall(CreateWorkVectors(snes));
   PetscCall(SNESSSStarComputeScaling(snes));
   PetscCall(SSStarProblemGetLayout(ct, pb, &layout));
-  PetscCall(SSStarNewtonSetOperator(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
+  PetscCall(SSStarNewtonSetStiffness(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
   PetscCall(SSStarProblemGetInitialGuess(ct, pb, snes->vec_sol, ss->u));
   PetscCall(CheckProblem(snes));
   if (pb->wholeBody) PetscCall(Equilibrate(snes)); /* the free dofs in equilibrium with the contact dofs */
@@ -449,6 +450,165 @@ PetscErrorCode SNESConvergedSSStar(SNES snes, PetscInt it, PetscReal xnorm, Pets
   else if (!law) *reason = SNES_CONVERGED_ITERATING;
   else if (fnorm <= snes->abstol) *reason = SNES_CONVERGED_FNORM_ABS;
   else if (fnorm <= snes->rtol * xnorm) *reason = SNES_CONVERGED_FNORM_RELATIVE;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetMethod - chooses the iteration: the semismooth* Newton method (SSSTAR_METHOD_NEWTON, the default) or
+   the first-order baseline SSSTAR_METHOD_FIXEDPOINT, u <- u + R^T z with the approximation step z alone
+   (docs/derivation.md section 1), for comparisons (bench/accuracy.py)
+
+   Logically Collective
+
+   Input Parameters:
++  snes   - the SNES
+-  method - SSSTAR_METHOD_NEWTON or SSSTAR_METHOD_FIXEDPOINT
+
+   Options Database Key:
+.  -snes_ssstar_method <newton> - newton or fixedpoint
+
+   Notes:
+   The fixed-point iteration is a projected (with friction, proximal) gradient method: its gamma is 1/||P||_inf
+   unless -snes_ssstar_scaling sets it, small enough for it to converge on frictionless and Tresca problems, at a
+   linear rate 1 - lambda_min(P)/||P||_inf; with Coulomb friction it is not guaranteed to converge. It has no Newton
+   step, hence no globalization; the stopping rule is the same.
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetMethod()`, `SNESSSStarSetScaling()`
+@*/
+PetscErrorCode SNESSSStarSetMethod(SNES snes, SSStarMethod method)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMethod_C", (SNES, SSStarMethod), (snes, method));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetMethod_SSStar(SNES snes, SSStarMethod method)
+{
+  PetscFunctionBegin;
+  PetscCheck(method == SSSTAR_METHOD_NEWTON || method == SSSTAR_METHOD_FIXEDPOINT, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "ssstar: unknown method %d", (int)method);
+  ((SNES_SSStar *)snes->data)->method = method;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetMethod - the iteration chosen by SNESSSStarSetMethod()
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  method - SSSTAR_METHOD_NEWTON or SSSTAR_METHOD_FIXEDPOINT
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetMethod()`
+@*/
+PetscErrorCode SNESSSStarGetMethod(SNES snes, SSStarMethod *method)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetMethod_C", (SNES, SSStarMethod *), (snes, method));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetMethod_SSStar(SNES snes, SSStarMethod *method)
+{
+  PetscFunctionBegin;
+  *method = ((SNES_SSStar *)snes->data)->method;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetReason - why the last solve stopped, finer than SNESGetConvergedReason()
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  reason - the sub-reason (SSStarReason; SSStarReasons[] names it)
+
+   Notes:
+   -snes_converged_reason prints it on the line "ssstar: ..."; docs/guide/converged.md ("When it does not converge") maps each onto the
+   SNESConvergedReason.
+
+   Level: beginner
+
+.seealso: `SNESGetConvergedReason()`, `SNESSSStarGetTolerance()`, `SNESSSStarGetRemedyCounts()`
+@*/
+PetscErrorCode SNESSSStarGetReason(SNES snes, SSStarReason *reason)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetReason_C", (SNES, SSStarReason *), (snes, reason));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetReason_SSStar(SNES snes, SSStarReason *reason)
+{
+  PetscFunctionBegin;
+  *reason = ((SNES_SSStar *)snes->data)->reason;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetTolerance - the threshold the last solve's stopping rule compared ||z|| with
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  tol - max(atol, rtol max(||u||, ||gamma f||)) at the last iterate (SNESConvergedSSStar())
+
+   Level: intermediate
+
+.seealso: `SNESConvergedSSStar()`, `SNESGetFunctionNorm()`, `SNESSSStarGetReason()`
+@*/
+PetscErrorCode SNESSSStarGetTolerance(SNES snes, PetscReal *tol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidRealPointer(tol, 2);
+  PetscUseMethod(snes, "SNESSSStarGetTolerance_C", (SNES, PetscReal *), (snes, tol));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetTolerance_SSStar(SNES snes, PetscReal *tol)
+{
+  PetscFunctionBegin;
+  *tol = ((SNES_SSStar *)snes->data)->tolerance;
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarSetMethod_C", (PetscVoidFunction)SNESSSStarSetMethod_SSStar},
+    {"SNESSSStarGetMethod_C", (PetscVoidFunction)SNESSSStarGetMethod_SSStar},
+    {"SNESSSStarGetReason_C", (PetscVoidFunction)SNESSSStarGetReason_SSStar},
+    {"SNESSSStarGetTolerance_C", (PetscVoidFunction)SNESSSStarGetTolerance_SSStar},
+};
+
+/* on: composes the type's implementations of the public functions on the SNES, each room's next to its public
+   functions (SNESCreate_SSStar()); off: removes them (SNESDestroy_SSStar()) */
+static PetscErrorCode SNESSSStarComposeFunctions(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
+  PetscCall(SNESSSStarComposeContact(snes, on));
+  PetscCall(SNESSSStarComposeFriction(snes, on));
+  PetscCall(SNESSSStarComposeProblem(snes, on));
+  PetscCall(SNESSSStarComposeNewton(snes, on));
+  PetscCall(SNESSSStarComposeNodeSteps(snes, on));
+  PetscCall(SNESSSStarComposeGlobalization(snes, on));
+  PetscCall(SNESSSStarComposeFloating(snes, on));
   PetscFunctionReturn(0);
 }
 

@@ -218,9 +218,9 @@ PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g, law residual %g (tolerance %g)\n", SSStarReasons[ss->reason], (double)snes->norm, (double)ss->lawResidual, (double)SNESSSStarLawTolerance(snes)));
   if (ss->reason == SSSTAR_REASON_NO_EQUILIBRIUM) {
-    const SSStarKernel *kn = &ss->problem.kernel;
+    const SSStarFloating *fb = &ss->problem.floating;
 
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: floating body %" PetscInt_FMT " of %" PetscInt_FMT " slides away along (%.4g, %.4g, %.4g) (its translation (%.4g, %.4g, %.4g)): the friction laws cannot balance %.3g of the load on its rigid-body motions\n", kn->movingBody, kn->nbodies, (double)kn->direction[0], (double)kn->direction[1], (double)kn->direction[2], (double)kn->translation[0], (double)kn->translation[1], (double)kn->translation[2], (double)kn->unbalanced));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: floating body %" PetscInt_FMT " of %" PetscInt_FMT " slides away along (%.4g, %.4g, %.4g) (its translation (%.4g, %.4g, %.4g)): the friction laws cannot balance %.3g of the load on its rigid-body motions\n", fb->movingBody, fb->nbodies, (double)fb->direction[0], (double)fb->direction[1], (double)fb->direction[2], (double)fb->translation[0], (double)fb->translation[1], (double)fb->translation[2], (double)fb->unbalanced));
   }
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerDestroy(&viewer));

@@ -1,6 +1,6 @@
 /*
    The Newton step of ssstar: what every implementation shares (newtonimpl.h). The SNES creates one SSStarNewton and
-   keeps it; each SNESSolve gives it the operator and the name of the implementation that fits it (registered by
+   keeps it; each SNESSolve gives it the stiffness A and the name of the implementation that fits it (registered by
    newtonregall.c).
 */
 #include "newtonimpl.h"
@@ -56,7 +56,7 @@ PetscErrorCode SSStarNewtonGetPCReuse(SSStarNewton nt, PetscReal *fraction)
   PetscFunctionReturn(0);
 }
 
-/* Takes effect with the next operator */
+/* Takes effect with the next stiffness A */
 PetscErrorCode SSStarNewtonSetLUThreads(SSStarNewton nt, PetscInt threads)
 {
   PetscFunctionBegin;
@@ -71,7 +71,7 @@ PetscErrorCode SSStarNewtonGetLUThreads(SSStarNewton nt, PetscInt *threads)
   PetscFunctionReturn(0);
 }
 
-/* Drops everything built for an operator (the settings stay) */
+/* Drops everything built for a stiffness A (the settings stay) */
 PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 {
   PetscFunctionBegin;
@@ -85,10 +85,10 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
 }
 
 /*
-   The operator A (P, or K on the whole body) with the given implementation, the scaling gamma and the contact nodes'
-   layout, for one SNESSolve: the counts start afresh; what was built for another operator is dropped
+   The stiffness A (P, or K on the whole body) with the given implementation, the scaling gamma and the contact nodes'
+   layout, for one SNESSolve: the counts start afresh; what was built for another A is dropped
 */
-PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A, PetscReal gamma, const SSStarContactLayout *layout)
+PetscErrorCode SSStarNewtonSetStiffness(SSStarNewton nt, const char type[], Mat A, PetscReal gamma, const SSStarContactLayout *layout)
 {
   PetscBool        sameType;
   PetscObjectState state;
@@ -118,7 +118,7 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   nt->Astate = state;
   PetscCall(PetscStrallocpy(type, &nt->type));
   /* the SNES's KSP may be the implementation's (SNESSetFromOptions gave it the user's Jacobian: drop that), and a
-     multigrid of another operator keeps its levels through a reset (GAMG's coarse solvers of the old sizes): a fresh
+     multigrid of another A keeps its levels through a reset (GAMG's coarse solvers of the old sizes): a fresh
      preconditioner, its type from the implementation's defaults and the options again */
   PetscCall(KSPReset(nt->snes->ksp));
   {
@@ -132,7 +132,7 @@ PetscErrorCode SSStarNewtonSetOperator(SSStarNewton nt, const char type[], Mat A
   PetscFunctionReturn(0);
 }
 
-/* A new gamma for the same operator (the globalization's rescaling): the factorizations of the old one do not apply */
+/* A new gamma for the same A (the globalization's rescaling): the factorizations of the old one do not apply */
 PetscErrorCode SSStarNewtonSetScaling(SSStarNewton nt, PetscReal gamma)
 {
   PetscFunctionBegin;
@@ -185,7 +185,7 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
 {
   PetscFunctionBegin;
   nt->nSteps++;
-  if (nt->layout.kernel) { /* floating bodies: the motions the step leaves free (docs/derivation.md (14.5)) */
+  if (nt->layout.floating) { /* floating bodies: the motions the step leaves free (docs/derivation.md (14.5)) */
     unsigned char *known;
 
     PetscCall(PetscMalloc1(nt->layout.nnodes + 1, &known));
@@ -194,7 +194,7 @@ PetscErrorCode SSStarNewtonSolve(SSStarNewton nt, const PetscReal S[], const Pet
       for (PetscInt r = 0; r < 3; r++)
         if (SSStarKnownRow(&S[9 * i], &T[9 * i], r)) known[i] |= (unsigned char)(1 << r);
     }
-    PetscCall(SSStarKernelFreeMotions(nt->layout.kernel, known, T));
+    PetscCall(SSStarFloatingFreeMotions(nt->layout.floating, known, T));
     PetscCall(PetscFree(known));
   }
   PetscCall((*nt->ops.solve)(nt, S, T, y, du, solved));
@@ -223,7 +223,7 @@ PetscErrorCode SSStarNewtonSolveKnown(SSStarNewton nt, Vec y, Vec du, PetscBool 
   PetscScalar               *da;
 
   PetscFunctionBegin;
-  if (nt->layout.kernel) nt->layout.kernel->nfree = 0; /* the contact dofs hold every motion */
+  if (nt->layout.floating) nt->layout.floating->nfree = 0; /* the contact dofs hold every motion */
   if (nt->ops.solveknown) {
     nt->nSteps++;
     PetscCall((*nt->ops.solveknown)(nt, y, du, solved));
@@ -273,7 +273,7 @@ PetscErrorCode SSStarNewtonGetSteps(SSStarNewton nt, PetscInt *steps)
 PetscErrorCode SSStarNewtonView(SSStarNewton nt, PetscViewer viewer)
 {
   PetscFunctionBegin;
-  if (!nt->ops.view) PetscFunctionReturn(0); /* no operator yet */
+  if (!nt->ops.view) PetscFunctionReturn(0); /* no stiffness A yet */
   PetscCall((*nt->ops.view)(nt, viewer));
   PetscFunctionReturn(0);
 }
@@ -284,5 +284,189 @@ PetscErrorCode SSStarNewtonDestroy(SSStarNewton *nt)
   if (!*nt) PetscFunctionReturn(0);
   PetscCall(SSStarNewtonReset(*nt));
   PetscCall(PetscFree(*nt));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLUReuse - with a dense P, keep the LU factors of the Newton matrix and solve the next steps by GMRES
+   preconditioned with them while at most this fraction of the contact nodes changed which of their rows are known
+   (sticking, normal contact) since the factorization; a fresh LU when more did or GMRES does not converge
+   (-snes_ssstar_newton_ksp_max_it, -snes_ssstar_newton_ksp_rtol). Default 0: the old LU only while no node changed;
+   a negative fraction gives a fresh LU at every step.
+
+   Logically Collective
+
+   Input Parameters:
++  snes     - the SNES
+-  fraction - the fraction of the contact nodes
+
+   Options Database Key:
+.  -snes_ssstar_lu_reuse <fraction> - the fraction, at most 1 (negative: a fresh LU at every step)
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetNewtonStepCounts()`, `SNESSSStarSetLUThreads()`
+@*/
+PetscErrorCode SNESSSStarSetLUReuse(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLUReuse_C", (SNES, PetscReal), (snes, fraction));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetLUReuse_SSStar(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_reuse %g must be at most 1 (negative: never)", (double)fraction);
+  PetscCall(SSStarNewtonSetReuse(((SNES_SSStar *)snes->data)->newton, fraction));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLUThreads - on several ranks with a dense P, the LU of the Newton matrix is computed on rank 0 while the
+   other ranks sleep: this many BLAS (OpenBLAS) threads of rank 0 compute it, 0 for as many as the cores rank 0 may run
+   on (start with mpiexec --bind-to none), at most the ranks of its node. Default 1: the BLAS is left as it is (as on one
+   rank, where OPENBLAS_NUM_THREADS decides). Takes effect at the next SNESSolve() with a new P.
+
+   Logically Collective
+
+   Input Parameters:
++  snes    - the SNES
+-  threads - the BLAS threads of rank 0, >= 0
+
+   Options Database Key:
+.  -snes_ssstar_lu_threads <n> - the threads
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetLUReuse()`
+@*/
+PetscErrorCode SNESSSStarSetLUThreads(SNES snes, PetscInt threads)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLUThreads_C", (SNES, PetscInt), (snes, threads));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetLUThreads_SSStar(SNES snes, PetscInt threads)
+{
+  PetscFunctionBegin;
+  PetscCheck(threads >= 0, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_lu_threads %" PetscInt_FMT " must be >= 0 (0: the cores rank 0 may run on)", threads);
+  PetscCall(SSStarNewtonSetLUThreads(((SNES_SSStar *)snes->data)->newton, threads));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetPCReuse - whole body (reduction none): keep the preconditioner (multigrid) of an earlier Newton step
+   while at most this fraction of the contact nodes changed which of their rows are known since it was built; a new
+   one (on the old interpolation, with PCGAMG) when more did
+
+   Logically Collective
+
+   Input Parameters:
++  snes     - the SNES
+-  fraction - at most 1; negative: a new preconditioner at every step (default 0.3)
+
+   Options Database Key:
+.  -snes_ssstar_pc_reuse <fraction> - the fraction
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetKSPRtolMax()`, `SNESSSStarGetNewtonStepCounts()`
+@*/
+PetscErrorCode SNESSSStarSetPCReuse(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetPCReuse_C", (SNES, PetscReal), (snes, fraction));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetPCReuse_SSStar(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscCheck(fraction <= 1 && !PetscIsInfOrNanReal(fraction), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_pc_reuse %g must be at most 1 (negative: never)", (double)fraction);
+  PetscCall(SSStarNewtonSetPCReuse(((SNES_SSStar *)snes->data)->newton, fraction));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve() were solved
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  factorizations - LU factorizations of the Newton matrix (dense P), or pass NULL
+.  reused         - steps solved on an older LU (by GMRES, SNESSSStarSetLUReuse()), or pass NULL
+-  krylov         - their Krylov iterations (also in SNESGetLinearSolveIterations()), or pass NULL
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetLUReuse()`, `SNESSSStarGetConditionEstimate()`
+@*/
+PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetNewtonStepCounts_C", (SNES, PetscInt *, PetscInt *, PetscInt *), (snes, factorizations, reused, krylov));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetNewtonStepCounts_SSStar(SNES snes, PetscInt *factorizations, PetscInt *reused, PetscInt *krylov)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonGetCounts(((SNES_SSStar *)snes->data)->newton, factorizations, reused, krylov));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetConditionEstimate - LAPACK's estimate of 1/cond_1 of the last LU-factored Newton matrix
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  rcond - the estimate for a dense P (the system of the unknown dofs, A_RR), or -1 when none is known (sparse P,
+           no factorization yet, a singular matrix)
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetNewtonStepCounts()`
+@*/
+PetscErrorCode SNESSSStarGetConditionEstimate(SNES snes, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetConditionEstimate_C", (SNES, PetscReal *), (snes, rcond));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetConditionEstimate_SSStar(SNES snes, PetscReal *rcond)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonGetConditionEstimate(((SNES_SSStar *)snes->data)->newton, rcond));
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarSetLUReuse_C", (PetscVoidFunction)SNESSSStarSetLUReuse_SSStar},
+    {"SNESSSStarSetLUThreads_C", (PetscVoidFunction)SNESSSStarSetLUThreads_SSStar},
+    {"SNESSSStarSetPCReuse_C", (PetscVoidFunction)SNESSSStarSetPCReuse_SSStar},
+    {"SNESSSStarGetNewtonStepCounts_C", (PetscVoidFunction)SNESSSStarGetNewtonStepCounts_SSStar},
+    {"SNESSSStarGetConditionEstimate_C", (PetscVoidFunction)SNESSSStarGetConditionEstimate_SSStar},
+};
+
+PetscErrorCode SNESSSStarComposeNewton(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
   PetscFunctionReturn(0);
 }

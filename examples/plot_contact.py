@@ -15,15 +15,16 @@ where nothing slips. Right: the contact pressure r_n / area (each node's normal 
 
 A load path (a file with /steps, written by examples/contact or by ssstar.Scene) gets a second figure,
 FILE_history.png: its history step by step for the contact group that carries it (a moving obstacle's group, else the
-one with the largest normal force), with n that group's normal (its nodes' normals weighted by their normal forces,
-pointing into the body) and t the direction in which the tangential force varies most (a global axis where it is one):
+one with the largest normal force), with n that group's normal (pointing into the body: the normal of its face where
+the face is flat, else its nodes' normals weighted by their normal forces) and t the direction in which the tangential force varies most (a global axis where it is one):
 (i) the tangential force against the tangential displacement -- the applied tangential load against the mean
 displacement of the traction group that carries it (weighted like its load, so that the loop's area is the work, the
 energy friction dissipates over a cycle; a file of ssstar.Scene, whose loads change between steps, takes its traction
 group too), or the friction force on the body against a moving obstacle's translation -- the loop closing for a
 cycle; (ii) the normal force on the group against the indentation (m - u).n: the obstacle's translation m (0 for a
-fixed one) less the body's displacement u there (the mean displacement of the loaded traction group, else of the
-contact group); (iii) the contact area and the sliding nodes against the time; (iv) the loop of (i) less its linear
+fixed one) less the body's displacement u (the mean displacement of its nodes: its rigid motion where a spring or
+contact alone holds it, about 0 where Dirichlet conditions do; files without the field of each step: the loaded
+traction group's, else the contact group's); (iii) the contact area and the sliding nodes against the time; (iv) the loop of (i) less its linear
 elastic part (the displacement less the force times the slope fitted through the loop: the bodies' compliance, which
 adds no area), where the slip shows. The contact faces are drawn at the last step.
 
@@ -88,7 +89,29 @@ def read_path(f, d):
         T.append((r - rn[:, None] * n).sum(axis=0))
     path["group_normal_force"] = path["normal_force"] if single or not steps else np.array(N)
     path["group_tangential_force"] = path["tangential_force"] if single or not steps else np.array(T)
+    body = body_nodes(f, d["coordinates"][on])
+    path["body_displacement"] = np.array([f["steps/%s/fields/displacement" % k][:][body].mean(axis=0) for k in steps]) \
+        if body is not None and all("fields" in f["steps/%s" % k] for k in steps) else None
     return path
+
+
+def body_nodes(f, points):
+    """The mesh nodes of the body that holds points (contact nodes): the connected part of the mesh's tetrahedra
+    through them; None without a mesh"""
+    if "geometry" not in f or "viz/topology/cells" not in f:
+        return None
+    x, cells = f["geometry/vertices"][:], f["viz/topology/cells"][:]
+    label = np.arange(len(x))
+    while True:  # each node takes the least label of its cells, until nothing changes
+        least = label[cells].min(axis=1)
+        new = label.copy()
+        np.minimum.at(new, cells.ravel(), np.repeat(least, cells.shape[1]))
+        if np.array_equal(new, label):
+            break
+        label = new[new]
+    index = {tuple(v): i for i, v in enumerate(x)}
+    mine = {label[index[tuple(p)]] for p in points if tuple(p) in index}
+    return np.isin(label, list(mine)) if mine else None
 
 
 def carrying_group(f, d, steps, path):
@@ -107,8 +130,21 @@ def carrying_group(f, d, steps, path):
 
 
 def group_normal(f, steps, on, normals):
-    """The normal of a contact group over a path: its nodes' normals weighted by their normal forces (pointing into
-    the body); the mean of its normals where nothing pushes"""
+    """The normal of a contact group over a path, pointing into the body: the normal of its face where the face is flat
+    (the motion of an obstacle along it is the indentation, wherever the contact drifts), else its nodes' normals
+    weighted by their normal forces; the mean of its normals where nothing pushes"""
+    weighted = force_weighted_normal(f, steps, on, normals)
+    x = f["contact/coordinates"][:][on]
+    if len(x) > 2:
+        w, v = np.linalg.eigh(np.cov((x - x.mean(axis=0)).T))
+        if np.sqrt(max(w[0], 0)) <= 1e-9 * np.ptp(x, axis=0).max():  # flat
+            return v[:, 0] if v[:, 0] @ weighted >= 0 else -v[:, 0]
+    return weighted
+
+
+def force_weighted_normal(f, steps, on, normals):
+    """A contact group's nodes' normals weighted by their normal forces over a path (the mean of its normals where
+    nothing pushes), unit"""
     total = np.zeros(3)
     for k in steps:
         c = f["steps/%s/contact" % k]
@@ -180,10 +216,15 @@ def history_series(d):
     else:
         x, x_what = path["groups"].get(name, np.zeros((steps, 3))) @ t, "mean displacement of %s along %s" % (name, along)
     series["tangential_loop"] = (x, force @ t, x_what, "%s along %s" % (force_what, along))
-    # the indentation: the obstacle's translation less the body's displacement there, along n
+    # the indentation: the obstacle's translation less the body's displacement there, along n: the mean displacement of
+    # the body (its rigid motion, where a spring or contact alone holds it; about 0 for a body held by Dirichlet
+    # conditions), else of the loaded group or of the contact group
     motion = path["motion"][name] if moving else np.zeros((steps, 3))
-    ref = loaded if loaded is not None else name
-    body = path["groups"].get(ref, np.zeros((steps, 3)))
+    if path["body_displacement"] is not None:
+        body, ref = path["body_displacement"], "the body (its nodes)"
+    else:
+        ref = loaded if loaded is not None else name
+        body, ref = path["groups"].get(ref, np.zeros((steps, 3))), ref
     delta = (motion - body) @ n
     what = ("m the translation of the obstacle of %s, u the mean displacement of %s" % (name, ref) if moving else
             "u the mean displacement of %s (the obstacle of %s fixed)" % (ref, name))

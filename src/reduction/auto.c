@@ -111,18 +111,18 @@ static PetscErrorCode Holding(Mat K, PetscReal *holding)
 }
 
 /*
-   auto resolved: direct where the dense route's estimated work is no more than the whole body's (SSStarReductionAutoCosts())
+   auto resolved (the type to set): direct where the dense route's estimated work is no more than the whole body's (SSStarReductionAutoCosts())
    and its memory fits, else none. The dense route's LUs alone decide first when they cost more than the whole body
    (large problems: MUMPS is not even ordered); else MUMPS orders and analyses K with its Schur block for its flops and
    memory, and that analysis is kept for the factorization when direct is taken.
 */
-PetscErrorCode SSStarReductionResolveAuto(SSStarReduction red, Mat K)
+PetscErrorCode SSStarReductionResolveAuto(SSStarReduction red, Mat K, SSStarReductionType *type)
 {
   PetscInt       N, NC, mC;
   PetscBool      fits = PETSC_TRUE;
   PetscReal      dense, whole;
   PetscLogDouble flops = 0, sparse = 0, bytes;
-  const char    *type, *why;
+  const char    *why;
 
   PetscFunctionBegin;
   PetscCall(MatGetSize(K, &N, NULL));
@@ -144,12 +144,11 @@ PetscErrorCode SSStarReductionResolveAuto(SSStarReduction red, Mat K)
       PetscCall(PetscMemzero(&red->ops, sizeof(red->ops)));
     }
   }
-  type             = dense <= whole && fits ? SSSTARREDUCTIONDIRECT : SSSTARREDUCTIONNONE;
+  *type            = dense <= whole && fits ? SSSTARREDUCTIONDIRECT : SSSTARREDUCTIONNONE;
   red->autoChosen  = PETSC_TRUE;
   red->autoCost[0] = dense;
   red->autoCost[1] = whole;
-  PetscCall(PetscInfo(K, "auto: %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact dofs, holding %g, MUMPS's flops %g: dense route %g, whole body %g (LU flops): %s (%s)\n", N, NC, (double)red->autoHolding, (double)flops, (double)dense, (double)whole, type, why));
-  PetscCall(SSStarReductionSetType(red, type));
+  PetscCall(PetscInfo(K, "auto: %" PetscInt_FMT " dofs, %" PetscInt_FMT " contact dofs, holding %g, MUMPS's flops %g: dense route %g, whole body %g (LU flops): %s (%s)\n", N, NC, (double)red->autoHolding, (double)flops, (double)dense, (double)whole, *type, why));
   PetscFunctionReturn(0);
 }
 

@@ -43,7 +43,7 @@ struct _n_SSStarReduction {
 PETSC_EXTERN PetscBool      SSStarReductionRegisterAllCalled;
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction, Mat);
 PETSC_INTERN PetscErrorCode SSStarReductionAnalyse_Direct(SSStarReduction, Mat, PetscLogDouble *, PetscLogDouble *, PetscLogDouble *);
-PETSC_INTERN PetscErrorCode SSStarReductionResolveAuto(SSStarReduction, Mat);
+PETSC_INTERN PetscErrorCode SSStarReductionResolveAuto(SSStarReduction, Mat, SSStarReductionType *);
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_MUMPS(SSStarReduction, Mat);
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_Explicit(SSStarReduction, Mat);
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_None(SSStarReduction, Mat);

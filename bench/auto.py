@@ -19,6 +19,7 @@ import csv
 import math
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -68,22 +69,23 @@ def mpiexec(ranks):
 def measure(member, ranks, route):
     program, args, _, _ = MEMBERS[member]
     cmd = mpiexec(ranks) + [os.path.join(ROOT, "examples", program)] + args + ["-snes_ssstar_reduction", route, "-info", ":mat"]
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    whole = time.perf_counter() - t0
+    whole, c1 = time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (c1.ru_utime + c1.ru_stime) - (c0.ru_utime + c0.ru_stime)  # the processor time of its ranks (and mpiexec)
     m = (PRISM_ROW if program == "prism" else CONTACT_ROW).search(p.stdout)
     if p.returncode or not m:
         print("  %s, %d ranks, %s: failed (exit status %d)\n%s" % (member, ranks, route, p.returncode, p.stdout[-1500:]), flush=True)
         return None
     its = int(m.group(1))
-    est, info = ESTIMATE.search(p.stdout), AUTO_INFO.search(p.stdout)
+    est, info = ESTIMATE.search(p.stdout), (AUTO_INFO.findall(p.stdout) or [None])[-1]  # the finest mesh's (nested: the last)
     chosen = CHOSEN.search(p.stdout)
-    return {"whole": whole, "iters": its, "reason": m.group(2), "peak_gb": float(m.group(3)), "dofs": int(DOFS.search(p.stdout).group(1)),
+    return {"whole": whole, "cpu": cpu, "iters": its, "reason": m.group(2), "peak_gb": float(m.group(3)), "dofs": int(DOFS.search(p.stdout).group(1)),
             "contact": int(CONTACT_NODES.search(p.stdout).group(1)), "est_whole_gb": float(est.group(1)) if est else math.nan,
             "est_dense_gb": float(est.group(2)) if est and est.group(2) else math.nan,
             "chosen": ("direct" if chosen.group(1).startswith("K") else "none") if chosen else "?",
-            "holding": float(info.group(1)) if info else math.nan, "mumps_flops": float(info.group(2)) if info else math.nan,
-            "cost_dense": float(info.group(3)) if info else math.nan, "cost_whole": float(info.group(4)) if info else math.nan}
+            "holding": float(info[0]) if info else math.nan, "mumps_flops": float(info[1]) if info else math.nan,
+            "cost_dense": float(info[2]) if info else math.nan, "cost_whole": float(info[3]) if info else math.nan}
 
 
 def yardstick(member, ranks):
@@ -91,6 +93,10 @@ def yardstick(member, ranks):
     cmd = mpiexec(ranks) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", "amg"] + MEMBERS[member][2]
     m = AMG.search(subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout)
     return float(m.group(2)) + float(m.group(3)) if m else math.nan
+
+
+def median(runs, key):
+    return statistics.median(r[key] for r in runs)
 
 
 def main():
@@ -104,8 +110,12 @@ def main():
         os.environ.setdefault(k, v)
     rows = []
     print("medians of %d runs, seconds (whole runs, mesh to solution); the routes interleaved; amg = the yardstick of the same run" % args.repeat)
-    print("%-8s %5s %7s %7s %9s %8s %8s %8s %7s %6s %6s %7s %9s %9s %9s %9s %8s %s" % (
-        "member", "ranks", "dofs", "contact", "holding", "dense", "whole", "auto", "chosen", "ratio", "amg", "d/amg", "peak d", "est d", "peak w", "est w", "load", "its d/w"))
+    print("wall: the runs' wall times [s]; cpu: their processor time [s] (the ranks' user + system: what a run costs when "
+          "other jobs share the cores); ratio: auto over the faster route; peak/est: VmHWM per rank against the estimate [GB]")
+    print("%-8s %5s %7s %7s %9s %7s %8s %8s %8s %6s %8s %8s %8s %6s %6s %6s %6s %13s %13s %5s %s" % (
+        "member", "ranks", "dofs", "contact", "holding", "chosen", "dense", "whole", "auto", "ratio", "dense", "whole", "auto", "ratio",
+        "amg", "d/amg", "w/amg", "dense pk/est", "whole pk/est", "load", "its d/w"))
+    print("%-8s %5s %7s %7s %9s %7s %8s %8s %8s %6s %8s %8s %8s %6s" % ("", "", "", "", "", "", "wall", "wall", "wall", "wall", "cpu", "cpu", "cpu", "cpu"))
     for member in args.members.split(","):
         for ranks in (int(r) for r in args.ranks.split(",")):
             measured = {route: [] for route in ROUTES}
@@ -118,30 +128,34 @@ def main():
                         measured[route].append(r)
             if not all(measured[route] for route in ROUTES):
                 continue
-            med = {route: statistics.median(r["whole"] for r in measured[route]) for route in ROUTES}
+            med = {route: median(measured[route], "whole") for route in ROUTES}
+            cpu = {route: median(measured[route], "cpu") for route in ROUTES}
             first = {route: measured[route][0] for route in ROUTES}
-            faster = min(med["direct"], med["none"])
+            stick = statistics.median(sticks)
             row = {"member": member, "what": MEMBERS[member][3], "ranks": ranks, "dofs": first["auto"]["dofs"], "contact": first["auto"]["contact"],
                    "holding": first["auto"]["holding"], "mumps_flops": first["auto"]["mumps_flops"], "cost_dense": first["auto"]["cost_dense"],
-                   "cost_whole": first["auto"]["cost_whole"], "dense_s": med["direct"], "whole_s": med["none"], "auto_s": med["auto"],
-                   "chosen": first["auto"]["chosen"], "faster": "direct" if med["direct"] <= med["none"] else "none", "auto_over_faster": med["auto"] / faster,
-                   "dense_over_whole": med["direct"] / med["none"], "amg_s": statistics.median(sticks),
-                   "dense_amg": med["direct"] / statistics.median(sticks), "whole_amg": med["none"] / statistics.median(sticks),
-                   "peak_dense_gb": statistics.median(r["peak_gb"] for r in measured["direct"]), "peak_whole_gb": statistics.median(r["peak_gb"] for r in measured["none"]),
+                   "cost_whole": first["auto"]["cost_whole"], "chosen": first["auto"]["chosen"],
+                   "dense_s": med["direct"], "whole_s": med["none"], "auto_s": med["auto"], "auto_over_faster": med["auto"] / min(med["direct"], med["none"]),
+                   "dense_cpu": cpu["direct"], "whole_cpu": cpu["none"], "auto_cpu": cpu["auto"], "auto_over_faster_cpu": cpu["auto"] / min(cpu["direct"], cpu["none"]),
+                   "faster": "direct" if med["direct"] <= med["none"] else "none", "faster_cpu": "direct" if cpu["direct"] <= cpu["none"] else "none",
+                   "amg_s": stick, "dense_amg": med["direct"] / stick, "whole_amg": med["none"] / stick,
+                   "peak_dense_gb": median(measured["direct"], "peak_gb"), "peak_whole_gb": median(measured["none"], "peak_gb"),
                    "est_dense_gb": first["direct"]["est_dense_gb"], "est_whole_gb": first["none"]["est_whole_gb"],
                    "its_dense": first["direct"]["iters"], "its_whole": first["none"]["iters"], "load": os.getloadavg()[0]}
             rows.append(row)
-            print("%-8s %5d %7d %7d %9.2g %8.2f %8.2f %8.2f %7s %6.2f %6.2f %7.1f %9.3f %9.3f %9.3f %9.3f %8.1f %d/%d" % (
-                member, ranks, row["dofs"], row["contact"], row["holding"], row["dense_s"], row["whole_s"], row["auto_s"], row["chosen"],
-                row["auto_over_faster"], row["amg_s"], row["dense_amg"], row["peak_dense_gb"], row["est_dense_gb"], row["peak_whole_gb"],
-                row["est_whole_gb"], row["load"], row["its_dense"], row["its_whole"]), flush=True)
+            print("%-8s %5d %7d %7d %9.2g %7s %8.2f %8.2f %8.2f %6.2f %8.2f %8.2f %8.2f %6.2f %6.2f %6.1f %6.1f %6.3f/%.3f %6.3f/%.3f %5.1f %d/%d" % (
+                member, ranks, row["dofs"], row["contact"], row["holding"], row["chosen"], row["dense_s"], row["whole_s"], row["auto_s"],
+                row["auto_over_faster"], row["dense_cpu"], row["whole_cpu"], row["auto_cpu"], row["auto_over_faster_cpu"], row["amg_s"],
+                row["dense_amg"], row["whole_amg"], row["peak_dense_gb"], row["est_dense_gb"], row["peak_whole_gb"], row["est_whole_gb"],
+                row["load"], row["its_dense"], row["its_whole"]), flush=True)
     with open(os.path.join(OUT, "auto.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]) if rows else ["member"])
         w.writeheader()
         w.writerows(rows)
-    worst = max(rows, key=lambda r: r["auto_over_faster"]) if rows else None
-    if worst:
-        print("auto over the faster route: at most %.2f (%s, %d rank%s); target 1.25" % (worst["auto_over_faster"], worst["member"], worst["ranks"], "s" if worst["ranks"] > 1 else ""))
+    for key, what in (("auto_over_faster", "wall time"), ("auto_over_faster_cpu", "processor time")):
+        worst = max(rows, key=lambda r: r[key]) if rows else None
+        if worst:
+            print("auto over the faster route, %s: at most %.2f (%s, %d rank%s); target 1.25" % (what, worst[key], worst["member"], worst["ranks"], "s" if worst["ranks"] > 1 else ""))
     print("wrote %s" % os.path.join(OUT, "auto.csv"))
     sys.exit(0 if rows else 1)
 

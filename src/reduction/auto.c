@@ -61,7 +61,7 @@ PetscErrorCode SSStarReductionAutoCosts(PetscReal dofs, PetscReal contactDofs, P
 /*
    How firmly K holds the body: min over its rigid-body motions r of (r^T K r / r^T r) / mean(diag K). The motions are
    K's near-null space (the scenes attach it), else the three translations of a K of 3 dofs per node; 1 (held) when
-   neither is known.
+   neither is known or K has no diagonal to compare with.
 */
 static PetscErrorCode Holding(Mat K, PetscReal *holding)
 {
@@ -69,12 +69,14 @@ static PetscErrorCode Holding(Mat K, PetscReal *holding)
   const Vec        *modes = NULL;
   Vec               own[3] = {NULL, NULL, NULL}, d, Kr;
   PetscInt          n = 0, bs, N, lo, hi;
-  PetscBool         hasConstant;
+  PetscBool         hasConstant, hasDiagonal;
   PetscReal         mean;
   PetscScalar       sum;
 
   PetscFunctionBegin;
   *holding = 1.0;
+  PetscCall(MatHasOperation(K, MATOP_GET_DIAGONAL, &hasDiagonal));
+  if (!hasDiagonal) PetscFunctionReturn(0); /* a K without a diagonal (a shell): taken for held */
   PetscCall(MatGetNearNullSpace(K, &nsp));
   if (nsp) PetscCall(MatNullSpaceGetVecs(nsp, &hasConstant, &n, &modes));
   PetscCall(MatGetBlockSize(K, &bs));

@@ -5,6 +5,8 @@ A scene is an options file: examples/contact -options_file scenes/hertz.opts (do
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
                                   (-dirichlet, -displacement_<G>, -contact, -traction_<G>, ...) are listed under\n\
                                   \"Scene\" below\n\
+  -mesh_cache <folder>            where the meshes of -geo are made and kept (default $XDG_CACHE_HOME/ssstar, else\n\
+                                  ~/.cache/ssstar; the mesh line names the file, e.g. meshes-1a2b3c4d/prism_L6.msh)\n\
   -load_steps <1>                 solve at the loads k/N of the given constant ones, k = 1..N (the last is written)\n\
   -steps <t1,t2,...|N>            a load path (histories -traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion,\n\
                                   -displacement_<G>):\n\

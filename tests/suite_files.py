@@ -155,7 +155,7 @@ def file_same_on_any_ranks():
                     expect(np.abs(x - y).max() <= AGREE * scale, "%s differs by %.1e relative between %s and %s" % (name, np.abs(x - y).max() / scale, first, other))
     with h5py.File(files[1], "r") as f:
         x, cells = f["geometry/vertices"][:], f["viz/topology/cells"][:]
-        nodes = msh41_nodes(os.path.join(ROOT, "meshes", "prism_L3.msh"))
+        nodes = msh41_nodes(mesh_of("meshes/prism.geo", 3))
         expect(np.array_equal(x, nodes), "the vertices are not the mesh file's nodes in node-tag order")
         e = x[cells[:, 1:]] - x[cells[:, :1]]
         volume = np.einsum("ij,ij->i", np.cross(e[:, 0], e[:, 1]), e[:, 2]) / 6

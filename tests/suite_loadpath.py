@@ -311,8 +311,8 @@ def loadpath_plot():
     plot = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(plot)
     # each test runs in its own folder: the two paths are solved here
-    path_run(BLOCK, "loadpath_output_1.h5")
-    path_run(SLIDE + ["-snes_ssstar_reduction", "direct"], "loadpath_slide_direct_1.h5")
+    path_run(BLOCK, "loadpath_output_1.h5", extra=["-steps", "5"])
+    path_run(SLIDE, "loadpath_slide_direct_1.h5", extra=["-snes_ssstar_reduction", "direct"])
     for name, xpath, ypath in (("loadpath_output_1.h5", "steps/groups/top/displacement", "steps/load"),
                                ("loadpath_slide_direct_1.h5", "steps/motion/bottom", "steps/tangential_force")):
         d = plot.read(h5(name))

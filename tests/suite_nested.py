@@ -112,7 +112,7 @@ def refine_scenes():
 ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank( \(plain aggregation\))?")
 
 
-@test("the memory estimate printed before the work (the mesh line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work")
+@test("the memory estimate printed before the work (the contact line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work")
 def memory_estimate():
     for ranks, extra, plain in ((1, [], False), (2, [], False), (2, ["-snes_ssstar_memory_limit", "0.25"], True)):
         out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_plain" if plain else ""), ranks)

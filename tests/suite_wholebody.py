@@ -24,7 +24,7 @@ def prism_run(args, h5, ranks=1, expect_rc=0):
     out = run(mpiexec(ranks, PRISM, *args, "-o", os.path.join(OUT, h5), "-snes_converged_reason"), expect_rc=expect_rc)
     m = SUMMARY.search(out)
     expect(m is not None, "no summary row", out)
-    return out, {"iters": int(m.group(5)), "states": m.group(6), "reason": m.group(8), "peak_gb": float(m.group(9))}
+    return out, {"iters": int(m.group(6)), "states": m.group(7), "reason": m.group(9), "peak_gb": float(m.group(10))}
 
 
 def same_answer(name, runner, args, tol=AGREE, ranks=1, iterations=1):

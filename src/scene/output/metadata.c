@@ -85,6 +85,7 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
   PetscCall(SSStarH5AttrString(group, "mesh", scene->mesh));
   PetscCall(SSStarH5AttrInt(group, "nodes", scene->nodesGlobal));
   PetscCall(SSStarH5AttrInt(group, "cells", scene->cellsGlobal));
+  PetscCall(SSStarH5AttrInt(group, "refinements", scene->refine)); /* -dm_refine: the mesh is the file's refined this many times */
   PetscCall(SSStarH5AttrReal(group, "mesh_scale", scene->meshScale));
   if (scene->hasE) PetscCall(SSStarH5AttrReal(group, "E", scene->E));
   if (scene->hasNu) PetscCall(SSStarH5AttrReal(group, "nu", scene->nu));

@@ -5,7 +5,9 @@ import re
 import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-OUT = os.path.join(ROOT, "tests", "output")
+# tests/run.py runs every test in a process of its own with SSSTAR_TEST_OUT = tests/output/<test>: tests that run at
+# the same time never share a file
+OUT = os.environ.get("SSSTAR_TEST_OUT", os.path.join(ROOT, "tests", "output"))
 LIB = os.path.join(ROOT, "lib", "libssstar.so")
 PYTHON = "/usr/bin/python3"  # Debian's, with h5py
 PRISM = os.path.join(ROOT, "examples", "prism")
@@ -13,6 +15,19 @@ CHECK = [PYTHON, os.path.join(ROOT, "tests", "check_solution.py")]
 # iterations from u = 0 and separated/sliding/sticking counts of an independent implementation (docs/derivation.md section 8)
 REFERENCE_ITERATIONS = {3: 7, 4: 7, 5: 8, 6: 9, 7: 9, 8: 10, 9: 9, 10: 10}
 REFERENCE_STATES = {3: "14/55/15", 4: "26/89/29", 6: "51/182/79"}
+
+
+def mesh_of(geo, level, cache=None):
+    """The mesh file the programs make of geo (a path relative to the source tree, or absolute) at level: in the mesh
+    cache, out of the source tree (SSStarMeshCacheFile(): <cache>/<folder of geo>-<djb2 hash of its real path>/
+    <name>_L<level>.msh; cache -mesh_cache, else $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)"""
+    xdg = os.environ.get("XDG_CACHE_HOME", "")
+    cache = cache or (os.path.join(xdg, "ssstar") if xdg.startswith("/") else os.path.expanduser("~/.cache/ssstar"))
+    path = os.path.realpath(os.path.join(ROOT, geo))
+    h = 5381
+    for c in path.encode():
+        h = (33 * h + c) & 0xFFFFFFFF
+    return os.path.join(cache, "%s-%08x" % (os.path.basename(os.path.dirname(path)), h), os.path.basename(path)[:-4] + "_L%d.msh" % level)
 
 
 def mpiexec(n, *args):
@@ -39,7 +54,7 @@ def malloc_check(cmd):
     return ["-malloc_dump"] if parallel else ["-malloc_debug", "-malloc_dump"]
 
 
-# README "What converged means": a solve at the default settings ends within 1e-6 of the exact discrete solution
+# docs/guide/converged.md: a solve at the default settings ends within 1e-6 of the exact discrete solution
 # (displacements relative to the largest, forces to the largest; a load path's steps each to their own scale), so two
 # such runs (other ranks, the other path, another reduction, the scene turned) agree to twice that: the bound of every
 # comparison of runs that are not the same computation (issue 23: a bound at round-off fails on another machine's BLAS)
@@ -77,7 +92,7 @@ def expect(cond, message, output=""):
         raise Failure(message + ("\n" + output[-3000:] if output else ""))
 
 
-SUMMARY = re.compile(r"^\s*(-?\d+)\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
+SUMMARY = re.compile(r"^\s*(-?\d+)(?:r(\d+))?\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 
 
 def prism(level, ranks=1, extra=(), h5=None, expect_rc=0):
@@ -89,9 +104,9 @@ def prism(level, ranks=1, extra=(), h5=None, expect_rc=0):
     out = run(cmd, expect_rc=expect_rc)
     m = SUMMARY.search(out)
     expect(m is not None, "no summary row", out)
-    return out, {"level": int(m.group(1)), "ranks": int(m.group(2)), "nodes": int(m.group(3)), "contact": int(m.group(4)),
-                 "iters": int(m.group(5)), "states": m.group(6), "sep_sl_st": m.group(7), "reason": m.group(8),
-                 "peak_gb": float(m.group(9))}
+    return out, {"level": int(m.group(1)), "refined": int(m.group(2) or 0), "ranks": int(m.group(3)), "nodes": int(m.group(4)), "contact": int(m.group(5)),
+                 "iters": int(m.group(6)), "states": m.group(7), "sep_sl_st": m.group(8), "reason": m.group(9),
+                 "peak_gb": float(m.group(10))}
 
 
 def last_znorm(out):
@@ -100,11 +115,14 @@ def last_znorm(out):
     return float(norms[-1])
 
 
+# (name, requirement, function, full): full tests run only in make test-full (tests/run.py --full)
 TESTS = []
 
 
-def test(requirement):
+def test(requirement, full=False):
+    """Registers a test. full=True: a slow test whose capability has a quicker test in the default run; it runs in
+    make test-full only."""
     def register(fn):
-        TESTS.append((fn.__name__, requirement, fn))
+        TESTS.append((fn.__name__, requirement, fn, full))
         return fn
     return register

@@ -162,7 +162,7 @@ def newton_reduced(P, f, laws, frames, offsets, u0, rtol=1e-15, its=60):
 
 
 def newton_whole(K, bvec, contact, laws, frames, offsets, U0, rtol=1e-15, its=60):
-    """The same on the whole body (newton_full.c): the contact nodes' rows of K replaced by S gamma K + T R E, the free
+    """The same on the whole body (newton_wholebody.c): the contact nodes' rows of K replaced by S gamma K + T R E, the free
     dofs' rows kept (z = -gamma (K u - b) there). contact: p x 3 dofs of the contact nodes"""
     n, p = len(bvec), len(laws)
     C = contact.ravel()

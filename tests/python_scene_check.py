@@ -17,6 +17,9 @@ from petsc4py import PETSc  # noqa: E402
 
 import ssstar  # noqa: E402  (PYTHONPATH decides which: the source tree's python/ or an installed one)
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import AGREE  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = sys.argv[1]
 BLOCK = dict(geo=os.path.join(ROOT, "meshes", "block.geo"), level=1, E=2e8, nu=0.3, spring={"top": 1000},
@@ -28,6 +31,13 @@ def expect(cond, message):
     if not cond:
         PETSc.Sys.Print("test_scene: FAILED: " + message)
         sys.exit(1)
+
+
+def agrees(a, b):
+    """Two solves of one problem (another scene between them, another process): within harness.AGREE of the largest,
+    not bit for bit (a parallel factorization's round-off may differ from one run to the next)"""
+    a, b = np.asarray(a), np.asarray(b)
+    return a.shape == b.shape and np.abs(a - b).max() <= AGREE * max(np.abs(b).max(), 1e-300)
 
 
 def raises(kind, fn, *words):
@@ -94,11 +104,11 @@ def side_by_side():
     sa2 = a.solve()
     a.close()
     b.close()
-    expect(np.array_equal(sa.displacement, sa2.displacement), "scene a solved again after b")
+    expect(agrees(sa.displacement, sa2.displacement), "scene a solved again after b")
     expect(abs(sb.row["tangential_force"][0] + 0.3 * sb.row["normal_force"]) < 1e-6 and abs(sa.row["tangential_force"][0] + 4) < 1e-4,
            "phi 0.3 slides (T = 0.3 N), phi 0.5 holds 4: %s, %s" % (sb.row["tangential_force"], sa.row["tangential_force"]))
     with ssstar.Scene(traction={"top": (4, 0, -10)}, **dict(BLOCK, friction={"bottom": 0.3})) as alone:
-        expect(np.array_equal(alone.solve().displacement, sb.displacement), "b alone")
+        expect(agrees(alone.solve().displacement, sb.displacement), "b alone")
     expect(PETSc.Options().getAll() == before, "the database changed: %s" % (set(PETSc.Options().getAll().items()) ^ set(before.items())))
 
 
@@ -136,8 +146,8 @@ def tentative_steps():
         scene.set(traction={"top": (2, 0, -10)})
         direct = scene.step(1)
     expect(first.converged and far.row["groups/top/displacement"][0] > 1e-3, "the tentative step slides: %s" % far.row["groups/top/displacement"])
-    expect(np.allclose(near.displacement, direct.displacement, rtol=0, atol=1e-14 * np.abs(direct.displacement).max()), "a refused step leaves no trace")
-    expect("slip_path" in near.contact and np.array_equal(near.contact["slip_path"], direct.contact["slip_path"]), "the path's fields of the accepted step")
+    expect(agrees(near.displacement, direct.displacement), "a refused step leaves no trace")
+    expect("slip_path" in near.contact and agrees(near.contact["slip_path"], direct.contact["slip_path"]), "the path's fields of the accepted step")
 
 
 def own_communicator():

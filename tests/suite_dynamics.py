@@ -13,7 +13,8 @@ from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 
 CONTACT = os.path.join(ROOT, "examples", "contact")
 LAW = CHECK + ["law", "--steps"]
-PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
+# both paths, 1 and 2 ranks: make test runs a known answer on the dense route on 1 rank and the whole body on 2; make test-full the other two
+QUICK, OTHERS = [("direct", 1), ("none", 2)], [("none", 1), ("direct", 2)]
 # a rod 0.1 x 0.1 x 1 (meshes/rod.geo, 40 elements along it) at rest on the wall z = 0 moving at -v0 = -0.01:
 # E = rho = 1 (c = 1), nu = 0 (1D waves), one element per step (tau = 0.025), to t = 3
 ROD = ["-geo", "meshes/rod.geo", "-level", "2", "-E", "1", "-nu", "0", "-density", "1", "-dynamics", "-initial_velocity", "0,0,-0.01",
@@ -62,10 +63,9 @@ def dynamics_derivation():
     expect(out.count("PASS") == 4 and "FAIL" not in out, "tests/dynamics_check.py", out)
 
 
-@test("a rod on a rigid wall (meshes/rod.geo: nu = 0, E = rho = 1, L = 1, 40 elements, one per step, v0 = 0.01): the contact lasts 2 L/c (its last touching step at t = 2.025), the wall's force is the plateau E A v0 / c = 1e-4 within 0.1 % on the mean and 1 % at every step of 0.5 < t < 1.5 (measured 4e-6 and 0.2 %), the rod leaves at 0.97-1.0 v0 (momentum; measured 0.974: the rest rings), the energy never rises above the initial, the scheme's impact dissipation is below 1 % of it (measured 0.67 %: the tip's approach) and energy_error + impact_dissipation = 0 to 1e-9; the file's /steps/<k>/fields/velocity are n x 3 and its law holds at every step; both paths, 1 and 2 ranks, give the same displacements to 2e-6")
-def dynamics_rod():
+def rod(paths):
     fields = []
-    for red, ranks in PATHS:
+    for red, ranks in paths:
         out, path = dynamics_run(ROD, "dynamics_rod_%s_%d.h5" % (red, ranks), red, ranks)
         f = h5py.File(path, "r")
         st = f["steps"]
@@ -90,6 +90,16 @@ def dynamics_rod():
         expect(diff <= AGREE, "the paths and rank counts differ by %.1e in the displacements" % diff)
 
 
+@test("a rod on a rigid wall (meshes/rod.geo: nu = 0, E = rho = 1, L = 1, 40 elements, one per step, v0 = 0.01): the contact lasts 2 L/c (its last touching step at t = 2.025), the wall's force is the plateau E A v0 / c = 1e-4 within 0.1 % on the mean and 1 % at every step of 0.5 < t < 1.5 (measured 4e-6 and 0.2 %), the rod leaves at 0.97-1.0 v0 (momentum; measured 0.974: the rest rings), the energy never rises above the initial, the scheme's impact dissipation is below 1 % of it (measured 0.67 %: the tip's approach) and energy_error + impact_dissipation = 0 to 1e-9; the file's /steps/<k>/fields/velocity are n x 3 and its law holds at every step; the dense route on 1 rank and the whole body on 2 (make test-full: the other two) give the same displacements to 2e-6")
+def dynamics_rod():
+    rod(QUICK)
+
+
+@test("the rod on a wall of dynamics_rod on the other paths and rank counts (the whole body on 1 rank, the dense route on 2): the same known answers, the same displacements to 2e-6", full=True)
+def dynamics_rod_other_paths():
+    rod(OTHERS)
+
+
 @test("the rod without the projection (-dynamics_scheme newmark): its contact force chatters about the plateau (off by more than 30 % at some step of 0.5 < t < 1.5; measured 54 %) where the stabilized scheme's stays within 1 %; it gains no energy either (energy_error <= 0); a time step longer than the contact (-steps 3 to t = 6) is said: 'does not resolve the impact'")
 def dynamics_rod_schemes():
     _, path = dynamics_run(ROD + ["-dynamics_scheme", "newmark"], "dynamics_rod_newmark.h5")
@@ -102,12 +112,11 @@ def dynamics_rod_schemes():
     expect("does not resolve the impact" in out, "a contact of one step is not said", out)
 
 
-@test("a block released on a slope of 20 degrees (E = 10 MPa, 1000 kg/m^3, Rayleigh damping 0.003 K): with phi = 0.3 < tan 20 it slides with the acceleration g (sin a - phi cos a) = 0.5897 (a parabola fitted to its bottom's travel for t >= 0.3: within 1e-4; measured 1e-8), every touching node slides, the tangential force is phi N to 1e-6, and kinetic + strain + friction + damping = the work of gravity to 1e-6 of it (energy_error; measured 6e-13); with phi = 0.5 > tan 20 it stays: its travel below 1e-4 (the elastic shear of its settling) and the friction below phi N; both paths, 1 and 2 ranks (phi 0.3), the travels agreeing to 2e-6")
-def dynamics_slope():
+def slope(paths, stays):
     a, g = np.radians(20), 9.81
     down = np.array([np.cos(a), 0, -np.sin(a)])
     travels = []
-    for red, ranks in PATHS:
+    for red, ranks in paths:
         _, path = dynamics_run(SLOPE + ["-friction_bottom", "0.3"], "dynamics_slope_%s_%d.h5" % (red, ranks), red, ranks)
         f = h5py.File(path, "r")
         st = f["steps"]
@@ -127,7 +136,7 @@ def dynamics_slope():
         travels.append(s)
     diff = max(np.abs(x - travels[0]).max() for x in travels) / np.abs(travels[0]).max()
     expect(diff <= AGREE, "the paths differ by %.1e in the travel" % diff)
-    for red, ranks in (("direct", 1), ("none", 2)):
+    for red, ranks in stays:
         _, path = dynamics_run(SLOPE + ["-friction_bottom", "0.5"], "dynamics_slope_stays_%s_%d.h5" % (red, ranks), red, ranks)
         st = h5py.File(path, "r")["steps"]
         s = st["groups/bottom/displacement"][:] @ down
@@ -135,10 +144,19 @@ def dynamics_slope():
         expect(np.abs(s).max() < 1e-4 and ratio[5:].max() < 0.5, "%s %d: the block on phi = 0.5 moves by %.2e, T/N up to %.3f" % (red, ranks, np.abs(s).max(), ratio[5:].max()))
 
 
-@test("a block on a spring dragged by a moving belt (scenes/belt.opts: the plane z = 0 at V = 0.01 along x, P = 10, phi = 0.5, k = 1000, m = 0.5): it rides the belt until the spring holds phi N = 5, then slides for good: T = phi N to 1e-4 at every step after t = 0.6, no node sticks; undamped (Rayleigh 1e-3 K against the block's own ringing) the spring force oscillates about phi N (its mean over the last second within 1 %; measured 0.08 %) with the amplitude k V / omega = 0.22 at most (measured 0.14; pure Coulomb friction, phi_s = phi_k: no stick-slip, the relative velocity only touches zero); with mass damping (20 M) it settles to the steady sliding state, the spring force phi N within 1e-3; the belt's work is friction + damping + kinetic + spring energy (energy_error within 1e-5 of the work); the dense route on 1 rank and the whole body on 2 agree to 2e-6")
-def dynamics_belt():
+@test("a block released on a slope of 20 degrees (E = 10 MPa, 1000 kg/m^3, Rayleigh damping 0.003 K): with phi = 0.3 < tan 20 it slides with the acceleration g (sin a - phi cos a) = 0.5897 (a parabola fitted to its bottom's travel for t >= 0.3: within 1e-4; measured 1e-8), every touching node slides, the tangential force is phi N to 1e-6, and kinetic + strain + friction + damping = the work of gravity to 1e-6 of it (energy_error; measured 6e-13); with phi = 0.5 > tan 20 it stays: its travel below 1e-4 (the elastic shear of its settling) and the friction below phi N; the dense route on 1 rank and the whole body on 2 (phi 0.3; make test-full: the other two), the travels agreeing to 2e-6")
+def dynamics_slope():
+    slope(QUICK, [("direct", 1)])
+
+
+@test("the block on the slope of dynamics_slope on the other paths and rank counts (the whole body on 1 rank, the dense route on 2; the block that stays: the whole body on 2 ranks): the same known answers, the travels agreeing to 2e-6", full=True)
+def dynamics_slope_other_paths():
+    slope(OTHERS, [("none", 2)])
+
+
+def belt(paths, damped):
     springs = []
-    for red, ranks in (("direct", 1), ("none", 2)):
+    for red, ranks in paths:
         _, path = dynamics_run(BELT, "dynamics_belt_%s_%d.h5" % (red, ranks), red, ranks)
         f = h5py.File(path, "r")
         st = f["steps"]
@@ -154,20 +172,32 @@ def dynamics_belt():
         expect(np.abs(error).max() < 1e-5, "%s: the energy balance is off by %.1e of the belt's work" % (where, np.abs(error).max()))
         run(LAW + [path])
         springs.append(spring)
-    diff = max(np.abs(x - springs[0]).max() for x in springs) / np.abs(springs[0]).max()
-    expect(diff <= AGREE, "the paths differ by %.1e in the spring force" % diff)
+    if springs:
+        diff = max(np.abs(x - springs[0]).max() for x in springs) / np.abs(springs[0]).max()
+        expect(diff <= AGREE, "the paths differ by %.1e in the spring force" % diff)
+    if not damped:
+        return
     _, path = dynamics_run(BELT + ["-damping", "20,1e-3"], "dynamics_belt_damped.h5")  # the last option counts
     st = h5py.File(path, "r")["steps"]
     spring = 1000 * st["groups/top/displacement"][:, 0]
     expect(abs(spring[-1] / 5 - 1) < 1e-3, "mass-damped: the spring force %.6f, not phi N = 5" % spring[-1])
 
 
-@test("a ball dropped on a plane (the half ball of scenes/hertz.opts, R = 10, E = 1e4, nu = 0.3, rho = 1, v0 = 0.3, frictionless, 24 steps): the contact lasts Hertz's impact time t_c = 2.87 (m^2 / (R E*^2 v0))^(1/5) = 1.18 within 10 % (measured -1.6 %), the peak force Hertz's (4/3) E* R^(1/2) delta^(3/2) within 10 % (measured +7 %: the half ball is not rigid, its cap meshed 5 elements across the contact), it rebounds at 0.95-1.0 v0 (the impulse of the plane over m v0; measured 0.992), and what it lost is the scheme's stated impact dissipation (energy_error + impact_dissipation = 0 to 1e-9, energy never gained); the dense route on 1 rank and the whole body on 2 agree to 2e-6")
-def dynamics_ball():
+@test("a block on a spring dragged by a moving belt (scenes/belt.opts: the plane z = 0 at V = 0.01 along x, P = 10, phi = 0.5, k = 1000, m = 0.5): it rides the belt until the spring holds phi N = 5, then slides for good: T = phi N to 1e-4 at every step after t = 0.6, no node sticks; undamped (Rayleigh 1e-3 K against the block's own ringing) the spring force oscillates about phi N (its mean over the last second within 1 %; measured 0.08 %) with the amplitude k V / omega = 0.22 at most (measured 0.14; pure Coulomb friction, phi_s = phi_k: no stick-slip, the relative velocity only touches zero) (make test-full: with mass damping, 20 M, it settles to the steady sliding state, the spring force phi N within 1e-3); the belt's work is friction + damping + kinetic + spring energy (energy_error within 1e-5 of the work); the dense route on 1 rank and the whole body on 2 agree to 2e-6")
+def dynamics_belt():
+    belt(QUICK, False)
+
+
+@test("the belt of dynamics_belt with mass damping (-damping 20,1e-3): it settles to the steady sliding state, the spring force phi N within 1e-3", full=True)
+def dynamics_belt_damped():
+    belt([], True)
+
+
+def ball(paths):
     E, nu, rho, R, v0 = 1e4, 0.3, 1.0, 10.0, 0.3
     Es = E / (1 - nu ** 2)
     forces = []
-    for red, ranks in (("direct", 1), ("none", 2)):
+    for red, ranks in paths:
         _, path = dynamics_run(BALL, "dynamics_ball_%s_%d.h5" % (red, ranks), red, ranks)
         f = h5py.File(path, "r")
         st = f["steps"]
@@ -190,6 +220,16 @@ def dynamics_ball():
     expect(diff <= AGREE, "the paths differ by %.1e in the force" % diff)
 
 
+@test("a ball dropped on a plane (the half ball of scenes/hertz.opts, R = 10, E = 1e4, nu = 0.3, rho = 1, v0 = 0.3, frictionless, 24 steps): the contact lasts Hertz's impact time t_c = 2.87 (m^2 / (R E*^2 v0))^(1/5) = 1.18 within 10 % (measured -1.6 %), the peak force Hertz's (4/3) E* R^(1/2) delta^(3/2) within 10 % (measured +7 %: the half ball is not rigid, its cap meshed 5 elements across the contact), it rebounds at 0.95-1.0 v0 (the impulse of the plane over m v0; measured 0.992), and what it lost is the scheme's stated impact dissipation (energy_error + impact_dissipation = 0 to 1e-9, energy never gained); the dense route on 1 rank and the whole body on 2 agree to 2e-6")
+def dynamics_ball():
+    ball(QUICK)
+
+
+@test("the ball dropped on a plane of dynamics_ball on the other paths and rank counts (the whole body on 1 rank, the dense route on 2): the same known answers, the forces agreeing to 2e-6", full=True)
+def dynamics_ball_other_paths():
+    ball(OTHERS)
+
+
 @test("the quasi-static limit: the block on a spring pressed (P = 10), sheared beyond phi P (Q = 7.5) and released over 3 T with -dynamics (rho = 1, damping 20 M + 1e-3 K, 300 steps) follows the load path without -dynamics to the inertia's order: the largest difference of its top's u_x is below 10 % of the path's largest u_x at T = 1 and falls with T (T = 4: by more than 2.5 times; measured 7.6 % and 2.2 %), at the end within 2 % (T = 1) and 0.1 % (T = 4) of (Q - phi P)/k")
 def dynamics_quasistatic():
     diffs = []
@@ -208,18 +248,29 @@ def dynamics_quasistatic():
     expect(diffs[0] < 0.1 and diffs[0] > 2.5 * diffs[1], "the dynamic path is off the quasi-static one by %.3f (T = 1) and %.3f (T = 4)" % tuple(diffs))
 
 
-@test("bodies held by contact alone in dynamics (scenes/stack.opts: two blocks, the lower on the plane, the upper on it through a contact pair, no spring, no Dirichlet condition) run without the kernel's refusal -- the mass holds their rigid motions -- on both paths, 1 and 2 ranks: every step converges, the energy balance holds (energy_error + impact_dissipation = 0), nothing is gained, the law holds at every step; a single block on the slope with phi = 0.3, whose static problem has no equilibrium, slides instead of stopping")
-def dynamics_floating():
-    for red, ranks in PATHS:
+def floating(paths, slope):
+    for red, ranks in paths:
         out, path = dynamics_run(["-options_file", os.path.join(ROOT, "scenes", "stack.opts"), "-level", "1", "-dynamics", "-damping", "0,1e-3",
                                   "-end_time", "0.2", "-steps", "20", "-ssstar_progress", "0"], "dynamics_stack_%s_%d.h5" % (red, ranks), red, ranks)
         f = h5py.File(path, "r")
         expect(np.all(f["steps/reason"][:] > 0) and "no equilibrium" not in out, "%s %d: a step of the stack did not converge" % (red, ranks), out)
         expect(balance(f, "stack %s %d" % (red, ranks)).max() <= 1e-9, "%s %d: the stack gained energy" % (red, ranks))
         run(LAW + [path])
+    if not slope:
+        return
     out, _ = dynamics_run(["-options_file", os.path.join(ROOT, "scenes", "slope.opts"), "-level", "2", "-friction_bottom", "0.3", "-dynamics", "-damping", "0,0.003",
                            "-end_time", "0.2", "-steps", "20", "-ssstar_progress", "0"], "dynamics_slope_floating.h5")
     expect("no equilibrium" not in out and "sliding" in out, "the released block does not slide", out)
+
+
+@test("bodies held by contact alone in dynamics (scenes/stack.opts: two blocks, the lower on the plane, the upper on it through a contact pair, no spring, no Dirichlet condition) run without the kernel's refusal -- the mass holds their rigid motions -- on the dense route on 1 rank and the whole body on 2 (make test-full: the other two): every step converges, the energy balance holds (energy_error + impact_dissipation = 0), nothing is gained, the law holds at every step; a single block on the slope with phi = 0.3, whose static problem has no equilibrium, slides instead of stopping")
+def dynamics_floating():
+    floating(QUICK, True)
+
+
+@test("the stack of dynamics_floating on the other paths and rank counts (the whole body on 1 rank, the dense route on 2): every step converges, the energy balance holds, nothing is gained, the law holds", full=True)
+def dynamics_floating_other_paths():
+    floating(OTHERS, False)
 
 
 @test("Python: ssstar.Scene(dynamics=True, ...) with steps() as for load paths gives examples/contact's file (the rod: the same rows and fields to 2e-6), each Step's velocity (n x 3) and energy columns those of the file; refused at construction: dynamics without steps, steps before t = 0; step() refuses a time not after the last accepted step's")

@@ -5,7 +5,7 @@ import os
 import re
 
 from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
-from suite_full import prism_run, same_answer, scene_run
+from suite_wholebody import prism_run, same_answer, scene_run
 
 import h5py
 import numpy as np
@@ -44,7 +44,7 @@ def nested_auto():
 
 @test("a scene through examples/contact (incline: gravity, a soft spring, a tilted plane) with -nested_levels 1: the same answer as from zero to 1e-8, the same states, the iterations within one (the plain start needs 4: nothing to gain)")
 def nested_scene():
-    # the body hangs on a soft spring: the error is about 1e4 ||z|| (suite_full), so both stop at a tighter ||z||
+    # the body hangs on a soft spring: the error is about 1e4 ||z|| (suite_wholebody), so both stop at a tighter ||z||
     incline = ["-options_file", os.path.join(ROOT, "scenes", "incline.opts"), "-snes_ssstar_reduction", "none", "-snes_rtol", "1e-12"]
     plain, p = scene_run(incline + ["-nested_levels", "0"], "nested_incline_plain.h5")
     out, s = scene_run(incline + ["-nested_levels", "1"], "nested_incline.h5")
@@ -112,7 +112,7 @@ def refine_scenes():
 ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank( \(plain aggregation\))?")
 
 
-@test("the memory estimate printed before the work (the mesh line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work")
+@test("the memory estimate printed before the work (the contact line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work")
 def memory_estimate():
     for ranks, extra, plain in ((1, [], False), (2, [], False), (2, ["-snes_ssstar_memory_limit", "0.25"], True)):
         out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_plain" if plain else ""), ranks)

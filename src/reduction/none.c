@@ -1,5 +1,5 @@
 /*
-   No reduction: the contact problem stays on the whole body (the SNES's full-space Newton step), P is never formed.
+   No reduction: the contact problem stays on the whole body (the SNES's whole-body Newton step), P is never formed.
    The operator is K itself, the load F itself, and the iterate is already the whole displacement.
 */
 #include "reductionimpl.h"

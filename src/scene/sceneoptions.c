@@ -1,5 +1,5 @@
 /*
-   The scene's description from the options database (README "Scenes"): the body, its material, supports, loads and
+   The scene's description from the options database (docs/guide/scenes.md): the body, its material, supports, loads and
    contact groups, each option checked where it is read, with errors that name the option; the groups the options
    name, for the checks against the mesh; the refusal of unread options with the scene's own among the known ones.
 */
@@ -71,9 +71,10 @@ typedef enum {
   OPT_OBSTACLE,
   OPT_FRICTION_LAW,
   OPT_CONTACT_PAIR,
+  OPT_DISPLACEMENT,
   OPT_LAW_PARAMETER
 } GroupOption;
-static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-initial_velocity_", "-obstacle_", "-friction_law_", "-contact_pair_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-initial_velocity_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_"};
 
 static PetscBool IsContactGroup(SSStarScene scene, const char name[])
 {
@@ -114,13 +115,13 @@ static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], Gr
       best     = len;
       bestKind = option;
     }
-    if (option >= OPT_OBSTACLE && len > bestContact && IsContactGroup(scene, token + len)) {
+    if (option >= OPT_OBSTACLE && option != OPT_DISPLACEMENT && len > bestContact && IsContactGroup(scene, token + len)) {
       bestContact     = len;
       bestContactKind = option;
     }
   }
   *found = (PetscBool)(best > 0);
-  if (bestKind >= OPT_OBSTACLE && bestContact && !IsContactGroup(scene, token + best)) {
+  if (bestKind >= OPT_OBSTACLE && bestKind != OPT_DISPLACEMENT && bestContact && !IsContactGroup(scene, token + best)) {
     best     = bestContact;
     bestKind = bestContactKind;
   }
@@ -158,6 +159,7 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   if (kind == OPT_TRACTION) scene->nTractions++;
   if (kind == OPT_SPRING) scene->nSprings++;
   if (kind == OPT_VELOCITY) scene->nVelocities++;
+  if (kind == OPT_DISPLACEMENT) scene->nDisplacements++;
   PetscFunctionReturn(0);
 }
 
@@ -301,6 +303,12 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(SSStarPairsReadOption(scene, cg, option));
     break;
+  case OPT_DISPLACEMENT: { /* prescribed displacements: numbers or free, constant or a history (prescribed.c) */
+    const char *value;
+
+    PetscCall(PetscOptionsFindPair(NULL, NULL, option, &value, &set));
+    PetscCall(SSStarPrescribedRead(scene, option, group, value, &scene->displacements[scene->nDisplacements++]));
+  } break;
   default:
     break;
   }
@@ -324,6 +332,9 @@ static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G (E,nu,rho: with its density)\n\
   -initial_velocity_<G> <vx,vy,vz>: with -dynamics, the initial velocity of the nodes of volume group G\n\
+  -displacement_<G> <x,y,z>: prescribed displacement of surface or volume group G (global axes), each component a\n\
+      number or free (free,free,-0.01: only u_z prescribed); a constant or a history t:x,y,z;... (a component free\n\
+      in one knot is free in all); its reaction force is in the output (docs/guide/displacements-and-stresses.md)\n\
   -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
       t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
@@ -352,7 +363,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol -end_time -dynamics -dynamics_scheme -dynamics_mass -damping -initial_velocity";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -411,7 +422,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 }
 
 /*@C
-   SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
+   SSStarSceneSetFromOptions - reads the scene from the options database (docs/guide/scenes.md), with errors that name the
    option for unknown, contradictory or incomplete entries
 
    Collective
@@ -423,6 +434,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 +  -mesh <file.msh> - the body, a gmsh mesh
 .  -geo <file.geo> - or a geometry meshed at -level
 .  -level <L> - the level of -geo
+.  -mesh_cache <folder> - where the meshes of -geo are made and kept (SSStarMeshCacheFile(); default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)
 .  -ssstar_progress_ranks - the progress lines give rank 0's memory and the least rank's beside the largest one's
 .  -nested_levels <auto> - solve this many coarser meshes first (SSStarSceneSolveNested()): 0 none, auto by the size
 .  -dm_refine <0> - refine the mesh this many times in parallel (each tetrahedron 1:8, the groups carried), as PETSc's option of the name does
@@ -434,6 +446,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -end_time <T> - the end of a path without knots: -steps N gives N equal steps from 0 to T
 .  -dynamics - the steps are time steps of elastodynamics (-dynamics_scheme, -dynamics_mass, -damping, -initial_velocity: SSStarSceneGetEnergies())
 .  -dirichlet <G1,G2> - groups held fixed
+.  -displacement_<G> <x,y,z> - the prescribed displacement of surface or volume group G: each component a number or free, a constant or a history t:x,y,z;...
 .  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
 .  -gravity <gx,gy,gz> - gravity, with -density: a constant, or a history t:gx,gy,gz;...
@@ -478,6 +491,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file", NULL, scene->mesh, scene->mesh, sizeof(scene->mesh), &hasMesh));
   PetscCall(PetscOptionsString("-geo", "gmsh geometry meshed at -level", NULL, scene->geo, scene->geo, sizeof(scene->geo), &hasGeo));
   PetscCall(PetscOptionsInt("-level", "Mesh level of -geo (the number L of the .geo)", NULL, scene->level, &scene->level, &hasLevel));
+  PetscCall(PetscOptionsString("-mesh_cache", "Folder of the meshes made from -geo (default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)", "SSStarMeshCacheFile", scene->meshCache, scene->meshCache, sizeof(scene->meshCache), NULL));
   {
     char      nested[32] = "auto";
     PetscBool set, isauto;
@@ -520,7 +534,10 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   }
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));
-  if (help) PetscFunctionReturn(0); /* the options are listed: the drivers stop here, with or without a scene */
+  if (help) { /* the options are listed: the drivers stop here, with or without a scene */
+    PetscCall(SSStarDynamicsSetFromOptions(scene));
+    PetscFunctionReturn(0);
+  }
   PetscCheck(!(hasMesh && hasGeo), comm, PETSC_ERR_ARG_WRONG, "Options -mesh and -geo contradict each other: give one body");
   PetscCheck(hasMesh || hasGeo, comm, PETSC_ERR_ARG_WRONG, "No body: give -mesh file.msh, or -geo file.geo with -level L");
   PetscCheck(!(hasMesh && hasLevel), comm, PETSC_ERR_ARG_WRONG, "Options -mesh and -level contradict each other: -level is for -geo");
@@ -554,16 +571,22 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscFree(contact));
 
   /* the options -<prefix><G>: count, then read */
+  PetscCall(SSStarPrescribedDestroy(scene));
   scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = 0;
   PetscCall(ForEachGroupOption(scene, CountGroupOption));
   PetscCall(PetscFree4(scene->materials, scene->tractions, scene->springs, scene->velocities));
   PetscCall(PetscCalloc4(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs, scene->nVelocities, &scene->velocities));
-  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = scene->nPairs = 0;
+  PetscCall(PetscCalloc1(scene->nDisplacements + 1, &scene->displacements));
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = scene->nPairs = scene->nDisplacements = 0;
   PetscCall(ForEachGroupOption(scene, ReadGroupOption));
   PetscCall(SSStarPairsCheckOptions(scene));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
+  }
+  for (PetscInt d = 0; d < scene->nDisplacements; d++) {
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[d].name));
+    PetscCall(CheckNotHeld(scene, scene->displacements[d].name, option));
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
     SSStarContactGroup *cg = &scene->contact[g];
@@ -575,6 +598,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     SSStarPlacementIdentity(&cg->motion.before);
   }
   PetscCall(SSStarDynamicsSetFromOptions(scene)); /* dynamics/dynamics.c */
+  PetscCheck(!scene->dynamics || !scene->nDisplacements, comm, PETSC_ERR_SUP, "Options -dynamics and -displacement_%s: a prescribed displacement in dynamics is not supported (the held components' mass and damping couple into the free ones); hold the group with -dirichlet, or drive it through a moving obstacle", scene->nDisplacements ? scene->displacements[0].name : "");
   {
     PetscBool groupDensity = PETSC_FALSE; /* a -material_<G> E,nu,rho */
 
@@ -588,7 +612,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 /* SSStarSceneGroupUses - every group an option names, with the kind of group the option needs (for the mesh checks) */
 PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
 {
-  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nVelocities + scene->nPairs, k = 0;
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nVelocities + scene->nPairs + scene->nDisplacements, k = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(total, uses));
@@ -597,6 +621,14 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
     (*uses)[k].group = scene->dirichlet[g];
     (*uses)[k].kind  = SSSTAR_GROUP_ANY;
     PetscCall(PetscStrallocpy("-dirichlet", &(*options)[k]));
+  }
+  for (PetscInt g = 0; g < scene->nDisplacements; g++, k++) {
+    char option[SSSTAR_GROUP_NAME_LEN + 16];
+
+    (*uses)[k].group = scene->displacements[g].name;
+    (*uses)[k].kind  = SSSTAR_GROUP_ANY;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[g].name));
+    PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt g = 0; g < scene->nContact; g++, k++) {
     (*uses)[k].group = scene->contact[g].name;

@@ -6,7 +6,7 @@
 
 /*
    The history of -traction_<G>, -gravity, -obstacle_<G>_motion or -obstacle_<G>_rotation, to be replaced; the value at
-   its last knot, if any; its components (3, or 4 for a rotation)
+   its last knot, if any; its components (3, or 4 for a rotation) (-displacement_<G>: SSStarSceneSetHistory())
 */
 static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStarHistory **history, PetscReal **last, PetscInt *ncomp)
 {
@@ -54,20 +54,21 @@ static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStar
       *ncomp = kind ? 4 : 3;
     }
   }
-  PetscCheck(*history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: not a history of the scene (-traction_<G>, -gravity, -obstacle_<G>_motion, -obstacle_<G>_rotation)", option);
+  PetscCheck(*history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: not a history of the scene (-traction_<G>, -gravity, -obstacle_<G>_motion, -obstacle_<G>_rotation, -displacement_<G>)", option);
   PetscFunctionReturn(0);
 }
 
 /*@C
    SSStarSceneSetHistory - changes a load or an obstacle's motion of the scene: gives one of its history options a new
-   value, as the option would (README "Load paths"), between the steps of a load path
+   value, as the option would (docs/guide/load-paths.md), between the steps of a load path
 
    Collective
 
    Input Parameters:
 +  scene  - the scene, after SSStarSceneSetFromOptions()
 .  option - the option: -traction_<G> (a traction the scene has), -gravity (if the scene has gravity),
-            -obstacle_<G>_motion or -obstacle_<G>_rotation (a translation or rotation the scene's obstacle has)
+            -obstacle_<G>_motion or -obstacle_<G>_rotation (a translation or rotation the scene's obstacle has) or
+            -displacement_<G> (a prescribed displacement the scene has, with the same components free)
 -  value  - its new value: a constant x,y,z (ax,ay,az,angle for a rotation), or a history t:x,y,z;t:x,y,z;... (linear
             between the knots, constant outside)
 
@@ -90,6 +91,23 @@ PetscErrorCode SSStarSceneSetHistory(SSStarScene scene, const char option[], con
 
   PetscFunctionBegin;
   PetscCheck(option && value, scene->comm, PETSC_ERR_ARG_NULL, "SSStarSceneSetHistory(): give the option and its value");
+  for (PetscInt d = 0; d < scene->nDisplacements; d++) { /* a prescribed displacement: the same components free */
+    SSStarPrescribed *p = &scene->displacements[d], q = {"", NULL, 0};
+    char              name[SSSTAR_GROUP_NAME_LEN + 16];
+    PetscBool         match;
+
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-displacement_%s", p->name));
+    PetscCall(PetscStrcmp(option, name, &match));
+    if (!match) continue;
+    PetscCall(SSStarPrescribedRead(scene, option, p->name, value, &q));
+    if (q.free != p->free) {
+      PetscCall(SSStarHistoryDestroy(&q.history));
+      SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "Option %s %s: the free components of a prescribed displacement are fixed when the scene is made (K holds them)", option, value);
+    }
+    PetscCall(SSStarHistoryDestroy(&p->history));
+    p->history = q.history;
+    PetscFunctionReturn(0);
+  }
   PetscCall(FindHistory(scene, option, &history, &last, &ncomp));
   PetscCall(SSStarHistoryCreateFromString(scene->comm, option, value, ncomp, &h));
   if (ncomp == 4) {

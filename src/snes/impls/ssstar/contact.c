@@ -1,8 +1,9 @@
 /*
    The contact of the SNES type "ssstar": what the user declared (the contact points with their rows of the contact
-   operator B, the friction laws and their parameters) and what the solver derives from it per node, in its order.
+   operator B; the friction laws and their parameters are friction.c's) and what the solver derives from it per node,
+   in its order; the public functions of the declaration, each beside the type's implementation.
    One route: SNESSSStarSetContactNodes() declares points against rigid planes, whose rows of B (each node's own dofs
-   turned into its frame) are built here and go the way of SNESSSStarSetContactOperator()'s B (operator.c).
+   turned into its frame) are built here and go the way of SNESSSStarSetContactOperator()'s B (contactoperator.c).
 
    Every check of the declaration is collective (SSStarCheckAllRanks()): a wrong entry on one rank ends every rank with
    its message, so that no rank waits in a collective call.
@@ -10,11 +11,8 @@
 #include "ssstarimpl.h"
 #include "laws/lawimpl.h"
 
-/* The message of the first failed check of this rank; checks after it are skipped */
-#define SSSTAR_MESSAGE_LEN 512
-
 /* A per-node vector must have per entries for each of the nnodes owned contact nodes (nnodes < 0: not known yet) */
-static PetscErrorCode CheckNodeVector(MPI_Comm comm, Vec v, PetscInt nnodes, PetscInt per, const char what[])
+PetscErrorCode SSStarContactCheckNodeVector(MPI_Comm comm, Vec v, PetscInt nnodes, PetscInt per, const char what[])
 {
   PetscInt n    = per * nnodes;
   char     msg[SSSTAR_MESSAGE_LEN] = "";
@@ -26,7 +24,7 @@ static PetscErrorCode CheckNodeVector(MPI_Comm comm, Vec v, PetscInt nnodes, Pet
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReplaceVec(Vec *stored, Vec v)
+PetscErrorCode SSStarContactReplaceVec(Vec *stored, Vec v)
 {
   PetscFunctionBegin;
   if (v) PetscCall(PetscObjectReference((PetscObject)v));
@@ -36,7 +34,7 @@ static PetscErrorCode ReplaceVec(Vec *stored, Vec v)
 }
 
 /* Owned contact nodes as declared so far (-1: every dof, so not known before the set-up) */
-static PetscErrorCode DeclaredNodes(SSStarContact *ct, PetscInt *n)
+PetscErrorCode SSStarContactDeclaredNodes(SSStarContact *ct, PetscInt *n)
 {
   PetscFunctionBegin;
   *n = -1;
@@ -47,13 +45,7 @@ static PetscErrorCode DeclaredNodes(SSStarContact *ct, PetscInt *n)
   PetscFunctionReturn(0);
 }
 
-/* Every declaration change invalidates the per-node data and the problem */
-static void Declared(SSStarContact *ct)
-{
-  ct->declared++;
-}
-
-static PetscErrorCode FindSetting(SSStarContact *ct, const char name[], SSStarLawSetting **setting)
+PetscErrorCode SSStarContactFindSetting(SSStarContact *ct, const char name[], SSStarLawSetting **setting)
 {
   PetscFunctionBegin;
   *setting = NULL;
@@ -66,54 +58,47 @@ static PetscErrorCode FindSetting(SSStarContact *ct, const char name[], SSStarLa
   PetscFunctionReturn(0);
 }
 
-/* The setting of a parameter of the registered laws, created when first named; an error for an unknown name */
-static PetscErrorCode GetSetting(SSStarContact *ct, const char name[], SSStarLawSetting **setting)
-{
-  const SSStarLawParameter *par;
+/*@
+   SNESSSStarSetContactNodes - declares the contact nodes of a whole-body problem F(u) = K u - b with Jacobian K
+   against rigid planes
 
+   Collective
+
+   Input Parameters:
++  snes    - the SNES
+.  dofs    - for each contact node owned by this rank, the global indices of its x, y, z dofs in the SNES vector
+             (3 per node, in node order; owned by this rank)
+.  normals - NULL for (0, 0, 1), or 3 entries per contact node (layout as dofs): the unit normal of the obstacle
+             plane, pointing into the body
+-  gaps    - NULL for 0, or 1 entry per contact node: the initial distance to the obstacle
+
+   Notes:
+   SNESSolve() reduces K to the contact dofs by a Schur complement (-snes_ssstar_reduction), solves the contact
+   problem in each node's frame (t1, t2, n) with non-penetration u.n + gap >= 0, and returns the whole u;
+   SNESGetFunction() then holds K u - b, whose contact entries are the contact forces (global axes).
+   K must be SPD: Dirichlet dofs eliminated or given identity rows. The SNES keeps references to the arguments.
+   On a SNES of another type the call does nothing, so a program may declare its nodes and run -snes_type ksponly.
+   It is SNESSSStarSetContactOperator() with B's rows built from the normals (each node's own dofs turned into its
+   frame, no master dofs). Wrong sizes on any rank, a node whose dofs another rank owns, a normal that is not a unit
+   vector are refused on every rank, naming the node.
+
+   Level: beginner
+
+.seealso: `SNESSSStarGetContactNodes()`, `SNESSSStarSetContactOperator()`, `SNESSSStarSetLinearProblem()`,
+          `SNESSSStarSetNodeLawParameter()`, `SNESSSStarGetStates()`
+@*/
+PetscErrorCode SNESSSStarSetContactNodes(SNES snes, IS dofs, Vec normals, Vec gaps)
+{
   PetscFunctionBegin;
-  PetscCall(FindSetting(ct, name, setting));
-  if (*setting) PetscFunctionReturn(0);
-  PetscCall(SSStarLawGetParameter(name, &par));
-  PetscCall(PetscRealloc(sizeof(SSStarLawSetting) * (ct->nsettings + 1), &ct->settings));
-  *setting = &ct->settings[ct->nsettings++];
-  PetscCall(PetscMemzero(*setting, sizeof(**setting)));
-  PetscCall(PetscStrncpy((*setting)->name, name, sizeof((*setting)->name)));
-  (*setting)->size = SSStarLawParameterSize(par->kind);
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(dofs, IS_CLASSID, 2);
+  if (normals) PetscValidHeaderSpecific(normals, VEC_CLASSID, 3);
+  if (gaps) PetscValidHeaderSpecific(gaps, VEC_CLASSID, 4);
+  PetscTryMethod(snes, "SNESSSStarSetContactNodes_C", (SNES, IS, Vec, Vec), (snes, dofs, normals, gaps));
   PetscFunctionReturn(0);
 }
 
-/* What is wrong with the values of a parameter ("-0.1: the friction coefficient must be a number >= 0"), or "" */
-static PetscErrorCode CheckValues(const SSStarLawParameter *par, const PetscReal v[], char msg[], size_t len)
-{
-  PetscFunctionBegin;
-  msg[0] = 0;
-  if (par->kind == SSSTAR_LAW_DIRECTION) {
-    if (PetscIsInfOrNanReal(v[0]) || PetscIsInfOrNanReal(v[1]) || PetscIsInfOrNanReal(v[2]) || (v[0] == 0 && v[1] == 0 && v[2] == 0)) PetscCall(PetscSNPrintf(msg, len, "%g,%g,%g: the %s must be a nonzero vector", (double)v[0], (double)v[1], (double)v[2], par->description));
-  } else if (PetscIsInfOrNanReal(v[0]) || v[0] < 0) PetscCall(PetscSNPrintf(msg, len, "%g: the %s must be a number >= 0", (double)v[0], par->description));
-  PetscFunctionReturn(0);
-}
-
-/* Coulomb, and the parameters of the laws with a default at it (the table's: coulomb's friction 0.3) */
-PetscErrorCode SSStarContactInitialize(SSStarContact *ct)
-{
-  PetscInt           nparams;
-  const char *const *names;
-
-  PetscFunctionBegin;
-  ct->built = -1;
-  PetscCall(SSStarContactSetLaw(ct, SSSTARLAWCOULOMB));
-  PetscCall(SSStarLawGetParameterNames(&nparams, &names));
-  for (PetscInt p = 0; p < nparams; p++) {
-    const SSStarLawParameter *par;
-
-    PetscCall(SSStarLawGetParameter(names[p], &par));
-    if (par->hasDefault) PetscCall(SSStarContactSetParameter(PETSC_COMM_SELF, ct, par->name, 1, &par->defaultValue));
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals, Vec gaps)
+static PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals, Vec gaps)
 {
   SSStarContact *ct   = &((SNES_SSStar *)snes->data)->contact;
   MPI_Comm       comm = PetscObjectComm((PetscObject)snes);
@@ -124,20 +109,60 @@ PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES snes, IS dofs, Vec normals,
   PetscCall(ISGetLocalSize(dofs, &n));
   if (n % 3) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetContactNodes: the IS of contact dofs has %" PetscInt_FMT " local entries, not 3 per node", n));
   PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_SIZ, msg));
-  PetscCall(CheckNodeVector(comm, normals, n / 3, 3, "SNESSSStarSetContactNodes: the normals"));
-  PetscCall(CheckNodeVector(comm, gaps, n / 3, 1, "SNESSSStarSetContactNodes: the gaps"));
-  for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(CheckNodeVector(comm, ct->settings[s].perNode, n / 3, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
+  PetscCall(SSStarContactCheckNodeVector(comm, normals, n / 3, 3, "SNESSSStarSetContactNodes: the normals"));
+  PetscCall(SSStarContactCheckNodeVector(comm, gaps, n / 3, 1, "SNESSSStarSetContactNodes: the gaps"));
+  for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(SSStarContactCheckNodeVector(comm, ct->settings[s].perNode, n / 3, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
   PetscCall(PetscObjectReference((PetscObject)dofs));
   PetscCall(ISDestroy(&ct->dofs));
   ct->dofs = dofs;
-  PetscCall(ReplaceVec(&ct->normals, normals));
-  PetscCall(ReplaceVec(&ct->gaps, gaps));
+  PetscCall(SSStarContactReplaceVec(&ct->normals, normals));
+  PetscCall(SSStarContactReplaceVec(&ct->gaps, gaps));
   PetscCall(MatDestroy(&ct->B)); /* built from the normals at the set-up */
-  Declared(ct);
+  SSStarContactDeclared(ct);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES snes, IS dofs, Mat B, Vec gaps)
+/*@
+   SNESSSStarSetContactOperator - declares the contact points of a whole-body problem F(u) = K u - b by a contact
+   operator B: w = B u + g is each point's relative displacement in its frame (t1, t2, n), with non-penetration
+   w_n >= 0 and the friction law on w_t; the contact force on the body is B^T lambda
+
+   Collective
+
+   Input Parameters:
++  snes - the SNES
+.  dofs - for each contact point owned by this rank, the global indices of its own x, y, z dofs (its slave node; 3 per
+          point, owned by this rank)
+.  B    - the contact operator: 3 rows per point (t1, t2, n; rows distributed like dofs), a column per dof of u
+-  gaps - NULL for 0, or 1 entry per point: g, the initial normal distance
+
+   Notes:
+   B's 3x3 block at a point's own dofs must be a positive multiple d R of a rotation R (rows t1, t2, n): the point's
+   frame. Its other entries, on dofs of other nodes (a master surface; on no point's own dofs), say what the point is
+   compared with: B_i = d R (E_own - M_i). A rigid obstacle is M_i = 0 (what SNESSSStarSetContactNodes() declares); a
+   point of one body against the surface of another has M_i = the interpolation weights of the master nodes.
+   SNESSolve() changes to the points' variables (u_own - M u per point), reduces or keeps the whole body as for
+   SNESSSStarSetContactNodes(), and returns the whole u; SNESGetFunction() holds K u - b, the contact forces (on the
+   slave nodes and, with the opposite sign, spread on the master nodes). A B that is rank-deficient (a singular or
+   non-rotation block at a point's own dofs, a point's own dofs used as another point's master dofs) is refused,
+   naming the point. docs/contact-operator.md derives the reduced operator and checks it.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarSetNodeLawParameter()`, `SNESSSStarSetNodeFrictionLaws()`
+@*/
+PetscErrorCode SNESSSStarSetContactOperator(SNES snes, IS dofs, Mat B, Vec gaps)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidHeaderSpecific(dofs, IS_CLASSID, 2);
+  PetscValidHeaderSpecific(B, MAT_CLASSID, 3);
+  if (gaps) PetscValidHeaderSpecific(gaps, VEC_CLASSID, 4);
+  PetscTryMethod(snes, "SNESSSStarSetContactOperator_C", (SNES, IS, Mat, Vec), (snes, dofs, B, gaps));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES snes, IS dofs, Mat B, Vec gaps)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
   PetscInt       n, m;
@@ -154,81 +179,42 @@ PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES snes, IS dofs, Mat B, Ve
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarContactSetLaw(SSStarContact *ct, const char law[])
+/*@
+   SNESSSStarSetContactOffsets - the offsets of a step of a load path: each contact point's relative displacement is
+   w = R u + o instead of R u + g e_3 (docs/derivation.md (10.4)-(10.5)), so that the tangential law holds for the slip
+   increment of the step and the normal law on the current gap
+
+   Logically Collective
+
+   Input Parameters:
++  snes    - the SNES
+-  offsets - 3 entries per contact point of this rank, in the order and layout of the declaration (as the normals of
+             SNESSSStarSetContactNodes(); in the reduced use, as the SNES vector), in the point's frame (t1, t2, n); or
+             NULL: back to the declared gaps, (0, 0, g)
+
+   Notes:
+   Step k of a quasi-static load path solves 0 in P u - f^k + Q(R u + o^k): for a node against a rigid obstacle that
+   has moved by the translation d^k, o^k = (-R_t u^(k-1) - R_t (d^k - d^(k-1)), g - n.d^k) with u^(k-1) the solution
+   of the step before; for a point of SNESSSStarSetContactOperator(), o^k = (-(B u^(k-1))_t, g) with B's rows. A
+   sticking node then keeps its position relative to the obstacle, a sliding one is resisted against the direction of
+   its increment. (0, 0, g) is the static problem.
+
+   The values are read at every SNESSolve() (change the Vec's entries, or set another Vec, between the steps); unlike
+   a new declaration they keep the reduction: P is computed once for the whole path. The stopping rule's displacement
+   scale includes the norm of the tangential offsets (SNESConvergedSSStar()). The SNES keeps a reference to offsets.
+   Wrong sizes and NaN or Inf are refused on every rank, naming the node.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetContactOffsets()`, `SNESSSStarSetContactNodes()`, `SNESSSStarSetContactOperator()`,
+          `SSStarSceneSetStep()`
+@*/
+PetscErrorCode SNESSSStarSetContactOffsets(SNES snes, Vec offsets)
 {
   PetscFunctionBegin;
-  PetscCall(SSStarLawFind(law, &ct->law));
-  Declared(ct);
-  PetscFunctionReturn(0);
-}
-
-/* The value of a law parameter for every node without one of its own (logically collective: the same on every rank) */
-PetscErrorCode SSStarContactSetParameter(MPI_Comm comm, SSStarContact *ct, const char name[], PetscInt n, const PetscReal values[])
-{
-  SSStarLawSetting         *setting;
-  const SSStarLawParameter *par;
-  char                      msg[SSSTAR_MESSAGE_LEN];
-
-  PetscFunctionBegin;
-  PetscCall(SSStarLawGetParameter(name, &par));
-  PetscCheck(n == SSStarLawParameterSize(par->kind), comm, PETSC_ERR_ARG_SIZ, "-snes_ssstar_%s: %" PetscInt_FMT " values given, it takes %" PetscInt_FMT, name, n, SSStarLawParameterSize(par->kind));
-  PetscCall(CheckValues(par, values, msg, sizeof(msg)));
-  PetscCheck(!msg[0], comm, PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_%s %s", name, msg);
-  PetscCall(GetSetting(ct, name, &setting));
-  for (PetscInt k = 0; k < n; k++) setting->value[k] = values[k];
-  setting->set = PETSC_TRUE;
-  Declared(ct);
-  PetscFunctionReturn(0);
-}
-
-/* The value for every node of a law parameter, if set */
-PetscErrorCode SSStarContactGetParameter(SSStarContact *ct, const char name[], PetscInt *n, PetscReal values[], PetscBool *set)
-{
-  SSStarLawSetting         *setting;
-  const SSStarLawParameter *par;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarLawGetParameter(name, &par));
-  PetscCall(FindSetting(ct, name, &setting));
-  *n   = SSStarLawParameterSize(par->kind);
-  *set = (PetscBool)(setting && setting->set);
-  for (PetscInt k = 0; k < *n; k++) values[k] = *set ? setting->value[k] : 0.0;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SNESSSStarSetNodeLawParameter_SSStar(SNES snes, const char name[], Vec v)
-{
-  SSStarContact    *ct = &((SNES_SSStar *)snes->data)->contact;
-  SSStarLawSetting *setting;
-  PetscInt          n;
-
-  PetscFunctionBegin;
-  PetscCall(GetSetting(ct, name, &setting));
-  PetscCall(DeclaredNodes(ct, &n));
-  PetscCall(CheckNodeVector(PetscObjectComm((PetscObject)snes), v, n, setting->size, "SNESSSStarSetNodeLawParameter: the values"));
-  PetscCall(ReplaceVec(&setting->perNode, v));
-  Declared(ct);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, const PetscInt laws[])
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-  PetscInt       nlaws;
-  char           msg[SSSTAR_MESSAGE_LEN] = "";
-
-  PetscFunctionBegin;
-  PetscCall(SSStarLawGetNames(&nlaws, NULL));
-  for (PetscInt i = 0; laws && i < n && !msg[0]; i++)
-    if (laws[i] < 0 || laws[i] >= nlaws) PetscCall(PetscSNPrintf(msg, sizeof(msg), "SNESSSStarSetNodeFrictionLaws: law %" PetscInt_FMT " of contact node %" PetscInt_FMT " is not in the table of laws (0..%" PetscInt_FMT ", SSStarLawGetNames())", laws[i], i, nlaws - 1));
-  PetscCall(SSStarCheckAllRanks(PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, msg));
-  PetscCall(PetscFree(ct->nodeLaws));
-  ct->nNodeLaws = n;
-  if (laws) {
-    PetscCall(PetscMalloc1(n, &ct->nodeLaws));
-    PetscCall(PetscArraycpy(ct->nodeLaws, laws, n));
-  }
-  Declared(ct);
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  if (offsets) PetscValidHeaderSpecific(offsets, VEC_CLASSID, 2);
+  PetscTryMethod(snes, "SNESSSStarSetContactOffsets_C", (SNES, Vec), (snes, offsets));
   PetscFunctionReturn(0);
 }
 
@@ -236,15 +222,15 @@ PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, const
    The offsets of a load path's step (docs/derivation.md (10.4)): data of the next solves, not of the declaration, so
    that the per-node data and the reduction (P) stay. Checked here where the node count is known, again at each solve.
 */
-PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES snes, Vec offsets)
+static PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES snes, Vec offsets)
 {
   SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
   PetscInt       n;
 
   PetscFunctionBegin;
   PetscCall(SSStarContactGetNodeCount(snes, ct, &n));
-  if (offsets) PetscCall(CheckNodeVector(PetscObjectComm((PetscObject)snes), offsets, n, 3, "SNESSSStarSetContactOffsets: the offsets"));
-  PetscCall(ReplaceVec(&ct->offsets, offsets));
+  if (offsets) PetscCall(SSStarContactCheckNodeVector(PetscObjectComm((PetscObject)snes), offsets, n, 3, "SNESSSStarSetContactOffsets: the offsets"));
+  PetscCall(SSStarContactReplaceVec(&ct->offsets, offsets));
   PetscFunctionReturn(0);
 }
 
@@ -263,7 +249,7 @@ PetscErrorCode SSStarContactSetUpOffsets(MPI_Comm comm, SSStarContact *ct, Petsc
   PetscCall(PetscFree(ct->offset));
   *tangentNorm = 0;
   if (!ct->offsets) PetscFunctionReturn(0);
-  PetscCall(CheckNodeVector(comm, ct->offsets, ct->nnodes, 3, "SNESSSStarSetContactOffsets: the offsets"));
+  PetscCall(SSStarContactCheckNodeVector(comm, ct->offsets, ct->nnodes, 3, "SNESSSStarSetContactOffsets: the offsets"));
   PetscCall(PetscMalloc1(3 * ct->nnodes, &ct->offset));
   PetscCall(VecGetArrayRead(ct->offsets, &a));
   for (PetscInt i = 0; i < ct->nnodes; i++) {
@@ -340,7 +326,7 @@ static PetscErrorCode BuildInterior(MPI_Comm comm, SSStarContact *ct, Vec x)
    The rows of B of nodes against rigid planes: node i's own dofs turned into its frame (t1, t2, n) from the normal n
    (SSStarNodeFrame(); the identity without normals). The normals must be unit vectors.
 */
-static PetscErrorCode BuildNodeOperator(MPI_Comm comm, SSStarContact *ct, Vec x, Mat *B)
+static PetscErrorCode BuildNodeContactOperator(MPI_Comm comm, SSStarContact *ct, Vec x, Mat *B)
 {
   const PetscScalar *na = NULL;
   const PetscInt    *idx;
@@ -382,7 +368,7 @@ static PetscErrorCode BuildNodeOperator(MPI_Comm comm, SSStarContact *ct, Vec x,
 
 /*
    The law of every node and its values (section 0 and the law's own section in docs/derivation.md): a node's own
-   value of a parameter (SNESSSStarSetNodeLawParameter(); PETSC_DEFAULT: none), else the value for every node
+   value of a parameter (SNESSSStarSetNodeLawParameter(); SSSTAR_NOT_GIVEN: none), else the value for every node
    (SNESSSStarSetLawParameter(), -snes_ssstar_<name>); a direction turned into the node's frame. Then the law checks
    and prepares them.
 */
@@ -413,12 +399,12 @@ static PetscErrorCode BuildFriction(MPI_Comm comm, SSStarContact *ct)
       PetscBool                 given  = PETSC_FALSE;
       char                      bad[256];
 
-      PetscCall(FindSetting(ct, par->name, &setting));
+      PetscCall(SSStarContactFindSetting(ct, par->name, &setting));
       if (setting && setting->perNode) {
         const PetscScalar *a;
 
         PetscCall(VecGetArrayRead(setting->perNode, &a));
-        given = (PetscBool)(PetscRealPart(a[setting->size * j]) != (PetscReal)PETSC_DEFAULT);
+        given = (PetscBool)!PetscIsNanReal(PetscRealPart(a[setting->size * j]));
         for (PetscInt k = 0; given && k < setting->size; k++) v[k] = PetscRealPart(a[setting->size * j + k]);
         PetscCall(VecRestoreArrayRead(setting->perNode, &a));
       }
@@ -430,7 +416,7 @@ static PetscErrorCode BuildFriction(MPI_Comm comm, SSStarContact *ct)
         PetscCall(PetscSNPrintf(msg, sizeof(msg), "Contact node %" PetscInt_FMT " has the friction law %s but no %s: give it with -snes_ssstar_%s, SNESSSStarSetLawParameter() or SNESSSStarSetNodeLawParameter()", j, fr->law->name, par->name, par->name));
         break;
       }
-      PetscCall(CheckValues(par, v, bad, sizeof(bad)));
+      PetscCall(SSStarLawCheckValues(par, v, bad, sizeof(bad)));
       if (bad[0]) PetscCall(PetscSNPrintf(msg, sizeof(msg), "Contact node %" PetscInt_FMT " (law %s), its %s %s", j, fr->law->name, par->name, bad));
       if (par->kind == SSSTAR_LAW_DIRECTION)
         for (PetscInt r = 0; r < 3; r++) fr->value[offset + r] = R ? R[3 * r] * v[0] + R[3 * r + 1] * v[1] + R[3 * r + 2] * v[2] : v[r];
@@ -489,18 +475,18 @@ PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct, PetscBool *rebui
 
     PetscCall(ISGetLocalSize(ct->dofs, &n));
     ct->nnodes = n / 3;
-    for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(CheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
+    for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(SSStarContactCheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
     PetscCall(BuildOrder(comm, ct));
     PetscCall(BuildInterior(comm, ct, snes->vec_func));
-    if (!B) PetscCall(BuildNodeOperator(comm, ct, snes->vec_func, &B));
-    PetscCall(SSStarContactBuildOperator(comm, ct, B, snes->vec_func));
+    if (!B) PetscCall(BuildNodeContactOperator(comm, ct, snes->vec_func, &B));
+    PetscCall(SSStarContactOperatorSetUp(comm, ct, B, snes->vec_func));
     if (!ct->B) PetscCall(MatDestroy(&B));
   } else {
     PetscCall(VecGetLocalSize(snes->vec_func, &n));
     if (n % 3) PetscCall(PetscSNPrintf(msg, sizeof(msg), "ssstar: local vector size %" PetscInt_FMT " is not a multiple of 3 (one (u_t1, u_t2, u_n) block per contact node); to solve on a whole body, call SNESSSStarSetContactNodes()", n));
     PetscCall(SSStarCheckAllRanks(comm, PETSC_ERR_ARG_SIZ, msg));
     ct->nnodes = n / 3;
-    for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(CheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
+    for (PetscInt s = 0; s < ct->nsettings; s++) PetscCall(SSStarContactCheckNodeVector(comm, ct->settings[s].perNode, ct->nnodes, ct->settings[s].size, "SNESSSStarSetNodeLawParameter: the values"));
     PetscCall(PetscMalloc1(ct->nnodes, &ct->order));
     for (PetscInt i = 0; i < ct->nnodes; i++) ct->order[i] = i;
   }
@@ -514,7 +500,7 @@ PetscErrorCode SSStarContactSetUp(SNES snes, SSStarContact *ct, PetscBool *rebui
 PetscErrorCode SSStarContactGetNodeCount(SNES snes, SSStarContact *ct, PetscInt *n)
 {
   PetscFunctionBegin;
-  PetscCall(DeclaredNodes(ct, n));
+  PetscCall(SSStarContactDeclaredNodes(ct, n));
   if (*n < 0 && snes->vec_func) {
     PetscCall(VecGetLocalSize(snes->vec_func, n));
     *n /= 3;
@@ -523,7 +509,7 @@ PetscErrorCode SSStarContactGetNodeCount(SNES snes, SSStarContact *ct, PetscInt 
 }
 
 /* The arrays of a getter must have one entry per node of this rank */
-static PetscErrorCode CheckNodeArrays(SNES snes, SSStarContact *ct, PetscInt n, const char caller[])
+PetscErrorCode SSStarContactCheckNodeArrays(SNES snes, SSStarContact *ct, PetscInt n, const char caller[])
 {
   char msg[SSSTAR_MESSAGE_LEN] = "";
 
@@ -532,44 +518,6 @@ static PetscErrorCode CheckNodeArrays(SNES snes, SSStarContact *ct, PetscInt n, 
   PetscCall(SSStarContactSetUp(snes, ct, NULL));
   if (n != ct->nnodes) PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s: arrays of %" PetscInt_FMT " entries for the %" PetscInt_FMT " contact nodes of this rank", caller, n, ct->nnodes));
   PetscCall(SSStarCheckAllRanks(PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_SIZ, msg));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES snes, PetscInt n, PetscInt laws[])
-{
-  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
-
-  PetscFunctionBegin;
-  PetscCall(CheckNodeArrays(snes, ct, n, "SNESSSStarGetNodeFrictionLaws"));
-  for (PetscInt i = 0; i < ct->nnodes; i++) laws[ct->order[i]] = ct->nodeFriction[i].law->index;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES snes, const char name[], PetscInt n, PetscReal values[])
-{
-  SSStarContact            *ct = &((SNES_SSStar *)snes->data)->contact;
-  const SSStarLawParameter *par;
-  PetscInt                  size;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarLawGetParameter(name, &par));
-  PetscCall(CheckNodeArrays(snes, ct, n, "SNESSSStarGetNodeLawParameter"));
-  size = SSStarLawParameterSize(par->kind);
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    const SSStarFriction *fr = &ct->nodeFriction[i];
-    const PetscInt        p  = SSStarLawFindParameter(fr->law, name);
-    const PetscReal      *R  = ct->frames ? &ct->frames[9 * i] : NULL;
-    PetscReal            *v  = &values[size * ct->order[i]];
-
-    for (PetscInt k = 0; k < size; k++) v[k] = 0.0;
-    if (p < 0) continue;
-    if (par->kind != SSSTAR_LAW_DIRECTION) v[0] = fr->value[SSStarLawParameterOffset(fr->law, p)];
-    else { /* the direction in use, in global axes: R^T of the node's */
-      const PetscReal *a = &fr->value[SSStarLawParameterOffset(fr->law, p)];
-
-      for (PetscInt k = 0; k < 3; k++) v[k] = R ? R[k] * a[0] + R[3 + k] * a[1] + R[6 + k] * a[2] : a[k];
-    }
-  }
   PetscFunctionReturn(0);
 }
 
@@ -585,7 +533,7 @@ PetscErrorCode SSStarContactViewParameters(SSStarContact *ct, PetscViewer viewer
     for (PetscInt p = 0; p < law->nparams; p++) {
       SSStarLawSetting *setting;
 
-      PetscCall(FindSetting(ct, law->params[p].name, &setting));
+      PetscCall(SSStarContactFindSetting(ct, law->params[p].name, &setting));
       if (!setting || !setting->set) continue;
       if (setting->size == 1) PetscCall(PetscViewerASCIIPrintf(viewer, "  %s %s %s = %g%s\n", law->label, law->params[p].description, law->params[p].symbol, (double)setting->value[0], setting->perNode ? " (or per node)" : ""));
       else PetscCall(PetscViewerASCIIPrintf(viewer, "  %s %s %s = (%g, %g, %g)%s\n", law->label, law->params[p].description, law->params[p].symbol, (double)setting->value[0], (double)setting->value[1], (double)setting->value[2], setting->perNode ? " (or per node)" : ""));
@@ -605,7 +553,7 @@ PetscErrorCode SSStarContactView(SSStarContact *ct, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  friction law %s%s", ct->law->name, ct->nodeLaws ? " (and per node)" : ""));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
     for (PetscInt p = 0; p < ct->law->nparams; p++) {
-      PetscCall(FindSetting(ct, ct->law->params[p].name, &setting));
+      PetscCall(SSStarContactFindSetting(ct, ct->law->params[p].name, &setting));
       if (setting && setting->set && setting->size == 1) PetscCall(PetscViewerASCIIPrintf(viewer, ", %s = %g%s", ct->law->params[p].name, (double)setting->value[0], setting->perNode ? " (and per node)" : ""));
     }
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
@@ -665,5 +613,100 @@ PetscErrorCode SSStarContactDestroy(SSStarContact *ct)
   PetscCall(PetscFree(ct->settings));
   ct->nsettings = 0;
   PetscCall(PetscFree(ct->nodeLaws));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetContactNodes - the number of contact nodes of this rank and what SNESSSStarSetContactNodes() declared
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  n       - the contact nodes of this rank: 1/3 of the declared dofs; in the reduced use 1/3 of the local size of
+             the SNES function vector once it exists (SNESSetFunction() with a vector, SNESSSStarSetLinearProblem(),
+             SNESSetUp()), -1 before
+.  dofs    - the declared IS of contact dofs, or NULL (reduced use)
+.  normals - the declared normals, or NULL
+-  gaps    - the declared gaps, or NULL
+
+   Notes:
+   Any output may be NULL. The objects belong to the SNES. On a SNES of another type n is -1 and the rest NULL.
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetStates()`, `SNESSSStarGetNodeFrictionLaws()`
+@*/
+PetscErrorCode SNESSSStarGetContactNodes(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  if (n) *n = -1;
+  if (dofs) *dofs = NULL;
+  if (normals) *normals = NULL;
+  if (gaps) *gaps = NULL;
+  PetscTryMethod(snes, "SNESSSStarGetContactNodes_C", (SNES, PetscInt *, IS *, Vec *, Vec *), (snes, n, dofs, normals, gaps));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetContactNodes_SSStar(SNES snes, PetscInt *n, IS *dofs, Vec *normals, Vec *gaps)
+{
+  SSStarContact *ct = &((SNES_SSStar *)snes->data)->contact;
+
+  PetscFunctionBegin;
+  if (n) PetscCall(SSStarContactGetNodeCount(snes, ct, n));
+  if (dofs) *dofs = ct->dofs;
+  if (normals) *normals = ct->normals;
+  if (gaps) *gaps = ct->gaps;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetContactOffsets - the offsets set by SNESSSStarSetContactOffsets(), or NULL
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  offsets - the Vec (owned by the SNES), or NULL when the declared gaps are in use (or the SNES is of another type)
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetContactOffsets()`
+@*/
+PetscErrorCode SNESSSStarGetContactOffsets(SNES snes, Vec *offsets)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidPointer(offsets, 2);
+  *offsets = NULL;
+  PetscTryMethod(snes, "SNESSSStarGetContactOffsets_C", (SNES, Vec *), (snes, offsets));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetContactOffsets_SSStar(SNES snes, Vec *offsets)
+{
+  PetscFunctionBegin;
+  *offsets = ((SNES_SSStar *)snes->data)->contact.offsets;
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarSetContactNodes_C", (PetscVoidFunction)SNESSSStarSetContactNodes_SSStar},
+    {"SNESSSStarGetContactNodes_C", (PetscVoidFunction)SNESSSStarGetContactNodes_SSStar},
+    {"SNESSSStarSetContactOperator_C", (PetscVoidFunction)SNESSSStarSetContactOperator_SSStar},
+    {"SNESSSStarSetContactOffsets_C", (PetscVoidFunction)SNESSSStarSetContactOffsets_SSStar},
+    {"SNESSSStarGetContactOffsets_C", (PetscVoidFunction)SNESSSStarGetContactOffsets_SSStar},
+};
+
+PetscErrorCode SNESSSStarComposeContact(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
   PetscFunctionReturn(0);
 }

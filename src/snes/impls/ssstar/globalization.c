@@ -1,6 +1,6 @@
 /*
    The globalization of ssstar: the plain iteration of docs/derivation.md section 7 converges from a good starting point
-   only, and may cycle or stall far from the solution (README, "When it does not converge"). Here:
+   only, and may cycle or stall far from the solution (docs/guide/converged.md, "When it does not converge"). Here:
 
    - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the
      solutions, in the units of u);
@@ -232,10 +232,11 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c) */
+  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c); a nonlinear c evaluated there */
   for (alpha = 0.5; alpha >= glob->dampingMin; alpha /= 2) {
     PetscCall(VecWAXPY(ss->ua, alpha, ss->dv, ss->u));
-    PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
+    if (ss->problem.nonlinear) PetscCall(SNESSSStarResidual(snes, ss->ua, ss->ca));
+    else PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
     PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
     if (m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm) {
       PetscCall(Accept(ss, ss->ua, ss->ca));
@@ -325,5 +326,103 @@ PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscVie
   for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) PetscCall(PetscViewerASCIIPrintf(viewer, "%s %s %" PetscInt_FMT, r ? "," : "", SSStarRemedies[r], glob->counts[r]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "; cycles detected %" PetscInt_FMT "\n", glob->cycles));
   PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetGlobalization - turns the globalization of ssstar on or off and sets its parameters
+
+   Logically Collective
+
+   Input Parameters:
++  snes          - the SNES
+.  on            - PETSC_TRUE (default): damped steps on the merit function ||z|| and remedies (a full step or a
+                   doubled gamma after a failed line search, a regularized Newton step or fixed-point iterations for a
+                   singular Newton matrix, a doubled gamma on a cycle); PETSC_FALSE: the plain iteration
+.  dampingMin    - the smallest damping factor of the line search (default 1/64), or PETSC_DEFAULT
+-  stagnationIts - stop (SNES_DIVERGED_LOCAL_MIN, sub-reason STAGNATION) after this many iterations without a smaller
+                   ||z|| (default 20), or PETSC_DEFAULT
+
+   Options Database Keys:
++  -snes_ssstar_globalization <true> - on or off
+.  -snes_ssstar_damping_min <0.015625> - dampingMin
+-  -snes_ssstar_stagnation_its <20> - stagnationIts
+
+   Notes:
+   Cycles and stagnation are detected in both cases; without globalization they end the solve. docs/guide/converged.md, "When it does
+   not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetRemedyCounts()`, `SNESSSStarGetReason()`
+@*/
+PetscErrorCode SNESSSStarSetGlobalization(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(snes, on, 2);
+  PetscValidLogicalCollectiveReal(snes, dampingMin, 3);
+  PetscValidLogicalCollectiveInt(snes, stagnationIts, 4);
+  PetscTryMethod(snes, "SNESSSStarSetGlobalization_C", (SNES, PetscBool, PetscReal, PetscInt), (snes, on, dampingMin, stagnationIts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetGlobalization_SSStar(SNES snes, PetscBool on, PetscReal dampingMin, PetscInt stagnationIts)
+{
+  SSStarGlobalization *glob = &((SNES_SSStar *)snes->data)->glob;
+
+  PetscFunctionBegin;
+  glob->on = on;
+  if (dampingMin != PETSC_DEFAULT) {
+    PetscCheck(dampingMin > 0 && dampingMin <= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_damping_min %g: must be in (0, 1]", (double)dampingMin);
+    glob->dampingMin = dampingMin;
+  }
+  if (stagnationIts != PETSC_DEFAULT) {
+    PetscCheck(stagnationIts >= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_stagnation_its %" PetscInt_FMT ": must be >= 1", stagnationIts);
+    glob->stagnationIts = stagnationIts;
+  }
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetRemedyCounts - how often the last solve used each remedy of the globalization
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  counts - SSSTAR_NUM_REMEDIES counts, in SSStarRemedy order (SSStarRemedies[] names them)
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetGlobalization()`, `SNESSSStarGetReason()`
+@*/
+PetscErrorCode SNESSSStarGetRemedyCounts(SNES snes, PetscInt counts[SSSTAR_NUM_REMEDIES])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetRemedyCounts_C", (SNES, PetscInt[]), (snes, counts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetRemedyCounts_SSStar(SNES snes, PetscInt counts[])
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(counts, ((SNES_SSStar *)snes->data)->glob.counts, SSSTAR_NUM_REMEDIES));
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarSetGlobalization_C", (PetscVoidFunction)SNESSSStarSetGlobalization_SSStar},
+    {"SNESSSStarGetRemedyCounts_C", (PetscVoidFunction)SNESSSStarGetRemedyCounts_SSStar},
+};
+
+PetscErrorCode SNESSSStarComposeGlobalization(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
   PetscFunctionReturn(0);
 }

@@ -20,7 +20,7 @@ SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *ss, PetscInt i, PetscReal g
   return fr;
 }
 
-/* y = R x (R NULL: identity), x the entries of node i in a vector of the operator */
+/* y = R x (R NULL: identity), x the entries of node i in a vector of the stiffness A */
 void SNESSSStarNodeRotate(const SSStarContact *ct, const SSStarProblem *pb, PetscInt i, const PetscScalar *a, PetscReal y[3])
 {
   const PetscInt  *dof = &pb->layoutDofs[3 * i];
@@ -39,12 +39,16 @@ void SNESSSStarNodeIterate(const SSStarContact *ct, const SSStarProblem *pb, Pet
   else if (ct->gap) v[2] += ct->gap[i];
 }
 
-/* c = A u - f */
+/* c = A u - f, or from F itself for a residual treated as nonlinear (problem.c, docs/derivation.md section 17) */
 PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
 {
   SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
 
   PetscFunctionBegin;
+  if (pb->nonlinear) {
+    PetscCall(SSStarProblemFunctionResidual(snes, u, c));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatMult(pb->A, u, c));
   PetscCall(VecAXPY(c, -1.0, pb->f));
   PetscFunctionReturn(0);
@@ -119,7 +123,7 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
    (the file's reaction) lie within rho U and rho F of a pair (w*, r*) that satisfies the law exactly, and the free
    dofs are in equilibrium to rho F, with
 
-     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR |u_C|_inf)                       the step's displacements
+     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR max(|u_C|_inf, |f|_inf / mean diag K_CC))   the step's displacements
      F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FORCE_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
 
    each at least SSSTAR_LAW_FLOOR times the largest of the solves since the set-up (a step of a load path where nothing
@@ -161,6 +165,7 @@ static PetscErrorCode LawResidual(SNES snes, Vec u, Vec c, PetscBool floors, Pet
   F = PetscMax(scales[3], scales[4]);
   if (floors) {
     U = PetscMax(PetscMax(U, SSSTAR_LAW_FLOOR * scales[2]), SSSTAR_LAW_FLOOR * ss->pathDisplacement);
+    if (pb->meanDiag > 0) U = PetscMax(U, SSSTAR_LAW_FLOOR * ss->fnorm_inf / pb->meanDiag); /* every point stuck where it was: the load's displacement scale */
     F = PetscMax(PetscMax(F, SSSTAR_LAW_FORCE_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf)), SSSTAR_LAW_FLOOR * ss->pathForce);
   }
   *Uout = U;
@@ -462,3 +467,273 @@ PetscErrorCode SNESSSStarFixedPointStep(SNES snes, Vec u, Vec c, PetscBool *solv
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarSetScaling - sets gamma, the scaling of the approximation step (docs/derivation.md section 6)
+
+   Logically Collective
+
+   Input Parameters:
++  snes  - the SNES
+-  gamma - > 0, or 0 (the default): gamma = 1/mean(diag P), the contact block of K on the whole body
+
+   Options Database Key:
+.  -snes_ssstar_scaling <0> - the scaling
+
+   Notes:
+   gamma does not change the solutions, only the path to them and the units of ||z|| (a displacement for the default).
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetScaling()`, `SNESConvergedSSStar()`
+@*/
+PetscErrorCode SNESSSStarSetScaling(SNES snes, PetscReal gamma)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetScaling_C", (SNES, PetscReal), (snes, gamma));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetScaling_SSStar(SNES snes, PetscReal gamma)
+{
+  PetscFunctionBegin;
+  PetscCheck(gamma >= 0 && !PetscIsInfOrNanReal(gamma), PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_scaling %g: gamma must be > 0 (or 0 for 1/mean diag P)", (double)gamma);
+  ((SNES_SSStar *)snes->data)->scaling_user = gamma;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetScaling - gamma: the one set by the user, else 1/mean(diag P) of the last solve (0 before it)
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameter:
+.  gamma - the scaling
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetScaling()`
+@*/
+PetscErrorCode SNESSSStarGetScaling(SNES snes, PetscReal *gamma)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetScaling_C", (SNES, PetscReal *), (snes, gamma));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetScaling_SSStar(SNES snes, PetscReal *gamma)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  *gamma = ss->scaling_user > 0 ? ss->scaling_user : ss->scaling;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetStateTolerance - sets tau, the relative tolerance of the contact-state classification (default 1e-13;
+   docs/derivation.md section 2)
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  tau  - >= 0; 0 classifies by exact zeros
+
+   Options Database Key:
+.  -snes_ssstar_state_tol <1e-13> - the tolerance
+
+   Level: advanced
+
+.seealso: `SSStarClassify()`, `SNESSSStarGetStates()`
+@*/
+PetscErrorCode SNESSSStarSetStateTolerance(SNES snes, PetscReal tau)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetStateTolerance_C", (SNES, PetscReal), (snes, tau));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetStateTolerance_SSStar(SNES snes, PetscReal tau)
+{
+  PetscFunctionBegin;
+  PetscCheck(tau >= 0 && tau < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_state_tol %g must be in [0, 1)", (double)tau);
+  ((SNES_SSStar *)snes->data)->state_tol = tau;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   SNESSSStarGetStates - the state of each owned contact node at the last iterate, and the global counts per state
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES, after SNESSolve()
+
+   Output Parameters:
++  states - the states of the contact nodes of this rank, in the order they were declared (owned by the SNES), or
+            pass NULL
+-  counts - the number of nodes in each state over all ranks (SSSTAR_NUM_STATES entries), or pass NULL
+
+   Notes:
+   The states are those of Table 1 (SSStarState, docs/derivation.md section 2); SSStarStateNames[] names them.
+
+   Level: beginner
+
+.seealso: `SNESSSStarGetReason()`, `SNESSSStarMonitorStates()`, `SSStarClassify()`
+@*/
+PetscErrorCode SNESSSStarGetStates(SNES snes, const SSStarState *states[], PetscInt counts[SSSTAR_NUM_STATES])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetStates_C", (SNES, const SSStarState *[], PetscInt[]), (snes, states, counts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetStates_SSStar(SNES snes, const SSStarState *states[], PetscInt counts[])
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  if (states) *states = ss->userStates;
+  if (counts) PetscCall(PetscArraycpy(counts, ss->counts, SSSTAR_NUM_STATES));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetLawTolerance - the tolerance of the law residual of a converged iterate: a solve converges only when,
+   besides ||z||, every contact point's relative displacement and force as the output writes them lie within rtol U
+   and rtol F of a pair that satisfies the friction law exactly, and the other dofs are in equilibrium to rtol F
+   (docs/derivation.md section 12; U the step's largest displacement, F the largest contact force)
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  rtol - in (0, 1), or 0 (the default): max(the SNES's rtol, 1e-8)
+
+   Options Database Key:
+.  -snes_ssstar_law_rtol <rtol> - the tolerance
+
+   Notes:
+   Where ||z|| has met its threshold and the law residual has not, the iteration takes whole Newton steps solved to
+   the floor (polishing) until it does, or stops with SSSTAR_REASON_LAW_STALLED when it no longer halves (its round-off
+   floor is above the tolerance).
+
+   Level: intermediate
+
+.seealso: `SNESSSStarGetLawResidual()`, `SNESConvergedSSStar()`, `SNESSetTolerances()`
+@*/
+PetscErrorCode SNESSSStarSetLawTolerance(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetLawTolerance_C", (SNES, PetscReal), (snes, rtol));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetLawTolerance_SSStar(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscCheck(rtol >= 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_law_rtol %g must be in (0, 1), or 0 for max(-snes_rtol, 1e-8)", (double)rtol);
+  ((SNES_SSStar *)snes->data)->lawRtol = rtol;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarGetLawResidual - the law residual of the last iterate as the output writes it (docs/derivation.md
+   section 12), the tolerance it was held to, and its scales
+
+   Not Collective
+
+   Input Parameter:
+.  snes - the SNES
+
+   Output Parameters:
++  residual - rho: every contact point's (w, r) lies within rho U, rho F of a pair satisfying the law, the other dofs are
+              in equilibrium to rho F (NULL if not wanted)
+.  tol      - the law tolerance (SNESSSStarSetLawTolerance()): a converged solve has residual <= tol (NULL if not wanted)
+.  U        - the displacement scale: the largest relative displacement, or displacement in the solve (NULL if not wanted)
+-  F        - the force scale: the largest contact force (NULL if not wanted)
+
+   Level: intermediate
+
+.seealso: `SNESSSStarSetLawTolerance()`, `SNESSSStarGetTolerance()`
+@*/
+PetscErrorCode SNESSSStarGetLawResidual(SNES snes, PetscReal *residual, PetscReal *tol, PetscReal *U, PetscReal *F)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscUseMethod(snes, "SNESSSStarGetLawResidual_C", (SNES, PetscReal *, PetscReal *, PetscReal *, PetscReal *), (snes, residual, tol, U, F));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarGetLawResidual_SSStar(SNES snes, PetscReal *residual, PetscReal *tol, PetscReal *U, PetscReal *F)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+
+  PetscFunctionBegin;
+  if (residual) *residual = ss->lawResidual;
+  if (tol) *tol = SNESSSStarLawTolerance(snes);
+  if (U) *U = ss->lawDisplacement;
+  if (F) *F = ss->lawForce;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   SNESSSStarSetKSPRtolMax - whole body (reduction none): the loosest relative tolerance of the linear solve of a
+   Newton step (inexact Newton). The tolerance of step k is min(rtol, ||z_k||/||z_0||) while no remedy of the
+   globalization acted, with an absolute floor of a tenth of the stopping threshold; once one did, and for a step whose
+   full step fails the line search, the floor alone; -ksp_rtol fixes it instead.
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  rtol - in (0, 1) (default 0.1)
+
+   Options Database Key:
+.  -snes_ssstar_ksp_rtol_max <rtol> - the tolerance
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetPCReuse()`
+@*/
+PetscErrorCode SNESSSStarSetKSPRtolMax(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetKSPRtolMax_C", (SNES, PetscReal), (snes, rtol));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetKSPRtolMax_SSStar(SNES snes, PetscReal rtol)
+{
+  PetscFunctionBegin;
+  PetscCheck(rtol > 0 && rtol < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_ksp_rtol_max %g must be in (0, 1)", (double)rtol);
+  ((SNES_SSStar *)snes->data)->etaMax = rtol;
+  PetscFunctionReturn(0);
+}
+
+/* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
+static const SSStarComposed Composed[] = {
+    {"SNESSSStarSetScaling_C", (PetscVoidFunction)SNESSSStarSetScaling_SSStar},
+    {"SNESSSStarGetScaling_C", (PetscVoidFunction)SNESSSStarGetScaling_SSStar},
+    {"SNESSSStarSetStateTolerance_C", (PetscVoidFunction)SNESSSStarSetStateTolerance_SSStar},
+    {"SNESSSStarGetStates_C", (PetscVoidFunction)SNESSSStarGetStates_SSStar},
+    {"SNESSSStarSetLawTolerance_C", (PetscVoidFunction)SNESSSStarSetLawTolerance_SSStar},
+    {"SNESSSStarGetLawResidual_C", (PetscVoidFunction)SNESSSStarGetLawResidual_SSStar},
+    {"SNESSSStarSetKSPRtolMax_C", (PetscVoidFunction)SNESSSStarSetKSPRtolMax_SSStar},
+};
+
+PetscErrorCode SNESSSStarComposeNodeSteps(SNES snes, PetscBool on)
+{
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarComposeTable(snes, Composed, PETSC_STATIC_ARRAY_LENGTH(Composed), on));
+  PetscFunctionReturn(0);
+}

@@ -10,18 +10,18 @@ PETSC_EXTERN PetscLogEvent SSSTAR_ApproxStep, SSSTAR_NewtonStep, SSSTAR_LineSear
 PETSC_EXTERN PetscLogEvent SSSTAR_NewtonAssemble, SSSTAR_NewtonFactor, SSSTAR_NewtonKrylov;
 
 /*
-   The Newton step (newton.c and one file per implementation, newtonimpl.h, registered by name): for the per-node
-   blocks S, T of docs/derivation.md section 5 it solves the Newton system on the operator A of the solve (P, or K on
+   The Newton step (newton/: newton.c and one file per implementation, newtonimpl.h, registered by name): for the per-node
+   blocks S, T of docs/derivation.md section 5 it solves the Newton system on the stiffness A of the solve (P, or K on
    the whole body) and returns du in the global frame. Created with the SNES (it keeps the settings); each SNESSolve
-   gives it the operator, the name of the implementation that fits it and the contact nodes' layout. Counts are of the
+   gives it the stiffness A, the name of the implementation that fits it and the contact nodes' layout. Counts are of the
    current SNESSolve.
 */
-#define SSSTARNEWTONDENSE  "dense"  /* dense P: known dofs eliminated, LU of the rest, GMRES on an older LU        */
-#define SSSTARNEWTONSPARSE "sparse" /* sparse P (the user's): the Newton matrix factored by the SNES's KSP         */
-#define SSSTARNEWTONFULL   "full"   /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
+#define SSSTARNEWTONDENSE     "dense"     /* dense P: known dofs eliminated, LU of the rest, GMRES on an older LU        */
+#define SSSTARNEWTONSPARSE    "sparse"    /* sparse P (the user's): the Newton matrix factored by the SNES's KSP         */
+#define SSSTARNEWTONWHOLEBODY "wholebody" /* the whole body: K with the contact rows, Krylov + algebraic multigrid      */
 
 /*
-   K's null space (floating.c): the rigid-body motions of the bodies held by contact alone, as declared on K
+   K's null space (floating/floating.c): the rigid-body motions of the bodies held by contact alone, as declared on K
    (MatSetNullSpace()), and what the iteration derives from them (docs/derivation.md section 14): whether the friction
    laws can balance the load at all, the motions a Newton step's states leave free, the least-norm solution
 */
@@ -45,14 +45,14 @@ typedef struct {
   PetscReal  direction[3]; /* the direction it slides in at that body's contact points (global axes, unit)      */
   PetscReal  translation[3]; /* that body's mean translation along the motion, unit                           */
   PetscReal  unbalanced; /* the unbalanced part of the load, relative to its part on the motions             */
-} SSStarKernel;
+} SSStarFloating;
 
-/* Where the contact nodes are in the operator's vectors, their frames, and K's null space */
+/* Where the contact nodes are in A's vectors, their frames, and K's null space */
 typedef struct {
   PetscInt            nnodes; /* local contact nodes                                              */
-  const PetscInt     *dofs;   /* 3 per node: the local offsets of its dofs in the operator's vectors */
+  const PetscInt     *dofs;   /* 3 per node: the local offsets of its dofs in A's vectors       */
   const PetscReal    *frames; /* 9 per node (rows t1, t2, n), or NULL for identities                */
-  SSStarKernel       *kernel; /* floating bodies, or NULL                                           */
+  SSStarFloating     *floating; /* floating bodies, or NULL                                           */
 } SSStarContactLayout;
 
 /* Whether bytes per rank fit the memory limit (GB per rank, 0: each node's MemAvailable): the reductions' check (src/reduction) */
@@ -84,7 +84,8 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
-PETSC_INTERN PetscErrorCode    SSStarNewtonSetOperator(SSStarNewton, const char[], Mat, PetscReal, const SSStarContactLayout *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetStiffness(SSStarNewton, const char[], Mat, PetscReal, const SSStarContactLayout *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonUpdateStiffness(SSStarNewton, const char[], Mat, const SSStarContactLayout *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetScaling(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetTolerances(SSStarNewton, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
@@ -100,7 +101,7 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonDestroy(SSStarNewton *);
 /*
    The contact (contact.c): what the user declared (the contact points with their rows of the contact operator B, the
    friction laws and their parameters) and what the solver derives from it per node. A point i has three own dofs and
-   w_i = B_i u + g_i in its frame (t1, t2, n), w_i3 >= 0 (operator.c). SNESSSStarSetContactNodes() declares points
+   w_i = B_i u + g_i in its frame (t1, t2, n), w_i3 >= 0 (contactoperator.c). SNESSSStarSetContactNodes() declares points
    against rigid planes: B's rows are built from the normals (each node's own dofs turned into its frame).
 */
 
@@ -110,7 +111,7 @@ typedef struct {
   PetscInt  size;    /* values per node: 1, or 3 for a direction                   */
   PetscBool set;     /* value is the default of the nodes without their own         */
   PetscReal value[3];
-  Vec       perNode; /* size entries per contact node (PETSC_DEFAULT: the default), or NULL */
+  Vec       perNode; /* size entries per contact node (SSSTAR_NOT_GIVEN: the default), or NULL */
 } SSStarLawSetting;
 
 typedef struct {
@@ -126,6 +127,8 @@ typedef struct {
   PetscInt          nsettings; /* the law parameters declared                                          */
   SSStarLawSetting *settings;
   PetscObjectState  declared;  /* bumped by every setter: the per-node data are rebuilt when it moved  */
+  PetscErrorCode  (*update)(SNES, Vec, void *); /* SNESSSStarSetContactUpdate(): declares the contact measured at an iterate, or NULL */
+  void             *updateCtx;
 
   /* derived, in the solver's node order (nodes sorted by their first dof) */
   PetscObjectState built;       /* value of declared the per-node data were built for                  */
@@ -153,16 +156,21 @@ PETSC_INTERN PetscErrorCode SSStarContactSetLaw(SSStarContact *, const char[]);
 PETSC_INTERN PetscErrorCode SSStarContactSetParameter(MPI_Comm, SSStarContact *, const char[], PetscInt, const PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarContactGetParameter(SSStarContact *, const char[], PetscInt *, PetscReal[], PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarContactViewParameters(SSStarContact *, PetscViewer);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactNodes_SSStar(SNES, IS, Vec, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactOperator_SSStar(SNES, IS, Mat, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetNodeLawParameter_SSStar(SNES, const char[], Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarSetNodeFrictionLaws_SSStar(SNES, PetscInt, const PetscInt[]);
-PETSC_INTERN PetscErrorCode SNESSSStarGetNodeFrictionLaws_SSStar(SNES, PetscInt, PetscInt[]);
-PETSC_INTERN PetscErrorCode SNESSSStarGetNodeLawParameter_SSStar(SNES, const char[], PetscInt, PetscReal[]);
-PETSC_INTERN PetscErrorCode SNESSSStarSetContactOffsets_SSStar(SNES, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactSetUpOffsets(MPI_Comm, SSStarContact *, PetscReal *);
-/* operator.c: the frames and scales of the points from B, and the change of variables T */
-PETSC_INTERN PetscErrorCode SSStarContactBuildOperator(MPI_Comm, SSStarContact *, Mat, Vec);
+/* contact.c's checks and helpers of a declaration, shared with friction.c (the laws and their parameters) */
+#define SSSTAR_MESSAGE_LEN 512 /* the message of the first failed check of this rank; checks after it are skipped */
+PETSC_INTERN PetscErrorCode SSStarContactCheckNodeVector(MPI_Comm, Vec, PetscInt, PetscInt, const char[]);
+PETSC_INTERN PetscErrorCode SSStarContactCheckNodeArrays(SNES, SSStarContact *, PetscInt, const char[]);
+PETSC_INTERN PetscErrorCode SSStarContactReplaceVec(Vec *, Vec);
+PETSC_INTERN PetscErrorCode SSStarContactDeclaredNodes(SSStarContact *, PetscInt *);
+PETSC_INTERN PetscErrorCode SSStarContactFindSetting(SSStarContact *, const char[], SSStarLawSetting **);
+/* Every declaration change invalidates the per-node data and the problem */
+static inline void SSStarContactDeclared(SSStarContact *ct)
+{
+  ct->declared++;
+}
+/* contactoperator.c: the frames and scales of the points from B, and the change of variables T */
+PETSC_INTERN PetscErrorCode SSStarContactOperatorSetUp(MPI_Comm, SSStarContact *, Mat, Vec);
 PETSC_INTERN PetscErrorCode SSStarContactTransformStiffness(SSStarContact *, Mat, Mat *);
 PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, Vec);
 
@@ -175,7 +183,9 @@ PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, 
      whole body, a Schur reduction of K:  A = P = K_CC - K_CI K_II^-1 K_IC, load f, u = u_C
      whole body, reduction none:          A = K, load b, u = the whole displacement (P never formed)
 
-   It is kept while K and the declaration are unchanged.
+   It is kept while K and the declaration are unchanged. A residual treated as nonlinear (nonlinear.c, docs/derivation.md
+   section 17) has c(u) = T^T F(T u) from F itself and A = T^T J T with J evaluated again at the iterates: on the whole
+   body (reduction none) or in the reduced use, never through a Schur reduction.
 */
 typedef struct {
   /* settings */
@@ -188,7 +198,7 @@ typedef struct {
   PetscObjectState Kstate;
   PetscReal        meanDiag;        /* mean of the diagonal of K_CC (P in the reduced use)                  */
   PetscReal        maxRowSum;       /* largest sum |K_ij| of a contact row: a bound of lambda_max(P)        */
-  Mat              A;               /* the operator: P, or K (reduction none)                               */
+  Mat              A;               /* the stiffness the iteration runs on: P, or K (reduction none)        */
   Vec              b, bw, f;        /* the whole load b = -F(0), T^T b, and A's load f (reduced, or bw)     */
   PetscBool        wholeBody;       /* A is K: the free dofs are unknowns too (the reduction says)          */
   PetscObjectState built;           /* the contact's built state it was set up for                          */
@@ -196,7 +206,18 @@ typedef struct {
   const char      *newtonType;      /* the Newton step that fits A                                          */
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
-  SSStarKernel     kernel;          /* K's null space: the bodies held by contact alone                      */
+  SSStarFloating   floating;        /* K's null space: the bodies held by contact alone                      */
+
+  /* the residual (nonlinear.c, docs/derivation.md section 17) */
+  PetscBool        affineSet, affineDeclared; /* SNESSSStarSetAffine() (unset: affine iff F is SNESSSStarSetLinearProblem()'s) */
+  PetscBool        affine;          /* this solve's F is affine: its Jacobian is evaluated once                */
+  PetscBool        nonlinear;       /* this solve iterates on F itself: not affine, or the contact measured at the iterates */
+  Vec              x, Fx, v;        /* an iterate as the SNES vector, F there, and T^T F (work)              */
+  Vec              xJ, xMeasured;   /* where the Jacobian was evaluated last, where the contact was measured last */
+  PetscInt         jacobians;       /* Jacobian evaluations of this solve (the set-up's included)            */
+  PetscInt         measures;        /* contact updates of this solve                                         */
+  PetscReal        affineMismatch;  /* an affine residual at the solution: max |F - the model's c| / its force scale */
+  PetscInt         builds;          /* times A was built (K reduced, or taken whole): the progress line's    */
 } SSStarProblem;
 
 PETSC_INTERN PetscErrorCode SSStarProblemSetUp(SNES, SSStarContact *, SSStarProblem *);
@@ -207,10 +228,30 @@ PETSC_INTERN PetscErrorCode SSStarProblemSetReductionType(SSStarProblem *, const
 PETSC_INTERN PetscErrorCode SSStarProblemGetReductionType(SSStarProblem *, const char *[]);
 PETSC_INTERN PetscErrorCode SSStarProblemView(SSStarContact *, SSStarProblem *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarProblemReset(SSStarProblem *);
+PETSC_INTERN PetscErrorCode SSStarProblemIterateVector(SSStarContact *, SSStarProblem *, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemFunctionResidual(SNES, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemComputeJacobian(SNES, Vec, Mat *);
+PETSC_INTERN PetscErrorCode SSStarProblemTakeJacobian(SNES, SSStarContact *, SSStarProblem *, Mat);
+PETSC_INTERN PetscErrorCode SSStarProblemTakeMeasuredContact(SNES, SSStarContact *, SSStarProblem *, PetscBool *, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarProblemIsAffine(SNES, SSStarProblem *, PetscBool *);
+
+/*
+   The residual treated as nonlinear (nonlinear.c, docs/derivation.md section 17): c(u) from F itself (problem.c's
+   SSStarProblemFunctionResidual()), the Jacobian evaluated again at the iterates (-snes_lag_jacobian), the contact
+   measured again at them (SNESSSStarSetContactUpdate), and a residual declared affine checked at the solution
+*/
+PETSC_INTERN PetscErrorCode SSStarNonlinearMeasureAtStart(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearBegin(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearMeasureContact(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearJacobian(SNES, PetscInt);
+PETSC_INTERN PetscErrorCode SSStarNonlinearCheckAffine(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearView(SNES, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarNonlinearFormatCounts(SNES, char[], size_t);
+PETSC_INTERN PetscErrorCode SNESSSStarComposeNonlinear(SNES, PetscBool);
 
 /*
    The globalization (globalization.c): damped steps on the merit function ||z||, detection of cycles and
-   stagnation, and the remedies of SSStarRemedy. README, "When it does not converge".
+   stagnation, and the remedies of SSStarRemedy. docs/guide/converged.md, "When it does not converge".
 */
 typedef enum {
   SSSTAR_DETECTED_NONE,
@@ -278,7 +319,7 @@ typedef struct {
   SSStarState *userStates;                 /* the same in the user's node order                     */
   PetscInt     counts[SSSTAR_NUM_STATES];  /* global counts per state                               */
   PetscReal   *S, *T;                      /* blocks of the Newton system, 9 per node               */
-  /* in the layout of the operator's vectors (the contact nodes' entries in the global frame, unless said) */
+  /* in the layout of A's vectors (the contact nodes' entries in the global frame, unless said) */
   Vec          u, c, z, y, dv;             /* u, c = A u - f, dv; z, y: the nodes' frames at the contact dofs */
   Vec          ut, ct, ua, ca;             /* trial iterates and their A u - f: the full step, a damped one  */
   Vec          d, b;                       /* 3 per node, the nodes' frames                                 */
@@ -287,7 +328,8 @@ typedef struct {
 
   /* -snes_ssstar_monitor_progress: when the solve started, and the time, Krylov iterations, LUs (multigrids) at the last iterate */
   PetscLogDouble tStart, tLast;
-  PetscInt       krylovLast, factorizationsLast;
+  PetscInt       krylovLast, factorizationsLast, jacobiansLast;
+  PetscInt       buildsShown; /* the problem's builds the progress lines have reported */
 } SNES_SSStar;
 
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */
@@ -308,17 +350,39 @@ PETSC_INTERN void           SNESSSStarNodeRotate(const SSStarContact *, const SS
 PETSC_INTERN void           SNESSSStarNodeIterate(const SSStarContact *, const SSStarProblem *, PetscInt, const PetscScalar *, PetscReal[3]);
 PETSC_INTERN SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *, PetscInt, PetscReal);
 
-/* floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 14) */
-PETSC_INTERN PetscErrorCode SSStarKernelSetUp(SSStarContact *, Mat, SSStarKernel *);
-PETSC_INTERN PetscErrorCode SSStarKernelFreeMotions(SSStarKernel *, const unsigned char[], const PetscReal[]);
-PETSC_INTERN PetscErrorCode SSStarKernelLeastNorm(SSStarKernel *, Vec);
-PETSC_INTERN PetscErrorCode SSStarKernelView(SSStarKernel *, PetscViewer);
-PETSC_INTERN PetscErrorCode SSStarKernelReset(SSStarKernel *);
+/* floating/: floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 14) */
+PETSC_INTERN PetscErrorCode SSStarFloatingSetUp(SSStarContact *, Mat, SSStarFloating *);
+PETSC_INTERN PetscErrorCode SSStarFloatingFreeMotions(SSStarFloating *, const unsigned char[], const PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarFloatingLeastNorm(SSStarFloating *, Vec);
+PETSC_INTERN PetscErrorCode SSStarFloatingView(SSStarFloating *, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarFloatingReset(SSStarFloating *);
 PETSC_INTERN PetscErrorCode SNESSSStarCheckEquilibrium(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarExtendFreeStep(SNES);
 
-/* accessors.c: the type's composed functions (SNESSSStar*_C) on and off */
-PETSC_INTERN PetscErrorCode SNESSSStarComposeFunctions(SNES, PetscBool);
+/*
+   The type's implementations of the public functions (SNESSSStar*_C), each beside its public function in the file of
+   its concept, composed on the SNES by that file's table: on (SNESCreate_SSStar()) and off (SNESDestroy_SSStar()).
+   Setters are no-ops on a SNES of another type (PetscTryMethod), so a program may declare its contact nodes and still
+   run with -snes_type ksponly. Every collective entry checks its input on every rank (SSStarCheckAllRanks()).
+*/
+typedef struct {
+  const char       *name;
+  PetscVoidFunction fn;
+} SSStarComposed;
+
+static inline PetscErrorCode SNESSSStarComposeTable(SNES snes, const SSStarComposed table[], size_t n, PetscBool on)
+{
+  PetscFunctionBegin;
+  for (size_t k = 0; k < n; k++) PetscCall(PetscObjectComposeFunction((PetscObject)snes, table[k].name, on ? table[k].fn : NULL));
+  PetscFunctionReturn(0);
+}
+PETSC_INTERN PetscErrorCode SNESSSStarComposeContact(SNES, PetscBool);       /* contact.c       */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeFriction(SNES, PetscBool);      /* friction.c      */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeProblem(SNES, PetscBool);       /* problem.c       */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeNewton(SNES, PetscBool);        /* newton/newton.c */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeNodeSteps(SNES, PetscBool);     /* nodesteps.c     */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeGlobalization(SNES, PetscBool); /* globalization.c */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeFloating(SNES, PetscBool);      /* floating/balance.c */
 /* view.c: options, -snes_view, -snes_converged_reason's line */
 PETSC_INTERN PetscErrorCode SNESSetFromOptions_SSStar(SNES, PetscOptionItems *);
 PETSC_INTERN PetscErrorCode SNESView_SSStar(SNES, PetscViewer);

@@ -75,7 +75,7 @@ static PetscErrorCode ListParameters(void)
    solver, SNESSSStarSetLawParameter()). A law of ssstar is one file in src/snes/impls/ssstar/laws/ plus its
    registration in lawregall.c (its declaration and one line in SSStarLawRegisterAll()); the solver's and the scenes'
    options (-snes_ssstar_<parameter>, -friction_law_<G>, -<parameter>_<G>), their checks, -help, the views, the output
-   (/contact/friction_law, /contact/<parameter>) and the Python module follow from the table (README "Adding a friction
+   (/contact/friction_law, /contact/<parameter>) and the Python module follow from the table (docs/guide/own-program.md, "Adding a friction
    law").
 
    Level: advanced
@@ -308,6 +308,17 @@ PetscErrorCode SSStarLawGetParameter(const char name[], const SSStarLawParameter
       PetscCall(PetscStrlcat(list, ")", sizeof(list)));
     }
   SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_UNKNOWN_TYPE, "No friction law has a parameter %s: the parameters are %s", name, list);
+}
+
+/* What is wrong with the values of a parameter ("-0.1: the friction coefficient must be a number >= 0"), or "" */
+PetscErrorCode SSStarLawCheckValues(const SSStarLawParameter *par, const PetscReal v[], char msg[], size_t len)
+{
+  PetscFunctionBegin;
+  msg[0] = 0;
+  if (par->kind == SSSTAR_LAW_DIRECTION) {
+    if (PetscIsInfOrNanReal(v[0]) || PetscIsInfOrNanReal(v[1]) || PetscIsInfOrNanReal(v[2]) || (v[0] == 0 && v[1] == 0 && v[2] == 0)) PetscCall(PetscSNPrintf(msg, len, "%g,%g,%g: the %s must be a nonzero vector", (double)v[0], (double)v[1], (double)v[2], par->description));
+  } else if (PetscIsInfOrNanReal(v[0]) || v[0] < 0) PetscCall(PetscSNPrintf(msg, len, "%g: the %s must be a number >= 0", (double)v[0], par->description));
+  PetscFunctionReturn(0);
 }
 
 /*@C

@@ -1,5 +1,5 @@
 /*
-   The whole body's Newton matrix without a copy of K (newton_full.c): it differs from K only in the entries of the
+   The whole body's Newton matrix without a copy of K (newton_wholebody.c): it differs from K only in the entries of the
    contact rows and the contact columns (the "cross"), so it is formed in K's own storage for each linear solve and
    K's entries are put back after it, bit for bit. With Q the rotation into the nodes' frames at the contact dofs
    (identity elsewhere),
@@ -12,15 +12,15 @@
    contact dofs: the cross again). K must be AIJ with each contact node's rows and columns complete 3 x 3 blocks (the
    scenes assemble it so); any other K is copied once into an AIJ matrix with those blocks completed by zeros.
 
-   The matrix's state tells PCSetUp() whether the operator changed: every Newton matrix gets a state of its own, and
+   The matrix's state tells PCSetUp() whether the Newton matrix changed: every Newton matrix gets a state of its own, and
    K gets its own state back with its entries, so that the solver does not take the restored K for a new one.
 */
 #include "newtonimpl.h"
 
 #define CROSS_INFO 5 /* per dof, to the ranks that hold it as a ghost column: node key, component, R row */
 
-struct _n_SSStarFullMatrix {
-  Mat              A;         /* the operator K (a reference)                                                   */
+struct _n_SSStarWholeBodyMatrix {
+  Mat              A;         /* the stiffness K (a reference)                                                   */
   Mat              K;         /* where the Newton matrix is formed: A, or an AIJ copy of it                   */
   PetscBool        inPlace;   /* K is A: its entries are put back after every solve                           */
   Mat              block[2];  /* K's diagonal and off-diagonal blocks (block[1] NULL on one rank)             */
@@ -42,19 +42,19 @@ struct _n_SSStarFullMatrix {
 };
 
 /* R_b of a column node n (NULL: identity) */
-static inline const PetscReal *Frame(SSStarFullMatrix fm, PetscInt n)
+static inline const PetscReal *Frame(SSStarWholeBodyMatrix wm, PetscInt n)
 {
-  return fm->hasFrames ? &fm->frames[9 * n] : NULL;
+  return wm->hasFrames ? &wm->frames[9 * n] : NULL;
 }
 
 /*
    Per ghost column of K (block[1]): its contact node (>= nnodes: numbered after the local ones) and component, or -1;
-   the ghost nodes' frames into fm->frames. Each rank sends, per dof it owns, the key of its node (the global index
+   the ghost nodes' frames into wm->frames. Each rank sends, per dof it owns, the key of its node (the global index
    of the node's first dof), the component and the row of R.
 */
-static PetscErrorCode GhostColumns(SSStarFullMatrix fm, const SSStarContactLayout *L, PetscInt **node, PetscInt **comp, PetscInt *nghost)
+static PetscErrorCode GhostColumns(SSStarWholeBodyMatrix wm, const SSStarContactLayout *L, PetscInt **node, PetscInt **comp, PetscInt *nghost)
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)fm->K);
+  MPI_Comm           comm = PetscObjectComm((PetscObject)wm->K);
   const PetscInt    *garray;
   PetscInt           m, rstart, nB = 0, *keys, nkeys = 0;
   Vec                info, ghost;
@@ -65,10 +65,10 @@ static PetscErrorCode GhostColumns(SSStarFullMatrix fm, const SSStarContactLayou
 
   PetscFunctionBegin;
   *nghost = 0;
-  PetscCall(MatMPIAIJGetSeqAIJ(fm->K, NULL, NULL, &garray));
-  PetscCall(MatGetLocalSize(fm->block[1], NULL, &nB));
-  PetscCall(MatGetLocalSize(fm->K, &m, NULL));
-  PetscCall(MatGetOwnershipRange(fm->K, &rstart, NULL));
+  PetscCall(MatMPIAIJGetSeqAIJ(wm->K, NULL, NULL, &garray));
+  PetscCall(MatGetLocalSize(wm->block[1], NULL, &nB));
+  PetscCall(MatGetLocalSize(wm->K, &m, NULL));
+  PetscCall(MatGetOwnershipRange(wm->K, &rstart, NULL));
   PetscCall(VecCreateMPI(comm, CROSS_INFO * m, PETSC_DETERMINE, &info));
   PetscCall(VecSet(info, -1.0));
   PetscCall(VecGetArray(info, &a));
@@ -97,7 +97,7 @@ static PetscErrorCode GhostColumns(SSStarFullMatrix fm, const SSStarContactLayou
     if (PetscRealPart(g[CROSS_INFO * j]) >= 0) keys[nkeys++] = (PetscInt)PetscRealPart(g[CROSS_INFO * j]);
   PetscCall(PetscSortRemoveDupsInt(&nkeys, keys));
   *nghost = nkeys;
-  if (fm->hasFrames) PetscCall(PetscRealloc(sizeof(PetscReal) * (9 * (fm->nnodes + nkeys) + 1), &fm->frames));
+  if (wm->hasFrames) PetscCall(PetscRealloc(sizeof(PetscReal) * (9 * (wm->nnodes + nkeys) + 1), &wm->frames));
   for (PetscInt j = 0; j < nB; j++) {
     const PetscScalar *e = &g[CROSS_INFO * j];
     PetscInt           at;
@@ -105,10 +105,10 @@ static PetscErrorCode GhostColumns(SSStarFullMatrix fm, const SSStarContactLayou
     (*node)[j] = (*comp)[j] = -1;
     if (PetscRealPart(e[0]) < 0) continue;
     PetscCall(PetscFindInt((PetscInt)PetscRealPart(e[0]), nkeys, keys, &at));
-    (*node)[j] = fm->nnodes + at;
+    (*node)[j] = wm->nnodes + at;
     (*comp)[j] = (PetscInt)PetscRealPart(e[1]);
-    if (fm->hasFrames)
-      for (PetscInt c = 0; c < 3; c++) fm->frames[9 * (fm->nnodes + at) + 3 * (*comp)[j] + c] = PetscRealPart(e[2 + c]);
+    if (wm->hasFrames)
+      for (PetscInt c = 0; c < 3; c++) wm->frames[9 * (wm->nnodes + at) + 3 * (*comp)[j] + c] = PetscRealPart(e[2 + c]);
   }
   PetscCall(VecRestoreArrayRead(ghost, &g));
   PetscCall(VecDestroy(&ghost));
@@ -131,7 +131,7 @@ static int CompareColumnEntry(const void *x, const void *y)
    The cross of K: its positions and values, the column triples, the row triples and the diagonal blocks.
    complete: every contact node's rows have the same columns and every row has all 3 columns of a contact node or none.
 */
-static PetscErrorCode BuildCross(SSStarFullMatrix fm, const SSStarContactLayout *L, PetscBool *complete)
+static PetscErrorCode BuildCross(SSStarWholeBodyMatrix wm, const SSStarContactLayout *L, PetscBool *complete)
 {
   const PetscInt    *ia[2] = {NULL, NULL}, *ja[2] = {NULL, NULL};
   const PetscScalar *va[2] = {NULL, NULL};
@@ -141,24 +141,24 @@ static PetscErrorCode BuildCross(SSStarFullMatrix fm, const SSStarContactLayout 
   PetscBool          done, ok = PETSC_TRUE;
 
   PetscFunctionBegin;
-  PetscCall(MatGetLocalSize(fm->K, &m, NULL));
-  fm->nnodes    = L->nnodes;
-  fm->hasFrames = (PetscBool)(L->frames != NULL);
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &fm->hasFrames, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)fm->K)));
-  if (fm->hasFrames) {
-    PetscCall(PetscMalloc1(9 * L->nnodes + 1, &fm->frames));
-    if (L->frames) PetscCall(PetscArraycpy(fm->frames, L->frames, 9 * L->nnodes));
+  PetscCall(MatGetLocalSize(wm->K, &m, NULL));
+  wm->nnodes    = L->nnodes;
+  wm->hasFrames = (PetscBool)(L->frames != NULL);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &wm->hasFrames, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)wm->K)));
+  if (wm->hasFrames) {
+    PetscCall(PetscMalloc1(9 * L->nnodes + 1, &wm->frames));
+    if (L->frames) PetscCall(PetscArraycpy(wm->frames, L->frames, 9 * L->nnodes));
     else
-      for (PetscInt k = 0; k < 9 * L->nnodes; k++) fm->frames[k] = (PetscReal)(k % 4 == 0);
+      for (PetscInt k = 0; k < 9 * L->nnodes; k++) wm->frames[k] = (PetscReal)(k % 4 == 0);
   }
-  nb = fm->block[1] ? 2 : 1;
-  if (fm->block[1]) PetscCall(GhostColumns(fm, L, &ghostNode, &ghostComp, &nghost));
+  nb = wm->block[1] ? 2 : 1;
+  if (wm->block[1]) PetscCall(GhostColumns(wm, L, &ghostNode, &ghostComp, &nghost));
   for (PetscInt b = 0; b < nb; b++) {
-    PetscCall(MatGetRowIJ(fm->block[b], 0, PETSC_FALSE, PETSC_FALSE, NULL, &ia[b], &ja[b], &done));
+    PetscCall(MatGetRowIJ(wm->block[b], 0, PETSC_FALSE, PETSC_FALSE, NULL, &ia[b], &ja[b], &done));
     PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "Cannot read the rows of K");
-    PetscCall(MatSeqAIJGetArrayRead(fm->block[b], &va[b]));
+    PetscCall(MatSeqAIJGetArrayRead(wm->block[b], &va[b]));
   }
-  fm->nz0 = ia[0][m];
+  wm->nz0 = ia[0][m];
   PetscCall(PetscMalloc3(m, &rowNode, m, &rowComp, 3 * L->nnodes, &rowStart));
   for (PetscInt j = 0; j < m; j++) rowNode[j] = rowComp[j] = -1;
   for (PetscInt i = 0; i < L->nnodes; i++)
@@ -183,8 +183,8 @@ static PetscErrorCode BuildCross(SSStarFullMatrix fm, const SSStarContactLayout 
 
           if (!contactRow && node < 0) continue;
           if (pass) {
-            fm->pos[ncross]  = b ? fm->nz0 + j : j;
-            fm->valK[ncross] = va[b][j];
+            wm->pos[ncross]  = b ? wm->nz0 + j : j;
+            wm->valK[ncross] = va[b][j];
           }
           if (node >= 0) {
             list[nlist].node    = node;
@@ -200,18 +200,18 @@ static PetscErrorCode BuildCross(SSStarFullMatrix fm, const SSStarContactLayout 
           break;
         }
         if (pass) {
-          for (PetscInt k = 0; k < 3; k++) fm->col[4 * ncol + k] = list[t + k].entry;
-          fm->col[4 * ncol + 3] = list[t].node;
+          for (PetscInt k = 0; k < 3; k++) wm->col[4 * ncol + k] = list[t + k].entry;
+          wm->col[4 * ncol + 3] = list[t].node;
         }
         ncol++;
       }
     }
     if (!ok) break;
     if (!pass) {
-      fm->ncross = ncross;
-      fm->ncol   = ncol;
-      PetscCall(PetscMalloc3(ncross, &fm->pos, ncross, &fm->valK, ncross, &fm->valM));
-      PetscCall(PetscMalloc1(4 * ncol, &fm->col));
+      wm->ncross = ncross;
+      wm->ncol   = ncol;
+      PetscCall(PetscMalloc3(ncross, &wm->pos, ncross, &wm->valK, ncross, &wm->valM));
+      PetscCall(PetscMalloc1(4 * ncol, &wm->col));
     }
   }
 
@@ -235,77 +235,77 @@ static PetscErrorCode BuildCross(SSStarFullMatrix fm, const SSStarContactLayout 
     nrow += len[0];
   }
   if (ok) {
-    fm->nrow = nrow;
-    PetscCall(PetscMalloc2(4 * nrow, &fm->row, 9 * L->nnodes, &fm->diag));
+    wm->nrow = nrow;
+    PetscCall(PetscMalloc2(4 * nrow, &wm->row, 9 * L->nnodes, &wm->diag));
     nrow = 0;
     for (PetscInt i = 0; i < L->nnodes; i++) {
       const PetscInt r0 = L->dofs[3 * i], len = ia[0][r0 + 1] - ia[0][r0] + (nb > 1 ? ia[1][r0 + 1] - ia[1][r0] : 0);
 
       for (PetscInt j = 0; j < len; j++, nrow++) {
-        for (PetscInt k = 0; k < 3; k++) fm->row[4 * nrow + k] = rowStart[3 * i + k] + j;
-        fm->row[4 * nrow + 3] = i;
+        for (PetscInt k = 0; k < 3; k++) wm->row[4 * nrow + k] = rowStart[3 * i + k] + j;
+        wm->row[4 * nrow + 3] = i;
       }
-      for (PetscInt l = 0; l < 9; l++) fm->diag[9 * i + l] = -1;
+      for (PetscInt l = 0; l < 9; l++) wm->diag[9 * i + l] = -1;
       for (PetscInt j = ia[0][r0]; j < ia[0][r0 + 1]; j++)
         if (rowNode[ja[0][j]] == i)
-          for (PetscInt k = 0; k < 3; k++) fm->diag[9 * i + 3 * k + rowComp[ja[0][j]]] = rowStart[3 * i + k] + j - ia[0][r0];
+          for (PetscInt k = 0; k < 3; k++) wm->diag[9 * i + 3 * k + rowComp[ja[0][j]]] = rowStart[3 * i + k] + j - ia[0][r0];
       for (PetscInt l = 0; l < 9; l++)
-        if (fm->diag[9 * i + l] < 0) ok = PETSC_FALSE;
+        if (wm->diag[9 * i + l] < 0) ok = PETSC_FALSE;
     }
   }
   for (PetscInt b = 0; b < nb; b++) {
-    PetscCall(MatSeqAIJRestoreArrayRead(fm->block[b], &va[b]));
-    PetscCall(MatRestoreRowIJ(fm->block[b], 0, PETSC_FALSE, PETSC_FALSE, NULL, &ia[b], &ja[b], &done));
+    PetscCall(MatSeqAIJRestoreArrayRead(wm->block[b], &va[b]));
+    PetscCall(MatRestoreRowIJ(wm->block[b], 0, PETSC_FALSE, PETSC_FALSE, NULL, &ia[b], &ja[b], &done));
   }
   PetscCall(PetscFree(list));
   PetscCall(PetscFree3(rowNode, rowComp, rowStart));
   PetscCall(PetscFree2(ghostNode, ghostComp));
-  PetscCall(MPIU_Allreduce(&ok, complete, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)fm->K)));
+  PetscCall(MPIU_Allreduce(&ok, complete, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)wm->K)));
   PetscFunctionReturn(0);
 }
 
 /* Writes one value per cross entry into K's storage */
-static PetscErrorCode WriteCross(SSStarFullMatrix fm, const PetscScalar v[])
+static PetscErrorCode WriteCross(SSStarWholeBodyMatrix wm, const PetscScalar v[])
 {
   PetscScalar *a[2] = {NULL, NULL};
 
   PetscFunctionBegin;
-  PetscCall(MatSeqAIJGetArray(fm->block[0], &a[0]));
-  if (fm->block[1]) PetscCall(MatSeqAIJGetArray(fm->block[1], &a[1]));
-  for (PetscInt e = 0; e < fm->ncross; e++) {
-    const PetscInt p = fm->pos[e];
+  PetscCall(MatSeqAIJGetArray(wm->block[0], &a[0]));
+  if (wm->block[1]) PetscCall(MatSeqAIJGetArray(wm->block[1], &a[1]));
+  for (PetscInt e = 0; e < wm->ncross; e++) {
+    const PetscInt p = wm->pos[e];
 
-    if (p < fm->nz0) a[0][p] = v[e];
-    else a[1][p - fm->nz0] = v[e];
+    if (p < wm->nz0) a[0][p] = v[e];
+    else a[1][p - wm->nz0] = v[e];
   }
-  if (fm->block[1]) PetscCall(MatSeqAIJRestoreArray(fm->block[1], &a[1]));
-  PetscCall(MatSeqAIJRestoreArray(fm->block[0], &a[0]));
+  if (wm->block[1]) PetscCall(MatSeqAIJRestoreArray(wm->block[1], &a[1]));
+  PetscCall(MatSeqAIJRestoreArray(wm->block[0], &a[0]));
   PetscFunctionReturn(0);
 }
 
 /* K's diagonal and off-diagonal blocks */
-static PetscErrorCode GetBlocks(SSStarFullMatrix fm)
+static PetscErrorCode GetBlocks(SSStarWholeBodyMatrix wm)
 {
   PetscBool mpi;
 
   PetscFunctionBegin;
-  PetscCall(PetscObjectBaseTypeCompare((PetscObject)fm->K, MATMPIAIJ, &mpi));
-  if (mpi) PetscCall(MatMPIAIJGetSeqAIJ(fm->K, &fm->block[0], &fm->block[1], NULL));
+  PetscCall(PetscObjectBaseTypeCompare((PetscObject)wm->K, MATMPIAIJ, &mpi));
+  if (mpi) PetscCall(MatMPIAIJGetSeqAIJ(wm->K, &wm->block[0], &wm->block[1], NULL));
   else {
-    fm->block[0] = fm->K;
-    fm->block[1] = NULL;
+    wm->block[0] = wm->K;
+    wm->block[1] = NULL;
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode FreeCross(SSStarFullMatrix fm)
+static PetscErrorCode FreeCross(SSStarWholeBodyMatrix wm)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFree3(fm->pos, fm->valK, fm->valM));
-  PetscCall(PetscFree(fm->col));
-  PetscCall(PetscFree2(fm->row, fm->diag));
-  PetscCall(PetscFree(fm->frames));
-  fm->ncross = fm->ncol = fm->nrow = 0;
+  PetscCall(PetscFree3(wm->pos, wm->valK, wm->valM));
+  PetscCall(PetscFree(wm->col));
+  PetscCall(PetscFree2(wm->row, wm->diag));
+  PetscCall(PetscFree(wm->frames));
+  wm->ncross = wm->ncol = wm->nrow = 0;
   PetscFunctionReturn(0);
 }
 
@@ -353,43 +353,43 @@ static PetscErrorCode CompletedCopy(Mat A, const SSStarContactLayout *L, Mat *K)
    The Newton matrix of A (K) for the contact nodes of the layout, formed in A's storage when A is AIJ with complete
    3 x 3 blocks at the contact nodes, else in a copy (CompletedCopy)
 */
-PetscErrorCode SSStarFullMatrixCreate(Mat A, const SSStarContactLayout *L, SSStarFullMatrix *fullm)
+PetscErrorCode SSStarWholeBodyMatrixCreate(Mat A, const SSStarContactLayout *L, SSStarWholeBodyMatrix *wholem)
 {
-  SSStarFullMatrix fm;
+  SSStarWholeBodyMatrix wm;
   PetscBool        isaij, complete = PETSC_FALSE;
 
   PetscFunctionBegin;
-  PetscCall(PetscNew(&fm));
+  PetscCall(PetscNew(&wm));
   PetscCall(PetscObjectReference((PetscObject)A));
-  fm->A = A;
+  wm->A = A;
   PetscCall(PetscObjectBaseTypeCompareAny((PetscObject)A, &isaij, MATSEQAIJ, MATMPIAIJ, ""));
   if (isaij) {
     PetscCall(PetscObjectReference((PetscObject)A));
-    fm->K       = A;
-    fm->inPlace = PETSC_TRUE;
-    PetscCall(GetBlocks(fm));
-    PetscCall(BuildCross(fm, L, &complete));
+    wm->K       = A;
+    wm->inPlace = PETSC_TRUE;
+    PetscCall(GetBlocks(wm));
+    PetscCall(BuildCross(wm, L, &complete));
   }
   if (!complete) {
-    PetscCall(FreeCross(fm));
-    PetscCall(MatDestroy(&fm->K));
-    PetscCall(CompletedCopy(A, L, &fm->K));
-    fm->inPlace = PETSC_FALSE;
-    PetscCall(GetBlocks(fm));
-    PetscCall(BuildCross(fm, L, &complete));
+    PetscCall(FreeCross(wm));
+    PetscCall(MatDestroy(&wm->K));
+    PetscCall(CompletedCopy(A, L, &wm->K));
+    wm->inPlace = PETSC_FALSE;
+    PetscCall(GetBlocks(wm));
+    PetscCall(BuildCross(wm, L, &complete));
     PetscCheck(complete, PetscObjectComm((PetscObject)A), PETSC_ERR_PLIB, "The Newton matrix's contact blocks are not complete after completion");
   }
-  PetscCall(PetscObjectStateGet((PetscObject)fm->K, &fm->stateK));
-  fm->stateM = fm->stateK;
-  *fullm     = fm;
+  PetscCall(PetscObjectStateGet((PetscObject)wm->K, &wm->stateK));
+  wm->stateM = wm->stateK;
+  *wholem     = wm;
   PetscFunctionReturn(0);
 }
 
-/* Whether the Newton matrix is formed in the operator's own storage (no copy of K) */
-PetscErrorCode SSStarFullMatrixInPlace(SSStarFullMatrix fm, PetscBool *inPlace)
+/* Whether the Newton matrix is formed in K's own storage (no copy of K) */
+PetscErrorCode SSStarWholeBodyMatrixInPlace(SSStarWholeBodyMatrix wm, PetscBool *inPlace)
 {
   PetscFunctionBegin;
-  *inPlace = fm->inPlace;
+  *inPlace = wm->inPlace;
   PetscFunctionReturn(0);
 }
 
@@ -398,28 +398,28 @@ PetscErrorCode SSStarFullMatrixInPlace(SSStarFullMatrix fm, PetscBool *inPlace)
    unit rows scaled by ig: with y and rhs the right-hand side rhs is updated as MatZeroRowsColumns() does; without
    them (the same step's matrix formed again) M keeps the state of that step's, so that its multigrid stays.
 */
-PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix fm, const PetscReal S[], const PetscReal T[], PetscReal ig, PetscInt nknown, const PetscInt known[], Vec y, Vec rhs, Mat *M)
+PetscErrorCode SSStarWholeBodyMatrixForm(SSStarWholeBodyMatrix wm, const PetscReal S[], const PetscReal T[], PetscReal ig, PetscInt nknown, const PetscInt known[], Vec y, Vec rhs, Mat *M)
 {
-  PetscScalar *v = fm->valM;
+  PetscScalar *v = wm->valM;
   PetscReal    SR[9];
 
   PetscFunctionBegin;
-  PetscCall(PetscArraycpy(v, fm->valK, fm->ncross));
-  for (PetscInt t = 0; t < fm->ncol; t++) { /* K Q^T */
-    const PetscInt  *e = &fm->col[4 * t];
-    const PetscReal *R = Frame(fm, e[3]);
+  PetscCall(PetscArraycpy(v, wm->valK, wm->ncross));
+  for (PetscInt t = 0; t < wm->ncol; t++) { /* K Q^T */
+    const PetscInt  *e = &wm->col[4 * t];
+    const PetscReal *R = Frame(wm, e[3]);
     PetscScalar      x[3];
 
     if (!R) continue;
     for (PetscInt k = 0; k < 3; k++) x[k] = v[e[k]];
     for (PetscInt l = 0; l < 3; l++) v[e[l]] = R[3 * l] * x[0] + R[3 * l + 1] * x[1] + R[3 * l + 2] * x[2];
   }
-  for (PetscInt t = 0, node = -1; t < fm->nrow; t++) { /* Shat Q (K Q^T) */
-    const PetscInt *e = &fm->row[4 * t];
+  for (PetscInt t = 0, node = -1; t < wm->nrow; t++) { /* Shat Q (K Q^T) */
+    const PetscInt *e = &wm->row[4 * t];
     PetscScalar     x[3];
 
     if (e[3] != node) {
-      const PetscReal *Si = &S[9 * e[3]], *R = Frame(fm, e[3]);
+      const PetscReal *Si = &S[9 * e[3]], *R = Frame(wm, e[3]);
 
       node = e[3];
       for (PetscInt k = 0; k < 3; k++)
@@ -428,45 +428,45 @@ PetscErrorCode SSStarFullMatrixForm(SSStarFullMatrix fm, const PetscReal S[], co
     for (PetscInt k = 0; k < 3; k++) x[k] = v[e[k]];
     for (PetscInt k = 0; k < 3; k++) v[e[k]] = SR[3 * k] * x[0] + SR[3 * k + 1] * x[1] + SR[3 * k + 2] * x[2];
   }
-  for (PetscInt i = 0; i < fm->nnodes; i++) /* + That / gamma */
-    for (PetscInt l = 0; l < 9; l++) v[fm->diag[9 * i + l]] += ig * T[9 * i + l];
-  PetscCall(WriteCross(fm, v));
-  if (!fm->holdsM) {
-    PetscCall(MatGetNullSpace(fm->K, &fm->nullK));
-    PetscCall(PetscObjectReference((PetscObject)fm->nullK));
-    PetscCall(MatSetNullSpace(fm->K, NULL));
+  for (PetscInt i = 0; i < wm->nnodes; i++) /* + That / gamma */
+    for (PetscInt l = 0; l < 9; l++) v[wm->diag[9 * i + l]] += ig * T[9 * i + l];
+  PetscCall(WriteCross(wm, v));
+  if (!wm->holdsM) {
+    PetscCall(MatGetNullSpace(wm->K, &wm->nullK));
+    PetscCall(PetscObjectReference((PetscObject)wm->nullK));
+    PetscCall(MatSetNullSpace(wm->K, NULL));
   }
-  PetscCall(MatZeroRowsColumns(fm->K, nknown, known, ig, y, rhs));
-  if (rhs) fm->stateM = PetscMax(fm->stateM, fm->stateK) + 1;
-  PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateM));
-  fm->holdsM = PETSC_TRUE;
-  *M         = fm->K;
+  PetscCall(MatZeroRowsColumns(wm->K, nknown, known, ig, y, rhs));
+  if (rhs) wm->stateM = PetscMax(wm->stateM, wm->stateK) + 1;
+  PetscCall(PetscObjectStateSet((PetscObject)wm->K, wm->stateM));
+  wm->holdsM = PETSC_TRUE;
+  *M         = wm->K;
   PetscFunctionReturn(0);
 }
 
 /* K's own entries and state back in its storage, after a linear solve with M */
-PetscErrorCode SSStarFullMatrixRestore(SSStarFullMatrix fm)
+PetscErrorCode SSStarWholeBodyMatrixRestore(SSStarWholeBodyMatrix wm)
 {
   PetscFunctionBegin;
-  if (!fm->holdsM) PetscFunctionReturn(0);
-  if (fm->inPlace) {
-    PetscCall(WriteCross(fm, fm->valK));
-    PetscCall(PetscObjectStateSet((PetscObject)fm->K, fm->stateK));
+  if (!wm->holdsM) PetscFunctionReturn(0);
+  if (wm->inPlace) {
+    PetscCall(WriteCross(wm, wm->valK));
+    PetscCall(PetscObjectStateSet((PetscObject)wm->K, wm->stateK));
   }
-  PetscCall(MatSetNullSpace(fm->K, fm->nullK));
-  PetscCall(MatNullSpaceDestroy(&fm->nullK));
-  fm->holdsM = PETSC_FALSE;
+  PetscCall(MatSetNullSpace(wm->K, wm->nullK));
+  PetscCall(MatNullSpaceDestroy(&wm->nullK));
+  wm->holdsM = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarFullMatrixDestroy(SSStarFullMatrix *fm)
+PetscErrorCode SSStarWholeBodyMatrixDestroy(SSStarWholeBodyMatrix *wm)
 {
   PetscFunctionBegin;
-  if (!*fm) PetscFunctionReturn(0);
-  PetscCall(SSStarFullMatrixRestore(*fm));
-  PetscCall(FreeCross(*fm));
-  PetscCall(MatDestroy(&(*fm)->K));
-  PetscCall(MatDestroy(&(*fm)->A));
-  PetscCall(PetscFree(*fm));
+  if (!*wm) PetscFunctionReturn(0);
+  PetscCall(SSStarWholeBodyMatrixRestore(*wm));
+  PetscCall(FreeCross(*wm));
+  PetscCall(MatDestroy(&(*wm)->K));
+  PetscCall(MatDestroy(&(*wm)->A));
+  PetscCall(PetscFree(*wm));
   PetscFunctionReturn(0);
 }

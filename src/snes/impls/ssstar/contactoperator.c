@@ -44,7 +44,7 @@ static PetscReal OrthogonalityDefect(const PetscReal R[9])
    naming the points, on every rank: a block at a point's own dofs that is not an invertible multiple of a rotation,
    and a point's own dofs among the dofs another point is compared with.
 */
-PetscErrorCode SSStarContactBuildOperator(MPI_Comm comm, SSStarContact *ct, Mat B, Vec x)
+PetscErrorCode SSStarContactOperatorSetUp(MPI_Comm comm, SSStarContact *ct, Mat B, Vec x)
 {
   PetscInt        rB, n = ct->nnodes, m, xstart, nmaster = 0, *dnz, *onz, xend;
   const PetscInt *idx;

@@ -3,7 +3,7 @@
 
 PetscBool SSStarNewtonRegisterAllCalled = PETSC_FALSE;
 
-/* Registers dense, sparse and full (SSStarInitializePackage() calls it) */
+/* Registers dense, sparse and wholebody (SSStarInitializePackage() calls it) */
 PetscErrorCode SSStarNewtonRegisterAll(void)
 {
   PetscFunctionBegin;
@@ -11,6 +11,6 @@ PetscErrorCode SSStarNewtonRegisterAll(void)
   SSStarNewtonRegisterAllCalled = PETSC_TRUE;
   PetscCall(SSStarNewtonRegister(SSSTARNEWTONDENSE, SSStarNewtonCreate_Dense));
   PetscCall(SSStarNewtonRegister(SSSTARNEWTONSPARSE, SSStarNewtonCreate_Sparse));
-  PetscCall(SSStarNewtonRegister(SSSTARNEWTONFULL, SSStarNewtonCreate_Full));
+  PetscCall(SSStarNewtonRegister(SSSTARNEWTONWHOLEBODY, SSStarNewtonCreate_WholeBody));
   PetscFunctionReturn(0);
 }

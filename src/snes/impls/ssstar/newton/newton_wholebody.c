@@ -10,7 +10,7 @@
    (MatZeroRowsColumns, unit rows scaled by 1/gamma). Interior and separated rows are K's; a sliding node's tangential
    rows add phi om times its normal row of K' and W/gamma (docs/derivation.md section 5): the only unsymmetric part. M
    differs from K only in the contact rows and columns: it is formed in K's own storage for each linear solve and K is
-   put back after it (fullmatrix.c), so the step holds no copy of K. The system is solved by the SNES's KSP: CG where
+   put back after it (wholebodymatrix.c), so the step holds no copy of K. The system is solved by the SNES's KSP: CG where
    it is symmetric, GMRES (right preconditioned) where it is not, both preconditioned by algebraic multigrid (PCGAMG
    with K's near-null space, the rigid-body modes, rotated like K'), to the tolerances the iteration sets (inexact
    Newton). The multigrid of an earlier step is kept while few nodes changed their known rows, and built anew
@@ -18,11 +18,11 @@
 
    Floating bodies (docs/derivation.md (14.5)): where the step's states leave rigid-body motions U free, the Krylov
    solver runs on M + Shat (c/gamma) U U^T (a shell: M and the low-rank term), preconditioned by the multigrid of M
-   with a small shift on the free motions' unknown contact dofs, which makes it regular: the preconditioned operator
+   with a small shift on the free motions' unknown contact dofs, which makes it regular: the preconditioned Newton matrix
    has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.
 */
 #include "newtonimpl.h"
-#include "../../../sys/meminfo.h"
+#include "../../../../sys/meminfo.h"
 
 /* GMRES's restart when ssstar chooses GMRES: restarts stall it on the hard steps, and its basis is affordable */
 #define SSSTAR_GMRES_RESTART 100
@@ -32,7 +32,7 @@
 #define SSSTAR_FREE_SHIFT (1e-2 * SSSTAR_FREE_STIFFNESS)
 
 typedef struct {
-  SSStarFullMatrix fm;          /* the Newton matrix in K's storage                                              */
+  SSStarWholeBodyMatrix wm;          /* the Newton matrix in K's storage                                              */
   MatNullSpace     nearNull;    /* K's near-null space in the nodes' frames, or NULL                             */
   Vec              rhs, dv;     /* of the step, dv = Q du                                                        */
   PetscInt         rstart;      /* first row of K on this rank                                                   */
@@ -46,11 +46,12 @@ typedef struct {
   PetscBool        plain;       /* the multigrid aggregates plainly: the smoothed one's set-up did not fit the memory */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
-  Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarFullMatrixForm)        */
+  Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
   Mat              shell;       /* floating bodies: M + the proximal term on the step's free motions             */
   unsigned char   *touched;     /* per local node: a free motion of the step moves it                            */
   PetscInt         pcFree;      /* free motions when the multigrid was built                                     */
-} Newton_Full;
+  PetscInt         indefinite;  /* steps CG stopped on with DIVERGED_INDEFINITE_PC since the set-up: GMRES since  */
+} Newton_WholeBody;
 
 /* dv = Q du: each contact node's 3 entries of a vector of K turned into its frame (R NULL: nothing to do) */
 static PetscErrorCode RotateToFrames(const SSStarContactLayout *L, Vec v)
@@ -95,7 +96,7 @@ static PetscErrorCode RotateBack(const SSStarContactLayout *L, Vec dv, Vec du)
 /* K's near-null space (the rigid-body modes a scene attaches to K), rotated like K' */
 static PetscErrorCode CreateNearNullSpace(SSStarNewton nt)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   MatNullSpace nsp;
   PetscBool    hasConstant;
   PetscInt     n;
@@ -112,7 +113,7 @@ static PetscErrorCode CreateNearNullSpace(SSStarNewton nt)
     PetscCall(VecCopy(vecs[k], rotated[k]));
     PetscCall(RotateToFrames(&nt->layout, rotated[k]));
   }
-  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)nt->A), hasConstant, n, rotated, &nf->nearNull));
+  PetscCall(MatNullSpaceCreate(PetscObjectComm((PetscObject)nt->A), hasConstant, n, rotated, &nw->nearNull));
   for (PetscInt k = 0; k < n; k++) PetscCall(VecDestroy(&rotated[k]));
   PetscCall(PetscFree(rotated));
   PetscFunctionReturn(0);
@@ -129,7 +130,7 @@ static PetscErrorCode CreateNearNullSpace(SSStarNewton nt)
 */
 static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   PetscOptions options = NULL; /* PCMG's levels read the default database, whatever the PC's */
   const char  *prefix  = ((PetscObject)pc)->prefix ? ((PetscObject)pc)->prefix : "";
   const char  *names[SSSTAR_SMOOTHER_OPTIONS] = {"mg_levels_ksp_type", "mg_levels_pc_type", "mg_levels_ksp_max_it", "mg_levels_pc_sor_diagonal_shift"};
@@ -155,7 +156,7 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
     PetscCall(PetscOptionsHasName(options, NULL, name, &given));
     if (given) continue;
     PetscCall(PetscOptionsSetValue(options, name, values[k]));
-    PetscCall(PetscStrallocpy(name, &nf->smoother[k]));
+    PetscCall(PetscStrallocpy(name, &nw->smoother[k]));
   }
   PetscFunctionReturn(0);
 }
@@ -168,7 +169,7 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   SNES_SSStar *ss = (SNES_SSStar *)nt->snes->data;
   PetscBool      isgamg, set, fits;
   PetscInt       m;
@@ -176,7 +177,7 @@ static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
   PetscLogDouble now = 0;
 
   PetscFunctionBegin;
-  nf->plain = PETSC_FALSE;
+  nw->plain = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &set));
   if (!isgamg || set) PetscFunctionReturn(0);
@@ -187,38 +188,39 @@ static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
   PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
   if (fits) PetscFunctionReturn(0);
   PetscCall(PCGAMGSetNSmooths(pc, 0));
-  nf->plain = PETSC_TRUE;
+  nw->plain = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
+static PetscErrorCode SSStarNewtonSetUp_WholeBody(SSStarNewton nt)
 {
-  Newton_Full               *nf  = (Newton_Full *)nt->data;
+  Newton_WholeBody               *nw  = (Newton_WholeBody *)nt->data;
   const SSStarContactLayout *L   = &nt->layout;
   KSP                        ksp = nt->snes->ksp;
   PC                         pc;
   PetscBool                  isgamg, set;
 
   PetscFunctionBegin;
-  PetscCall(MatGetOwnershipRange(nt->A, &nf->rstart, NULL));
-  PetscCall(MPIU_Allreduce(&L->nnodes, &nf->nnodesGlobal, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
-  PetscCall(SSStarFullMatrixCreate(nt->A, L, &nf->fm));
+  PetscCall(MatGetOwnershipRange(nt->A, &nw->rstart, NULL));
+  PetscCall(MPIU_Allreduce(&L->nnodes, &nw->nnodesGlobal, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
+  PetscCall(SSStarWholeBodyMatrixCreate(nt->A, L, &nw->wm));
   PetscCall(CreateNearNullSpace(nt));
-  PetscCall(MatCreateVecs(nt->A, &nf->dv, &nf->rhs));
-  PetscCall(PetscMalloc3(3 * L->nnodes, &nf->known, L->nnodes, &nf->mask, L->nnodes, &nf->touched));
-  PetscCall(PetscCalloc1(L->nnodes, &nf->pcMask));
-  PetscCall(PetscMalloc4(9 * L->nnodes, &nf->Sknown, 9 * L->nnodes, &nf->Tknown, 9 * L->nnodes, &nf->S, 9 * L->nnodes, &nf->T));
+  PetscCall(MatCreateVecs(nt->A, &nw->dv, &nw->rhs));
+  PetscCall(PetscMalloc3(3 * L->nnodes, &nw->known, L->nnodes, &nw->mask, L->nnodes, &nw->touched));
+  PetscCall(PetscCalloc1(L->nnodes, &nw->pcMask));
+  PetscCall(PetscMalloc4(9 * L->nnodes, &nw->Sknown, 9 * L->nnodes, &nw->Tknown, 9 * L->nnodes, &nw->S, 9 * L->nnodes, &nw->T));
   for (PetscInt i = 0; i < L->nnodes; i++)
     for (PetscInt k = 0; k < 9; k++) {
-      nf->Sknown[9 * i + k] = 0;
-      nf->Tknown[9 * i + k] = (PetscReal)(k % 4 == 0);
+      nw->Sknown[9 * i + k] = 0;
+      nw->Tknown[9 * i + k] = (PetscReal)(k % 4 == 0);
     }
-  nf->pcBuilt = PETSC_FALSE;
+  nw->pcBuilt    = PETSC_FALSE;
+  nw->indefinite = 0;
 
   /* the SNES's KSP: GMRES or CG with GAMG unless the options name others (they are read again for the new types) */
-  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_type", &nf->userKSPType));
-  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_rtol", &nf->userTolerances));
-  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_gmres_restart", &nf->userRestart));
+  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_type", &nw->userKSPType));
+  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_rtol", &nw->userTolerances));
+  PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_gmres_restart", &nw->userRestart));
   PetscCall(SSStarNewtonSetKSPDefaults(nt, KSPGMRES, PCGAMG));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
@@ -233,26 +235,26 @@ static PetscErrorCode SSStarNewtonSetUp_Full(SSStarNewton nt)
 }
 
 /* A new gamma changes the unit rows and W/gamma: the multigrid is built again */
-static PetscErrorCode SSStarNewtonSetScaling_Full(SSStarNewton nt)
+static PetscErrorCode SSStarNewtonSetScaling_WholeBody(SSStarNewton nt)
 {
   PetscFunctionBegin;
-  ((Newton_Full *)nt->data)->pcBuilt = PETSC_FALSE;
+  ((Newton_WholeBody *)nt->data)->pcBuilt = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
 /* The nodes the step's free motions move (none without floating bodies) */
 static PetscErrorCode MarkFreeMotions(SSStarNewton nt)
 {
-  Newton_Full        *nf = (Newton_Full *)nt->data;
-  const SSStarKernel *kn = nt->layout.kernel;
+  Newton_WholeBody        *nw = (Newton_WholeBody *)nt->data;
+  const SSStarFloating *fb = nt->layout.floating;
   const PetscInt      n3 = 3 * nt->layout.nnodes;
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i < nt->layout.nnodes; i++) {
-    nf->touched[i] = 0;
-    for (PetscInt f = 0; kn && f < kn->nfree; f++)
+    nw->touched[i] = 0;
+    for (PetscInt f = 0; fb && f < fb->nfree; f++)
       for (PetscInt r = 0; r < 3; r++)
-        if (kn->free[f * n3 + 3 * i + r] != 0.0) nf->touched[i] = 1;
+        if (fb->free[f * n3 + 3 * i + r] != 0.0) nw->touched[i] = 1;
   }
   PetscFunctionReturn(0);
 }
@@ -264,9 +266,9 @@ static PetscErrorCode MarkFreeMotions(SSStarNewton nt)
 static PetscErrorCode MultFree(Mat A, Vec x, Vec y)
 {
   SSStarNewton               nt;
-  Newton_Full               *nf;
+  Newton_WholeBody               *nw;
   const SSStarContactLayout *L;
-  const SSStarKernel        *kn;
+  const SSStarFloating        *fb;
   const PetscScalar         *xa;
   PetscScalar               *ya;
   PetscReal                 *t;
@@ -274,28 +276,28 @@ static PetscErrorCode MultFree(Mat A, Vec x, Vec y)
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(A, &nt));
-  nf = (Newton_Full *)nt->data;
+  nw = (Newton_WholeBody *)nt->data;
   L  = &nt->layout;
-  kn = L->kernel;
+  fb = L->floating;
   n3 = 3 * L->nnodes;
-  PetscCall(MatMult(nf->M, x, y));
-  PetscCall(PetscCalloc1(kn->nfree, &t));
+  PetscCall(MatMult(nw->M, x, y));
+  PetscCall(PetscCalloc1(fb->nfree, &t));
   PetscCall(VecGetArrayRead(x, &xa));
-  for (PetscInt f = 0; f < kn->nfree; f++)
-    for (PetscInt d = 0; d < n3; d++) t[f] += kn->free[f * n3 + d] * PetscRealPart(xa[L->dofs[d]]);
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, t, kn->nfree, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)A)));
+  for (PetscInt f = 0; f < fb->nfree; f++)
+    for (PetscInt d = 0; d < n3; d++) t[f] += fb->free[f * n3 + d] * PetscRealPart(xa[L->dofs[d]]);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, t, fb->nfree, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)A)));
   PetscCall(VecGetArray(y, &ya));
   for (PetscInt i = 0; i < L->nnodes; i++) {
-    const PetscReal *S = &nf->S[9 * i];
+    const PetscReal *S = &nw->S[9 * i];
     PetscReal        Ut[3] = {0, 0, 0};
 
-    if (!nf->touched[i]) continue;
-    for (PetscInt f = 0; f < kn->nfree; f++)
-      for (PetscInt k = 0; k < 3; k++) Ut[k] += kn->free[f * n3 + 3 * i + k] * t[f];
+    if (!nw->touched[i]) continue;
+    for (PetscInt f = 0; f < fb->nfree; f++)
+      for (PetscInt k = 0; k < 3; k++) Ut[k] += fb->free[f * n3 + 3 * i + k] * t[f];
     for (PetscInt r = 0; r < 3; r++) {
       const PetscInt d = L->dofs[3 * i + r];
 
-      if (!(nf->mask[i] & (1 << r))) continue;
+      if (!(nw->mask[i] & (1 << r))) continue;
       ya[d] += (S[3 * r] * Ut[0] + S[3 * r + 1] * Ut[1] + S[3 * r + 2] * Ut[2]) * SSSTAR_FREE_STIFFNESS / nt->gamma - SSSTAR_FREE_SHIFT / nt->gamma * xa[d];
     }
   }
@@ -305,22 +307,22 @@ static PetscErrorCode MultFree(Mat A, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* The Krylov solver's operator: M, or the shell of MultFree when the step leaves motions free */
-static PetscErrorCode KrylovOperator(SSStarNewton nt, Mat *A)
+/* The Newton matrix the Krylov solver applies: M, or the shell of MultFree when the step leaves motions free */
+static PetscErrorCode KrylovNewtonMatrix(SSStarNewton nt, Mat *A)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   PetscInt     m, N;
 
   PetscFunctionBegin;
-  *A = nf->M;
-  if (!nt->layout.kernel || !nt->layout.kernel->nfree) PetscFunctionReturn(0);
-  if (!nf->shell) {
-    PetscCall(MatGetLocalSize(nf->M, &m, NULL));
-    PetscCall(MatGetSize(nf->M, &N, NULL));
-    PetscCall(MatCreateShell(PetscObjectComm((PetscObject)nf->M), m, m, N, N, nt, &nf->shell));
-    PetscCall(MatShellSetOperation(nf->shell, MATOP_MULT, (void (*)(void))MultFree));
+  *A = nw->M;
+  if (!nt->layout.floating || !nt->layout.floating->nfree) PetscFunctionReturn(0);
+  if (!nw->shell) {
+    PetscCall(MatGetLocalSize(nw->M, &m, NULL));
+    PetscCall(MatGetSize(nw->M, &N, NULL));
+    PetscCall(MatCreateShell(PetscObjectComm((PetscObject)nw->M), m, m, N, N, nt, &nw->shell));
+    PetscCall(MatShellSetOperation(nw->shell, MATOP_MULT, (void (*)(void))MultFree));
   }
-  *A = nf->shell;
+  *A = nw->shell;
   PetscFunctionReturn(0);
 }
 
@@ -330,38 +332,38 @@ static PetscErrorCode KrylovOperator(SSStarNewton nt, Mat *A)
 */
 static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Mat *M, PetscBool *symmetric)
 {
-  Newton_Full               *nf  = (Newton_Full *)nt->data;
+  Newton_WholeBody               *nw  = (Newton_WholeBody *)nt->data;
   const SSStarContactLayout *L   = &nt->layout;
   const PetscReal            ig  = 1 / nt->gamma;
   PetscBool                  sym = PETSC_TRUE;
 
   PetscFunctionBegin;
-  nf->nknown = 0;
+  nw->nknown = 0;
   for (PetscInt i = 0; i < L->nnodes; i++) {
     const PetscReal *Si = &S[9 * i], *Ti = &T[9 * i];
 
-    nf->mask[i] = 0;
+    nw->mask[i] = 0;
     for (PetscInt r = 0; r < 3; r++) {
-      if (SSStarKnownRow(Si, Ti, r)) nf->known[nf->nknown++] = nf->rstart + L->dofs[3 * i + r];
-      else nf->mask[i] |= (unsigned char)(1 << r);
+      if (SSStarKnownRow(Si, Ti, r)) nw->known[nw->nknown++] = nw->rstart + L->dofs[3 * i + r];
+      else nw->mask[i] |= (unsigned char)(1 << r);
     }
     for (PetscInt r = 0; r < 3; r++) {
-      if (!(nf->mask[i] & (1 << r))) continue;
+      if (!(nw->mask[i] & (1 << r))) continue;
       for (PetscInt k = 0; k < 3; k++) {
         if (Si[3 * r + k] != (PetscReal)(k == r)) sym = PETSC_FALSE;
-        if ((nf->mask[i] & (1 << k)) && Ti[3 * r + k] != Ti[3 * k + r]) sym = PETSC_FALSE;
+        if ((nw->mask[i] & (1 << k)) && Ti[3 * r + k] != Ti[3 * k + r]) sym = PETSC_FALSE;
       }
     }
   }
-  PetscCall(PetscArraycpy(nf->S, S, 9 * L->nnodes));
-  PetscCall(PetscArraycpy(nf->T, T, 9 * L->nnodes));
+  PetscCall(PetscArraycpy(nw->S, S, 9 * L->nnodes));
+  PetscCall(PetscArraycpy(nw->T, T, 9 * L->nnodes));
   PetscCall(MarkFreeMotions(nt));
   for (PetscInt i = 0; i < L->nnodes; i++) /* the preconditioner's shift (known rows: eliminated) */
-    for (PetscInt r = 0; r < 3 && nf->touched[i]; r++) nf->T[9 * i + 4 * r] += SSSTAR_FREE_SHIFT;
-  PetscCall(VecCopy(y, nf->rhs));
-  PetscCall(VecScale(nf->rhs, ig));
-  PetscCall(SSStarFullMatrixForm(nf->fm, nf->S, nf->T, ig, nf->nknown, nf->known, y, nf->rhs, M));
-  nf->M = *M;
+    for (PetscInt r = 0; r < 3 && nw->touched[i]; r++) nw->T[9 * i + 4 * r] += SSSTAR_FREE_SHIFT;
+  PetscCall(VecCopy(y, nw->rhs));
+  PetscCall(VecScale(nw->rhs, ig));
+  PetscCall(SSStarWholeBodyMatrixForm(nw->wm, nw->S, nw->T, ig, nw->nknown, nw->known, y, nw->rhs, M));
+  nw->M = *M;
   PetscCall(MPIU_Allreduce(&sym, symmetric, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)nt->A)));
   PetscFunctionReturn(0);
 }
@@ -369,20 +371,20 @@ static PetscErrorCode AssembleNewtonMatrix(SSStarNewton nt, const PetscReal S[],
 /* Keep the multigrid of an earlier step while at most pcReuse of the nodes changed their known rows since */
 static PetscErrorCode ChoosePreconditioner(SSStarNewton nt, PetscBool *reuse)
 {
-  Newton_Full               *nf      = (Newton_Full *)nt->data;
+  Newton_WholeBody               *nw      = (Newton_WholeBody *)nt->data;
   const SSStarContactLayout *L       = &nt->layout;
-  const PetscInt             nfree   = L->kernel ? L->kernel->nfree : 0;
+  const PetscInt             nfree   = L->floating ? L->floating->nfree : 0;
   PetscInt                   changed = 0;
 
   PetscFunctionBegin;
-  for (PetscInt i = 0; i < L->nnodes; i++) changed += nf->mask[i] != nf->pcMask[i];
+  for (PetscInt i = 0; i < L->nnodes; i++) changed += nw->mask[i] != nw->pcMask[i];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)nt->A)));
   /* the shift of free motions changes the matrix of the multigrid: a new one when they change */
-  *reuse = (PetscBool)(nf->pcBuilt && changed <= nt->pcReuse * nf->nnodesGlobal && nfree == nf->pcFree);
+  *reuse = (PetscBool)(nw->pcBuilt && changed <= nt->pcReuse * nw->nnodesGlobal && nfree == nw->pcFree);
   if (!*reuse) {
-    PetscCall(PetscArraycpy(nf->pcMask, nf->mask, L->nnodes));
-    nf->pcBuilt = PETSC_TRUE;
-    nf->pcFree  = nfree;
+    PetscCall(PetscArraycpy(nw->pcMask, nw->mask, L->nnodes));
+    nw->pcBuilt = PETSC_TRUE;
+    nw->pcFree  = nfree;
   }
   PetscFunctionReturn(0);
 }
@@ -390,24 +392,24 @@ static PetscErrorCode ChoosePreconditioner(SSStarNewton nt, PetscBool *reuse)
 /* The multigrid for M (a new one or an earlier one kept), built with K's near-null space in the nodes' frames */
 static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reuse)
 {
-  Newton_Full *nf  = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw  = (Newton_WholeBody *)nt->data;
   KSP          ksp = nt->snes->ksp;
   MatNullSpace own = NULL;
   Mat          op;
 
   PetscFunctionBegin;
   PetscCall(KSPSetReusePreconditioner(ksp, reuse));
-  PetscCall(KrylovOperator(nt, &op));
+  PetscCall(KrylovNewtonMatrix(nt, &op));
   PetscCall(KSPSetOperators(ksp, op, M));
-  if (nf->nearNull) { /* M is K's storage: its own near-null space goes back after the set-up */
+  if (nw->nearNull) { /* M is K's storage: its own near-null space goes back after the set-up */
     PetscCall(MatGetNearNullSpace(M, &own));
     PetscCall(PetscObjectReference((PetscObject)own));
-    PetscCall(MatSetNearNullSpace(M, nf->nearNull));
+    PetscCall(MatSetNearNullSpace(M, nw->nearNull));
   }
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
   PetscCall(KSPSetUp(ksp));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
-  if (nf->nearNull) {
+  if (nw->nearNull) {
     PetscCall(MatSetNearNullSpace(M, own));
     PetscCall(MatNullSpaceDestroy(&own));
   }
@@ -419,27 +421,52 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
 /* The Krylov solve of the step from dv (nonzero: on from the last solution), du = Q^T dv; K is put back after it */
 static PetscErrorCode KrylovSolve(SSStarNewton nt, PetscBool nonzero, Vec du, KSPConvergedReason *reason, PetscInt *its)
 {
-  Newton_Full *nf  = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw  = (Newton_WholeBody *)nt->data;
   KSP          ksp = nt->snes->ksp;
 
   PetscFunctionBegin;
   PetscCall(KSPSetInitialGuessNonzero(ksp, nonzero));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
-  PetscCall(KSPSolve(ksp, nf->rhs, nf->dv));
+  PetscCall(KSPSolve(ksp, nw->rhs, nw->dv));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonKrylov, nt->snes, 0, 0, 0));
   PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
-  PetscCall(SSStarFullMatrixRestore(nf->fm));
+  PetscCall(SSStarWholeBodyMatrixRestore(nw->wm));
   PetscCall(KSPGetConvergedReason(ksp, reason));
   PetscCall(KSPGetIterationNumber(ksp, its));
   nt->nKrylov += *its;
   nt->snes->linear_its += *its;
-  if (*reason > 0 || *reason == KSP_DIVERGED_ITS) PetscCall(RotateBack(&nt->layout, nf->dv, du));
+  if (*reason > 0 || *reason == KSP_DIVERGED_ITS) PetscCall(RotateBack(&nt->layout, nw->dv, du));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
+/*
+   CG stopped with DIVERGED_INDEFINITE_PC: the multigrid of a Newton matrix that is positive definite is not always so
+   (GAMG's smoothers on the frictionless stack of floating bodies on 4 ranks: the residual grew after 8 iterations). CG
+   needs a definite preconditioner, GMRES does not: the step is solved again by GMRES (right preconditioned, the
+   residual unpreconditioned as before) on the same multigrid, and every later step with this stiffness too
+*/
+static PetscErrorCode IndefiniteFallback(SSStarNewton nt, Vec du, KSPConvergedReason *reason, PetscInt *its)
 {
-  Newton_Full       *nf  = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw  = (Newton_WholeBody *)nt->data;
+  KSP               ksp = nt->snes->ksp;
+  PetscInt          cgIts = *its;
+
+  PetscFunctionBegin;
+  nw->indefinite++;
+  PetscCall(KSPSetType(ksp, KSPGMRES));
+  PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+  PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+  if (!nw->userRestart) PetscCall(KSPGMRESSetRestart(ksp, SSSTAR_GMRES_RESTART));
+  PetscCall(KSPSetReusePreconditioner(ksp, PETSC_TRUE)); /* the multigrid CG was given, for the matrix formed again */
+  PetscCall(SSStarWholeBodyMatrixForm(nw->wm, nw->S, nw->T, 1 / nt->gamma, nw->nknown, nw->known, NULL, NULL, &nw->M));
+  PetscCall(KrylovSolve(nt, PETSC_FALSE, du, reason, its));
+  PetscCall(PetscInfo(nt->snes, "CG stopped with DIVERGED_INDEFINITE_PC after %" PetscInt_FMT " iterations: the multigrid is indefinite; the step solved again by GMRES on it: %s after %" PetscInt_FMT " iterations (GMRES from now on)\n", cgIts, KSPConvergedReasons[*reason], *its));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SSStarNewtonSolve_WholeBody(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
+{
+  Newton_WholeBody       *nw  = (Newton_WholeBody *)nt->data;
   KSP                ksp = nt->snes->ksp;
   KSPConvergedReason reason;
   PetscBool          symmetric, reuse;
@@ -451,36 +478,38 @@ static PetscErrorCode SSStarNewtonSolve_Full(SSStarNewton nt, const PetscReal S[
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
   PetscCall(AssembleNewtonMatrix(nt, S, T, y, &M, &symmetric));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
-  if (!nf->userKSPType) { /* the residual unpreconditioned, in the units of the tolerances */
+  if (!nw->userKSPType) { /* the residual unpreconditioned, in the units of the tolerances */
+    symmetric = (PetscBool)(symmetric && !nw->indefinite); /* CG found a multigrid indefinite: GMRES since */
     PetscCall(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES));
     PetscCall(KSPSetPCSide(ksp, symmetric ? PC_LEFT : PC_RIGHT));
     PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
-    if (!symmetric && !nf->userRestart) PetscCall(KSPGMRESSetRestart(ksp, SSSTAR_GMRES_RESTART));
+    if (!symmetric && !nw->userRestart) PetscCall(KSPGMRESSetRestart(ksp, SSSTAR_GMRES_RESTART));
   }
-  if (!nf->userTolerances) PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
+  if (!nw->userTolerances) PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(ChoosePreconditioner(nt, &reuse));
   PetscCall(SetUpPreconditioner(nt, M, reuse));
   PetscCall(KrylovSolve(nt, PETSC_FALSE, du, &reason, &its));
+  if (reason == KSP_DIVERGED_INDEFINITE_PC && !nw->userKSPType) PetscCall(IndefiniteFallback(nt, du, &reason, &its));
   /* an iteration limit that still reduced the residual tenfold is an inexact step; a breakdown is a failure */
   PetscCall(KSPGetResidualNorm(ksp, &rnorm));
-  PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
+  PetscCall(VecNorm(nw->rhs, NORM_2, &bnorm));
   *solved       = (PetscBool)(reason > 0 || (reason == KSP_DIVERGED_ITS && rnorm <= 0.1 * bnorm));
-  nf->refinable = *solved;
+  nw->refinable = *solved;
   if (!*solved) {
-    nf->pcBuilt = PETSC_FALSE;
+    nw->pcBuilt = PETSC_FALSE;
     PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not solved: %s after %" PetscInt_FMT " iterations, residual %g of %g\n", KSPConvergedReasons[reason], its, (double)rnorm, (double)bnorm));
   }
   PetscFunctionReturn(0);
 }
 
 /* Every contact dof known (S = 0, T = I): the free dofs follow into equilibrium */
-static PetscErrorCode SSStarNewtonSolveKnown_Full(SSStarNewton nt, Vec y, Vec du, PetscBool *solved)
+static PetscErrorCode SSStarNewtonSolveKnown_WholeBody(SSStarNewton nt, Vec y, Vec du, PetscBool *solved)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
 
   PetscFunctionBegin;
-  PetscCall(SSStarNewtonSolve_Full(nt, nf->Sknown, nf->Tknown, y, du, solved));
-  nf->refinable = PETSC_FALSE;
+  PetscCall(SSStarNewtonSolve_WholeBody(nt, nw->Sknown, nw->Tknown, y, du, solved));
+  nw->refinable = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -488,9 +517,9 @@ static PetscErrorCode SSStarNewtonSolveKnown_Full(SSStarNewton nt, Vec y, Vec du
    The last step's Krylov solve continued from its solution (its matrix formed again, the same right-hand side and
    multigrid) to the tolerances set since, unless it met them already or the user fixed the tolerances (-ksp_rtol)
 */
-static PetscErrorCode SSStarNewtonRefine_Full(SSStarNewton nt, Vec du, PetscBool *refined)
+static PetscErrorCode SSStarNewtonRefine_WholeBody(SSStarNewton nt, Vec du, PetscBool *refined)
 {
-  Newton_Full       *nf  = (Newton_Full *)nt->data;
+  Newton_WholeBody       *nw  = (Newton_WholeBody *)nt->data;
   KSP                ksp = nt->snes->ksp;
   KSPConvergedReason reason;
   PetscInt           its;
@@ -498,74 +527,75 @@ static PetscErrorCode SSStarNewtonRefine_Full(SSStarNewton nt, Vec du, PetscBool
   Mat                M;
 
   PetscFunctionBegin;
-  if (!nf->refinable || nf->userTolerances) PetscFunctionReturn(0);
+  if (!nw->refinable || nw->userTolerances) PetscFunctionReturn(0);
   PetscCall(KSPGetResidualNorm(ksp, &rnorm));
-  PetscCall(VecNorm(nf->rhs, NORM_2, &bnorm));
+  PetscCall(VecNorm(nw->rhs, NORM_2, &bnorm));
   if (rnorm <= PetscMax(nt->atol, nt->rtol * bnorm)) PetscFunctionReturn(0);
   PetscCall(KSPSetTolerances(ksp, nt->rtol, nt->atol, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
-  PetscCall(SSStarFullMatrixForm(nf->fm, nf->S, nf->T, 1 / nt->gamma, nf->nknown, nf->known, NULL, NULL, &M));
-  nf->M = M;
+  PetscCall(SSStarWholeBodyMatrixForm(nw->wm, nw->S, nw->T, 1 / nt->gamma, nw->nknown, nw->known, NULL, NULL, &M));
+  nw->M = M;
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
   PetscCall(KrylovSolve(nt, PETSC_TRUE, du, &reason, &its));
   *refined = (PetscBool)(reason > 0 || reason == KSP_DIVERGED_ITS);
   if (!*refined) {
-    nf->refinable = PETSC_FALSE;
+    nw->refinable = PETSC_FALSE;
     PetscCall(PetscInfo(nt->snes, "Newton step on the whole body not refined: %s after %" PetscInt_FMT " iterations\n", KSPConvergedReasons[reason], its));
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SSStarNewtonView_Full(SSStarNewton nt, PetscViewer viewer)
+static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer viewer)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   PetscBool    inPlace;
 
   PetscFunctionBegin;
-  PetscCall(SSStarFullMatrixInPlace(nf->fm, &inPlace));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nf->nearNull ? " (multigrid with K's near-null space)" : ""));
+  PetscCall(SSStarWholeBodyMatrixInPlace(nw->wm, &inPlace));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nw->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
-  if (nf->plain) PetscCall(PetscViewerASCIIPrintf(viewer, "    plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable)\n"));
+  if (nw->plain) PetscCall(PetscViewerASCIIPrintf(viewer, "    plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable)\n"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
+  if (nw->indefinite) PetscCall(PetscViewerASCIIPrintf(viewer, "    CG stopped on an indefinite multigrid (DIVERGED_INDEFINITE_PC) in %" PetscInt_FMT " step%s since the set-up: solved again by GMRES on it, which needs no definite preconditioner, and every later step by GMRES\n", nw->indefinite, nw->indefinite > 1 ? "s" : ""));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SSStarNewtonReset_Full(SSStarNewton nt)
+static PetscErrorCode SSStarNewtonReset_WholeBody(SSStarNewton nt)
 {
-  Newton_Full *nf = (Newton_Full *)nt->data;
+  Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
 
   PetscFunctionBegin;
-  PetscCall(SSStarFullMatrixDestroy(&nf->fm));
-  PetscCall(MatNullSpaceDestroy(&nf->nearNull));
-  PetscCall(VecDestroy(&nf->rhs));
-  PetscCall(VecDestroy(&nf->dv));
-  PetscCall(PetscFree3(nf->known, nf->mask, nf->touched));
-  PetscCall(MatDestroy(&nf->shell));
-  PetscCall(PetscFree(nf->pcMask));
-  PetscCall(PetscFree4(nf->Sknown, nf->Tknown, nf->S, nf->T));
+  PetscCall(SSStarWholeBodyMatrixDestroy(&nw->wm));
+  PetscCall(MatNullSpaceDestroy(&nw->nearNull));
+  PetscCall(VecDestroy(&nw->rhs));
+  PetscCall(VecDestroy(&nw->dv));
+  PetscCall(PetscFree3(nw->known, nw->mask, nw->touched));
+  PetscCall(MatDestroy(&nw->shell));
+  PetscCall(PetscFree(nw->pcMask));
+  PetscCall(PetscFree4(nw->Sknown, nw->Tknown, nw->S, nw->T));
   for (PetscInt k = 0; k < SSSTAR_SMOOTHER_OPTIONS; k++) {
-    if (nf->smoother[k]) PetscCall(PetscOptionsClearValue(NULL, nf->smoother[k]));
-    PetscCall(PetscFree(nf->smoother[k]));
+    if (nw->smoother[k]) PetscCall(PetscOptionsClearValue(NULL, nw->smoother[k]));
+    PetscCall(PetscFree(nw->smoother[k]));
   }
   PetscCall(KSPReset(nt->snes->ksp));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarNewtonCreate_Full(SSStarNewton nt)
+PetscErrorCode SSStarNewtonCreate_WholeBody(SSStarNewton nt)
 {
-  Newton_Full *nf;
+  Newton_WholeBody *nw;
 
   PetscFunctionBegin;
   nt->snes->usesksp = PETSC_TRUE; /* the SNES's KSP solves the Newton systems */
-  PetscCall(PetscNew(&nf));
-  nt->data           = nf;
-  nt->ops.setup      = SSStarNewtonSetUp_Full;
-  nt->ops.setscaling = SSStarNewtonSetScaling_Full;
-  nt->ops.solve      = SSStarNewtonSolve_Full;
-  nt->ops.solveknown = SSStarNewtonSolveKnown_Full;
-  nt->ops.refine     = SSStarNewtonRefine_Full;
-  nt->ops.view       = SSStarNewtonView_Full;
-  nt->ops.reset      = SSStarNewtonReset_Full;
+  PetscCall(PetscNew(&nw));
+  nt->data           = nw;
+  nt->ops.setup      = SSStarNewtonSetUp_WholeBody;
+  nt->ops.setscaling = SSStarNewtonSetScaling_WholeBody;
+  nt->ops.solve      = SSStarNewtonSolve_WholeBody;
+  nt->ops.solveknown = SSStarNewtonSolveKnown_WholeBody;
+  nt->ops.refine     = SSStarNewtonRefine_WholeBody;
+  nt->ops.view       = SSStarNewtonView_WholeBody;
+  nt->ops.reset      = SSStarNewtonReset_WholeBody;
   PetscFunctionReturn(0);
 }

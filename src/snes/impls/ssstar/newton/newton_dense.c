@@ -258,7 +258,7 @@ static PetscErrorCode AssembleColumns(SSStarNewton nt, const Elimination *e, Pet
     } else col = pa + g * lda;
     if (dn->nfree) {
       const PetscReal  coef = SSSTAR_FREE_STIFFNESS / nt->gamma;
-      const PetscReal *ug = nt->layout.kernel->freeGlobal, *uf = &dn->freeAll[g * dn->nfree];
+      const PetscReal *ug = nt->layout.floating->freeGlobal, *uf = &dn->freeAll[g * dn->nfree];
 
       if (col != buf) PetscCall(PetscArraycpy(buf, col, m));
       for (PetscInt f = 0; f < dn->nfree; f++)
@@ -556,20 +556,20 @@ static PetscErrorCode GatherFrames(SSStarNewton nt)
 static PetscErrorCode GatherFreeMotions(SSStarNewton nt)
 {
   Newton_Dense *dn = (Newton_Dense *)nt->data;
-  SSStarKernel *kn = nt->layout.kernel;
+  SSStarFloating *fb = nt->layout.floating;
   MPI_Comm      comm = PetscObjectComm((PetscObject)nt->A);
   PetscMPIInt   size, *counts, *starts;
   PetscReal    *mine;
 
   PetscFunctionBegin;
   PetscCall(PetscFree(dn->freeAll));
-  dn->nfree = kn ? kn->nfree : 0; /* the same on every rank */
+  dn->nfree = fb ? fb->nfree : 0; /* the same on every rank */
   if (!dn->nfree) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscMalloc1(3 * dn->Nnodes * dn->nfree, &dn->freeAll));
   PetscCall(PetscMalloc3(3 * dn->nnodes * dn->nfree + 1, &mine, size, &counts, size, &starts));
   for (PetscInt d = 0; d < 3 * dn->nnodes; d++)
-    for (PetscInt f = 0; f < dn->nfree; f++) mine[d * dn->nfree + f] = kn->free[f * 3 * dn->nnodes + d];
+    for (PetscInt f = 0; f < dn->nfree; f++) mine[d * dn->nfree + f] = fb->free[f * 3 * dn->nnodes + d];
   for (PetscMPIInt r = 0; r < size; r++) {
     counts[r] = (PetscMPIInt)(3 * dn->nodeCounts[r] * dn->nfree);
     starts[r] = (PetscMPIInt)(3 * dn->nodeStarts[r] * dn->nfree);

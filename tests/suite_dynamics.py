@@ -144,6 +144,28 @@ def slope(paths, stays):
         expect(np.abs(s).max() < 1e-4 and ratio[5:].max() < 0.5, "%s %d: the block on phi = 0.5 moves by %.2e, T/N up to %.3f" % (red, ranks, np.abs(s).max(), ratio[5:].max()))
 
 
+@test("the rod on a wall with the lumped mass (-dynamics_mass lumped): the contact lasts 2 L/c, the force plateau E A v0/c within 1 %, the energy never above the initial, and the scheme's impact dissipation is the tip layer's kinetic energy: its lumped mass is 1/80 of the rod's (half an element of 40), so 1/80 of E0 within 1e-3 of it (measured 0.01250); the density and initial velocity of a volume group (-material_rod 1,0,1 -initial_velocity_rod 0,0,-0.01, no -density, no -initial_velocity) give the rod of -density 1 -initial_velocity 0,0,-0.01 to 2e-6")
+def dynamics_rod_options():
+    E0 = 0.5 * 0.01 * 0.01 ** 2
+    _, path = dynamics_run(ROD + ["-dynamics_mass", "lumped"], "dynamics_rod_lumped.h5")
+    st = h5py.File(path, "r")["steps"]
+    t, N = st["time"][:], st["normal_force"][:]
+    plateau = N[(t > 0.5) & (t < 1.5)] / 1e-4
+    energy = st["kinetic_energy"][:] + st["strain_energy"][:]
+    expect(abs(t[N > 1e-12][-1] - 2.025) < 1e-9 and np.abs(plateau - 1).max() < 0.01, "lumped: contact until %g, plateau off by %.2e" % (t[N > 1e-12][-1], np.abs(plateau - 1).max()))
+    expect(energy.max() <= E0 * (1 + 1e-9) and abs(st["impact_dissipation"][-1] / E0 * 80 - 1) < 1e-3, "lumped: energy up to %.6f E0, impact dissipation %.6f E0, not 1/80" % (energy.max() / E0, st["impact_dissipation"][-1] / E0))
+    expect(balance(h5py.File(path, "r"), "lumped").max() <= 1e-9, "lumped: energy gained")
+    run(LAW + [path])
+    drop = {"-density", "1", "-initial_velocity", "0,0,-0.01"}
+    group = [a for i, a in enumerate(ROD) if not (a in ("-density", "-initial_velocity") or (i > 0 and ROD[i - 1] in ("-density", "-initial_velocity")))]
+    expect(len(group) == len(ROD) - len(drop), "the rod's options without -density and -initial_velocity")
+    _, by_group = dynamics_run(group + ["-material_rod", "1,0,1", "-initial_velocity_rod", "0,0,-0.01"], "dynamics_rod_group.h5")
+    _, ref = dynamics_run(ROD, "dynamics_rod_reference.h5")
+    a, b = h5py.File(by_group, "r"), h5py.File(ref, "r")
+    diff = max(np.abs(a["steps/%d/fields/displacement" % k][:] - b["steps/%d/fields/displacement" % k][:]).max() for k in range(len(t)))
+    expect(diff <= AGREE * np.abs(b["steps/%d/fields/displacement" % (len(t) - 1)][:]).max(), "per-group density and velocity differ by %.1e" % diff)
+
+
 @test("a block released on a slope of 20 degrees (E = 10 MPa, 1000 kg/m^3, Rayleigh damping 0.003 K): with phi = 0.3 < tan 20 it slides with the acceleration g (sin a - phi cos a) = 0.5897 (a parabola fitted to its bottom's travel for t >= 0.3: within 1e-4; measured 1e-8), every touching node slides, the tangential force is phi N to 1e-6, and kinetic + strain + friction + damping = the work of gravity to 1e-6 of it (energy_error; measured 6e-13); with phi = 0.5 > tan 20 it stays: its travel below 1e-4 (the elastic shear of its settling) and the friction below phi N; the dense route on 1 rank and the whole body on 2 (phi 0.3; make test-full: the other two), the travels agreeing to 2e-6")
 def dynamics_slope():
     slope(QUICK, [("direct", 1)])
@@ -312,7 +334,7 @@ with ssstar.Scene(**opts) as scene:
     expect("DIFFERENT" not in out.split("full field")[1].split("\n")[0], "Python's rod differs from examples/contact's", out)
 
 
-@test("refusals of -dynamics and its options, each one line naming the option, before any work: -initial_velocity, -damping, -dynamics_scheme, -dynamics_mass, -initial_velocity_<G> without -dynamics; -dynamics without -steps; a time before t = 0; -dynamics with -load_steps; a negative damping; an unknown scheme; cells without density (-dynamics without -density); -density alone without -gravity or -dynamics; -material_<G> with a density <= 0")
+@test("refusals of -dynamics and its options, each one line naming the option, before any work: -initial_velocity, -damping, -dynamics_scheme, -dynamics_mass, -initial_velocity_<G> without -dynamics; -dynamics without -steps; a time before t = 0; -dynamics with -load_steps; a negative damping; an unknown scheme; cells without density (-dynamics without -density); -density alone without -gravity or -dynamics; -material_<G> with a density <= 0; -dynamics with a prescribed displacement -displacement_<G> (not supported)")
 def dynamics_refusals():
     base = ROD[:ROD.index("-dynamics")] + ["-contact", "tip", "-friction_law_tip", "none"]
     cases = [
@@ -326,6 +348,7 @@ def dynamics_refusals():
         (["-dynamics", "-load_steps", "3"], "-load_steps"),
         (["-dynamics", "-steps", "3", "-end_time", "1", "-damping", "-1,0"], "-damping"),
         (["-dynamics", "-steps", "3", "-end_time", "1", "-dynamics_scheme", "leapfrog"], "-dynamics_scheme"),
+        (["-dynamics", "-steps", "3", "-end_time", "1", "-displacement_top", "0,0,-0.01"], "-dynamics and -displacement_top"),
     ]
     for extra, words in cases:
         out = run([CONTACT] + base + extra, expect_rc=1)

@@ -13,7 +13,8 @@ from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 
 CONTACT = os.path.join(ROOT, "examples", "contact")
 LAW = CHECK + ["coulomb", "--steps"]
-PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
+# both paths, 1 and 2 ranks: make test runs the dense route on 1 rank and the whole body on 2, make test-full the other two
+QUICK, OTHERS = [("direct", 1), ("none", 2)], [("none", 1), ("direct", 2)]
 # a rigid cylinder (R = 1, along y) pressed 0.02 into the slab of scenes/drag.opts, then moved by 1 along x while it
 # turns by 1 rad about its axis (v = omega R: it rolls without slip) -- or, without the rotation, dragged
 SLAB = ["-geo", "meshes/slab.geo", "-level", "1", "-E", "2.1e5", "-nu", "0.3", "-dirichlet", "bottom", "-contact", "top",
@@ -38,14 +39,13 @@ def touching(c):
     return (s != 0) & (s != 6)
 
 
-@test("a rigid cylinder rolled without slip over a slab (-obstacle_top_motion along x by 1 and -obstacle_top_rotation by 1 rad about its axis, R = 1: v = omega R; large sliding, phi = 0.3; 4 steps of 0.25): at every rolling step the touching nodes' slip increments against the cylinder's surface are below 2 % of the step's travel on the mean and 4 % at the most (the placement's second order: the touched point's chord moves R(dtheta - sin dtheta) along the slab, 1 % of the travel at dtheta = 0.25), the friction dissipation of the roll below 1 % of the same cylinder dragged without turning (the dragged one slides every node by the travel, T = phi N), the file's rotation/top column is the angle about y and its /scene says rotation and rotation_center; the law holds at every step of the file; both paths, 1 and 2 ranks, agree to 2e-6 (harness.AGREE)")
-def motion_rolling_cylinder():
+def rolling(paths):
     _, drag = contact_run(ROLL, "motion_drag.h5")
     fd = h5py.File(drag, "r")
     dragged = fd["steps/dissipation"][-1] - fd["steps/dissipation"][1]
     expect(abs(np.linalg.norm(fd["steps/tangential_force"][-1]) / (0.3 * fd["steps/normal_force"][-1]) - 1) < 0.01, "the dragged cylinder is not at T = phi N")
     fields = []
-    for red, ranks in PATHS:
+    for red, ranks in paths:
         _, path = contact_run(ROLL + TURN, "motion_roll_%s_%d.h5" % (red, ranks), red, ranks)
         f = h5py.File(path, "r")
         st = f["steps"]
@@ -64,6 +64,16 @@ def motion_rolling_cylinder():
     for other in fields[1:]:
         diff = np.abs(other - fields[0]).max() / np.abs(fields[0]).max()
         expect(diff <= AGREE, "the paths and rank counts differ by %.1e in the displacements" % diff)
+
+
+@test("a rigid cylinder rolled without slip over a slab (-obstacle_top_motion along x by 1 and -obstacle_top_rotation by 1 rad about its axis, R = 1: v = omega R; large sliding, phi = 0.3; 4 steps of 0.25): at every rolling step the touching nodes' slip increments against the cylinder's surface are below 2 % of the step's travel on the mean and 4 % at the most (the placement's second order: the touched point's chord moves R(dtheta - sin dtheta) along the slab, 1 % of the travel at dtheta = 0.25), the friction dissipation of the roll below 1 % of the same cylinder dragged without turning (the dragged one slides every node by the travel, T = phi N), the file's rotation/top column is the angle about y and its /scene says rotation and rotation_center; the law holds at every step of the file; the dense route on 1 rank and the whole body on 2 (make test-full: the other two) agree to 2e-6 (harness.AGREE)")
+def motion_rolling_cylinder():
+    rolling(QUICK)
+
+
+@test("the rolled cylinder of motion_rolling_cylinder on the other paths and rank counts (the whole body on 1 rank, the dense route on 2): the same slips and dissipation, agreeing to 2e-6", full=True)
+def motion_rolling_cylinder_other_paths():
+    rolling(OTHERS)
 
 
 @test("a flat punch turned about its normal (meshes/punch.msh pressed 0.002 into the slab, then -obstacle_top_rotation 0.2 rad about z through its reference point, the mean of its vertices): in every turning step the touching nodes but the one on its axis slide, their slip increments are circumferential against the turn (the cosine with -e_theta at least 0.98; measured 0.991) and the friction torque about the axis is phi sum(r_n rho) within 1 % (measured 0.04-0.3 %); the law holds at every step; the dense route on 1 rank and the whole body on 2 agree to 2e-6")

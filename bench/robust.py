@@ -34,7 +34,7 @@ of the whole body), reason, law (check_solution's largest distance to the law ov
 solution), then "N members x ranks: converged C of R runs, the law holds in L, within 1e-6 of the exact solution E";
 the exit status is 0 when every run passes.
 
-  bench/robust.py [--family static|paths|sliding|floating|dynamics|all] [--ranks 1,2,3,4] [--only SUBSTRING]
+  bench/robust.py [--family static|paths|sliding|floating|degenerate|dynamics|all] [--ranks 1,2,3,4] [--only SUBSTRING]
 
 tests/suite_robust.py runs members of the first two families (FAMILY, PATHS below) as tests, tests/suite_sliding.py
 the known answers of the third, tests/suite_floating.py the floating family's cases (FLOATING).

@@ -47,7 +47,8 @@ typedef struct {
   PetscReal time;
 } PathFailure;
 
-/* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion */
+/* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion,
+   the held groups' reactions */
 static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscInt n, PetscReal t, PetscInt cuts, Vec load, PetscBool hasContact)
 {
   SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
@@ -76,6 +77,24 @@ static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscIn
     if (!moving) continue;
     PetscCall(PetscSNPrintf(item, sizeof(item), ", obstacle of %s at (%.6g, %.6g, %.6g)", name, (double)d[0], (double)d[1], (double)d[2]));
     PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+  }
+  { /* the held groups' reactions */
+    PetscInt           nheld;
+    const char *const *held;
+    PetscReal         *reaction;
+    Vec                u;
+
+    PetscCall(SSStarSceneGetHeldGroups(scene, &nheld, &held));
+    PetscCall(SNESGetSolution(snes, &u));
+    PetscCall(PetscMalloc1(3 * nheld + 1, &reaction));
+    PetscCall(SSStarSceneGetReactions(scene, snes, u, reaction));
+    for (PetscInt h = 0; h < nheld; h++) {
+      char item[256];
+
+      PetscCall(PetscSNPrintf(item, sizeof(item), ", reaction of %s (%.6g, %.6g, %.6g)", held[h], (double)reaction[3 * h], (double)reaction[3 * h + 1], (double)reaction[3 * h + 2]));
+      PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+    }
+    PetscCall(PetscFree(reaction));
   }
   T = PetscSqrtReal(res.tangential_force[0] * res.tangential_force[0] + res.tangential_force[1] * res.tangential_force[1] + res.tangential_force[2] * res.tangential_force[2]);
   if (cuts) PetscCall(PetscSNPrintf(cut, sizeof(cut), " (halved %" PetscInt_FMT "x)", cuts));

@@ -22,7 +22,10 @@
       its attribute names (the table of laws; without it none, tresca, coulomb), and its parameters are the datasets
       /contact/<parameter> (written by the scenes and by examples/generic); a law this script does not know fails the
       check. --phi gives a Coulomb coefficient for every node of a file without them.
-      For a file with a mesh, the XDMF file beside it names datasets of the right shapes.
+      For a file with a mesh, the XDMF file beside it names datasets of the right shapes, and the stresses
+      (/fields/strain, stress: cells x 6; von_mises: cells; stress_nodal: nodes x 6; each step's too) are finite, of
+      those shapes, with von_mises the von Mises stress of stress; /groups/<G>/reaction has 3 finite values. A file
+      without contact (no /contact) has these checks alone.
   check_solution.py compare A.h5 B.h5 [--tol 1e-10]
       the contact displacement and reaction of two runs agree (relative to their max norms), and so do the
       displacement on the whole mesh and the contact states where both files have them (a file of examples/generic
@@ -52,15 +55,41 @@ def coulomb(args):
     # from its reference computes its forces to no better), recorded in the file
     solver = (f.attrs.get("law_displacement_scale", 0.0), f.attrs.get("law_force_scale", 0.0))
     recorded = lambda k: (f["steps/law_displacement_scale"][int(k)], f["steps/law_force_scale"][int(k)]) if "steps/law_force_scale" in f else (0.0, 0.0)  # noqa: E731
-    ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver)
+    contact = "contact" in f
+    ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver) if contact else True
     if args.steps:
         for j, k in enumerate(steps):
-            print("-- step %s (/steps/%s/contact)" % (k, k))
-            ok &= check_law(f, f["steps/%s/contact" % k], "/steps/%s/contact" % k, args, before(j), path[j + 1], recorded(j))
+            print("-- step %s (/steps/%s%s)" % (k, k, "/contact" if contact else ""))
+            ok &= check_law(f, f["steps/%s/contact" % k], "/steps/%s/contact" % k, args, before(j), path[j + 1], recorded(j)) if contact else True
+            ok &= check_fields(f, "steps/%s/" % k)
         print("%d steps checked" % len(steps))
     if "geometry" in f:
-        ok &= check_xdmf(args.file, f)
+        ok &= check_xdmf(args.file, f) and check_fields(f, "")
     return ok
+
+
+def check_fields(f, prefix):
+    """the stresses of <prefix>fields (where the file has them) and the reactions /groups/<G>/reaction"""
+    if prefix + "fields/stress" not in f:
+        return True
+    cells, nodes = len(f["viz/topology/cells"]), len(f["geometry/vertices"])
+    shapes = {"strain": (cells, 6), "stress": (cells, 6), "von_mises": (cells,), "stress_nodal": (nodes, 6)}
+    for name, shape in shapes.items():
+        d = f.get(prefix + "fields/" + name)
+        if d is None or d.shape != shape or not np.isfinite(d[:]).all():
+            print("/%sfields/%s: not %s finite values" % (prefix, name, shape))
+            return False
+    s = f[prefix + "fields/stress"][:]
+    vm = np.sqrt(0.5 * ((s[:, 0] - s[:, 1]) ** 2 + (s[:, 1] - s[:, 2]) ** 2 + (s[:, 2] - s[:, 0]) ** 2) + 3 * (s[:, 3:] ** 2).sum(axis=1))
+    d = np.abs(vm - f[prefix + "fields/von_mises"][:]).max() / max(vm.max(), 1e-300)
+    print("%-28s %9.1e %s" % ("/%sfields/von_mises" % prefix, d, "ok" if d <= 1e-12 else "WRONG"))
+    good = d <= 1e-12
+    for g in f.get("groups", {}) if not prefix else ():
+        r = f["groups/%s" % g].get("reaction")
+        if r is not None and (r.shape != (3,) or not np.isfinite(r[:]).all()):
+            print("/groups/%s/reaction: not 3 finite values" % g)
+            good = False
+    return good
 
 
 def check_law(f, c, where, args, previous=None, path=(0.0, 0.0), solver=(0.0, 0.0)):

@@ -102,6 +102,8 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   for (PetscInt t = 0; t < s->nTractions; t++) PetscCall(SSStarHistoryDestroy(&s->tractions[t].history));
   PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
   PetscCall(SSStarHistoryDestroy(&s->gravityHistory));
+  PetscCall(SSStarPrescribedDestroy(s));
+  PetscCall(PetscFree(s->contactHeld));
   for (PetscInt g = 0; g < s->nContact; g++) {
     PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
     PetscCall(SSStarHistoryDestroy(&s->contact[g].motion));
@@ -138,7 +140,8 @@ static PetscErrorCode MeshFileOfLevel(SSStarScene scene)
 
 /*@C
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
-   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups), finds the bodies (connected parts of the
+   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups; the components -displacement_<G> prescribes,
+   refusing a node prescribed twice with different values), finds the bodies (connected parts of the
    mesh; one that no -dirichlet or -spring_<G> group holds is refused, named by its volume groups), the contact nodes
    and the contact operator B (each node's rows from its group's rigid obstacle or contact pair)
 
@@ -191,6 +194,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(PetscFree(uses));
   PetscCall(SSStarMeshScale(scene->dm, scene->meshScale));
   PetscCall(SSStarMeshCreateSection(scene->dm, scene->nDirichlet, scene->dirichlet));
+  PetscCall(SSStarSceneFindHeld(scene));
   PetscCall(DMGetCoordinates(scene->dm, &coordinates));
   PetscCall(VecGetSize(coordinates, &scene->nodesGlobal));
   scene->nodesGlobal /= 3;
@@ -207,6 +211,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));
   PetscCall(SSStarSceneBuildContactOperator(scene, NULL));
+  PetscCall(SSStarSceneCheckPartlyHeld(scene));
   PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s"));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
@@ -412,6 +417,10 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->hasE && scene->hasNu) PetscCall(PetscViewerASCIIPrintf(viewer, "material: E = %g, nu = %g\n", (double)scene->E, (double)scene->nu));
   for (PetscInt m = 0; m < scene->nMaterials; m++) PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g\n", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
   for (PetscInt g = 0; g < scene->nDirichlet; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "held fixed: %s\n", scene->dirichlet[g]));
+  for (PetscInt g = 0; g < scene->nDisplacements; g++) {
+    PetscCall(SSStarPrescribedText(&scene->displacements[g], text, sizeof(text)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "displacement of %s: %s\n", scene->displacements[g].name, text));
+  }
   for (PetscInt s = 0; s < scene->nSprings; s++) PetscCall(PetscViewerASCIIPrintf(viewer, "spring on %s: k = %g per unit area, every direction\n", scene->springs[s].name, (double)scene->springs[s].value[0]));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(HistoryText(scene->tractions[t].history, text, sizeof(text)));
@@ -442,6 +451,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->nBodies > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "bodies: %" PetscInt_FMT " (connected parts of the mesh)\n", scene->nBodies));
   if (scene->nPairs && scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(PetscViewerASCIIPrintf(viewer, "dual mortar: %" PetscInt_FMT " slave nodes not covered by their master surface keep node-to-surface\n", scene->pairFallback));
   if (scene->nSprings) PetscCall(PetscStrlcat(effects, ", springs", sizeof(effects)));
+  if (scene->nDisplacements) PetscCall(PetscStrlcat(effects, ", prescribed displacements", sizeof(effects)));
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
   {

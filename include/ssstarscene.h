@@ -78,6 +78,8 @@ PETSC_EXTERN PetscBool SSStarMaterialStress(SSStarMaterialModel, PetscReal, Pets
 PETSC_EXTERN PetscBool SSStarMaterialTangent(SSStarMaterialModel, PetscReal, PetscReal, const PetscReal[9], PetscReal[81]);
 PETSC_EXTERN void      SSStarCauchyStress(const PetscReal[9], const PetscReal[9], PetscReal[6]);
 PETSC_EXTERN void      SSStarGreenLagrangeStrain(const PetscReal[9], PetscReal[6]);
+PETSC_EXTERN PetscErrorCode SSStarSceneIsAffine(SSStarScene, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetProblem(SSStarScene, SNES, Mat, Vec);
 PETSC_EXTERN PetscBool SSStarTetInternalForce(SSStarMaterialModel, PetscReal, PetscReal, const PetscReal[12], const PetscReal[12], PetscReal[12], PetscScalar[144]);
 
 /*

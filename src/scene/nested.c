@@ -80,7 +80,8 @@ static PetscErrorCode NestedLevels(SSStarScene scene, SNES snes, PetscInt *level
   PetscCall(VecGetSize(v, &dofs));
   PetscCall(DMRestoreGlobalVector(scene->dm, &v));
   /* auto: on the whole body's problems above the crossover, coarser meshes down to the dense route's size */
-  if (!(isauto || isnone) || dofs < SSSTAR_AUTO_NESTED_MIN_DOFS) PetscFunctionReturn(0);
+  /* and not for a hyperelastic scene: its coarse solves are as nonlinear as its own */
+  if (!(isauto || isnone) || dofs < SSSTAR_AUTO_NESTED_MIN_DOFS || !scene->affine) PetscFunctionReturn(0);
   for (PetscReal d = dofs; d > SSSTAR_AUTO_DENSE_MAX_DOFS; d /= 8) (*levels)++;
   PetscFunctionReturn(0);
 }
@@ -112,7 +113,7 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
   PetscCall(SNESSetFromOptions(sc));
   PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, &maxf));
   PetscCall(SNESSetTolerances(sc, atol, PetscMax(rtol, SSSTAR_NESTED_RTOL), stol, maxit, maxf));
-  PetscCall(SNESSSStarSetLinearProblem(sc, K, b));
+  PetscCall(SSStarSceneSetProblem(coarse, sc, K, b));
   PetscCall(SSStarSceneSetContact(coarse, sc));
   PetscCall(DMCreateGlobalVector(coarse->dm, &uc));
   PetscCall(VecZeroEntries(uc));
@@ -146,7 +147,7 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
 
    Options Database Key:
 .  -nested_levels <auto> - the coarser meshes to solve first: 0 none; auto (the default) those that halve the mesh
-   size down to the dense route's size, on whole-body problems above SSSTAR_AUTO_NESTED_MIN_DOFS dofs
+   size down to the dense route's size, on whole-body problems of linear scenes above SSSTAR_AUTO_NESTED_MIN_DOFS dofs
 
    Notes:
    A coarser mesh is the scene's with one refinement fewer (-dm_refine), else -geo at half the level. The finest

@@ -34,6 +34,7 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   (*scene)->slidingMaxIt    = 4;
   (*scene)->level     = -1;
   (*scene)->nested    = -1;
+  (*scene)->affine    = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -101,6 +102,10 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscCall(PetscFree(s->dirichlet));
   for (PetscInt t = 0; t < s->nTractions; t++) PetscCall(SSStarHistoryDestroy(&s->tractions[t].history));
   PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
+  PetscCall(PetscFree(s->models));
+  PetscCall(VecDestroy(&s->problemLoad));
+  PetscCall(MatDestroy(&s->Kref));
+  PetscCall(KSPDestroy(&s->predictor));
   PetscCall(SSStarHistoryDestroy(&s->gravityHistory));
   PetscCall(SSStarPrescribedDestroy(s));
   PetscCall(PetscFree(s->contactHeld));

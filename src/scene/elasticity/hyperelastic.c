@@ -16,6 +16,20 @@
 
 const char *const SSStarMaterialModels[] = {"linear", "saint_venant_kirchhoff", "neo_hookean", "SSStarMaterialModel", "SSSTAR_MATERIAL_", NULL};
 
+/* The model named name (of SSStarMaterialModels), or an error naming option */
+PetscErrorCode SSStarMaterialModelFromName(MPI_Comm comm, const char option[], const char name[], PetscInt *model)
+{
+  PetscBool found = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  for (PetscInt m = 0; m < 3 && !found; m++) {
+    PetscCall(PetscStrcasecmp(name, SSStarMaterialModels[m], &found));
+    if (found) *model = m;
+  }
+  PetscCheck(found, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option %s %s: unknown material model; give linear, saint_venant_kirchhoff or neo_hookean", option, name);
+  PetscFunctionReturn(0);
+}
+
 /* The determinant of a 3 x 3 matrix (rows) and, if inv is not NULL and it is not zero, the inverse */
 static PetscReal Inverse3(const PetscReal A[9], PetscReal inv[9])
 {
@@ -34,6 +48,12 @@ static PetscReal Inverse3(const PetscReal A[9], PetscReal inv[9])
     inv[8] = (A[0] * A[4] - A[1] * A[3]) / det;
   }
   return det;
+}
+
+/* The determinant of a 3 x 3 matrix (J = det F of a deformation gradient) */
+PetscReal SSStarDeterminant3(const PetscReal A[9])
+{
+  return Inverse3(A, NULL);
 }
 
 /* The strain of the model: eps = sym(F - I) (linear) or E = (F^T F - I)/2, as a full symmetric 3 x 3 matrix */

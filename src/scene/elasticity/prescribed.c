@@ -266,29 +266,57 @@ void SSStarHeldElement(SSStarScene scene, const PetscInt v[4], PetscScalar K[144
     }
 }
 
-/*
-   SSStarHeldLift - subtracts the lifting K_{:,D} g of the prescribed values (values: SSStarHeldValues()) from the local
-   load Floc at the dofs that are not held (the held ones get diag(K) g: SSStarHeldPrescribe())
-*/
-PetscErrorCode SSStarHeldLift(SSStarScene scene, const SSStarCells *cells, const PetscReal values[], Vec Floc)
+/* SSStarHeldLocalValues - a local vector with the prescribed values (values: SSStarHeldValues()) at the prescribed
+   components of every local vertex, 0 elsewhere */
+PetscErrorCode SSStarHeldLocalValues(SSStarScene scene, const PetscReal values[], Vec gloc)
 {
   PetscSection sec;
-  PetscScalar *fa;
+  PetscInt     vStart, vEnd;
+  PetscScalar *ga;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetLocalSection(scene->dm, &sec));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(VecZeroEntries(gloc));
+  PetscCall(VecGetArray(gloc, &ga));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off;
+
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    for (PetscInt k = 0; k < 3; k++)
+      if (SSStarHeldIdentityRow(scene, v - vStart, k)) ga[off + k] = values[3 * scene->heldBy[3 * (v - vStart) + k] + k];
+  }
+  PetscCall(VecRestoreArray(gloc, &ga));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarHeldLift - subtracts the lifting K_{:,D} g of prescribed values from the local load Floc at the dofs that are
+   not held (the held ones get diag(K) g: SSStarHeldPrescribe()): g the prescribed components of the local vector gloc
+   (SSStarHeldLocalValues(), or a hyperelastic step's increment of them), K the cells' Hooke matrices
+*/
+PetscErrorCode SSStarHeldLift(SSStarScene scene, const SSStarCells *cells, Vec gloc, Vec Floc)
+{
+  PetscSection       sec;
+  PetscScalar       *fa;
+  const PetscScalar *ga;
 
   PetscFunctionBegin;
   if (!scene->nDisplacements) PetscFunctionReturn(0);
   PetscCall(DMGetLocalSection(scene->dm, &sec));
   PetscCall(VecGetArray(Floc, &fa));
+  PetscCall(VecGetArrayRead(gloc, &ga));
   for (PetscInt c = 0; c < cells->cEnd - cells->cStart; c++) {
     const PetscInt *v = &cells->vertices[4 * c];
     PetscReal       g[12], x[12];
     PetscScalar     Ke[144];
     PetscBool       any = PETSC_FALSE;
 
+    PetscCall(SSStarCellsGetValues(cells, sec, ga, c, g));
     for (PetscInt a = 0; a < 4; a++)
       for (PetscInt k = 0; k < 3; k++) {
-        g[3 * a + k] = SSStarHeldIdentityRow(scene, v[a], k) ? values[3 * scene->heldBy[3 * v[a] + k] + k] : 0;
-        any          = (PetscBool)(any || g[3 * a + k] != 0);
+        if (!SSStarHeldIdentityRow(scene, v[a], k)) g[3 * a + k] = 0;
+        any = (PetscBool)(any || g[3 * a + k] != 0);
       }
     if (!any) continue;
     PetscCall(SSStarCellsGet(cells, c, x));
@@ -306,6 +334,7 @@ PetscErrorCode SSStarHeldLift(SSStarScene scene, const SSStarCells *cells, const
       }
     }
   }
+  PetscCall(VecRestoreArrayRead(gloc, &ga));
   PetscCall(VecRestoreArray(Floc, &fa));
   PetscFunctionReturn(0);
 }
@@ -336,6 +365,44 @@ PetscErrorCode SSStarHeldPrescribe(SSStarScene scene, const PetscReal values[], 
   }
   PetscCall(VecRestoreArrayRead(scene->diagK, &da));
   PetscCall(VecRestoreArray(b, &ba));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarHeldDiagonal - at the owned dofs of prescribed components, y = diag(K) x, or (inverse) y = x / diag(K): a
+   hyperelastic residual's prescribed rows diag(K) u, and the prescribed values g = b / diag(K) of a load b put into an
+   iterate (x, y global vectors of the scene's DM)
+*/
+PetscErrorCode SSStarHeldDiagonal(SSStarScene scene, Vec x, Vec y, PetscBool inverse)
+{
+  PetscSection       gsec;
+  PetscInt           vStart, vEnd, rstart;
+  PetscScalar       *ya;
+  const PetscScalar *xa, *da;
+
+  PetscFunctionBegin;
+  if (!scene->nDisplacements) PetscFunctionReturn(0);
+  PetscCheck(scene->diagK, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The rows of prescribed displacements need K: SSStarSceneAssemble() first");
+  PetscCall(DMGetGlobalSection(scene->dm, &gsec));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetOwnershipRange(y, &rstart, NULL));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  PetscCall(VecGetArrayRead(scene->diagK, &da));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off;
+
+    PetscCall(PetscSectionGetOffset(gsec, v, &off));
+    if (off < 0) continue; /* a ghost */
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscInt i = off - rstart + k;
+
+      if (SSStarHeldIdentityRow(scene, v - vStart, k)) ya[i] = inverse ? xa[i] / da[i] : da[i] * xa[i];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(scene->diagK, &da));
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
   PetscFunctionReturn(0);
 }
 

@@ -24,7 +24,7 @@ LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
             $(wildcard src/history/*.c)
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator \
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_nonlinear tests/test_scenes tests/test_reduction tests/test_operator \
             tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress tests/test_hyperelastic
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu bench/refine_petsc
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
@@ -78,8 +78,8 @@ bench/newton_step bench/dense_lu: bench/%: bench/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-# deliberately not linked with libssstar: it gets the type through -dll_append
-tests/test_plain_contact: tests/test_plain_contact.c
+# deliberately not linked with libssstar: they get the type through -dll_append
+tests/test_plain_contact tests/test_nonlinear: tests/%: tests/%.c
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
 

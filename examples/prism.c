@@ -12,6 +12,8 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -o <file.h5>               write the solution (HDF5 + XDMF)\n\
   -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary);\n\
                              it sets -snes_ssstar_reduction direct unless a reduction is given\n\
+  -save_whole <file.bin>     write K, b and the contact nodes (their dofs, normals, gaps) before the solve (PETSc\n\
+                             binary): the whole-body problem for a program of one's own (tests/test_nonlinear.c)\n\
   -summary_header <true>     print the header line of the summary table\n\
   -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                              Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
@@ -162,14 +164,56 @@ static PetscErrorCode SaveReduced(const char file[], SSStarScene scene, SNES sne
   PetscFunctionReturn(0);
 }
 
+/*
+   K, b and the contact nodes of the whole-body problem, before the solve: the global indices of their dofs (3 per node,
+   as reals), their obstacle normals (3 per node) and gaps, each a Vec laid out by the nodes
+*/
+static PetscErrorCode SaveWhole(const char file[], SSStarScene scene, Body *body)
+{
+  IS                 isC;
+  PetscInt           n;
+  const PetscInt    *idx;
+  const PetscReal   *normals, *gaps;
+  PetscScalar       *a;
+  Vec                v;
+  PetscViewer        viewer;
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetContactDofs(scene, &isC));
+  PetscCall(SSStarSceneGetContactNodes(scene, &n, NULL, &normals, &gaps, NULL));
+  PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_WRITE, &viewer));
+  PetscCall(MatView(body->K, viewer));
+  PetscCall(VecView(body->b, viewer));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, 3 * n, PETSC_DETERMINE, &v));
+  PetscCall(ISGetIndices(isC, &idx));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt k = 0; k < 3 * n; k++) a[k] = (PetscScalar)idx[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(ISRestoreIndices(isC, &idx));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt k = 0; k < 3 * n; k++) a[k] = normals[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecDestroy(&v));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, n, PETSC_DETERMINE, &v));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt k = 0; k < n; k++) a[k] = gaps[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecDestroy(&v));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   SSStarScene         scene;
   PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
   PetscLogDouble      peak;
-  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar, hasHelp;
+  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "", whole[PETSC_MAX_PATH_LEN] = "";
+  PetscBool           hasMesh, hasOut, hasReduced, hasWhole, header = PETSC_TRUE, isssstar, hasHelp;
   DM                  dm;
   Vec                 u, r;
   Body                body;
@@ -192,11 +236,13 @@ int main(int argc, char **argv)
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Prism contact problem", "ssstar");
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
   PetscCall(PetscOptionsString("-save_reduced", "Write P, f, u_C and the contact coordinates to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
+  PetscCall(PetscOptionsString("-save_whole", "Write K, b and the contact nodes (dofs, normals, gaps) to this PETSc binary file", NULL, whole, whole, sizeof(whole), &hasWhole));
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary table", NULL, header, &header, NULL));
   PetscOptionsEnd();
   PetscCall(InitialGuessSetFromOptions(&guess));
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
   if (hasReduced) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, reduced));
+  if (hasWhole) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, whole));
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetProgress(scene, PETSC_TRUE));
   PetscCall(SSStarSceneSetFromOptions(scene));
@@ -224,6 +270,7 @@ int main(int argc, char **argv)
   /* the whole body with its contact nodes: SNESSolve reduces K to them, solves, recovers u */
   PetscCall(SNESSSStarSetLinearProblem(snes, body.K, body.b));
   PetscCall(SSStarSceneSetContact(scene, snes));
+  if (hasWhole) PetscCall(SaveWhole(whole, scene, &body));
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));

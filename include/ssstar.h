@@ -12,7 +12,9 @@
    Reduced: without SNESSSStarSetContactNodes() every dof is a contact dof, the SNES function is
    c(u) = P u - f (or P u with SNESSolve(snes, f, u)) and the Jacobian P, on 3-blocks (u_t1, u_t2, u_n).
    In both, 0 in c(u) + Q(u) with non-penetration u_n + gap >= 0 and Q the friction law
-   (docs/derivation.md section 0).
+   (docs/derivation.md section 0). Any other F(u) with its Jacobian J(u) (SNESSetFunction(), SNESSetJacobian()) is
+   treated as nonlinear unless declared affine (SNESSSStarSetAffine()): the iteration evaluates F at its iterates and
+   J again as -snes_lag_jacobian says, on the whole body (docs/derivation.md section 17).
 */
 #include <petscsnes.h>
 #include <ssstarreduction.h>
@@ -78,7 +80,8 @@ typedef enum {
   SSSTAR_REASON_CYCLE,            /* the iterates cycle (period 2) and the remedies did not break it  */
   SSSTAR_REASON_LAW_STALLED,      /* ||z|| met its threshold, the law residual of the iterate stalled above its own */
   SSSTAR_REASON_NO_EQUILIBRIUM,   /* no contact forces the friction laws allow balance the load on a floating body */
-  SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided     */
+  SSSTAR_REASON_USER,             /* a convergence test set with SNESSetConvergenceTest() decided     */
+  SSSTAR_REASON_NOT_AFFINE        /* a residual declared affine is not: F at the solution is off the affine model's */
 } SSStarReason;
 PETSC_EXTERN const char *const SSStarReasons[];
 
@@ -128,6 +131,12 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReductionType(SNES, SSStarReductionType *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetMemoryLimit(SNES, PetscReal);
+
+/* The residual: affine (K u - b, the Jacobian evaluated once) or nonlinear, and the contact measured at the iterates */
+PETSC_EXTERN PetscErrorCode SNESSSStarSetAffine(SNES, PetscBool);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetAffine(SNES, PetscBool *);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetContactUpdate(SNES, PetscErrorCode (*)(SNES, Vec, void *), void *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNonlinearCounts(SNES, PetscInt *, PetscInt *);
 
 /* The friction law and its parameters */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionLaw(SNES, const char[]);

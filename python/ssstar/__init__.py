@@ -43,7 +43,7 @@ import numpy as np
 from petsc4py import PETSc
 
 __all__ = ["Scene", "Step", "Error", "__version__", "SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
-           "set_linear_problem", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
+           "set_linear_problem", "set_affine", "get_affine", "get_nonlinear_counts", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
            "set_contact_offsets", "get_contact_offsets",
            "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
            "law_parameters", "set_law_parameter", "set_friction", "get_friction", "set_node_law_parameter",
@@ -158,6 +158,9 @@ _C = {name: _declare(name, *args) for name, args in {
     "SNESSSStarSetContactOffsets": (_Handle, _Handle),
     "SNESSSStarGetContactOffsets": (_Handle, ctypes.POINTER(_Handle)),
     "SNESSSStarSetLinearProblem": (_Handle, _Handle, _Handle),
+    "SNESSSStarSetAffine": (_Handle, _Enum),
+    "SNESSSStarGetAffine": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarGetNonlinearCounts": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Int)),
     "SNESSSStarSetReductionType": (_Handle, ctypes.c_char_p),
     "SNESSSStarGetReductionType": (_Handle, ctypes.POINTER(ctypes.c_char_p)),
     "SNESSSStarSetMemoryLimit": (_Handle, _Real),
@@ -286,6 +289,26 @@ def set_linear_problem(snes, K, b):
     """SNESSSStarSetLinearProblem(): F(u) = K u - b with Jacobian K (a whole body), or the reduced c(u) = P u - f; the
     SNES keeps K and b (change b's values to change the load)"""
     _call(_C["SNESSSStarSetLinearProblem"], _h(snes), _h(K), _h(b))
+
+
+def set_affine(snes, affine):
+    """SNESSSStarSetAffine(): whether F is affine (K u - b: the Jacobian once per solve, the fast route) or nonlinear (F at
+    the iterates, the Jacobian again as -snes_lag_jacobian says, on the whole body); docs/guide/nonlinear-residuals.md"""
+    _call(_C["SNESSSStarSetAffine"], _h(snes), 1 if affine else 0)
+
+
+def get_affine(snes):
+    """SNESSSStarGetAffine(): whether the next solve treats F as affine (set_linear_problem's F is, others are not)"""
+    v = _Enum()
+    _call(_C["SNESSSStarGetAffine"], _h(snes), ctypes.byref(v))
+    return bool(v.value)
+
+
+def get_nonlinear_counts(snes):
+    """SNESSSStarGetNonlinearCounts(): (Jacobian evaluations, contact updates) of the last solve"""
+    a, b = _Int(), _Int()
+    _call(_C["SNESSSStarGetNonlinearCounts"], _h(snes), ctypes.byref(a), ctypes.byref(b))
+    return a.value, b.value
 
 
 def set_reduction_type(snes, kind):

@@ -232,10 +232,11 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c) */
+  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c); a nonlinear c evaluated there */
   for (alpha = 0.5; alpha >= glob->dampingMin; alpha /= 2) {
     PetscCall(VecWAXPY(ss->ua, alpha, ss->dv, ss->u));
-    PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
+    if (ss->problem.nonlinear) PetscCall(SNESSSStarResidual(snes, ss->ua, ss->ca));
+    else PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
     PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
     if (m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm) {
       PetscCall(Accept(ss, ss->ua, ss->ca));

@@ -8,7 +8,7 @@
 #include "ssstarimpl.h"
 
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
-const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "NO_EQUILIBRIUM", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "NO_EQUILIBRIUM", "USER_TEST", "NOT_AFFINE", "SSStarReason", "SSSTAR_REASON_", NULL};
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
@@ -87,14 +87,15 @@ static PetscErrorCode CreateWorkVectors(SNES snes)
    to the contact dofs, f = -(K u0 - b)_C with u0 in equilibrium and u0_C = 0: what a reduction would give. Into
    ss->scale, ss->fnorm_inf; u and c = K u - b on return.
 */
-/* The free dofs of ss->u corrected with its contact dofs held, from c = K u - b there, to max(rtol ||r0||, atol) */
-static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol)
+/* The free dofs of ss->u corrected with its contact dofs held, from c = K u - b there, to max(rtol ||r0||, atol);
+   solved NULL: a failed linear solve is an error */
+static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol, PetscBool *solved)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarProblem     *pb = &ss->problem;
   const PetscScalar *ca;
   PetscScalar       *za;
-  PetscBool          solved;
+  PetscBool          ok;
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(ss->c, &ca));
@@ -104,30 +105,24 @@ static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol)
   PetscCall(VecRestoreArrayWrite(ss->z, &za));
   PetscCall(VecRestoreArrayRead(ss->c, &ca));
   PetscCall(SSStarNewtonSetTolerances(ss->newton, rtol, atol));
-  PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
-  PetscCheck(solved, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
+  PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &ok));
+  if (solved) *solved = ok;
+  else PetscCheck(ok, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Equilibrate(SNES snes)
+/* ss->scale = gamma ||f||, ss->fnorm_inf = ||f||_inf with f = -c at the contact dofs */
+static PetscErrorCode SetLoadScale(SNES snes)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  SSStarContact     *ct = &ss->contact;
-  SSStarProblem     *pb = &ss->problem;
-  PetscReal          sums[2] = {0, 0}, unorm, floor;
+  const PetscInt    *dofs = ss->problem.layoutDofs;
+  PetscReal          sums[2] = {0, 0};
   const PetscScalar *ca;
-  Vec                uC = ss->ut;
 
   PetscFunctionBegin;
-  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
-  PetscCall(VecCopy(ss->u, uC));
-  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
-  PetscCall(VecZeroEntries(ss->u));
-  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0));
   PetscCall(VecGetArrayRead(ss->c, &ca));
-  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
-    const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);
+  for (PetscInt k = 0; k < 3 * ss->contact.nnodes; k++) {
+    const PetscReal fk = -PetscRealPart(ca[dofs[k]]);
 
     sums[0] += fk * fk;
     sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
@@ -137,6 +132,51 @@ static PetscErrorCode Equilibrate(SNES snes)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
   ss->scale     = ss->scaling * PetscSqrtReal(sums[0]);
   ss->fnorm_inf = sums[1];
+  PetscFunctionReturn(0);
+}
+
+/*
+   A nonlinear residual (docs/derivation.md section 17): the guess, free dofs included (F is not K u - b: the top of a
+   body prescribed in the guess stays), corrected by one linearized step of the free dofs with the contact dofs held,
+   kept where it solved and F is defined there; the load's scale from the contact forces at that point
+*/
+static PetscErrorCode EquilibrateNonlinear(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscReal    cmax;
+  PetscBool    solved;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(ss->u, ss->ut));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, 0.0, &solved));
+  if (solved) PetscCall(VecNorm(ss->c, NORM_INFINITY, &cmax));
+  if (!solved || PetscIsInfOrNanReal(cmax)) {
+    PetscCall(VecCopy(ss->ut, ss->u));
+    PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  }
+  PetscCall(SetLoadScale(snes));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Equilibrate(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscReal    unorm, floor;
+  Vec          uC = ss->ut;
+
+  PetscFunctionBegin;
+  if (ss->problem.nonlinear) {
+    PetscCall(EquilibrateNonlinear(snes));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
+  PetscCall(VecCopy(ss->u, uC));
+  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
+  PetscCall(VecZeroEntries(ss->u));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0, NULL));
+  PetscCall(SetLoadScale(snes));
   if (unorm == 0) PetscFunctionReturn(0);
   /* a given u: its free dofs corrected from its own, relative to its own residual (not to the whole load's, from u0),
      down to the Newton steps' floor: a guess already in equilibrium (the step before on a load path) keeps its
@@ -147,7 +187,7 @@ static PetscErrorCode Equilibrate(SNES snes)
   PetscCall(VecCopy(uC, ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SNESSSStarLinearFloor(snes, &floor));
-  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor));
+  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -237,6 +277,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   SSStarContactLayout layout;
 
   PetscFunctionBegin;
+  PetscCall(SSStarNonlinearMeasureAtStart(snes)); /* a contact update declares the contact at the initial guess */
   PetscCall(SSStarProblemSetUp(snes, ct, pb));
   PetscCall(SSStarContactSetUpOffsets(PetscObjectComm((PetscObject)snes), ct, &ss->offsetScale));
   PetscCall(CreateWorkVectors(snes));
@@ -244,6 +285,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   PetscCall(SSStarProblemGetLayout(ct, pb, &layout));
   PetscCall(SSStarNewtonSetStiffness(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
   PetscCall(SSStarProblemGetInitialGuess(ct, pb, snes->vec_sol, ss->u));
+  PetscCall(SSStarNonlinearBegin(snes));
   PetscCall(CheckProblem(snes));
   if (pb->wholeBody) PetscCall(Equilibrate(snes)); /* the free dofs in equilibrium with the contact dofs */
   else {
@@ -291,6 +333,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   for (PetscInt k = 0; snes->reason == SNES_CONVERGED_ITERATING; k++) {
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
+    PetscCall(SSStarNonlinearMeasureContact(snes)); /* a contact update: the contact at this iterate (nonlinear.c) */
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
     PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
     PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
@@ -332,6 +375,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         break;
       }
     }
+    PetscCall(SSStarNonlinearJacobian(snes, k)); /* a nonlinear residual: its Jacobian at this iterate (-snes_lag_jacobian) */
     if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
       PetscCall(SNESSSStarSetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
       PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
@@ -401,6 +445,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SSStarProblemSetSolution(ct, pb, ss->u, ss->c, snes->vec_sol));
   PetscCall(SNESComputeFunction(snes, snes->vec_sol, snes->vec_func));
+  PetscCall(SSStarNonlinearCheckAffine(snes)); /* an affine residual: F there against the model (nonlinear.c) */
   PetscFunctionReturn(0);
 }
 
@@ -609,6 +654,7 @@ static PetscErrorCode SNESSSStarComposeFunctions(SNES snes, PetscBool on)
   PetscCall(SNESSSStarComposeNodeSteps(snes, on));
   PetscCall(SNESSSStarComposeGlobalization(snes, on));
   PetscCall(SNESSSStarComposeFloating(snes, on));
+  PetscCall(SNESSSStarComposeNonlinear(snes, on));
   PetscFunctionReturn(0);
 }
 
@@ -660,6 +706,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
    Options Database Keys:
 +  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 .  -snes_ssstar_friction <0.3> - Coulomb friction coefficient
+.  -snes_ssstar_affine <auto> - true: F(u) = K u - b, the Jacobian once per solve; false: F evaluated at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body; auto: true for SNESSSStarSetLinearProblem()'s F, false for a program's own
 .  -snes_ssstar_reduction <auto> - whole-body use: K reduced to the contact dofs (direct, mumps, explicit), none (the Newton step on the whole body, P never formed) or auto (direct on small problems, none on large ones)
 .  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag K_CC), the contact block of K)

@@ -52,14 +52,14 @@ def coulomb(args):
     # against 1e-6 of the path's largest so far (a step where nothing touches has forces of round-off alone)
     before = lambda k: f["steps/%s/contact" % steps[k - 1]] if k > 0 else None  # noqa: E731
     path = [(0.0, 0.0)]
-    for k in steps:
+    contact = "contact" in f
+    for k in steps if contact else ():
         c = f["steps/%s/contact" % k]
         path.append((max(path[-1][0], np.abs(c["displacement"][:]).max()), max(path[-1][1], np.abs(c["reaction"][:]).max())))
     # the scales the solver measured its law residual against (at least the round-off of K u - b: a stiff body far
     # from its reference computes its forces to no better), recorded in the file
     solver = (f.attrs.get("law_displacement_scale", 0.0), f.attrs.get("law_force_scale", 0.0))
     recorded = lambda k: (f["steps/law_displacement_scale"][int(k)], f["steps/law_force_scale"][int(k)]) if "steps/law_force_scale" in f else (0.0, 0.0)  # noqa: E731
-    contact = "contact" in f
     ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver) if contact else True
     if args.steps:
         for j, k in enumerate(steps):
@@ -117,6 +117,7 @@ def check_finite_strain(f, prefix):
     model = f[prefix + "fields/material_model"][:]
     hyper = model > 0
     sigma = np.where(hyper[:, None, None], P @ np.transpose(F, (0, 2, 1)) / J[:, None, None], P)
+    sigma = 0.5 * (sigma + np.transpose(sigma, (0, 2, 1)))  # its symmetric part (P F^T of a round-off P is not symmetric)
     E = 0.5 * (np.transpose(F, (0, 2, 1)) @ F - np.eye(3))
     pick = lambda t: t[:, [0, 1, 2, 1, 0, 0], [0, 1, 2, 2, 2, 1]]  # noqa: E731 (xx, yy, zz, yz, xz, xy)
     stress, strain = f[prefix + "fields/stress"][:], f[prefix + "fields/strain"][:]

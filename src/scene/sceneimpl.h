@@ -36,12 +36,15 @@ typedef struct {
 
 /*
    A group whose displacement is prescribed (-displacement_<G> x,y,z; prescribed.c): each component a number or free,
-   constant or a history of knots t:x,y,z;... (a component free in one knot is free in all)
+   constant or a history of knots t:x,y,z;... (a component free in one knot is free in all); or rotated rigidly
+   (-rotation_<G> rx,ry,rz about -rotation_center_<G>: the rotation vector in degrees, every component prescribed)
 */
 typedef struct {
   char          name[SSSTAR_GROUP_NAME_LEN];
-  SSStarHistory history; /* 3 components; a free one is 0 in it */
-  PetscInt      free;    /* bit k: component k is free */
+  SSStarHistory history;   /* 3 components; a free one is 0 in it; a rotation's: the rotation vector */
+  PetscInt      free;      /* bit k: component k is free */
+  PetscBool     rotation;  /* -rotation_<G> */
+  PetscReal     center[3]; /* its center */
 } SSStarPrescribed;
 
 /* The material model of a volume group (-material_model_<G>) */
@@ -237,6 +240,7 @@ PETSC_INTERN PetscErrorCode SSStarCellsGetValues(const SSStarCells *, PetscSecti
 PETSC_INTERN PetscErrorCode SSStarCellsEnd(SSStarCells *);
 /* Prescribed displacements (prescribed.c) */
 PETSC_INTERN PetscErrorCode SSStarPrescribedRead(SSStarScene, const char[], const char[], const char[], SSStarPrescribed *);
+PETSC_INTERN PetscErrorCode SSStarPrescribedReadRotation(SSStarScene, const char[], const char[], const char[], SSStarPrescribed *);
 PETSC_INTERN PetscErrorCode SSStarPrescribedDestroy(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPrescribedText(const SSStarPrescribed *, char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarSceneFindHeld(SSStarScene);
@@ -246,7 +250,6 @@ PETSC_INTERN PetscBool      SSStarHeldIdentityRow(SSStarScene, PetscInt, PetscIn
 PETSC_INTERN void           SSStarHeldElement(SSStarScene, const PetscInt[4], PetscScalar[144]);
 PETSC_INTERN PetscErrorCode SSStarHeldLocalValues(SSStarScene, const PetscReal[], Vec);
 PETSC_INTERN PetscErrorCode SSStarHeldLift(SSStarScene, const SSStarCells *, Vec, Vec);
-PETSC_INTERN PetscErrorCode SSStarHeldPrescribe(SSStarScene, const PetscReal[], Vec);
 PETSC_INTERN PetscErrorCode SSStarHeldDiagonal(SSStarScene, Vec, Vec, PetscBool);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckPartlyHeld(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSetRigidBodyModes(SSStarScene, Mat);

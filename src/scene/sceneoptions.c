@@ -72,9 +72,11 @@ typedef enum {
   OPT_CONTACT_PAIR,
   OPT_DISPLACEMENT,
   OPT_MATERIAL_MODEL,
+  OPT_ROTATION,
+  OPT_ROTATION_CENTER,
   OPT_LAW_PARAMETER
 } GroupOption;
-static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_", "-material_model_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_", "-material_model_", "-rotation_", "-rotation_center_"};
 
 /* The options of a contact group (its obstacle, law, parameters, pair) */
 static PetscBool IsContactOption(GroupOption kind)
@@ -166,7 +168,7 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   if (kind == OPT_MATERIAL) scene->nMaterials++;
   if (kind == OPT_TRACTION) scene->nTractions++;
   if (kind == OPT_SPRING) scene->nSprings++;
-  if (kind == OPT_DISPLACEMENT) scene->nDisplacements++;
+  if (kind == OPT_DISPLACEMENT || kind == OPT_ROTATION) scene->nDisplacements++;
   if (kind == OPT_MATERIAL_MODEL) scene->nModels++;
   PetscFunctionReturn(0);
 }
@@ -299,6 +301,19 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCall(SSStarMaterialModelFromName(scene->comm, option, name, &model));
     gm->model = (SSStarMaterialModel)model;
   } break;
+  case OPT_ROTATION: { /* a prescribed rigid rotation (prescribed.c) */
+    const char *value;
+
+    PetscCall(PetscOptionsFindPair(NULL, NULL, option, &value, &set));
+    PetscCall(SSStarPrescribedReadRotation(scene, option, group, value, &scene->displacements[scene->nDisplacements++]));
+  } break;
+  case OPT_ROTATION_CENTER: { /* read with its -rotation_<G> */
+    char rotation[SSSTAR_GROUP_NAME_LEN + 16];
+
+    PetscCall(PetscSNPrintf(rotation, sizeof(rotation), "-rotation_%s", group));
+    PetscCall(PetscOptionsHasName(NULL, NULL, rotation, &set));
+    PetscCheck(set, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s needs %s: the center of a rotation that is not prescribed", option, rotation);
+  } break;
   case OPT_DISPLACEMENT: { /* prescribed displacements: numbers or free, constant or a history (prescribed.c) */
     const char *value;
 
@@ -332,6 +347,9 @@ static const char SceneGroupHelp[] = "\
   -displacement_<G> <x,y,z>: prescribed displacement of surface or volume group G (global axes), each component a\n\
       number or free (free,free,-0.01: only u_z prescribed); a constant or a history t:x,y,z;... (a component free\n\
       in one knot is free in all); its reaction force is in the output (docs/guide/displacements-and-stresses.md)\n\
+  -rotation_<G> <rx,ry,rz>: a rigid rotation prescribed on group G (every component of its nodes): the rotation\n\
+      vector in degrees (its direction the axis, its length the angle), a constant or a history t:rx,ry,rz;...\n\
+  -rotation_center_<G> <x,y,z>: the point its axis passes through (default 0,0,0)\n\
   -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
       t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
@@ -440,6 +458,8 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -material_model_<G> <linear> - the material model of volume group G
 .  -dirichlet <G1,G2> - groups held fixed
 .  -displacement_<G> <x,y,z> - the prescribed displacement of surface or volume group G: each component a number or free, a constant or a history t:x,y,z;...
+.  -rotation_<G> <rx,ry,rz> - a rigid rotation prescribed on group G: the rotation vector in degrees, a constant or a history t:rx,ry,rz;...
+.  -rotation_center_<G> <x,y,z> - the point its axis passes through (default the origin)
 .  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
 .  -gravity <gx,gy,gz> - gravity, with -density: a constant, or a history t:gx,gy,gz;...
@@ -576,7 +596,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
   }
   for (PetscInt d = 0; d < scene->nDisplacements; d++) {
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[d].name));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s_%s", scene->displacements[d].rotation ? "rotation" : "displacement", scene->displacements[d].name));
     PetscCall(CheckNotHeld(scene, scene->displacements[d].name, option));
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -606,7 +626,7 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
 
     (*uses)[k].group = scene->displacements[g].name;
     (*uses)[k].kind  = SSSTAR_GROUP_ANY;
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[g].name));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s_%s", scene->displacements[g].rotation ? "rotation" : "displacement", scene->displacements[g].name));
     PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt g = 0; g < scene->nContact; g++, k++) {

@@ -500,22 +500,24 @@ PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
   if (scene->nDisplacements) {
     PetscReal  *values;
     SSStarCells cells;
+    Vec         gloc, g;
 
     PetscCall(PetscMalloc1(3 * (scene->nDirichlet + scene->nDisplacements), &values));
     PetscCall(SSStarHeldValues(scene, t, values));
+    PetscCall(DMGetLocalVector(dm, &gloc));
+    PetscCall(SSStarHeldLocalValues(scene, values, gloc));
     if (scene->affine) { /* a hyperelastic scene's residual takes u_D = g as it is: no lifting (18.2) */
-      Vec gloc;
-
-      PetscCall(DMGetLocalVector(dm, &gloc));
-      PetscCall(SSStarHeldLocalValues(scene, values, gloc));
       PetscCall(SSStarCellsBegin(scene, &cells));
       PetscCall(SSStarHeldLift(scene, &cells, gloc, Floc));
       PetscCall(SSStarCellsEnd(&cells));
-      PetscCall(DMRestoreLocalVector(dm, &gloc));
     }
     PetscCall(VecZeroEntries(b));
     PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
-    PetscCall(SSStarHeldPrescribe(scene, values, b));
+    PetscCall(DMGetGlobalVector(dm, &g));
+    PetscCall(DMLocalToGlobal(dm, gloc, INSERT_VALUES, g));
+    PetscCall(SSStarHeldDiagonal(scene, g, b, PETSC_FALSE)); /* diag(K) g at the prescribed components */
+    PetscCall(DMRestoreGlobalVector(dm, &g));
+    PetscCall(DMRestoreLocalVector(dm, &gloc));
     PetscCall(PetscFree(values));
   } else {
     PetscCall(VecZeroEntries(b));

@@ -270,7 +270,7 @@ PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
     if (cg->motion) PetscCall(SSStarHistoryEvaluate(cg->motion, t, cg->d));
   }
   PetscCall(SSStarSceneCheckSmallSliding(scene, scene->accepted + 1, t));
-  if (scene->sliding == SSSTAR_SLIDING_LARGE) PetscCall(SSStarSceneMeasureContact(scene, snes));
+  if (scene->sliding == SSSTAR_SLIDING_LARGE && scene->nContact) PetscCall(SSStarSceneMeasureContact(scene, snes));
   PetscCall(SetOffsets(scene, snes));
   PetscFunctionReturn(0);
 }

@@ -338,7 +338,9 @@ int main(int argc, char **argv)
     if (path) PetscCall(PathTimes(scene, hasSteps ? stepsText : NULL, &nsteps, &times)); /* -steps refused before the mesh */
   }
   /* contact: ssstar on the whole body; no contact: one linear solve, or Newton's method (newtonls, LU of the tangent)
-     for a hyperelastic body; -help lists the options of ssstar */
+     for a hyperelastic body, its line search cp: F is the gradient of the energy (dead loads, springs), and the
+     norm of F that bt minimizes grows along the Newton step of a body that bends or turns (-snes_linesearch_type
+     overrides it); -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   if (hasContact || hasHelp) PetscCall(SNESSetType(snes, SNESSSSTAR));
   else {
@@ -351,6 +353,12 @@ int main(int argc, char **argv)
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PCSetType(pc, affine ? PCCHOLESKY : PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    if (!affine) {
+      SNESLineSearch ls;
+
+      PetscCall(SNESGetLineSearch(snes, &ls));
+      PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHCP));
+    }
   }
   PetscCall(SNESSetFromOptions(snes));
   if (hasHelp) { /* the options are listed: no mesh, no solve, no file */

@@ -4,6 +4,7 @@ and their numerical check, homogeneous compressions against the closed forms of 
 file's fields, bad input refused by name."""
 import os
 import re
+import subprocess
 
 import h5py
 import numpy as np
@@ -192,3 +193,30 @@ def hyperelastic_refused():
         out = run([CONTACT] + CUBE + ["-level", "1", "-dirichlet", "bottom"] + extra + ["-o", h5], expect_rc=1)
         expect(message in out, "%s: no error naming it (%s)" % (" ".join(extra), message), out)
         expect(not os.path.exists(h5), "%s: a file was written" % " ".join(extra))
+
+
+@test("the Python module solves a hyperelastic scene as examples/contact does: ssstar.Scene(material_model=\"neo_hookean\") of the cube compressed on the frictionless plane by 10 % and 30 % (ssstar, nonlinear residual) and of the cube held on its planes of symmetry (Newton's method, no contact): the top's reactions are the closed form P_33 A to 1e-8, the displacements of every step agree with examples/contact's to 2e-6 (and the contact's: check_solution.py compare) and pass check_solution.py law --steps")
+def hyperelastic_python():
+    history = "0:free,free,0;1:free,free,-0.1;2:free,free,-0.3"
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+    cases = {"contact": ["-contact", "bottom", "-friction_law_bottom", "none"] + SYMMETRY[2:], "symmetry": SYMMETRY}
+    for name, extra in cases.items():
+        options = CUBE + ["-level", "1", "-material_model", "neo_hookean", "-displacement_top", history] + extra
+        keywords = ", ".join("%s=%r" % (options[k][1:], options[k + 1]) for k in range(0, len(options), 2))
+        h5 = os.path.join(OUT, "hyperelastic_python_%s.h5" % name)
+        script = "import ssstar\nscene = ssstar.Scene(%s, o=%r)\nscene.solve()\nscene.close()\n" % (keywords, h5)
+        p = subprocess.run([PYTHON, "-c", script], cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300)
+        expect(p.returncode == 0, "%s: the Python scene failed" % name, p.stdout)
+        f = h5py.File(h5, "r")
+        for k, delta in enumerate((0.1, 0.3), start=1):
+            P33 = uniaxial("neo_hookean", 1 - delta)[1]
+            r = f["steps/groups/top/reaction"][k][2]
+            expect(abs(r - P33) <= 1e-8 * abs(P33), "%s, %g %%: the top's reaction %g, not %.10g" % (name, 100 * delta, r, P33), p.stdout)
+        law(os.path.basename(h5))
+        c = "hyperelastic_python_%s_c.h5" % name
+        _, g = contact(options, c)
+        for k in steps(g):
+            a, b = g["steps/%s/fields/displacement" % k][:], f["steps/%s/fields/displacement" % k][:]
+            expect(np.abs(a - b).max() <= AGREE * max(np.abs(a).max(), 1e-300), "%s, step %s: the Python scene's displacement is not examples/contact's" % (name, k))
+        if "contact" in g:
+            run(CHECK + ["compare", os.path.join(OUT, c), h5, "--steps", "--tol", str(AGREE)])

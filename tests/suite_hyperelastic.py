@@ -119,6 +119,36 @@ def hyperelastic_compression_contact():
             law(h5)
 
 
+def pressed_ball(ranks):
+    args = ["-geo", os.path.join(ROOT, "meshes", "indent.geo"), "-level", "1", "-E", "1000", "-nu", "0.3", "-material_model", "neo_hookean", "-contact", "top", "-obstacle_top", "sphere:0,0,10,10", "-friction_law_top", "none", "-displacement_bottom", "0:0,0,0;1:0,0,0.5;2:0,0,1"]
+    h5 = "hyperelastic_ball_%d.h5" % ranks
+    out, f = contact(args, h5, ranks)
+    what = "%d ranks" % ranks
+    expect(out.count("set-up:") == len(re.findall(r"^step \d+/\d+ ", out, re.M)), "%s: a step solved more than once (the contact not measured at the iterates)" % what, out)
+    x, c = f["geometry/vertices"][:], f["contact/coordinates"][:]
+    nodes = np.argmin(((c[:, None, :] - x[None, :, :]) ** 2).sum(axis=-1), axis=1)
+    for k in (1, 2):
+        gap = np.linalg.norm(f["steps/%d/fields/position" % k][:][nodes] - [0, 0, 10], axis=1) - 10
+        touching = f["steps/%d/contact/state" % k][:] > 0
+        expect(touching.sum() > 100 and np.abs(gap[touching]).max() <= 1e-8 and gap.min() >= -1e-8, "%s, step %d: %d touching nodes, off the sphere by up to %g, the deepest %g" % (what, k, touching.sum(), np.abs(gap[touching]).max(), gap.min()), out)
+        forces = f["steps/%d/contact/reaction" % k][:].sum(axis=0)
+        expect(np.abs(f["steps/groups/bottom/reaction"][k] + forces).max() <= 1e-8 * np.abs(forces).max(), "%s, step %d: the bottom's reaction %s does not balance the contact forces %s" % (what, k, f["steps/groups/bottom/reaction"][k], forces), out)
+    law(h5)
+
+
+BALL = "a neo-Hookean block (meshes/indent.geo level 1, E = 1000) pushed by its bottom 0.5 and 1.0 into the rigid ball of radius 10 (frictionless, a load path): the contact is measured at every iterate (large sliding within the Newton loop, SNESSSStarSetContactUpdate), so every touching node's current position lies on the sphere to 1e-8 (the loop between solves left 1e-4) with no node inside it, every step (or halved step) is solved once, the bottom's reaction balances the contact forces to 1e-8 of them, and check_solution.py law --steps accepts the file"
+
+
+@test(BALL + "; 1 rank")
+def hyperelastic_ball():
+    pressed_ball(1)
+
+
+@test(BALL + "; 2 ranks (slow: about a minute on the shared machine)", full=True)
+def hyperelastic_ball_parallel():
+    pressed_ball(2)
+
+
 @test("a rigid rotation of 90 degrees about z (-rotation_bottom, through the cube's axis x = y = 0.5, in three steps of 30 degrees) prescribed on the bottom of the unit cube, nothing else holding or loading it: a hyperelastic body (saint_venant_kirchhoff, neo_hookean) turns rigidly, every cell's Cauchy stress zero to 1e-9 E and the displacement the rigid rotation's to 1e-9, J = 1; the linear model's answer to the same prescription is strained (its von Mises stress reaches more than 0.1 E): the small-strain model's spurious stress; 1 and 2 ranks")
 def hyperelastic_rotation():
     args = CUBE + ["-level", "1", "-rotation_bottom", "0:0,0,0;1:0,0,30;2:0,0,60;3:0,0,90", "-rotation_center_bottom", "0.5,0.5,0"] + TIGHT

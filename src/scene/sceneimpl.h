@@ -300,6 +300,7 @@ PETSC_INTERN PetscErrorCode SSStarSceneContactTolerance(SSStarScene, PetscReal *
 PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const PetscInt[], const PetscReal[], PetscReal, PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarSceneMeasureContact(SSStarScene, SNES);
+PETSC_INTERN PetscErrorCode SSStarSceneMeasureContactAt(SSStarScene, SNES, Vec);
 PETSC_INTERN PetscErrorCode SSStarSceneRelinearizeContact(SSStarScene, SNES, Vec, PetscBool *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene, Vec);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);

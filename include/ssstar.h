@@ -50,6 +50,9 @@ PETSC_EXTERN const char *const SSStarStateNames[];
 #define SSSTARLAWTRESCA      "tresca"      /* |r_t| <= s, a given slip bound s (a force), whatever r_n               */
 #define SSSTARLAWCOULOMB     "coulomb"     /* |r_t| <= phi r_n                                                       */
 #define SSSTARLAWORTHOTROPIC "orthotropic" /* |M^-1/2 r_t| <= r_n: phi_1 along a given direction, phi_2 across it   */
+/* a node's value of a law parameter that is not given (SNESSSStarSetNodeLawParameter(); for a direction its first
+   component): NaN, which no parameter takes (PETSC_DEFAULT, -2, is a direction's component like any other) */
+#define SSSTAR_NOT_GIVEN ((PetscReal)NAN)
 typedef struct _n_SSStarLaw *SSStarLaw;
 /* What a law's parameter is: a coefficient (a number >= 0), a force (>= 0) or a direction (x, y, z in global axes) */
 typedef enum {
@@ -113,6 +116,7 @@ PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm, const char *const[]
 PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsedOf(MPI_Comm, PetscInt, const char *const[], const char *const[], SNES);
 PETSC_EXTERN PetscErrorCode SSStarWriteOutcome(SNES, PetscViewer);
 PETSC_EXTERN PetscErrorCode SSStarPushErrorHandler(void);
+PETSC_EXTERN PetscErrorCode SSStarOptionsNameBadValue(const char[], char[], size_t);
 
 /* Checks of a local condition that end every rank with the message of the first rank that failed */
 PETSC_EXTERN PetscErrorCode SSStarCheckAllRanks(MPI_Comm, PetscErrorCode, const char[]);

@@ -121,8 +121,9 @@ PETSC_EXTERN PetscErrorCode SSStarWriteNodeFriction(SNES, PetscViewer, const cha
 
 /* The pieces a scene is made of, for programs of their own */
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);
+PETSC_EXTERN PetscErrorCode SSStarMeshCacheFile(MPI_Comm, const char[], const char[], PetscInt, char[]);
 PETSC_EXTERN PetscErrorCode SSStarMeshFileNodes(MPI_Comm, const char[], PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, const char[]);
-PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscLogDouble *, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscReal, PetscLogDouble *, PetscLogDouble *, PetscBool *);
 
 #endif

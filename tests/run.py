@@ -17,6 +17,7 @@ import traceback
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 TIMINGS = os.path.join(HERE, "output", "timings.json")  # the last run's seconds per test: the longest start first
+SHIPPED_TIMINGS = os.path.join(HERE, "timings.json")  # a fresh clone's: a whole run's, measured here on a quiet machine
 TEST_TIMEOUT = 1800  # seconds: a test that runs longer hangs
 
 
@@ -53,7 +54,7 @@ def environment(out):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("-k", default="", help="run only tests whose name contains this")
+    parser.add_argument("-k", action="append", default=[], help="run only tests whose name (or suite's name) contains this; repeatable")
     parser.add_argument("-j", type=int, default=os.cpu_count() or 1, help="tests run at the same time (default: cores)")
     parser.add_argument("--full", action="store_true", help="also the slow tests (make test-full)")
     parser.add_argument("--list", action="store_true", help="list the tests that would run, with their requirements")
@@ -65,17 +66,19 @@ def main():
 
     load_suites()
     from harness import OUT, TESTS
-    chosen = [t for t in TESTS if args.k in t[0] and (args.full or not t[3])]
+    chosen = [t for t in TESTS if (not args.k or any(k in t[0] or k in t[2].__module__ for k in args.k)) and (args.full or not t[3])]
     if args.list:
         for name, requirement, fn, full in chosen:
             print("%-32s %-16s %s%s" % (name, fn.__module__, "[full] " if full else "", requirement))
         print("%d tests" % len(chosen))
         return
     os.makedirs(OUT, exist_ok=True)
-    try:
-        previous = json.load(open(TIMINGS))
-    except (OSError, ValueError):
-        previous = {}
+    previous = {}
+    for name in (SHIPPED_TIMINGS, TIMINGS):
+        try:
+            previous.update(json.load(open(name)))
+        except (OSError, ValueError):
+            pass
     order = sorted(chosen, key=lambda t: -previous.get(t[0], 1e9))  # the longest (or unknown) first: no long tail
     print("%d tests, %d at a time%s" % (len(order), args.j, " (with the slow ones of make test-full)" if args.full else ""), flush=True)
     start = time.time()

@@ -18,6 +18,7 @@ BLOCK = ["-geo", os.path.join(ROOT, "meshes", "block.geo"), "-level", "1", "-E",
 E, NU, AREA, HEIGHT = 1000.0, 0.3, 1.0, 0.5
 STUCK = 24.6  # -reaction z of the clamped lid on a base with phi = 100 (every node sticks): 24.56 at level 1
 PATHS = [(red, ranks) for red in ("direct", "none") for ranks in (1, 2)]
+CROSS = [("direct", 1), ("none", 2)]  # both paths and both rank counts, in two runs
 
 
 @test("docs/derivation.md section 15 holds (tests/displacement_check.py, numpy, independent of the C code): the identity rows give u_D = g and the lifted free equations, the reaction is the constraint's multiplier, the reduction of K' is that of K_FF with the lifted load (to 1e-12); a P1 cube held in z on its top keeps 3 rigid motions; a contact node held in x on a plane of symmetry (Coulomb) has u_x = 0 and no force along x; the P1 strain of a linear field is exact; Hertz's on-axis von Mises maximum is 0.62 p0 at 0.48 a")
@@ -74,10 +75,10 @@ def displacement_compression():
         law(h5)
 
 
-@test("a lid clamped (-displacement_top 0,0,-0.01, every component) on a block on a frictional base (phi = 0.3): the lid's reaction /groups/top/reaction and the contact force balance (their sum zero to 1e-8 of the reaction), the reaction's z is between the frictionless E A delta/h = 20 and the fully stuck base's (24.56 at phi = 100); the lid's nodes are no contact nodes; direct and none, 1 and 2 ranks agree to 2e-6 (harness.AGREE); the law holds")
+@test("a lid clamped (-displacement_top 0,0,-0.01, every component) on a block on a frictional base (phi = 0.3): the lid's reaction /groups/top/reaction and the contact force balance (their sum zero to 1e-8 of the reaction), the reaction's z is between the frictionless E A delta/h = 20 and the fully stuck base's (24.56 at phi = 100); the lid's nodes are no contact nodes; direct on 1 rank and none on 2 agree to 2e-6 (harness.AGREE); the law holds")
 def displacement_clamped_balance():
     first = None
-    for red, ranks in PATHS:
+    for red, ranks in CROSS:
         h5 = "displacement_clamped_%s_%d.h5" % (red, ranks)
         out, f = contact(BLOCK + ["-contact", "bottom", "-friction_bottom", "0.3", "-displacement_top", "0,0,-0.01", "-snes_ssstar_reduction", red], h5, ranks)
         what = "%s %d ranks" % (red, ranks)
@@ -135,13 +136,13 @@ def mirror_msh22(half, full, plane_group):
         fp.write("$EndElements\n")
 
 
-@test("a plane of symmetry through contact nodes (docs/derivation.md section 15): half a block (meshes/halfblock.geo, level 1) held in x on its face x = 0 (-displacement_sym 0,free,free), its lid clamped and moved down by 0.01, on a base with Coulomb friction phi = 0.3, and the full block (the half mirrored about x = 0, exact mirror images): the contact nodes on the plane stay contact nodes, their u_x and contact force's x are 0 (1e-12), and the half's displacements, contact forces and reactions are the full block's halves to 2e-6 (harness.AGREE; the reactions and forces twice the half's); the law holds on both; direct and none, 1 and 2 ranks")
+@test("a plane of symmetry through contact nodes (docs/derivation.md section 15): half a block (meshes/halfblock.geo, level 1) held in x on its face x = 0 (-displacement_sym 0,free,free), its lid clamped and moved down by 0.01, on a base with Coulomb friction phi = 0.3, and the full block (the half mirrored about x = 0, exact mirror images): the contact nodes on the plane stay contact nodes, their u_x and contact force's x are 0 (1e-12), and the half's displacements, contact forces and reactions are the full block's halves to 2e-6 (harness.AGREE; the reactions and forces twice the half's); the law holds on both; direct on 1 rank, none on 2", full=True)
 def displacement_symmetry_plane():
     half, full = os.path.join(OUT, "halfblock_L1.msh"), os.path.join(OUT, "fullblock_L1.msh")
     run(["gmsh", "-3", "-setnumber", "L", "1", "-format", "msh22", os.path.join(ROOT, "meshes", "halfblock.geo"), "-o", half])
     mirror_msh22(half, full, "sym")
     common = ["-E", "1000", "-nu", "0.3", "-contact", "bottom", "-friction_bottom", "0.3", "-displacement_top", "0,0,-0.01"]
-    for red, ranks in PATHS:
+    for red, ranks in CROSS:
         what = "%s %d ranks" % (red, ranks)
         _, h = contact(["-mesh", half, "-displacement_sym", "0,free,free", "-snes_ssstar_reduction", red] + common, "displacement_half_%s_%d.h5" % (red, ranks), ranks)
         _, f = contact(["-mesh", full, "-snes_ssstar_reduction", red] + common, "displacement_full_%s_%d.h5" % (red, ranks), ranks)
@@ -161,7 +162,7 @@ def displacement_symmetry_plane():
         expect(np.abs(h["groups/sym/reaction"][:][[1, 2]]).max() == 0, "%s: the plane's reaction has a y or z component: %s" % (what, h["groups/sym/reaction"][:]))
 
 
-@test("bad prescribed displacements are refused with one line naming the option, group or node, and no file: every component free; a value that is not a number; a history whose times do not increase; a node prescribed twice with different values (naming the node and both groups); a group both -dirichlet and -displacement_<G>; a contact node with a prescribed component that is no plane of symmetry (a value other than 0, naming the node, its contact group and the prescribing group); an unknown group; a body held by prescribed displacements in some directions only, without contact")
+@test("bad prescribed displacements are refused with one line naming the option, group or node, and no file: every component free; a value that is not a number; a history whose times do not increase; a node prescribed twice with different values (naming the node and both groups); a group both -dirichlet and -displacement_<G>; a contact node with a prescribed component that is no plane of symmetry (a value other than 0, a normal along it, a contact pair's slave: naming the node, its contact group and the prescribing group); a prescribed node on a pair's master surface; an unknown group; a body held by prescribed displacements in some directions only, without contact")
 def displacement_refused():
     half = os.path.join(OUT, "halfblock_L1.msh")
     run(["gmsh", "-3", "-setnumber", "L", "1", "-format", "msh22", os.path.join(ROOT, "meshes", "halfblock.geo"), "-o", half])
@@ -184,6 +185,12 @@ def displacement_refused():
         out = run([CONTACT] + base + extra + ["-o", h5], expect_rc=1)
         expect(re.search(message, out) is not None, "case %d %s: not refused with %r" % (k, extra, message), out)
         expect(not os.path.exists(h5), "case %d: a refused run wrote %s" % (k, h5))
+    # contact pairs: a prescribed master node; a slave node with a prescribed component
+    hertz2 = ["-options_file", os.path.join(ROOT, "scenes", "hertz2.opts")]
+    for extra, message in ((["-displacement_block_top", "0,0,0"], r"Mesh node \d+ \(0-based, file order\) of the master surface block_top of contact pair cap has a displacement prescribed by -displacement_block_top: a pair's master nodes may not be prescribed"),
+                           (["-displacement_cap", "free,free,0"], r"of contact group \"cap\" has its z displacement prescribed by -displacement_cap: .*; here its group's contact is a contact pair")):
+        out = run([CONTACT] + hertz2 + extra, expect_rc=1)
+        expect(re.search(message, out) is not None, "%s: not refused with %r" % (extra, message), out)
     # no contact: the lid held in z alone leaves rigid motions free
     out = run([CONTACT, "-mesh", half, "-E", "1000", "-nu", "0.3", "-displacement_top", "free,free,-0.01"], expect_rc=1)
     expect(re.search(r"The body of volume group \"block\" .* is held in some directions only: its prescribed displacements .* leave 3 of its rigid-body motions free, and there is no contact to hold them", out) is not None, "a partly held body without contact is not refused by name", out)
@@ -280,3 +287,27 @@ def displacement_python():
     c = "displacement_python_c.h5"
     contact(BLOCK + ["-contact", "bottom", "-friction_law_bottom", "none", "-displacement_top", "0:free,free,0;1:free,free,-0.005;2:free,free,-0.01;3:free,free,-0.02"], c)
     run(CHECK + ["compare", os.path.join(OUT, c), h5, "--steps", "--tol", str(AGREE)])
+
+
+@test("the force-displacement picture (examples/plot_contact.py on the compression's load path): FILE_reaction.png is drawn, one panel per prescribed group, its line the file's /steps/groups/<G>/displacement and /steps/groups/<G>/reaction in the prescribed component that moves most (z), labelled with the group, the component and the units; the other pictures are drawn too, also for a load path with a -dirichlet group (its /steps/groups/<G> has a reaction and no displacement: a lid held fixed, the base pushed up by a moving plane, held in x on its plane of symmetry)")
+def displacement_plot():
+    import importlib.util
+    h5 = "displacement_plot.h5"
+    _, f = contact(BLOCK + ["-contact", "bottom", "-friction_law_bottom", "none", "-displacement_top", "0:free,free,0;1:free,free,-0.005;2:free,free,-0.01"], h5)
+    half = os.path.join(OUT, "halfblock_L1.msh")
+    run(["gmsh", "-3", "-setnumber", "L", "1", "-format", "msh22", os.path.join(ROOT, "meshes", "halfblock.geo"), "-o", half])
+    contact(["-mesh", half, "-E", "1000", "-nu", "0.3", "-dirichlet", "top", "-contact", "bottom", "-obstacle_bottom_motion", "0:0,0,0;1:0,0,0.01", "-displacement_sym", "0,free,free"], "displacement_plot_held.h5")
+    for name in ("displacement_plot", "displacement_plot_held"):
+        out = run([PYTHON, os.path.join(ROOT, "examples", "plot_contact.py"), os.path.join(OUT, name + ".h5")])
+        for png in (name + ".png", name + "_history.png", name + "_reaction.png"):
+            expect(os.path.exists(os.path.join(OUT, png)) and "wrote " + os.path.join(OUT, png) in out, "%s is not drawn" % png, out)
+    spec = importlib.util.spec_from_file_location("plot_contact", os.path.join(ROOT, "examples", "plot_contact.py"))
+    plot = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(plot)
+    fig = plot.draw_reactions(os.path.join(OUT, h5))
+    expect(fig is not None and len(fig.axes) == 1, "draw_reactions(): not one panel for the one prescribed group")
+    ax = fig.axes[0]
+    x, y = ax.lines[0].get_xdata(), ax.lines[0].get_ydata()
+    expect(np.array_equal(x, f["steps/groups/top/displacement"][:, 2]) and np.array_equal(y, f["steps/groups/top/reaction"][:, 2]), "the line is not the file's z displacement and reaction of top")
+    expect("$u_z$ of top" in ax.get_xlabel() and "$R_z$ at top" in ax.get_ylabel() and "length" in ax.get_xlabel() and "E unit" in ax.get_ylabel(), "labels %r, %r" % (ax.get_xlabel(), ax.get_ylabel()))
+    expect(abs(y[-1] + 20) < 1e-8 * 20, "the last reaction %g is not -E A delta/h" % y[-1])

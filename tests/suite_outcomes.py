@@ -60,7 +60,7 @@ def refused(cmd, option, nearest):
 def options_unknown_refused():
     geo = out("outcomes_fresh.geo")
     shutil.copy(os.path.join(ROOT, "meshes", "prism.geo"), geo)
-    msh = out("outcomes_fresh_L2.msh")
+    msh = mesh_of(geo, 2)
     if os.path.exists(msh):
         os.remove(msh)
     refused(mpiexec(1, PRISM, "-geo", geo, "-level", "2", "-levle", "8"), "-levle", "-level")
@@ -341,7 +341,7 @@ def error_traceback_on_request():
 def help_without_work():
     geo = out("outcomes_help.geo")
     shutil.copy(os.path.join(ROOT, "meshes", "prism.geo"), geo)
-    msh = out("outcomes_help_L2.msh")
+    msh = mesh_of(geo, 2)
     own = {"prism": "-initial_guess", "contact": "-obstacle_<G>", "generic": "-obstacle_normal", "fclib": "-summary_header"}
     work = {"prism": "level ranks  nodes", "contact": "summary: nodes", "generic": " iterations\n", "fclib": "FCLib-error"}  # what a solve prints
     args = {"prism": ["-geo", geo, "-level", "2"], "contact": [], "generic": [], "fclib": []}

@@ -111,14 +111,35 @@ class Error(PETSc.Error):
 
 
 _error_message = _declare("PetscErrorMessage", ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p))
+_name_bad_value = _declare("SSStarOptionsNameBadValue", ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t)
+
+
+def _error(ierr):
+    """The Error of PETSc's error code ierr: the message of the error's first call, naming the option whose value PETSc's
+    options parser could not read (SSStarOptionsNameBadValue(): "Option -snes_rtol abc: abc is not a number")"""
+    text, specific = ctypes.c_char_p(), ctypes.c_char_p()
+    _error_message(ierr, ctypes.byref(text), ctypes.byref(specific))
+    message = (specific.value or b"").decode(errors="replace").strip()
+    named = ctypes.create_string_buffer(1024)
+    if message and not _name_bad_value(message.encode(), named, len(named)) and named.value:
+        message = named.value.decode(errors="replace")
+    return Error(ierr, message, (text.value or b"").decode(errors="replace"))
 
 
 def _call(f, *args):
     ierr = f(*args)
     if ierr:
-        text, specific = ctypes.c_char_p(), ctypes.c_char_p()
-        _error_message(ierr, ctypes.byref(text), ctypes.byref(specific))  # the message of the error's first call
-        raise Error(ierr, (specific.value or b"").decode(errors="replace").strip(), (text.value or b"").decode(errors="replace"))
+        raise _error(ierr)
+
+
+def _petsc4py(f, *args):
+    """f(*args), a petsc4py call; its PETSc error raised as an Error that names a bad option (_error())"""
+    try:
+        return f(*args)
+    except Error:
+        raise
+    except PETSc.Error as e:
+        raise _error(e.ierr) from None
 
 
 _call(_declare("SSStarInitializePackage"))  # registers the SNES type "ssstar"

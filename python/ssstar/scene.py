@@ -10,7 +10,7 @@ import weakref
 import numpy as np
 from petsc4py import PETSc
 
-from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, STATE_NAMES
+from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, _petsc4py, STATE_NAMES
 
 _P = ctypes.POINTER
 _C = {name: _declare(name, *args) for name, args in {
@@ -383,7 +383,7 @@ class Scene:
                 linesearch = _Handle()  # cp: F is the energy's gradient (petsc4py 3.18 has no SNES.getLineSearch)
                 _call(_C["SNESGetLineSearch"], _h(self.snes), ctypes.byref(linesearch))
                 _call(_C["SNESLineSearchSetType"], linesearch, b"cp")
-        self.snes.setFromOptions()
+        _petsc4py(self.snes.setFromOptions)
         names = [n for n, _ in self._options.pairs if n.lower() not in _DRIVER_OPTIONS]
         _call(_C["SSStarSceneCheckOptionsUsedOf"], self._scene, len(names), (ctypes.c_char_p * max(1, len(names)))(*[n.encode() for n in names]), _DRIVER_HELP, _h(self.snes))
         _call(_C["SSStarSceneSetUp"], self._scene)

@@ -131,18 +131,6 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscFunctionReturn(0);
 }
 
-/* The mesh file of -geo at -level: meshes/prism.geo at level 6 -> meshes/prism_L6.msh */
-static PetscErrorCode MeshFileOfLevel(SSStarScene scene)
-{
-  size_t len;
-
-  PetscFunctionBegin;
-  PetscCall(PetscStrlen(scene->geo, &len));
-  PetscCheck(len > 4 && !strcmp(scene->geo + len - 4, ".geo"), scene->comm, PETSC_ERR_ARG_WRONG, "-geo %s: expected a .geo file", scene->geo);
-  PetscCall(PetscSNPrintf(scene->mesh, sizeof(scene->mesh), "%.*s_L%" PetscInt_FMT ".msh", (int)(len - 4), scene->geo, scene->level));
-  PetscFunctionReturn(0);
-}
-
 /*@C
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
    distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups; the components -displacement_<G> prescribes,
@@ -168,7 +156,8 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   char          **options;
   PetscInt        nuses = 0, cells;
   Vec             coordinates;
-  PetscLogDouble  t, base;
+  PetscLogDouble  t, base, peak;
+  PetscBool       plain = PETSC_FALSE;
   PetscMPIInt     size;
   char            line[PETSC_MAX_PATH_LEN + 128];
 
@@ -176,20 +165,14 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(PetscLogEventBegin(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscCall(PetscTime(&t));
   if (scene->geo[0]) {
-    PetscCall(MeshFileOfLevel(scene));
+    PetscCall(SSStarMeshCacheFile(scene->comm, scene->meshCache, scene->geo, scene->level, scene->mesh));
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
   PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));
-  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
-  else {
-    PetscLogDouble peak;
-    PetscBool      plain;
-
-    PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, &peak, &plain));
-    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank%s", scene->mesh, scene->nodesGlobal, peak / 1e9, plain ? " (plain aggregation)" : ""));
-  }
+  if (!scene->refine) PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, 0, &peak, NULL, &plain)); /* the multigrid's aggregation */
+  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
@@ -210,14 +193,22 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
-  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base, PETSC_FALSE) / 1e9));
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal));
   else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));
   PetscCall(SSStarSceneBuildContactOperator(scene, NULL));
   PetscCall(SSStarSceneCheckPartlyHeld(scene));
-  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s"));
+  /* the estimates before the work, now that the contact nodes are known: the whole body's and the dense route's */
+  peak = SSStarPeakFrom(size, scene->nodesGlobal, base, plain);
+  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? " (plain aggregation)" : "", scene->nGlobal ? " on the whole body" : ""));
+  if (scene->nGlobal) {
+    char dense[64];
+
+    PetscCall(PetscSNPrintf(dense, sizeof(dense), ", %.3f GB on the dense route", SSStarPeakDenseFrom(size, scene->nodesGlobal, scene->nGlobal, base) / 1e9));
+    PetscCall(PetscStrlcat(line, dense, sizeof(line)));
+  }
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -418,7 +409,8 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
 
   PetscFunctionBegin;
   if (!scene->affine) PetscCall(PetscStrncpy(effects, "hyperelasticity (finite strain; tractions and gravity dead loads)", sizeof(effects)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
+  if (scene->refine) PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s refined %" PetscInt_FMT " time%s (-dm_refine), %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->refine, scene->refine > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (scene->hasE && scene->hasNu) PetscCall(PetscViewerASCIIPrintf(viewer, "material: E = %g, nu = %g\n", (double)scene->E, (double)scene->nu));
   if (!scene->affine) PetscCall(PetscViewerASCIIPrintf(viewer, "material model: %s\n", SSStarMaterialModels[scene->model]));

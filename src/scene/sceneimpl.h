@@ -94,6 +94,7 @@ struct _n_SSStarScene {
 
   /* the description (options) */
   char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
+  char               meshCache[PETSC_MAX_PATH_LEN]; /* -mesh_cache: where meshes of -geo go ("": the default) */
   PetscInt           level;
   PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
   PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */
@@ -206,6 +207,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
 PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
 PETSC_INTERN PetscLogDouble SSStarPeakFrom(PetscMPIInt, PetscReal, PetscLogDouble, PetscBool);
+PETSC_INTERN PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt, PetscReal, PetscReal, PetscLogDouble);
 PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscInt       SSStarSliceStart(PetscMPIInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscErrorCode SSStarExchange(MPI_Comm, const PetscMPIInt[], size_t, const void *, PetscMPIInt[], void **);

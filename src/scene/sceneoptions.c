@@ -375,7 +375,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -dm_refine -nested_levels -mesh_scale -E -nu -material_model -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -material_model -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -446,6 +446,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 +  -mesh <file.msh> - the body, a gmsh mesh
 .  -geo <file.geo> - or a geometry meshed at -level
 .  -level <L> - the level of -geo
+.  -mesh_cache <folder> - where the meshes of -geo are made and kept (SSStarMeshCacheFile(); default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)
 .  -ssstar_progress_ranks - the progress lines give rank 0's memory and the least rank's beside the largest one's
 .  -nested_levels <auto> - solve this many coarser meshes first (SSStarSceneSolveNested()): 0 none, auto by the size
 .  -dm_refine <0> - refine the mesh this many times in parallel (each tetrahedron 1:8, the groups carried), as PETSc's option of the name does
@@ -503,6 +504,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file", NULL, scene->mesh, scene->mesh, sizeof(scene->mesh), &hasMesh));
   PetscCall(PetscOptionsString("-geo", "gmsh geometry meshed at -level", NULL, scene->geo, scene->geo, sizeof(scene->geo), &hasGeo));
   PetscCall(PetscOptionsInt("-level", "Mesh level of -geo (the number L of the .geo)", NULL, scene->level, &scene->level, &hasLevel));
+  PetscCall(PetscOptionsString("-mesh_cache", "Folder of the meshes made from -geo (default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)", "SSStarMeshCacheFile", scene->meshCache, scene->meshCache, sizeof(scene->meshCache), NULL));
   {
     char      nested[32] = "auto";
     PetscBool set, isauto;

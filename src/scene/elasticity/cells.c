@@ -129,8 +129,7 @@ void SSStarHookeStress(PetscReal lambda, PetscReal mu, const PetscReal strain[6]
 @*/
 PetscReal SSStarVonMises(const PetscReal stress[6])
 {
-  const PetscReal *s = stress;
-  const PetscReal  d = PetscSqr(s[0] - s[1]) + PetscSqr(s[1] - s[2]) + PetscSqr(s[2] - s[0]);
+  const PetscReal *s = stress, d = PetscSqr(s[0] - s[1]) + PetscSqr(s[1] - s[2]) + PetscSqr(s[2] - s[0]);
 
   return PetscSqrtReal(0.5 * d + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }

@@ -42,15 +42,15 @@ static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscRe
   const PetscInt     nf = scene->nFloating;
   PetscSection       gsec, csec;
   PetscInt           vStart, vEnd, total = 0;
-  PetscReal         *sums, *gram;
+  PetscReal         *sums, *bounds, *gram;
   Vec                coordinates;
   const PetscScalar *xa;
   DM                 cdm;
 
   PetscFunctionBegin;
-  PetscCall(PetscCalloc2(10 * nf + 1, &sums, 36 * nf + 1, &gram)); /* per body: count, sum x (3), min x (3), -max x (3) */
-  for (PetscInt f = 0; f < nf; f++)
-    for (PetscInt k = 0; k < 6; k++) sums[10 * f + 4 + k] = -PETSC_MAX_REAL;
+  /* per body: its owned vertices' count and sum of coordinates (4); -min x and max x (6) */
+  PetscCall(PetscCalloc3(4 * nf + 1, &sums, 6 * nf + 1, &bounds, 36 * nf + 1, &gram));
+  for (PetscInt k = 0; k < 6 * nf; k++) bounds[k] = -PETSC_MAX_REAL;
   PetscCall(DMGetGlobalSection(scene->dm, &gsec));
   PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
@@ -68,11 +68,11 @@ static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscRe
       PetscCall(PetscSectionGetOffset(csec, v, &coff));
       for (PetscInt k = 0; k < 3; k++) x[k] = PetscRealPart(xa[coff + k]);
       if (!pass) {
-        sums[10 * f]++;
+        sums[4 * f]++;
         for (PetscInt k = 0; k < 3; k++) {
-          sums[10 * f + 1 + k] += x[k];
-          sums[10 * f + 4 + k] = PetscMax(sums[10 * f + 4 + k], -x[k]);
-          sums[10 * f + 7 + k] = PetscMax(sums[10 * f + 7 + k], x[k]);
+          sums[4 * f + 1 + k] += x[k];
+          bounds[6 * f + k]     = PetscMax(bounds[6 * f + k], -x[k]);
+          bounds[6 * f + 3 + k] = PetscMax(bounds[6 * f + 3 + k], x[k]);
         }
         continue;
       }
@@ -84,19 +84,14 @@ static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscRe
       }
     }
     if (!pass) {
-      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 10 * nf, MPIU_REAL, MPIU_SUM, scene->comm)); /* the counts and sums */
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 4 * nf, MPIU_REAL, MPIU_SUM, scene->comm));
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, bounds, 6 * nf, MPIU_REAL, MPIU_MAX, scene->comm));
       for (PetscInt f = 0; f < nf; f++) {
-        PetscReal extent = 0, lo[3], hi[3];
+        PetscReal extent = 0;
 
         for (PetscInt k = 0; k < 3; k++) {
-          lo[k] = sums[10 * f + 4 + k];
-          hi[k] = sums[10 * f + 7 + k];
-        }
-        PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lo, 3, MPIU_REAL, MPIU_MAX, scene->comm));
-        PetscCall(MPIU_Allreduce(MPI_IN_PLACE, hi, 3, MPIU_REAL, MPIU_MAX, scene->comm));
-        for (PetscInt k = 0; k < 3; k++) {
-          centre[3 * f + k] = sums[10 * f + 1 + k] / PetscMax(sums[10 * f], 1);
-          extent            = PetscMax(extent, hi[k] + lo[k]);
+          centre[3 * f + k] = sums[4 * f + 1 + k] / PetscMax(sums[4 * f], 1);
+          extent            = PetscMax(extent, bounds[6 * f + 3 + k] + bounds[6 * f + k]); /* max x - min x */
         }
         size[f] = extent > 0 ? extent : 1;
       }
@@ -116,7 +111,7 @@ static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscRe
       if (w[i] <= 1e-10 * w[5]) PetscCall(PetscArraycpy(&(*coef)[6 * (total + count[f]++)], &G[6 * i], 6));
     total += count[f];
   }
-  PetscCall(PetscFree2(sums, gram));
+  PetscCall(PetscFree3(sums, bounds, gram));
   PetscFunctionReturn(0);
 }
 

@@ -506,8 +506,8 @@ PetscErrorCode SSStarSceneCheckPartlyHeld(SSStarScene scene)
         isotropic = (PetscBool)(isotropic || same);
       }
       if (!zero) reason = 0;
-      else if (PetscAbsReal(scene->normal[3 * i + k]) > 1e-10) reason = 1;
       else if (cg->master[0]) reason = 2;
+      else if (PetscAbsReal(scene->normal[3 * i + k]) > 1e-10) reason = 1;
       else if (!still) reason = 3;
       else if (!isotropic) reason = 4;
       if (reason < 0) continue;

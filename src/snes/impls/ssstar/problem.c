@@ -212,6 +212,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(MatCreateVecs(pb->A, &pb->f, NULL));
     pb->K      = K;
     pb->Kstate = state;
+    pb->builds++;
     pb->built  = ct->built;
     if (ct->isC) PetscCall(PetscObjectReference((PetscObject)ct->isC));
     pb->isC = ct->isC;
@@ -337,8 +338,13 @@ PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscView
     const char *type;
 
     PetscCall(SSStarReductionGetType(pb->reduction, &type));
+    PetscBool chosen;
+    PetscReal dense, whole, holding;
+
     if (pb->wholeBody) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: solved on the whole body, P never formed (reduction %s%s)\n", type, isauto ? " (chosen by auto)" : ""));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", type, isauto ? " (chosen by auto)" : ""));
+    PetscCall(SSStarReductionGetAutoCosts(pb->reduction, &chosen, &dense, &whole, &holding));
+    if (chosen) PetscCall(PetscViewerASCIIPrintf(viewer, "    auto's estimates (flops of a dense LU): the dense route %.3g, the whole body %.3g (K holds the body by %.2g)\n", (double)dense, (double)whole, (double)holding));
   } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
   PetscCall(SSStarFloatingView(&pb->floating, viewer));

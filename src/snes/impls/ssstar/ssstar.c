@@ -307,7 +307,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
   SSStarContact *ct = &ss->contact;
   SSStarProblem *pb = &ss->problem;
-  PetscReal      znorm, unorm, xnorm, dunorm = 0, z0 = 0;
+  PetscReal      znorm, unorm, xnorm, dunorm = 0, duprev = 0, z0 = 0; /* the last two Newton steps' lengths */
   PetscBool      solved;
 
   PetscFunctionBegin;
@@ -364,11 +364,17 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
     /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
-       taken whole, until it is, or it stops halving while the states stay (its round-off floor) */
+       taken whole, until it is, or it stops halving while the states stay and the steps stop growing (its round-off
+       floor). Steps that grow while rho decreases are no floor: the creep of the iteration at a kink of the law, where
+       a slow mode's slip is set by the curvature of the sliding directions and Newton lengthens it by 3/2 per step
+       (docs/derivation.md section 19) */
     ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);
     if (ss->polishing) {
-      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0) ss->lawStalls++;
+      const PetscBool creeping = (PetscBool)(dunorm > duprev && ss->lawResidual < ss->lawBest);
+
+      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0 && !creeping) ss->lawStalls++;
       ss->lawBest = PetscMin(ss->lawBest, ss->lawResidual);
+      PetscCall(PetscInfo(snes, "Polishing at iteration %" PetscInt_FMT ": law residual %g, steps %g after %g%s, %" PetscInt_FMT " stalls\n", k, (double)ss->lawResidual, (double)dunorm, (double)duprev, creeping ? " (creeping)" : "", ss->lawStalls));
       if (ss->lawStalls > SSSTAR_LAW_MAX_STALLS) {
         ss->reason   = SSSTAR_REASON_LAW_STALLED;
         snes->reason = SNES_DIVERGED_LOCAL_MIN;
@@ -419,6 +425,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
         PetscCall(SNESSSStarExtendFreeStep(snes)); /* floating bodies: free motions to the first contact (balance.c) */
+        duprev = dunorm;
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, ss->polishing, &stop));
       }
@@ -721,7 +728,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 .  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (0: only when none changed; negative: a fresh LU at every step); -snes_ssstar_newton_ksp_* set that GMRES
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
 .  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||); once a remedy acted, and for a step whose full step fails, the floor (a tenth of the stopping threshold)
-.  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
+.  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; a multigrid CG finds indefinite: that step and the later ones by GMRES; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar()) and the law residual of the iterate as written is within its tolerance
 .  -snes_ssstar_law_rtol <0> - that tolerance (0: max(rtol, 1e-8); docs/derivation.md section 12)
 -  -snes_atol <1e-50> - or when ||z|| <= atol

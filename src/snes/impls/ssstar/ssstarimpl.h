@@ -111,7 +111,7 @@ typedef struct {
   PetscInt  size;    /* values per node: 1, or 3 for a direction                   */
   PetscBool set;     /* value is the default of the nodes without their own         */
   PetscReal value[3];
-  Vec       perNode; /* size entries per contact node (PETSC_DEFAULT: the default), or NULL */
+  Vec       perNode; /* size entries per contact node (SSSTAR_NOT_GIVEN: the default), or NULL */
 } SSStarLawSetting;
 
 typedef struct {
@@ -217,6 +217,7 @@ typedef struct {
   PetscInt         jacobians;       /* Jacobian evaluations of this solve (the set-up's included)            */
   PetscInt         measures;        /* contact updates of this solve                                         */
   PetscReal        affineMismatch;  /* an affine residual at the solution: max |F - the model's c| / its force scale */
+  PetscInt         builds;          /* times A was built (K reduced, or taken whole): the progress line's    */
 } SSStarProblem;
 
 PETSC_INTERN PetscErrorCode SSStarProblemSetUp(SNES, SSStarContact *, SSStarProblem *);
@@ -328,6 +329,7 @@ typedef struct {
   /* -snes_ssstar_monitor_progress: when the solve started, and the time, Krylov iterations, LUs (multigrids) at the last iterate */
   PetscLogDouble tStart, tLast;
   PetscInt       krylovLast, factorizationsLast, jacobiansLast;
+  PetscInt       buildsShown; /* the problem's builds the progress lines have reported */
 } SNES_SSStar;
 
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */

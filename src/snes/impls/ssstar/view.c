@@ -300,8 +300,13 @@ PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm,
 }
 
 
-/* "K reduced to the contact dofs by the direct Schur complement (chosen by auto), 3168 x 3168" or "the whole body, ..." */
-static PetscErrorCode FormatProblem(SNES snes, char buf[], size_t len)
+/*
+   What the set-up of this solve did: "K reduced to 3168 contact dofs by the direct Schur complement (chosen by auto)"
+   or "the whole body, 12675 dofs, P never formed (reduction none, chosen by auto)" when it built the problem; when it
+   kept the last solve's (a load path's next step: only the load changed), "K's reduction to 3168 contact dofs kept, the
+   load reduced" or "the whole body's K kept, the free dofs in equilibrium with the new load"
+*/
+static PetscErrorCode FormatProblem(SNES snes, PetscBool built, char buf[], size_t len)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
   PetscInt     n;
@@ -313,6 +318,8 @@ static PetscErrorCode FormatProblem(SNES snes, char buf[], size_t len)
   PetscCall(SSStarProblemGetReductionType(&ss->problem, &type));
   PetscCall(PetscStrcmp(ss->problem.reductionType, SSSTARREDUCTIONAUTO, &isauto));
   if (!ss->contact.dofs) PetscCall(PetscSNPrintf(buf, len, "the reduced problem, %" PetscInt_FMT " contact dofs", n));
+  else if (!built && ss->problem.wholeBody) PetscCall(PetscSNPrintf(buf, len, "the whole body's K (%" PetscInt_FMT " dofs) kept from the last solve, the free dofs in equilibrium with the new load", n));
+  else if (!built) PetscCall(PetscSNPrintf(buf, len, "K's reduction to %" PetscInt_FMT " contact dofs (%s) kept from the last solve, the new load reduced", n, type));
   else if (ss->problem.wholeBody) PetscCall(PetscSNPrintf(buf, len, "the whole body, %" PetscInt_FMT " dofs, P never formed (reduction %s%s)", n, type, isauto ? ", chosen by auto" : ""));
   else PetscCall(PetscSNPrintf(buf, len, "K reduced to %" PetscInt_FMT " contact dofs by the %s Schur complement%s", n, type, isauto ? " (chosen by auto)" : ""));
   PetscFunctionReturn(0);
@@ -358,7 +365,8 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   if (its == 0) {
-    PetscCall(FormatProblem(snes, problem, sizeof(problem)));
+    PetscCall(FormatProblem(snes, (PetscBool)(ss->problem.builds != ss->buildsShown), problem, sizeof(problem)));
+    ss->buildsShown = ss->problem.builds;
     PetscCall(PetscViewerASCIIPrintf(viewer, "  set-up: %s%s, %.3f s, %s\n", problem, ss->problem.nonlinear ? (ss->problem.affine ? ", the contact measured at the iterates" : ", a nonlinear residual") : "", now - ss->tStart, memory));
     PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e\n", its, (double)znorm));
   } else {

@@ -149,6 +149,24 @@ def hyperelastic_ball_parallel():
     pressed_ball(2)
 
 
+@test("Coulomb friction on a load path with a hyperelastic body: the neo-Hookean unit cube on the rigid plane with phi = 0.3 (-friction_bottom), its top pressed down 20 % then moved sideways by 0.2 and 0.5 (x), the slip incremental: check_solution.py law --steps accepts every step, the top's reaction balances the contact forces to 1e-8 of them at every step, the first sideways step leaves nodes sticking, at the last every contact node slides and the tangential resultant is within 1 % below phi times the normal force (the nodes' slips nearly parallel); 1 and 2 ranks")
+def hyperelastic_friction():
+    args = CUBE + ["-level", "1", "-material_model", "neo_hookean", "-contact", "bottom", "-friction_bottom", "0.3", "-displacement_top", "0:0,0,0;1:0,0,-0.2;2:0.2,0,-0.2;3:0.5,0,-0.2"]
+    for ranks in (1, 2):
+        h5 = "hyperelastic_friction_%d.h5" % ranks
+        out, f = contact(args, h5, ranks)
+        what = "%d ranks" % ranks
+        for k in (1, 2, 3):
+            forces = f["steps/%d/contact/reaction" % k][:].sum(axis=0)
+            expect(np.abs(f["steps/groups/top/reaction"][k] + forces).max() <= 1e-8 * np.abs(forces).max(), "%s, step %d: the top's reaction %s does not balance the contact forces %s" % (what, k, f["steps/groups/top/reaction"][k], forces), out)
+        states = [f["steps/%d/contact/state" % k][:] for k in (2, 3)]
+        expect((states[0] == 1).sum() < len(states[0]) and (states[1] == 1).all(), "%s: the sliding nodes %d, %d of %d, not some then all" % (what, (states[0] == 1).sum(), (states[1] == 1).sum(), len(states[1])), out)
+        forces = f["steps/3/contact/reaction"][:].sum(axis=0)
+        ratio = np.hypot(forces[0], forces[1]) / (0.3 * abs(forces[2]))
+        expect(0.99 <= ratio <= 1 + 1e-9, "%s: the tangential resultant is %g of phi N" % (what, ratio), out)
+        law(h5)
+
+
 @test("a rigid rotation of 90 degrees about z (-rotation_bottom, through the cube's axis x = y = 0.5, in three steps of 30 degrees) prescribed on the bottom of the unit cube, nothing else holding or loading it: a hyperelastic body (saint_venant_kirchhoff, neo_hookean) turns rigidly, every cell's Cauchy stress zero to 1e-9 E and the displacement the rigid rotation's to 1e-9, J = 1; the linear model's answer to the same prescription is strained (its von Mises stress reaches more than 0.1 E): the small-strain model's spurious stress; 1 and 2 ranks")
 def hyperelastic_rotation():
     args = CUBE + ["-level", "1", "-rotation_bottom", "0:0,0,0;1:0,0,30;2:0,0,60;3:0,0,90", "-rotation_center_bottom", "0.5,0.5,0"] + TIGHT

@@ -223,7 +223,7 @@ def hyperelastic_small_strain():
         expect(abs(f["groups/root/reaction"][2] - 1e-4) <= 1e-10, "%s: the root's reaction %s does not balance the load" % (model, f["groups/root/reaction"][:]))
 
 
-@test("bad input is refused by name, before any work: an unknown -material_model or -material_model_<G> value, a -material_model_<G> of a surface group or a group the mesh lacks, two model groups of one cell with different models, a -rotation_center_<G> without -rotation_<G>, a rotation and a displacement on the same nodes; exit with an error, no file")
+@test("bad input is refused by name, before any work: an unknown -material_model or -material_model_<G> value, a -material_model_<G> of a surface group or a group the mesh lacks, a -rotation_center_<G> without -rotation_<G>, a rotation and a displacement on the same nodes, a hyperelastic body held by contact alone (its rotations are not in its loaded tangent's null space); exit with an error, no file")
 def hyperelastic_refused():
     cases = [
         (["-material_model", "rubber"], "rubber"),
@@ -233,6 +233,7 @@ def hyperelastic_refused():
         (["-rotation_center_top", "0,0,0"], "-rotation_center_top needs -rotation_top"),
         (["-rotation_top", "0,0,10", "-displacement_top", "0,0,-0.1"], "prescribed twice"),
     ]
+    floating = ["-contact", "bottom", "-friction_law_bottom", "none", "-traction_top", "0,0,-1", "-material_model", "neo_hookean"]
     for extra, message in cases:
         h5 = os.path.join(OUT, "hyperelastic_refused.h5")
         if os.path.exists(h5):
@@ -240,6 +241,9 @@ def hyperelastic_refused():
         out = run([CONTACT] + CUBE + ["-level", "1", "-dirichlet", "bottom"] + extra + ["-o", h5], expect_rc=1)
         expect(message in out, "%s: no error naming it (%s)" % (" ".join(extra), message), out)
         expect(not os.path.exists(h5), "%s: a file was written" % " ".join(extra))
+    out = run([CONTACT] + CUBE + ["-level", "1"] + floating + ["-o", h5], expect_rc=1)
+    expect("A hyperelastic body (-material_model) held by contact alone" in out and "-spring_<G>" in out, "a floating hyperelastic body: no error saying how to hold it", out)
+    expect(not os.path.exists(h5), "a floating hyperelastic body: a file was written")
 
 
 @test("the Python module solves a hyperelastic scene as examples/contact does: ssstar.Scene(material_model=\"neo_hookean\") of the cube compressed on the frictionless plane by 10 % and 30 % (ssstar, nonlinear residual) and of the cube held on its planes of symmetry (Newton's method, no contact): the top's reactions are the closed form P_33 A to 1e-8, the displacements of every step agree with examples/contact's to 2e-6 (and the contact's: check_solution.py compare) and pass check_solution.py law --steps")

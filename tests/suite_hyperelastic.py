@@ -67,11 +67,11 @@ def hyperelastic_kernels():
     expect("passed: 0 failures" in out, "tests/test_hyperelastic", out)
 
 
-@test("a homogeneous compression of the unit cube (meshes/cube.geo, E = 1000, nu = 0.3) held on three planes of symmetry, its top moved down by 10 %, 30 %, 50 % with x and y free (a load path, no contact: Newton's method): for saint_venant_kirchhoff, neo_hookean and linear the top's reaction /steps/groups/top/reaction is the closed form P_33 A of uniaxial stress to 1e-8 relative at every step, u_x = (s - 1) x with the lateral stretch s of the closed form, every cell's J = s^2 lambda_3, Cauchy stress (0, 0, P_33 lambda_3 / J) and (hyperelastic) Green-Lagrange strain to 1e-8; check_solution.py law --steps accepts the file; 1 and 2 ranks")
+@test("a homogeneous compression of the unit cube (meshes/cube.geo, E = 1000, nu = 0.3) held on three planes of symmetry, its top moved down by 10 %, 30 %, 50 % with x and y free (a load path, no contact: Newton's method): for saint_venant_kirchhoff, neo_hookean and linear the top's reaction /steps/groups/top/reaction is the closed form P_33 A of uniaxial stress to 1e-8 relative at every step, u_x = (s - 1) x with the lateral stretch s of the closed form, every cell's J = s^2 lambda_3, Cauchy stress (0, 0, P_33 lambda_3 / J) and (hyperelastic) Green-Lagrange strain to 1e-8; check_solution.py law --steps accepts the file; 1 rank, and 2 for neo_hookean")
 def hyperelastic_compression():
     history = "0:free,free,0;" + ";".join("%d:free,free,%g" % (k + 1, -d) for k, d in enumerate(STRAINS))
     for model in ("saint_venant_kirchhoff", "neo_hookean", "linear"):
-        for ranks in (1, 2):
+        for ranks in (1, 2) if model == "neo_hookean" else (1,):
             h5 = "hyperelastic_compression_%s_%d.h5" % (model, ranks)
             out, f = contact(CUBE + ["-level", "1", "-material_model", model, "-displacement_top", history] + SYMMETRY + TIGHT, h5, ranks)
             what = "%s, %d ranks" % (model, ranks)
@@ -97,14 +97,14 @@ def hyperelastic_compression():
             law(h5)
 
 
-@test("the same compression with the cube's bottom in contact with the rigid plane z = 0 (-contact bottom, frictionless; the planes x = 0, y = 0 of symmetry; the top's z prescribed to 10 %, 30 %, 50 %; ssstar on the nonlinear residual, the whole body; Saint Venant-Kirchhoff to 50 % past its limit point with -pc_type lu, to 30 % with the defaults): for saint_venant_kirchhoff and neo_hookean the top's reaction and the contact's normal force are both the closed form P_33 A of uniaxial stress to 1e-8 relative at every step, every contact node touches with no gap, every cell's J = s^2 lambda_3; check_solution.py law --steps accepts the file; 1 and 2 ranks")
+@test("the same compression with the cube's bottom in contact with the rigid plane z = 0 (-contact bottom, frictionless; the planes x = 0, y = 0 of symmetry; the top's z prescribed to 10 %, 30 %, 50 %; ssstar on the nonlinear residual, the whole body; Saint Venant-Kirchhoff to 50 % past its limit point with -pc_type lu, to 30 % with the defaults): for saint_venant_kirchhoff and neo_hookean the top's reaction and the contact's normal force are both the closed form P_33 A of uniaxial stress to 1e-8 relative at every step, every contact node touches with no gap, every cell's J = s^2 lambda_3; check_solution.py law --steps accepts the file; 1 rank, and 2 for neo_hookean")
 def hyperelastic_compression_contact():
     # Saint Venant-Kirchhoff's tangent is indefinite past its limit point lambda_3 = 1/sqrt(3) (0.577): the whole body's
     # default Krylov solver (conjugate gradients) stops there; a direct solver (-pc_type lu, MUMPS) takes it to 50 %
     lu = ["-pc_type", "lu", "-pc_factor_mat_solver_type", "mumps"]
     for model, strains, extra in (("neo_hookean", STRAINS, []), ("saint_venant_kirchhoff", STRAINS[:2], []), ("saint_venant_kirchhoff", STRAINS, lu)):
         history = "0:free,free,0;" + ";".join("%d:free,free,%g" % (k + 1, -d) for k, d in enumerate(strains))
-        for ranks in (1, 2):
+        for ranks in (1, 2) if model == "neo_hookean" else (1,):
             h5 = "hyperelastic_contact_%s_%d%s.h5" % (model, ranks, "_lu" if extra else "")
             out, f = contact(CUBE + ["-level", "1", "-material_model", model, "-displacement_top", history, "-contact", "bottom", "-friction_law_bottom", "none"] + SYMMETRY[2:] + TIGHT + extra, h5, ranks)
             what = "%s, %d ranks%s" % (model, ranks, " " + " ".join(extra) if extra else "")

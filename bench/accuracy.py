@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """What accuracy costs in time: the work-precision study of ssstar (make accuracy, make accuracy-quick).
 
-  bench/accuracy.py [--quick] [--levels 4,6,8,10,12] [--finest 16] [--tols 1e-2,...,1e-12] [--repeat 3]
-                    [--baseline-levels 4,6,8] [--whole-levels 4,...] [--krylov-rtols 1e-3] [--krylov-levels 10]
-                    [--hertz-levels 1,2,3] [--hertz-tols 1e-2,1e-4,1e-6,1e-8] [--ranks 1] [--out docs/accuracy]
+  bench/accuracy.py [--quick] [--levels 4,6,8,10] [--finest 14] [--tols 1e-2,...,1e-12] [--repeat 3]
+                    [--baseline-levels 4,6] [--whole-levels 4,6,8,10] [--krylov-rtols 1e-3] [--krylov-levels 8]
+                    [--hertz-levels 1,2] [--hertz-tols 1e-1,...,1e-8] [--loadpath-steps 5,...] [--ranks 1] [--out docs/accuracy]
 
 Both paths of the solver on the seed's prism, per level L and stopping tolerance t (-snes_rtol):
 - the dense route (-snes_ssstar_reduction direct): examples/prism writes the reduced problem (P, f, coordinates) once
@@ -43,9 +43,9 @@ ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\
 STATE_TOL = 1e-8  # a node carries force if r_n > STATE_TOL max r_n; it slips if |u_t| > STATE_TOL max|u| (reference scales)
 COLUMNS = ["level", "path", "method", "ksp_rtol_max", "eps", "iterations", "time_s", "setup_s", "err_u", "err_r", "normal_force_err",
            "contact_nodes_diff", "state_diff", "converged", "znorm_final", "coulomb_residual"]
-FULL = {"levels": "4,6,8,10,12", "finest": 16, "tols": "1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12", "repeat": 3,
-        "baseline_levels": "4,6,8", "whole_levels": "4,6,8,10,12", "krylov_rtols": "1e-3", "krylov_levels": "10", "hertz_levels": "1,2,3",
-        "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8", "loadpath_steps": "5,6,11,25,26,51,101", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
+FULL = {"levels": "4,6,8,10", "finest": 14, "tols": "1e-2,1e-3,1e-4,1e-6,1e-8,1e-10,1e-12", "repeat": 3, "baseline_levels": "4,6",
+        "whole_levels": "4,6,8,10", "krylov_rtols": "1e-3", "krylov_levels": "8", "hertz_levels": "1,2", "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8",
+        "loadpath_steps": "5,6,11,25,26,51", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
         "doc": os.path.join(ROOT, "docs", "accuracy.md")}
 QUICK = {"levels": "4,6", "finest": 8, "tols": "1e-3,1e-6", "repeat": 1, "baseline_levels": "4", "whole_levels": "4,6",
          "krylov_rtols": "", "krylov_levels": "", "hertz_levels": "1", "hertz_tols": "1e-8", "loadpath_steps": "6", "yardstick_level": 6,
@@ -403,6 +403,7 @@ def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, clai
                             "force", "a_error", "p0_error", "bracket_error"],
                     ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.2f", "%.2f", "%.1f", "%.0f", "%.0f", "%+.4f", "%+.4f", "%+.4f"]),
         hertz_rule=hertz_rule(hertz, args), floors=floor_text(floors),
+        loadpath_order=loadpath_order(loadpath, args.yardstick),
         loadpath=table(loadpath, accuracy_mesh.LOADPATH_COLUMNS, ["%d", "%d", "%.6f", "%.1e", "%d", "%.3f", "%.2f", "%.4f"]),
         claim_dense=claims["err_u_dense"], claim_whole=claims["err_u_whole"], claim_level=CLAIM_LEVEL, claim_eps=CLAIM_EPS,
         claim_hertz=claims["hertz_p0_error"], claim_hertz_level=CLAIM_HERTZ, claim_hertz_eps=claims["hertz_eps"])
@@ -422,7 +423,21 @@ def hertz_rule(hertz, args):
     return "\n".join(lines)
 
 
+def loadpath_order(loadpath, yardstick):
+    """the observed order of the end's error in the step (a least-squares slope over the runs off the knots)"""
+    off = [r for r in loadpath if not r["at_knots"] and r["error"] > 0]
+    if len(off) < 2:
+        return "(fewer than two runs off the knots: no order measured)"
+    n, e = np.array([r["steps"] for r in off], float), np.array([r["error"] for r in off])
+    slope = np.polyfit(np.log(n), np.log(e), 1)[0]
+    per_step = statistics.median(r["per_step_s"] for r in loadpath)
+    return ("Off the knots the error falls as steps^%.2f (least squares over %d to %d steps; error x steps = %.1f to %.1f): first order. "
+            "A step costs %.3f s (median; %.3f yardsticks), so each halving of this error costs twice the steps."
+            % (slope, n.min(), n.max(), (n * e).min(), (n * e).max(), per_step, per_step / yardstick))
+
+
 def floor_text(floors):
+
     lines = []
     for key, name in (("p0_error", "peak pressure"), ("a_error", "contact radius")):
         lines.append("- %s: " % name + "; ".join("level %d from rtol %.0e (error %+.2f %%)" % (level, r["eps"], 100 * r[key])
@@ -552,7 +567,7 @@ model error of the order of a few 1e-3 that Hertz's formulas carry.
 
 ![Hertz: error against time](accuracy/hertz_work_precision.png)
 
-**The rule** (the cheapest run of this study within the error, whole run, this machine):
+**The rule** (the coarsest level within the error, at it the loosest tolerance; the whole run's time, this machine):
 {hertz_rule}
 
 **Where the tolerance stops mattering** (the loosest rtol from which on the answer moves by less than a tenth of its
@@ -570,6 +585,8 @@ compliance; with steps off them the extreme load is missed by up to a step, an e
 
 {loadpath}
 
+{loadpath_order}
+
 ![load path: error against steps](accuracy/loadpath_steps.png)
 
 ## Reading the stopping rule
@@ -578,8 +595,9 @@ compliance; with steps off them the extreme load is missed by up to a step, an e
   once the contact states are those of the reference (state_diff = 0); with them the Newton step is exact, the error
   falls superlinearly, and the last orders cost one or two iterations.
 - The whole body's Newton steps are inexact (Krylov to a tolerance that tightens with ||z||/||z_0||, loosest
-  `-snes_ssstar_ksp_rtol_max`); its error at a given rtol is of the same order as the dense route's, its iterations
-  cost Krylov solves instead of LU solves, and it has no Schur complement to pay first.
+  `-snes_ssstar_ksp_rtol_max`); its iterations cost Krylov solves instead of LU solves, and it has no Schur
+  complement to pay first. Its sticking nodes keep a tangential displacement of the order of the solver error
+  instead of zero, so its state_diff (a threshold of {state_tol:g} max|u|) stays above zero until the error is below it.
 - Engineering quantities (total normal force, contact area, Hertz's a and p0) settle long before the displacement:
   the mesh, not the solver, sets their error from a loose tolerance on.
 """

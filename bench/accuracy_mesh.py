@@ -86,8 +86,10 @@ def tolerance_floor(rows, key):
 
 
 def rule(rows, key, targets):
-    """per target error: the cheapest run (whole seconds) whose |error| is within it, or None"""
-    return [(t, min((r for r in rows if abs(r[key]) <= t), key=lambda r: r["whole_s"], default=None)) for t in targets]
+    """per target error: the coarsest level and at it the loosest tolerance whose |error| is within it (the cheapest
+    in principle: the measured seconds are too noisy to rank runs of the same level), or None"""
+    ordered = sorted(rows, key=lambda r: (r["level"], -r["eps"]))
+    return [(t, next((r for r in ordered if abs(r[key]) <= t), None)) for t in targets]
 
 
 def plot_work_precision(path, rows, keys, title, yardstick, footer):

@@ -18,7 +18,7 @@ against Hertz's formulas (bench/accuracy_mesh.py). The AMG yardstick (bench/yard
 --yardstick-level) is measured at the start, the middle and the end of the run; the median is beside every time.
 The load path: the block on a spring at --loadpath-steps (bench/accuracy_mesh.py).
 Writes OUT/sweep.csv, discretization.csv, hertz.csv, loadpath.csv, claims.json, *.png and the doc, each with the machine, the date
-and the command. --quick: levels 4 and 6 (finest 8), rtol 1e-3 and 1e-6, hertz level 1, 6 steps: about a minute, into
+and the command. --quick: levels 4 and 6 (finest 8), rtol 1e-3 and 1e-6, hertz level 1, 6 steps: 1-2 minutes, into
 bench/output/accuracy_quick (tests/suite_accuracy.py re-measures the doc's claims with it)."""
 import argparse
 import csv

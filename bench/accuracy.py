@@ -45,10 +45,10 @@ COLUMNS = ["level", "path", "method", "ksp_rtol_max", "eps", "iterations", "time
            "contact_nodes_diff", "state_diff", "converged", "znorm_final", "coulomb_residual"]
 FULL = {"levels": "4,6,8,10", "finest": 14, "tols": "1e-2,1e-3,1e-4,1e-6,1e-8,1e-10,1e-12", "repeat": 3, "baseline_levels": "4,6",
         "whole_levels": "4,6,8,10", "krylov_rtols": "1e-3", "krylov_levels": "8", "hertz_levels": "1,2", "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8",
-        "loadpath_steps": "5,6,11,25,26,51", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
+        "loadpath_steps": "5,6,11,25,26,51", "slider_levels": "1,2", "slider_tols": "1e-2,1e-4,1e-8", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
         "doc": os.path.join(ROOT, "docs", "accuracy.md")}
 QUICK = {"levels": "4,6", "finest": 8, "tols": "1e-3,1e-6", "repeat": 1, "baseline_levels": "4", "whole_levels": "4,6",
-         "krylov_rtols": "", "krylov_levels": "", "hertz_levels": "1", "hertz_tols": "1e-8", "loadpath_steps": "6", "yardstick_level": 6,
+         "krylov_rtols": "", "krylov_levels": "", "hertz_levels": "1", "hertz_tols": "1e-8", "loadpath_steps": "6", "slider_levels": "", "slider_tols": "", "yardstick_level": 6,
          "out": os.path.join(ROOT, "bench", "output", "accuracy_quick"), "doc": os.path.join(ROOT, "bench", "output", "accuracy_quick", "accuracy.md")}
 CLAIM_LEVEL, CLAIM_EPS, CLAIM_HERTZ = 6, 1e-6, 1  # the claims a test re-measures: err_u at level 6, rtol 1e-6; Hertz at level 1
 
@@ -61,6 +61,7 @@ def parse():
     p.add_argument("--baseline-repeat", type=int, default=1, help="runs per tolerance of the baseline")
     p.add_argument("--ranks", type=int, default=1, help="MPI ranks of the whole-body and hertz runs")
     p.add_argument("--report-only", action="store_true", help="the doc, the files and the pictures again from the last run's results.json")
+    p.add_argument("--extend", action="store_true", help="with --report-only: measure the parts the last run's results.json lacks (the slider)")
     args = p.parse_args()
     for key, value in (QUICK if args.quick else FULL).items():
         if getattr(args, key) is None:
@@ -305,9 +306,14 @@ def measure(args, levels, work):
     hertz = accuracy_mesh.hertz_sweep(numbers(args.hertz_levels), numbers(args.hertz_tols, float), args.ranks, work, lambda s: print(s, flush=True))
     loadpath = [accuracy_mesh.loadpath_run(n, work) for n in numbers(args.loadpath_steps)]
     print("load paths done", flush=True)
+    slider = sliders(args, work)
     sticks.append(sum(yardstick(args.yardstick_level, args.ranks, "amg")))
-    return {"costs": costs, "level_data": level_data, "rows": rows, "finest": finest, "hertz": hertz, "loadpath": loadpath, "sticks": sticks,
-            "date": args.date, "machine": args.machine, "command": args.command}
+    return {"costs": costs, "level_data": level_data, "rows": rows, "finest": finest, "hertz": hertz, "loadpath": loadpath, "slider": slider,
+            "sticks": sticks, "date": args.date, "machine": args.machine, "command": args.command}
+
+
+def sliders(args, work):
+    return [accuracy_mesh.slider_run(level, eps, work) for level in numbers(args.slider_levels) for eps in numbers(args.slider_tols, float)]
 
 
 def main():
@@ -324,6 +330,10 @@ def main():
         for key in ("costs", "level_data"):
             res[key] = {int(k): v for k, v in res[key].items()}
         levels = sorted(res["level_data"])
+        if args.extend and "slider" not in res:  # a part added to the study after the run: measured now, dated apart
+            res["slider"], res["slider_date"] = sliders(args, work), datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+            with open(saved, "w") as f:
+                json.dump(res, f)
     else:
         args.date, args.machine = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"), machine()
         res = measure(args, levels, work)
@@ -349,11 +359,15 @@ def main():
                                       "Hertz (scenes/hertz.opts): error against the whole run's time, %d rank(s)" % args.ranks, args.yardstick,
                                       "%s; %s; %s" % (args.command, args.date, args.machine))
     write_csv(os.path.join(args.out, "loadpath.csv"), provenance, accuracy_mesh.LOADPATH_COLUMNS, loadpath)
+    slider = res.get("slider", [])
+    if slider:
+        write_csv(os.path.join(args.out, "slider.csv"), provenance + (" (the slider measured %s)" % res["slider_date"] if "slider_date" in res else ""),
+                  accuracy_mesh.SLIDER_COLUMNS, slider)
     accuracy_mesh.plot_loadpath(os.path.join(args.out, "loadpath_steps.png"), loadpath, "%s; %s; %s" % (args.command, args.date, args.machine))
     claims = measure_claims(rows, hertz)
     with open(os.path.join(args.out, "claims.json"), "w") as f:
         json.dump(dict(claims, command=args.command, date=args.date, machine=args.machine), f, indent=1)
-    write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims)
+    write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, res.get("slider_date", args.date))
 
 
 def write_csv(path, provenance, columns, rows):
@@ -373,7 +387,7 @@ def measure_claims(rows, hertz):
             "hertz_level": CLAIM_HERTZ, "hertz_eps": tight["eps"], "hertz_p0_error": tight["p0_error"], "hertz_a_error": tight["a_error"]}
 
 
-def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims):
+def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, slider_date):
     refs = [{"level": l, "iterations": level_data[l]["reference"]["iterations"], "znorm": level_data[l]["reference"]["history"][-1],
              "law": coulomb_residual(*arrays(level_data[l]["reference"])), "order": observed_order(level_data[l]["reference"]["history"]),
              "second": second_method(level_data[l]), "assembly": costs[l]["assembly"], "schur": costs[l]["schur"], "contact": costs[l]["contact"],
@@ -403,7 +417,12 @@ def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, clai
                             "force", "a_error", "p0_error", "bracket_error"],
                     ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.2f", "%.2f", "%.1f", "%.0f", "%.0f", "%+.4f", "%+.4f", "%+.4f"]),
         hertz_rule=hertz_rule(hertz, args), floors=floor_text(floors),
-        loadpath_order=loadpath_order(loadpath, args.yardstick),
+        loadpath_order=loadpath_order(loadpath, args.yardstick), slider_date=slider_date,
+        slider=table(slider, accuracy_mesh.SLIDER_COLUMNS, ["%d", "%.0e", "%d", "%d", "%.2f", "%.1f", "%+.1e", "%.1e", "%d", "%d"]) if slider else "(not run)",
+        slider_max=max((abs(r["ratio_error"]) for r in slider), default=float("nan")),
+        cone_loose=max((r["cone_error"] for r in slider if r["eps"] == max(q["eps"] for q in slider)), default=float("nan")),
+        cone_tight=max((r["cone_error"] for r in slider if r["eps"] < max(q["eps"] for q in slider)), default=float("nan")),
+        slider_loose=max((r["eps"] for r in slider), default=float("nan")),
         loadpath=table(loadpath, accuracy_mesh.LOADPATH_COLUMNS, ["%d", "%d", "%.6f", "%.1e", "%d", "%.3f", "%.2f", "%.4f"]),
         claim_dense=claims["err_u_dense"], claim_whole=claims["err_u_whole"], claim_level=CLAIM_LEVEL, claim_eps=CLAIM_EPS,
         claim_hertz=claims["hertz_p0_error"], claim_hertz_level=CLAIM_HERTZ, claim_hertz_eps=claims["hertz_eps"])
@@ -489,7 +508,7 @@ TEMPLATE = """# What accuracy costs in time
 
 Generated by `{command}` (`make accuracy`; `make accuracy-quick` is the small version a test runs) on {date},
 {machine}. Every number below comes from that run: `docs/accuracy/sweep.csv` (one row per solve, both paths),
-`discretization.csv`, `hertz.csv`, `claims.json` and the pictures beside them, each stamped with the command, the
+`discretization.csv`, `hertz.csv`, `slider.csv`, `loadpath.csv`, `claims.json` and the pictures beside them, each stamped with the command, the
 date and the machine. Times are on a shared 2-core machine (2–3x swings): read them beside the **AMG yardstick of the
 same run**, one CG + GAMG solve of the prism's K at level {yardstick_level} on {ranks} rank(s) (`bench/yardstick -yardstick amg`),
 measured at the start, the middle and the end: {sticks} s, median **{yardstick:.3f} s**; the column "yardsticks" is
@@ -573,6 +592,20 @@ model error of the order of a few 1e-3 that Hertz's formulas carry.
 **Where the tolerance stops mattering** (the loosest rtol from which on the answer moves by less than a tenth of its
 error; tighter buys nothing there, the mesh dominates):
 {floors}
+
+## A sliding contact: T = phi N
+The slider of `scenes/slider.opts` (`examples/contact -options_file scenes/slider.opts -level L -snes_rtol t`; measured
+{slider_date}): a block pushed along x beyond phi N on a block, phi = 0.5, node-to-surface; every touching node
+slides, so the contact's tangential force is phi times its normal force, whatever the mesh. ratio_error = |T| / (phi N) - 1
+(as `tests/suite_pairs.py` measures it), the whole run on one rank, beside the AMG yardstick above.
+
+{slider}
+
+The largest |ratio_error| is {slider_max:.1e} over these levels and tolerances: from rtol {slider_loose:.0e} on, a sliding
+contact's total force is right to that, with no tighter tolerance and no finer mesh. Node by node the tolerance does
+show: cone_error, the largest | |r_t| / (phi r_n) - 1 | of a sliding node, is up to {cone_loose:.1e} at rtol {slider_loose:.0e}
+and at most {cone_tight:.1e} at the tighter ones. |T| <= phi N with equality only when all slip directions are
+parallel: the shortfall (negative ratio_error) is the spread of the nodes' slip directions, not an error of the law.
 
 ## Load paths: the error of a path's end against the steps
 The block on a spring of `tests/suite_loadpath.py` (docs/derivation.md (11.1)-(11.2)): a nearly rigid block pressed by

@@ -162,3 +162,26 @@ def plot_loadpath(path, rows, footer):
     fig.text(0.01, 0.005, footer, fontsize=6, color="0.4")
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+SLIDER_COLUMNS = ["level", "eps", "contact", "iterations", "solve_s", "whole_s", "ratio_error", "cone_error", "sliding", "sticking"]
+
+
+def slider_run(level, eps, work):
+    """the slider of scenes/slider.opts (a block pushed along x beyond phi N on a block, phi = 0.5): the contact's
+    tangential force against phi times its normal force, |T| / (phi N) - 1, as tests/suite_pairs.py measures it, and
+    the sliding nodes' largest distance from their cones, max | |r_t| / (phi r_n) - 1 |"""
+    import h5py
+    h5 = os.path.join(work, "slider_L%d_%g.h5" % (level, eps))
+    out, whole = timed([os.path.join(ROOT, "examples", "contact"), "-options_file", os.path.join(ROOT, "scenes", "slider.opts"), "-level", str(level),
+                        "-snes_rtol", "%g" % eps, "-o", h5])
+    m = SUMMARY.search(out)
+    with h5py.File(h5, "r") as f:
+        c = f["contact"]
+        r, n, s, phi = c["reaction"][:], c["normal"][:], c["state"][:], c["friction"][:].max()
+    rn = (r * n).sum(axis=1)
+    rt = r - rn[:, None] * n
+    sliding = np.isin(s, (1, 2))
+    return {"cone_error": np.abs(np.linalg.norm(rt[sliding], axis=1) / (phi * rn[sliding]) - 1).max(), "level": level, "eps": eps, "contact": int(m.group(2)), "iterations": int(m.group(6)), "solve_s": float(m.group(5)), "whole_s": whole,
+            "ratio_error": np.linalg.norm(rt.sum(axis=0)) / (phi * rn.sum()) - 1, "sliding": int(np.isin(s, (1, 2)).sum()),
+            "sticking": int(np.isin(s, (3, 4, 5)).sum())}

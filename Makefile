@@ -132,7 +132,7 @@ bench-search: all
 	$(PYTHON) bench/search.py
 
 # the work-precision study: docs/accuracy.md, docs/accuracy/*.csv, *.json and *.png (both paths, the Hertz mesh axis;
-# 15 minutes on a loaded 2-core machine); accuracy-quick: the small version into bench/output/accuracy_quick (1-2 minutes)
+# about 20 minutes on a loaded 2-core machine); accuracy-quick: the small version into bench/output/accuracy_quick (1-2 minutes)
 accuracy: all
 	$(PYTHON) bench/accuracy.py
 

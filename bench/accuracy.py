@@ -3,7 +3,7 @@
 
   bench/accuracy.py [--quick] [--levels 4,6,8,10] [--finest 14] [--tols 1e-2,...,1e-12] [--repeat 3]
                     [--baseline-levels 4,6] [--whole-levels 4,6,8,10] [--krylov-rtols 1e-3] [--krylov-levels 8]
-                    [--hertz-levels 1,2] [--hertz-tols 1e-1,...,1e-8] [--loadpath-steps 5,...] [--ranks 1] [--out docs/accuracy]
+                    [--hertz-levels 1,2,3] [--hertz-tols 1e-1,...,1e-8] [--loadpath-steps 5,...] [--ranks 1] [--out docs/accuracy]
 
 Both paths of the solver on the seed's prism, per level L and stopping tolerance t (-snes_rtol):
 - the dense route (-snes_ssstar_reduction direct): examples/prism writes the reduced problem (P, f, coordinates) once
@@ -44,7 +44,7 @@ STATE_TOL = 1e-8  # a node carries force if r_n > STATE_TOL max r_n; it slips if
 COLUMNS = ["level", "path", "method", "ksp_rtol_max", "eps", "iterations", "time_s", "setup_s", "err_u", "err_r", "normal_force_err",
            "contact_nodes_diff", "state_diff", "converged", "znorm_final", "coulomb_residual"]
 FULL = {"levels": "4,6,8,10", "finest": 14, "tols": "1e-2,1e-3,1e-4,1e-6,1e-8,1e-10,1e-12", "repeat": 3, "baseline_levels": "4,6",
-        "whole_levels": "4,6,8,10", "krylov_rtols": "1e-3", "krylov_levels": "8", "hertz_levels": "1,2", "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8",
+        "whole_levels": "4,6,8,10", "krylov_rtols": "1e-3", "krylov_levels": "8", "hertz_levels": "1,2,3", "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8",
         "loadpath_steps": "5,6,11,25,26,51", "slider_levels": "1,2", "slider_tols": "1e-2,1e-4,1e-8", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
         "doc": os.path.join(ROOT, "docs", "accuracy.md")}
 QUICK = {"levels": "4,6", "finest": 8, "tols": "1e-3,1e-6", "repeat": 1, "baseline_levels": "4", "whole_levels": "4,6",
@@ -61,7 +61,7 @@ def parse():
     p.add_argument("--baseline-repeat", type=int, default=1, help="runs per tolerance of the baseline")
     p.add_argument("--ranks", type=int, default=1, help="MPI ranks of the whole-body and hertz runs")
     p.add_argument("--report-only", action="store_true", help="the doc, the files and the pictures again from the last run's results.json")
-    p.add_argument("--extend", action="store_true", help="with --report-only: measure the parts the last run's results.json lacks (the slider)")
+    p.add_argument("--extend", action="store_true", help="with --report-only: measure the parts the last run's results.json lacks (the slider, hertz levels)")
     args = p.parse_args()
     for key, value in (QUICK if args.quick else FULL).items():
         if getattr(args, key) is None:
@@ -330,8 +330,16 @@ def main():
         for key in ("costs", "level_data"):
             res[key] = {int(k): v for k, v in res[key].items()}
         levels = sorted(res["level_data"])
-        if args.extend and "slider" not in res:  # a part added to the study after the run: measured now, dated apart
-            res["slider"], res["slider_date"] = sliders(args, work), datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+        if args.extend:  # parts added to the study after the run: measured now, dated apart
+            now = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+            if "slider" not in res:
+                res["slider"], res["slider_date"] = sliders(args, work), now
+            have = {(r["level"], r["eps"]) for r in res["hertz"]}
+            for level in numbers(args.hertz_levels):
+                missing = [eps for eps in numbers(args.hertz_tols, float) if (level, eps) not in have]
+                if missing:
+                    res["hertz"] += accuracy_mesh.hertz_sweep([level], missing, args.ranks, work, lambda s: print(s, flush=True))
+                    res.setdefault("hertz_dates", {})[str(level)] = now
             with open(saved, "w") as f:
                 json.dump(res, f)
     else:
@@ -367,6 +375,7 @@ def main():
     claims = measure_claims(rows, hertz)
     with open(os.path.join(args.out, "claims.json"), "w") as f:
         json.dump(dict(claims, command=args.command, date=args.date, machine=args.machine), f, indent=1)
+    args.hertz_dates = res.get("hertz_dates", {})
     write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, res.get("slider_date", args.date))
 
 
@@ -417,6 +426,7 @@ def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, clai
                             "force", "a_error", "p0_error", "bracket_error"],
                     ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.2f", "%.2f", "%.1f", "%.0f", "%.0f", "%+.4f", "%+.4f", "%+.4f"]),
         hertz_rule=hertz_rule(hertz, args), floors=floor_text(floors),
+        hertz_dates="".join(" Level %s was measured on %s (`--report-only --extend`), after the rest of the run." % item for item in sorted(args.hertz_dates.items())),
         loadpath_order=loadpath_order(loadpath, args.yardstick), slider_date=slider_date,
         slider=table(slider, accuracy_mesh.SLIDER_COLUMNS, ["%d", "%.0e", "%d", "%d", "%.2f", "%.1f", "%+.1e", "%.1e", "%d", "%d"]) if slider else "(not run)",
         slider_text=slider_text(slider),
@@ -591,13 +601,15 @@ hertz.h5`: a half ball (R = 10) pressed on a rigid plane, frictionless; the cont
 midpoint between the outermost node in contact and the innermost out) and the peak pressure p0 (fitted) against
 Hertz's closed forms for the force the plane carries. Times: the whole run (mesh to file) on {ranks} rank(s); the
 route is `auto`'s. The error does not go to zero with the mesh: the half ball is not a half space (a/R = 0.1), a
-model error of the order of a few 1e-3 that Hertz's formulas carry.
+model error of the order of a few 1e-3 that Hertz's formulas carry.{hertz_dates}
 
 {hertz}
 
 ![Hertz: error against time](accuracy/hertz_work_precision.png)
 
-**The rule** (the coarsest level within the error, at it the loosest tolerance; the whole run's time, this machine):
+**The rule** (the coarsest level, and at it the loosest tolerance, whose error is within the target and stays within it
+at every finer level and tighter tolerance measured; the whole run's time, this machine, the route and the nested
+start `auto`'s):
 {hertz_rule}
 
 **Where the tolerance stops mattering** (the loosest rtol from which on the answer moves by less than a tenth of its

@@ -86,10 +86,12 @@ def tolerance_floor(rows, key):
 
 
 def rule(rows, key, targets):
-    """per target error: the coarsest level and at it the loosest tolerance whose |error| is within it (the cheapest
-    in principle: the measured seconds are too noisy to rank runs of the same level), or None"""
+    """per target error: the coarsest level and at it the loosest tolerance whose |error| is within it, and stays
+    within it at every finer level and tighter tolerance measured (no lucky coarse run), or None; the cheapest in
+    principle: the measured seconds are too noisy to rank runs of the same level"""
     ordered = sorted(rows, key=lambda r: (r["level"], -r["eps"]))
-    return [(t, next((r for r in ordered if abs(r[key]) <= t), None)) for t in targets]
+    holds = lambda r, t: all(abs(q[key]) <= t for q in rows if q["level"] >= r["level"] and q["eps"] <= r["eps"])
+    return [(t, next((r for r in ordered if holds(r, t)), None)) for t in targets]
 
 
 def plot_work_precision(path, rows, keys, title, yardstick, footer):

@@ -25,7 +25,7 @@ LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_nonlinear tests/test_scenes tests/test_reduction tests/test_operator \
-            tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress
+            tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress tests/test_hyperelastic
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu bench/refine_petsc
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -65,7 +65,7 @@ examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress tests/test_hyperelastic: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 tests/test_geometry tests/test_search: tests/brute_region.h

@@ -71,9 +71,18 @@ typedef enum {
   OPT_FRICTION_LAW,
   OPT_CONTACT_PAIR,
   OPT_DISPLACEMENT,
+  OPT_MATERIAL_MODEL,
+  OPT_ROTATION,
+  OPT_ROTATION_CENTER,
   OPT_LAW_PARAMETER
 } GroupOption;
-static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_", "-material_model_", "-rotation_", "-rotation_center_"};
+
+/* The options of a contact group (its obstacle, law, parameters, pair) */
+static PetscBool IsContactOption(GroupOption kind)
+{
+  return (PetscBool)(kind == OPT_OBSTACLE || kind == OPT_FRICTION_LAW || kind == OPT_CONTACT_PAIR || kind == OPT_LAW_PARAMETER);
+}
 
 static PetscBool IsContactGroup(SSStarScene scene, const char name[])
 {
@@ -96,6 +105,7 @@ static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], Gr
   const char *const *params;
   size_t             best = 0, bestContact = 0;
   GroupOption        bestKind = OPT_MATERIAL, bestContactKind = OPT_MATERIAL;
+  PetscBool          plain;
 
   PetscFunctionBegin;
   PetscCall(SSStarLawGetParameterNames(&nparams, &params));
@@ -114,13 +124,14 @@ static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], Gr
       best     = len;
       bestKind = option;
     }
-    if (option >= OPT_OBSTACLE && option != OPT_DISPLACEMENT && len > bestContact && IsContactGroup(scene, token + len)) {
+    if (IsContactOption(option) && len > bestContact && IsContactGroup(scene, token + len)) {
       bestContact     = len;
       bestContactKind = option;
     }
   }
-  *found = (PetscBool)(best > 0);
-  if (bestKind >= OPT_OBSTACLE && bestKind != OPT_DISPLACEMENT && bestContact && !IsContactGroup(scene, token + best)) {
+  PetscCall(PetscStrcmp(token, "-material_model", &plain));
+  *found = (PetscBool)(best > 0 && !plain); /* -material_model is the scene's, of no group */
+  if (IsContactOption(bestKind) && bestContact && !IsContactGroup(scene, token + best)) {
     best     = bestContact;
     bestKind = bestContactKind;
   }
@@ -157,7 +168,8 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   if (kind == OPT_MATERIAL) scene->nMaterials++;
   if (kind == OPT_TRACTION) scene->nTractions++;
   if (kind == OPT_SPRING) scene->nSprings++;
-  if (kind == OPT_DISPLACEMENT) scene->nDisplacements++;
+  if (kind == OPT_DISPLACEMENT || kind == OPT_ROTATION) scene->nDisplacements++;
+  if (kind == OPT_MATERIAL_MODEL) scene->nModels++;
   PetscFunctionReturn(0);
 }
 
@@ -279,6 +291,29 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(SSStarPairsReadOption(scene, cg, option));
     break;
+  case OPT_MATERIAL_MODEL: {
+    SSStarGroupModel *gm = &scene->models[scene->nModels++];
+    char              name[64] = "";
+    PetscInt          model;
+
+    PetscCall(PetscStrncpy(gm->name, group, sizeof(gm->name)));
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
+    PetscCall(SSStarMaterialModelFromName(scene->comm, option, name, &model));
+    gm->model = (SSStarMaterialModel)model;
+  } break;
+  case OPT_ROTATION: { /* a prescribed rigid rotation (prescribed.c) */
+    const char *value;
+
+    PetscCall(PetscOptionsFindPair(NULL, NULL, option, &value, &set));
+    PetscCall(SSStarPrescribedReadRotation(scene, option, group, value, &scene->displacements[scene->nDisplacements++]));
+  } break;
+  case OPT_ROTATION_CENTER: { /* read with its -rotation_<G> */
+    char rotation[SSSTAR_GROUP_NAME_LEN + 16];
+
+    PetscCall(PetscSNPrintf(rotation, sizeof(rotation), "-rotation_%s", group));
+    PetscCall(PetscOptionsHasName(NULL, NULL, rotation, &set));
+    PetscCheck(set, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s needs %s: the center of a rotation that is not prescribed", option, rotation);
+  } break;
   case OPT_DISPLACEMENT: { /* prescribed displacements: numbers or free, constant or a history (prescribed.c) */
     const char *value;
 
@@ -307,9 +342,14 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
 static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G\n\
+  -material_model_<G> <linear>: the material model of volume group G: linear, saint_venant_kirchhoff or neo_hookean\n\
+      (hyperelastic at finite strain; docs/guide/large-deformation.md)\n\
   -displacement_<G> <x,y,z>: prescribed displacement of surface or volume group G (global axes), each component a\n\
       number or free (free,free,-0.01: only u_z prescribed); a constant or a history t:x,y,z;... (a component free\n\
       in one knot is free in all); its reaction force is in the output (docs/guide/displacements-and-stresses.md)\n\
+  -rotation_<G> <rx,ry,rz>: a rigid rotation prescribed on group G (every component of its nodes): the rotation\n\
+      vector in degrees (its direction the axis, its length the angle), a constant or a history t:rx,ry,rz;...\n\
+  -rotation_center_<G> <x,y,z>: the point its axis passes through (default 0,0,0)\n\
   -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
       t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
@@ -335,7 +375,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -material_model -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -414,8 +454,13 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -E <E> - Young's modulus of the cells without -material_<G>
 .  -nu <nu> - Poisson's ratio of those cells
 .  -material_<G> <E,nu> - the material of volume group G
+.  -material_model <linear> - the material model of the cells without -material_model_<G>: linear (small strain, the
+   affine problem K u = b), saint_venant_kirchhoff or neo_hookean (hyperelastic at finite strain)
+.  -material_model_<G> <linear> - the material model of volume group G
 .  -dirichlet <G1,G2> - groups held fixed
 .  -displacement_<G> <x,y,z> - the prescribed displacement of surface or volume group G: each component a number or free, a constant or a history t:x,y,z;...
+.  -rotation_<G> <rx,ry,rz> - a rigid rotation prescribed on group G: the rotation vector in degrees, a constant or a history t:rx,ry,rz;...
+.  -rotation_center_<G> <x,y,z> - the point its axis passes through (default the origin)
 .  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
 .  -gravity <gx,gy,gz> - gravity, with -density: a constant, or a history t:gx,gy,gz;...
@@ -478,6 +523,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-E", "Young's modulus of the cells without -material_<G>", NULL, scene->E, &scene->E, &scene->hasE));
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity)", NULL, scene->density, &scene->density, &hasDensity));
+  PetscCall(PetscOptionsEnum("-material_model", "The material model of the cells without -material_model_<G>: linear (small strain), saint_venant_kirchhoff or neo_hookean (finite strain)", "SSStarSceneIsAffine", SSStarMaterialModels, (PetscEnum)scene->model, (PetscEnum *)&scene->model, NULL));
   {
     PetscInt sliding = (PetscInt)scene->sliding;
 
@@ -540,15 +586,19 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscFree3(scene->materials, scene->tractions, scene->springs));
   PetscCall(PetscCalloc3(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs));
   PetscCall(PetscCalloc1(scene->nDisplacements + 1, &scene->displacements));
-  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = scene->nDisplacements = 0;
+  PetscCall(PetscFree(scene->models));
+  PetscCall(PetscCalloc1(scene->nModels + 1, &scene->models));
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = scene->nDisplacements = scene->nModels = 0;
   PetscCall(ForEachGroupOption(scene, ReadGroupOption));
+  scene->affine = (PetscBool)(scene->model == SSSTAR_MATERIAL_LINEAR);
+  for (PetscInt m = 0; m < scene->nModels; m++) scene->affine = (PetscBool)(scene->affine && scene->models[m].model == SSSTAR_MATERIAL_LINEAR);
   PetscCall(SSStarPairsCheckOptions(scene));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
   }
   for (PetscInt d = 0; d < scene->nDisplacements; d++) {
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[d].name));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s_%s", scene->displacements[d].rotation ? "rotation" : "displacement", scene->displacements[d].name));
     PetscCall(CheckNotHeld(scene, scene->displacements[d].name, option));
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -563,7 +613,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 /* SSStarSceneGroupUses - every group an option names, with the kind of group the option needs (for the mesh checks) */
 PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
 {
-  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs + scene->nDisplacements, k = 0;
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs + scene->nDisplacements + scene->nModels, k = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(total, uses));
@@ -578,7 +628,7 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
 
     (*uses)[k].group = scene->displacements[g].name;
     (*uses)[k].kind  = SSSTAR_GROUP_ANY;
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[g].name));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s_%s", scene->displacements[g].rotation ? "rotation" : "displacement", scene->displacements[g].name));
     PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt g = 0; g < scene->nContact; g++, k++) {
@@ -609,6 +659,14 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
         PetscCall(PetscSNPrintf(option, sizeof(option), "%s%s", names[l], lists[l][g].name));
         PetscCall(PetscStrallocpy(option, &(*options)[k]));
       }
+  }
+  for (PetscInt g = 0; g < scene->nModels; g++, k++) {
+    char option[SSSTAR_GROUP_NAME_LEN + 24];
+
+    (*uses)[k].group = scene->models[g].name;
+    (*uses)[k].kind  = SSSTAR_GROUP_VOLUME;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-material_model_%s", scene->models[g].name));
+    PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt i = 0; i < total; i++) (*uses)[i].option = (*options)[i];
   *n = total;

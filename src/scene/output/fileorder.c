@@ -320,10 +320,10 @@ PetscErrorCode SSStarVertexValuesInFileOrder(SSStarScene scene, PetscInt bs, con
   PetscFunctionReturn(0);
 }
 
-/* <prefix>/fields/displacement */
+/* <prefix>/fields/displacement; of a hyperelastic scene <prefix>/fields/position too, X + u: the current configuration */
 PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
 {
-  Vec   nat;
+  Vec   nat, x;
   hid_t group;
   char  path[PETSC_MAX_PATH_LEN];
 
@@ -332,8 +332,15 @@ PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char
   PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
-  PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/displacement", prefix));
   PetscCall(SSStarWriteVec(file, path, 3, nat));
+  if (!scene->affine) {
+    PetscCall(SSStarVertexFieldInFileOrder(scene, NULL, &x));
+    PetscCall(VecAXPY(nat, 1.0, x));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/position", prefix));
+    PetscCall(SSStarWriteVec(file, path, 3, nat));
+    PetscCall(VecDestroy(&x));
+  }
   PetscCall(VecDestroy(&nat));
   PetscFunctionReturn(0);
 }

@@ -45,7 +45,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy accuracy-quick install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -131,9 +131,13 @@ bench-large: all
 bench-search: all
 	$(PYTHON) bench/search.py
 
-# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
+# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv, *.json and *.png (both paths, the Hertz mesh axis;
+# about 20 minutes on a loaded 2-core machine); accuracy-quick: the small version into bench/output/accuracy_quick (1-2 minutes)
 accuracy: all
 	$(PYTHON) bench/accuracy.py
+
+accuracy-quick: all
+	$(PYTHON) bench/accuracy.py --quick
 
 # the robustness families at the default settings, both paths, 1-4 ranks: converged, the law on every step, within 1e-6
 # of the exact discrete solution (bench/output/robust.csv)

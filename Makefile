@@ -25,7 +25,7 @@ LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
 TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_nonlinear tests/test_scenes tests/test_reduction tests/test_operator \
-            tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress
+            tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress tests/test_hyperelastic
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu bench/refine_petsc
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -45,7 +45,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy accuracy-quick install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -65,7 +65,7 @@ examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress tests/test_hyperelastic: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 tests/test_geometry tests/test_search: tests/brute_region.h
@@ -131,9 +131,13 @@ bench-large: all
 bench-search: all
 	$(PYTHON) bench/search.py
 
-# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv and *.png (about 20 minutes)
+# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv, *.json and *.png (both paths, the Hertz mesh axis;
+# about 20 minutes on a loaded 2-core machine); accuracy-quick: the small version into bench/output/accuracy_quick (1-2 minutes)
 accuracy: all
 	$(PYTHON) bench/accuracy.py
+
+accuracy-quick: all
+	$(PYTHON) bench/accuracy.py --quick
 
 # the robustness families at the default settings, both paths, 1-4 ranks: converged, the law on every step, within 1e-6
 # of the exact discrete solution (bench/output/robust.csv)

@@ -1,16 +1,25 @@
 #!/usr/bin/python3
-"""What accuracy costs in time: the work-precision study of ssstar on the seed's prism (make accuracy).
+"""What accuracy costs in time: the work-precision study of ssstar (make accuracy, make accuracy-quick).
 
-  bench/accuracy.py [--levels 4,6,8,10,12] [--finest 16] [--tols 1e-2,...,1e-12] [--methods ssstar,fixedpoint]
-                    [--repeat 3] [--baseline-levels 4,6,8] [--baseline-repeat 1] [--out docs/accuracy]
+  bench/accuracy.py [--quick] [--levels 4,6,8,10] [--finest 14] [--tols 1e-2,...,1e-12] [--repeat 3]
+                    [--baseline-levels 4,6] [--whole-levels 4,6,8,10] [--krylov-rtols 1e-3] [--krylov-levels 8]
+                    [--hertz-levels 1,2,3] [--hertz-tols 1e-1,...,1e-8] [--loadpath-steps 5,...] [--ranks 1] [--out docs/accuracy]
 
-The first-order baseline (-snes_ssstar_method fixedpoint) needs thousands of iterations per solve: it runs on the
---baseline-levels only, --baseline-repeat times per tolerance.
-
-For every level: examples/prism writes the reduced problem (P, f, coordinates); bench/accuracy_worker.py solves it
-for every method and stopping tolerance (-snes_rtol) and once at the tightest tolerance (the reference). Errors are
-measured against the reference of the same level (solver error) and the reference of the finest level
-(discretization error). Writes OUT/sweep.csv, OUT/discretization.csv, OUT/*.png and docs/accuracy.md."""
+Both paths of the solver on the seed's prism, per level L and stopping tolerance t (-snes_rtol):
+- the dense route (-snes_ssstar_reduction direct): examples/prism writes the reduced problem (P, f, coordinates) once
+  per level; bench/accuracy_worker.py solves it for every tolerance (median of --repeat) and once at 1e-14 (the
+  reference), with ssstar and with the first-order baseline (-snes_ssstar_method fixedpoint, on --baseline-levels);
+- the whole body (-snes_ssstar_reduction none -nested_levels 0, P never formed, Krylov + multigrid): one run of
+  examples/prism per tolerance, its contact solution against the same reference; --krylov-rtols adds runs with
+  other loosest Krylov tolerances of the Newton steps (-snes_ssstar_ksp_rtol_max) on --krylov-levels.
+The discretization error: each level's reference against the finest level's (the whole body at rtol 1e-12).
+The mesh axis: the hertz scene at --hertz-levels and --hertz-tols, whole runs, the contact radius and peak pressure
+against Hertz's formulas (bench/accuracy_mesh.py). The AMG yardstick (bench/yardstick -yardstick amg, the prism at
+--yardstick-level) is measured at the start, the middle and the end of the run; the median is beside every time.
+The load path: the block on a spring at --loadpath-steps (bench/accuracy_mesh.py).
+Writes OUT/sweep.csv, discretization.csv, hertz.csv, loadpath.csv, claims.json, *.png and the doc, each with the machine, the date
+and the command. --quick: levels 4 and 6 (finest 8), rtol 1e-3 and 1e-6, hertz level 1, 6 steps: 1-2 minutes, into
+bench/output/accuracy_quick (tests/suite_accuracy.py re-measures the doc's claims with it)."""
 import argparse
 import csv
 import datetime
@@ -25,33 +34,48 @@ import sys
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+import accuracy_mesh  # noqa: E402
+from table2 import ROW as PRISM_ROW, SETUP, yardstick  # noqa: E402 (the summary row, the set-up line, the AMG yardstick)
+
 PRISM = os.path.join(ROOT, "examples", "prism")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)", re.M)
 STATE_TOL = 1e-8  # a node carries force if r_n > STATE_TOL max r_n; it slips if |u_t| > STATE_TOL max|u| (reference scales)
-COLUMNS = ["level", "method", "eps", "iterations", "time_s", "err_u", "err_r", "normal_force_err", "contact_nodes_diff", "state_diff",
-           "converged", "znorm_final", "coulomb_residual"]
+COLUMNS = ["level", "path", "method", "ksp_rtol_max", "eps", "iterations", "time_s", "setup_s", "err_u", "err_r", "normal_force_err",
+           "contact_nodes_diff", "state_diff", "converged", "znorm_final", "coulomb_residual"]
+FULL = {"levels": "4,6,8,10", "finest": 14, "tols": "1e-2,1e-3,1e-4,1e-6,1e-8,1e-10,1e-12", "repeat": 3, "baseline_levels": "4,6",
+        "whole_levels": "4,6,8,10", "krylov_rtols": "1e-3", "krylov_levels": "8", "hertz_levels": "1,2,3", "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8",
+        "loadpath_steps": "5,6,11,25,26,51", "slider_levels": "1,2", "slider_tols": "1e-2,1e-4,1e-8", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
+        "doc": os.path.join(ROOT, "docs", "accuracy.md")}
+QUICK = {"levels": "4,6", "finest": 8, "tols": "1e-3,1e-6", "repeat": 1, "baseline_levels": "4", "whole_levels": "4,6",
+         "krylov_rtols": "", "krylov_levels": "", "hertz_levels": "1", "hertz_tols": "1e-8", "loadpath_steps": "6", "slider_levels": "", "slider_tols": "", "yardstick_level": 6,
+         "out": os.path.join(ROOT, "bench", "output", "accuracy_quick"), "doc": os.path.join(ROOT, "bench", "output", "accuracy_quick", "accuracy.md")}
+CLAIM_LEVEL, CLAIM_EPS, CLAIM_HERTZ = 6, 1e-6, 1  # the claims a test re-measures: err_u at level 6, rtol 1e-6; Hertz at level 1
 
 
 def parse():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--levels", default="4,6,8,10,12")
-    p.add_argument("--finest", type=int, default=16)
-    p.add_argument("--tols", default="1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12")
-    p.add_argument("--methods", default="ssstar,fixedpoint")
-    p.add_argument("--repeat", type=int, default=3)
-    p.add_argument("--baseline-levels", default="4,6,8", help="levels on which the methods other than ssstar run")
-    p.add_argument("--baseline-repeat", type=int, default=1, help="runs per tolerance of the methods other than ssstar")
-    p.add_argument("--out", default=os.path.join(ROOT, "docs", "accuracy"))
-    p.add_argument("--doc", default=os.path.join(ROOT, "docs", "accuracy.md"))
-    return p.parse_args()
+    p.add_argument("--quick", action="store_true", help="the quick study (about a minute; bench/output/accuracy_quick)")
+    for key, value in FULL.items():
+        p.add_argument("--" + key.replace("_", "-"), type=type(value), default=None, help="full: %s; quick: %s" % (value, QUICK[key]))
+    p.add_argument("--baseline-repeat", type=int, default=1, help="runs per tolerance of the baseline")
+    p.add_argument("--ranks", type=int, default=1, help="MPI ranks of the whole-body and hertz runs")
+    p.add_argument("--report-only", action="store_true", help="the doc, the files and the pictures again from the last run's results.json")
+    p.add_argument("--extend", action="store_true", help="with --report-only: measure the parts the last run's results.json lacks (the slider, hertz levels)")
+    args = p.parse_args()
+    for key, value in (QUICK if args.quick else FULL).items():
+        if getattr(args, key) is None:
+            setattr(args, key, value)
+    args.command = " ".join(["bench/accuracy.py"] + sys.argv[1:])
+    return args
+
+
+def numbers(spec, kind=int):
+    return [kind(v) for v in spec.split(",") if v]
 
 
 def run(cmd):
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
-    p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    if p.returncode:
-        sys.exit("failed: %s\n%s" % (" ".join(cmd), p.stdout[-3000:]))
-    return p.stdout
+    return accuracy_mesh.timed(cmd)[0]
 
 
 def save_level(level, work):
@@ -67,6 +91,22 @@ def solve_level(binary, methods, tols, repeat, baseline_repeat=1):
     run(cmd)
     with open(binary + ".json") as f:
         return json.load(f)
+
+
+def whole_body(level, eps, ranks, work, coordinates=None, extra=()):
+    """examples/prism on the whole body from u = 0: the contact solution (in the order of coordinates) and the costs"""
+    h5 = os.path.join(work, "whole_L%d_%g.h5" % (level, eps))
+    out = run(accuracy_mesh.mpiexec(ranks) + [PRISM, "-level", str(level), "-snes_ssstar_reduction", "none", "-nested_levels", "0",
+                                              "-snes_rtol", "%g" % eps, "-summary_header", "0", "-o", h5] + list(extra))
+    m, setup = PRISM_ROW.search(out), SETUP.search(out)
+    x, u, r = accuracy_mesh.prism_contact(h5, coordinates)
+    setup_s = float(setup.group(1)) if setup else 0.0
+    return {"u": u.ravel().tolist(), "r": r.ravel().tolist(), "coordinates": x.ravel().tolist(), "iterations": int(m.group(8)),
+            "converged": int(m.group(11).startswith("CONVERGED")), "time": float(m.group(7)) - setup_s, "setup": setup_s,
+            "assembly": float(m.group(4)), "contact": int(m.group(6))}
+
+
+FULL_KRYLOV = "0.1"  # the default -snes_ssstar_ksp_rtol_max
 
 
 def arrays(run_):
@@ -158,36 +198,47 @@ def observed_order(history):
     return np.log(c / b) / np.log(b / a)
 
 
-def plots(out, rows, disc, level_data):
+def stamp(fig, args):
+    fig.text(0.01, 0.005, "%s; %s; %s" % (args.command, args.date, args.machine), fontsize=6, color="0.4")
+
+
+def plots(out, rows, disc, level_data, args):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     levels = sorted(level_data)
     colors = dict(zip(levels, plt.cm.viridis(np.linspace(0, 0.9, len(levels)))))
-    fig, ax = plt.subplots(figsize=(8, 6))
-    for (level, method), group in _groups(rows).items():
-        ax.loglog([g["time_s"] for g in group], [max(g["err_u"], 1e-17) for g in group], "o-" if method == "ssstar" else "s--",
-                  color=colors[level], label="L%d %s" % (level, method))
+    fig, ax = plt.subplots(figsize=(9, 6.5))
+    styles = {("direct", "ssstar"): "o-", ("none", "ssstar"): "^--", ("direct", "fixedpoint"): "s:"}
+    for (level, path, method, krylov), group in _groups(rows).items():
+        if krylov not in ("", FULL_KRYLOV):
+            continue
+        ax.loglog([g["time_s"] / args.yardstick for g in group], [max(g["err_u"], 1e-17) for g in group], styles[(path, method)],
+                  color=colors[level], label="L%d %s %s" % (level, {"direct": "dense", "none": "whole body"}[path], method))
     for d in disc:
         ax.axhline(d["err_u"], color=colors[d["level"]], lw=0.8, ls=":")
-    ax.set_xlabel("solve time [s] (SNESSolve on the reduced problem, median)")
+    ax.set_xlabel("solve time in AMG yardsticks (1 = %.3f s; the iterations only, fixed costs apart)" % args.yardstick)
     ax.set_ylabel("max |u - u_ref| / max |u_ref| (contact displacement)")
-    ax.set_title("Error against time; dotted: discretization error of the level")
-    ax.legend(fontsize=7, ncol=2)
+    ax.set_title("Solver error against time, both paths; dotted: discretization error of the level")
+    ax.legend(fontsize=6, ncol=3)
+    stamp(fig, args)
     fig.savefig(os.path.join(out, "error_vs_time.png"), dpi=120)
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(8, 6))
     tols = sorted({g["eps"] for g in rows}, reverse=True)
     for eps in tols[::2]:
-        pts = [(g["level"], g["err_u"]) for g in rows if g["method"] == "ssstar" and g["eps"] == eps]
-        ax.semilogy([p[0] for p in pts], [max(p[1], 1e-17) for p in pts], "o-", label="ssstar, rtol %.0e" % eps)
+        for path, mark in (("direct", "o-"), ("none", "^--")):
+            pts = [(g["level"], g["err_u"]) for g in rows if g["method"] == "ssstar" and g["path"] == path and g["eps"] == eps and g["ksp_rtol_max"] in ("", FULL_KRYLOV)]
+            if pts:
+                ax.semilogy([p[0] for p in pts], [max(p[1], 1e-17) for p in pts], mark, label="%s, rtol %.0e" % ({"direct": "dense", "none": "whole"}[path], eps))
     ax.semilogy([d["level"] for d in disc], [d["err_u"] for d in disc], "k^-", lw=2, label="discretization (vs finest level)")
     ax.set_xlabel("level")
     ax.set_ylabel("max |u - u_ref| / max |u_ref|")
     ax.set_title("Solver error and discretization error against the level")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, ncol=2)
+    stamp(fig, args)
     fig.savefig(os.path.join(out, "error_vs_level.png"), dpi=120)
     plt.close(fig)
 
@@ -197,8 +248,9 @@ def plots(out, rows, disc, level_data):
         ax.semilogy(range(len(h)), h, "o-", color=colors[level], label="L%d (order %.2f)" % (level, observed_order(h)))
     ax.set_xlabel("iteration k")
     ax.set_ylabel("||z_k||")
-    ax.set_title("ssstar: ||z_k|| per iteration (reference solves); observed order of the tail")
+    ax.set_title("ssstar: ||z_k|| per iteration (dense reference solves); observed order of the tail")
     ax.legend()
+    stamp(fig, args)
     fig.savefig(os.path.join(out, "znorm_history.png"), dpi=120)
     plt.close(fig)
 
@@ -206,7 +258,7 @@ def plots(out, rows, disc, level_data):
 def _groups(rows):
     groups = {}
     for g in rows:
-        groups.setdefault((g["level"], g["method"]), []).append(g)
+        groups.setdefault((g["level"], g["path"], g["method"], g["ksp_rtol_max"]), []).append(g)
     return groups
 
 
@@ -223,63 +275,209 @@ def table(rows, columns, formats):
     return "\n".join(out)
 
 
-def main():
-    args = parse()
-    levels = [int(l) for l in args.levels.split(",")]
-    work = os.path.join(ROOT, "bench", "output", "accuracy")
-    os.makedirs(work, exist_ok=True)
-    os.makedirs(args.out, exist_ok=True)
+def measure(args, levels, work):
+    """every run of the study; the results as one dictionary (saved as WORK/results.json for --report-only)"""
+    sticks = [sum(yardstick(args.yardstick_level, args.ranks, "amg"))]
     costs, level_data = {}, {}
     for level in levels:
         binary, costs[level] = save_level(level, work)
-        baseline = level in [int(l) for l in args.baseline_levels.split(",") if l]
-        methods = ",".join(m for m in args.methods.split(",") if m == "ssstar" or baseline)
+        methods = "ssstar,fixedpoint" if level in numbers(args.baseline_levels) else "ssstar"
         level_data[level] = solve_level(binary, methods, args.tols, args.repeat, args.baseline_repeat)
-        print("level %d done" % level, flush=True)
-    binary, costs[args.finest] = save_level(args.finest, work)
-    finest = solve_level(binary, "ssstar", "", 1)
-
+        print("dense route, level %d done" % level, flush=True)
+    sticks.append(sum(yardstick(args.yardstick_level, args.ranks, "amg")))
     rows = []
     for level, data in sorted(level_data.items()):
         ref = data["reference"]
         for r in data["runs"]:
-            m = metrics(r, ref)
-            rows.append(dict(level=level, method=r["method"], eps=r["eps"], iterations=r["iterations"], time_s=r["time"],
-                             converged=int(r["reason"] > 0), znorm_final=r["history"][-1], **m))
-    with open(os.path.join(args.out, "sweep.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        for r in rows:
-            w.writerow({c: r[c] for c in COLUMNS})
+            rows.append(dict(level=level, path="direct", method=r["method"], ksp_rtol_max="", eps=r["eps"], iterations=r["iterations"], time_s=r["time"],
+                             setup_s=0.0, converged=int(r["reason"] > 0), znorm_final=r["history"][-1], **metrics(r, ref)))
+    variants = [(level, FULL_KRYLOV) for level in numbers(args.whole_levels)] + \
+               [(level, k) for level in numbers(args.krylov_levels) for k in args.krylov_rtols.split(",") if k]
+    for level, krylov in variants:
+        for eps in numbers(args.tols, float):
+            w = whole_body(level, eps, args.ranks, work, level_data[level]["coordinates"], ["-snes_ssstar_ksp_rtol_max", krylov])
+            costs[level]["whole_assembly"] = w["assembly"]
+            costs[level].setdefault("setup", []).append(w["setup"])
+            rows.append(dict(level=level, path="none", method="ssstar", ksp_rtol_max=krylov, eps=eps, iterations=w["iterations"], time_s=w["time"],
+                             setup_s=w["setup"], converged=w["converged"], znorm_final=float("nan"), **metrics(w, level_data[level]["reference"])))
+        print("whole body, level %d, ksp_rtol_max %s done" % (level, krylov), flush=True)
+    finest = whole_body(args.finest, 1e-12, args.ranks, work)
+    finest = {"coordinates": finest["coordinates"], "reference": finest}
+    hertz = accuracy_mesh.hertz_sweep(numbers(args.hertz_levels), numbers(args.hertz_tols, float), args.ranks, work, lambda s: print(s, flush=True))
+    loadpath = [accuracy_mesh.loadpath_run(n, work) for n in numbers(args.loadpath_steps)]
+    print("load paths done", flush=True)
+    slider = sliders(args, work)
+    sticks.append(sum(yardstick(args.yardstick_level, args.ranks, "amg")))
+    return {"costs": costs, "level_data": level_data, "rows": rows, "finest": finest, "hertz": hertz, "loadpath": loadpath, "slider": slider,
+            "sticks": sticks, "date": args.date, "machine": args.machine, "command": args.command}
+
+
+def sliders(args, work):
+    return [accuracy_mesh.slider_run(level, eps, work) for level in numbers(args.slider_levels) for eps in numbers(args.slider_tols, float)]
+
+
+def main():
+    args = parse()
+    os.environ.update(accuracy_mesh.environment())
+    levels = numbers(args.levels)
+    work = os.path.join(ROOT, "bench", "output", "accuracy_quick_work" if args.quick else "accuracy")
+    os.makedirs(work, exist_ok=True)
+    os.makedirs(args.out, exist_ok=True)
+    saved = os.path.join(work, "results.json")
+    if args.report_only:
+        with open(saved) as f:
+            res = json.load(f)
+        for key in ("costs", "level_data"):
+            res[key] = {int(k): v for k, v in res[key].items()}
+        levels = sorted(res["level_data"])
+        if args.extend:  # parts added to the study after the run: measured now, dated apart
+            now = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+            if "slider" not in res:
+                res["slider"], res["slider_date"] = sliders(args, work), now
+            have = {(r["level"], r["eps"]) for r in res["hertz"]}
+            for level in numbers(args.hertz_levels):
+                missing = [eps for eps in numbers(args.hertz_tols, float) if (level, eps) not in have]
+                if missing:
+                    res["hertz"] += accuracy_mesh.hertz_sweep([level], missing, args.ranks, work, lambda s: print(s, flush=True))
+                    res.setdefault("hertz_dates", {})[str(level)] = now
+            with open(saved, "w") as f:
+                json.dump(res, f)
+    else:
+        args.date, args.machine = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"), machine()
+        res = measure(args, levels, work)
+        with open(saved, "w") as f:
+            json.dump(res, f)
+    args.date, args.machine, args.command = res["date"], res["machine"], res["command"]
+    costs, level_data, rows, finest, hertz, loadpath, sticks = (res[k] for k in ("costs", "level_data", "rows", "finest", "hertz", "loadpath", "sticks"))
+    args.yardstick, args.sticks = statistics.median(sticks), sticks
+    for r in rows:
+        r["yardsticks"] = r["time_s"] / args.yardstick
+    for r in hertz:
+        r["yardsticks"] = r["whole_s"] / args.yardstick
+
+    provenance = "# %s; %s; %s; AMG yardstick %.3f s (prism level %d, %d rank(s))" % (args.command, args.date, args.machine, args.yardstick,
+                                                                                        args.yardstick_level, args.ranks)
+    write_csv(os.path.join(args.out, "sweep.csv"), provenance, COLUMNS + ["yardsticks"], rows)
     disc = discretization(level_data, finest)
-    with open(os.path.join(args.out, "discretization.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(disc[0]))
+    write_csv(os.path.join(args.out, "discretization.csv"), provenance, list(disc[0]), disc)
+    write_csv(os.path.join(args.out, "hertz.csv"), provenance, accuracy_mesh.HERTZ_COLUMNS + ["yardsticks"], hertz)
+    plots(args.out, rows, disc, level_data, args)
+    accuracy_mesh.plot_work_precision(os.path.join(args.out, "hertz_work_precision.png"), hertz,
+                                      [("p0_error", "peak pressure error p0/p0_Hertz - 1"), ("a_error", "contact radius error a/a_Hertz - 1")],
+                                      "Hertz (scenes/hertz.opts): error against the whole run's time, %d rank(s)" % args.ranks, args.yardstick,
+                                      "%s; %s; %s" % (args.command, args.date, args.machine))
+    write_csv(os.path.join(args.out, "loadpath.csv"), provenance, accuracy_mesh.LOADPATH_COLUMNS, loadpath)
+    slider = res.get("slider", [])
+    if slider:
+        write_csv(os.path.join(args.out, "slider.csv"), provenance + (" (the slider measured %s)" % res["slider_date"] if "slider_date" in res else ""),
+                  accuracy_mesh.SLIDER_COLUMNS, slider)
+    accuracy_mesh.plot_loadpath(os.path.join(args.out, "loadpath_steps.png"), loadpath, "%s; %s; %s" % (args.command, args.date, args.machine))
+    claims = measure_claims(rows, hertz)
+    with open(os.path.join(args.out, "claims.json"), "w") as f:
+        json.dump(dict(claims, command=args.command, date=args.date, machine=args.machine), f, indent=1)
+    args.hertz_dates = res.get("hertz_dates", {})
+    write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, res.get("slider_date", args.date))
+
+
+def write_csv(path, provenance, columns, rows):
+    with open(path, "w", newline="") as f:
+        f.write(provenance + "\n")
+        w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
-        w.writerows(disc)
-    plots(args.out, rows, disc, level_data)
-    write_doc(args, levels, costs, level_data, finest, rows, disc)
+        w.writerows(rows)
 
 
-def write_doc(args, levels, costs, level_data, finest, rows, disc):
+def measure_claims(rows, hertz):
+    """the two numbers of the doc a test re-measures with the quick study"""
+    pick = lambda path: next(r["err_u"] for r in rows if r["level"] == CLAIM_LEVEL and r["path"] == path and r["method"] == "ssstar"
+                             and r["eps"] == CLAIM_EPS and r["ksp_rtol_max"] in ("", FULL_KRYLOV))
+    tight = min((r for r in hertz if r["level"] == CLAIM_HERTZ), key=lambda r: r["eps"])
+    return {"err_u_dense": pick("direct"), "err_u_whole": pick("none"), "level": CLAIM_LEVEL, "eps": CLAIM_EPS,
+            "hertz_level": CLAIM_HERTZ, "hertz_eps": tight["eps"], "hertz_p0_error": tight["p0_error"], "hertz_a_error": tight["a_error"]}
+
+
+def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, slider_date):
     refs = [{"level": l, "iterations": level_data[l]["reference"]["iterations"], "znorm": level_data[l]["reference"]["history"][-1],
              "law": coulomb_residual(*arrays(level_data[l]["reference"])), "order": observed_order(level_data[l]["reference"]["history"]),
-             "second": second_method(level_data[l]), "assembly": costs[l]["assembly"], "schur": costs[l]["schur"], "contact": costs[l]["contact"]}
-            for l in levels]
-    sweep = [r for r in rows if r["method"] == "ssstar"]
+             "second": second_method(level_data[l]), "assembly": costs[l]["assembly"], "schur": costs[l]["schur"], "contact": costs[l]["contact"],
+             "setup": statistics.median(costs[l]["setup"]) if costs[l].get("setup") else float("nan")} for l in levels]
+    dense = [r for r in rows if r["method"] == "ssstar" and r["path"] == "direct"]
+    whole = [r for r in rows if r["path"] == "none" and r["ksp_rtol_max"] == FULL_KRYLOV]
+    krylov = [r for r in rows if r["path"] == "none" and r["ksp_rtol_max"] != FULL_KRYLOV]
     base = [r for r in rows if r["method"] != "ssstar"]
+    nan = lambda f: (lambda v: f % v if v == v else "—")
+    sweep_columns = ["level", "eps", "iterations", "time_s", "yardsticks", "err_u", "err_r", "normal_force_err", "state_diff"]
+    sweep_formats = ["%d", "%.0e", "%d", "%.4f", "%.3f", "%.1e", "%.1e", "%.1e", "%d"]
+    floors = {key: accuracy_mesh.tolerance_floor(hertz, key) for key in ("p0_error", "a_error")}
     text = TEMPLATE.format(
-        date=datetime.date.today().isoformat(), machine=machine(), levels=args.levels, finest=args.finest, tols=args.tols,
-        methods=args.methods, repeat=args.repeat, baseline_levels=args.baseline_levels, baseline_repeat=args.baseline_repeat, state_tol=STATE_TOL,
-        refs=table(refs, ["level", "contact", "assembly", "schur", "iterations", "znorm", "law", "second", "order"],
-                   ["%d", "%d", "%.2f", "%.2f", "%d", "%.1e", "%.1e", lambda v: "%.1e" % v if v == v else "—", "%.2f"]),
-        sweep=table(sweep, ["level", "eps", "iterations", "time_s", "err_u", "err_r", "normal_force_err", "contact_nodes_diff", "state_diff"],
-                    ["%d", "%.0e", "%d", "%.4f", "%.1e", "%.1e", "%.1e", "%d", "%d"]),
+        date=args.date, machine=args.machine, command=args.command, tols=args.tols, repeat=args.repeat, ranks=args.ranks, finest=args.finest,
+        baseline_levels=args.baseline_levels, state_tol=STATE_TOL, yardstick=args.yardstick, yardstick_level=args.yardstick_level,
+        sticks=", ".join("%.3f" % s for s in args.sticks), default_krylov=FULL_KRYLOV,
+        refs=table(refs, ["level", "contact", "assembly", "schur", "setup", "iterations", "znorm", "law", "second", "order"],
+                   ["%d", "%d", "%.2f", "%.2f", nan("%.2f"), "%d", "%.1e", "%.1e", nan("%.1e"), "%.2f"]),
+        dense=table(dense, sweep_columns, sweep_formats), whole=table(whole, sweep_columns, sweep_formats),
+        krylov=("Whole body with `-snes_ssstar_ksp_rtol_max` other than %s (levels %s):\n\n%s" % (FULL_KRYLOV, args.krylov_levels,
+                table(krylov, ["level", "ksp_rtol_max"] + sweep_columns[1:], ["%d", "%s"] + sweep_formats[1:]))) if krylov else "",
         base=table(base, ["level", "eps", "iterations", "time_s", "converged", "err_u", "err_r", "state_diff"],
                    ["%d", "%.0e", "%d", "%.4f", "%d", "%.1e", "%.1e", "%d"]) if base else "(not run)",
         disc=table(disc, ["level", "err_u", "normal_force_err", "contact_area_err", "stick_area_err"], ["%d", "%.1e", "%.1e", "%.1e", "%.1e"]),
-        advice=advice(sweep, disc) + baseline_advice(sweep, base))
+        advice=advice(dense, disc, "the dense route") + "\n" + advice(whole, disc, "the whole body") + baseline_advice(dense, base),
+        hertz=table(hertz, ["level", "eps", "route", "contact", "iterations", "assembly_s", "schur_s", "solve_s", "whole_s", "yardsticks",
+                            "force", "a_error", "p0_error", "bracket_error"],
+                    ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.2f", "%.2f", "%.1f", "%.0f", "%.0f", "%+.4f", "%+.4f", "%+.4f"]),
+        hertz_rule=hertz_rule(hertz, args), floors=floor_text(floors),
+        hertz_dates="".join(" Level %s was measured on %s (`--report-only --extend`), after the rest of the run." % item for item in sorted(args.hertz_dates.items())),
+        loadpath_order=loadpath_order(loadpath, args.yardstick), slider_date=slider_date,
+        slider=table(slider, accuracy_mesh.SLIDER_COLUMNS, ["%d", "%.0e", "%d", "%d", "%.2f", "%.1f", "%+.1e", "%.1e", "%d", "%d"]) if slider else "(not run)",
+        slider_text=slider_text(slider),
+        loadpath=table(loadpath, accuracy_mesh.LOADPATH_COLUMNS, ["%d", "%d", "%.6f", "%.1e", "%d", "%.3f", "%.2f", "%.4f"]),
+        claim_dense=claims["err_u_dense"], claim_whole=claims["err_u_whole"], claim_level=CLAIM_LEVEL, claim_eps=CLAIM_EPS,
+        claim_hertz=claims["hertz_p0_error"], claim_hertz_level=CLAIM_HERTZ, claim_hertz_eps=claims["hertz_eps"])
     with open(args.doc, "w") as f:
         f.write(text)
+
+
+def hertz_rule(hertz, args):
+    lines = []
+    for key, name in (("p0_error", "the peak pressure"), ("a_error", "the contact radius")):
+        for target, r in accuracy_mesh.rule(hertz, key, (0.05, 0.02, 0.01, 0.005)):
+            if r:
+                lines.append("- for %g %% on %s take level %d, rtol %.0e: %.1f s on %d rank(s) (%.0f yardsticks; measured %+.2f %%)"
+                             % (100 * target, name, r["level"], r["eps"], r["whole_s"], args.ranks, r["yardsticks"], 100 * r[key]))
+            else:
+                lines.append("- %g %% on %s: not reached up to level %d" % (100 * target, name, max(h["level"] for h in hertz)))
+    return "\n".join(lines)
+
+
+def loadpath_order(loadpath, yardstick):
+    """the observed order of the end's error in the step (a least-squares slope over the runs off the knots)"""
+    off = [r for r in loadpath if not r["at_knots"] and r["error"] > 0]
+    if len(off) < 2:
+        return "(fewer than two runs off the knots: no order measured)"
+    n, e = np.array([r["steps"] for r in off], float), np.array([r["error"] for r in off])
+    slope = np.polyfit(np.log(n), np.log(e), 1)[0]
+    per_step = statistics.median(r["per_step_s"] for r in loadpath)
+    return ("Off the knots the error falls as steps^%.2f (least squares over %d to %d steps; error x steps = %.1f to %.1f): first order. "
+            "A step costs %.3f s (median; %.3f yardsticks), so each halving of this error costs twice the steps."
+            % (slope, n.min(), n.max(), (n * e).min(), (n * e).max(), per_step, per_step / yardstick))
+
+
+def slider_text(slider):
+    if not slider:
+        return ""
+    loose = max(r["eps"] for r in slider)
+    return SLIDER_TEXT.format(slider_max=max(abs(r["ratio_error"]) for r in slider), slider_loose=loose,
+                              cone_loose=max(r["cone_error"] for r in slider if r["eps"] == loose),
+                              cone_tight=max((r["cone_error"] for r in slider if r["eps"] < loose), default=float("nan")))
+
+
+def floor_text(floors):
+
+    lines = []
+    for key, name in (("p0_error", "peak pressure"), ("a_error", "contact radius")):
+        lines.append("- %s: " % name + "; ".join("level %d from rtol %.0e (error %+.2f %%)" % (level, r["eps"], 100 * r[key])
+                                                  for level, r in sorted(floors[key].items())))
+    return "\n".join(lines)
 
 
 def second_method(data):
@@ -291,15 +489,15 @@ def second_method(data):
     return metrics(best, data["reference"])["err_u"]
 
 
-def advice(sweep, disc):
+def advice(sweep, disc, path):
     lines = []
     for d in disc:
         level_rows = sorted((r for r in sweep if r["level"] == d["level"]), key=lambda r: -r["eps"])
         enough = next((r for r in level_rows if r["err_u"] <= 0.1 * d["err_u"] and r["state_diff"] == 0), None)
         if enough:
-            lines.append("- level %d: the discretization error is %.1e; rtol %.0e (%d iterations, %.3f s) already puts the solver error "
-                         "at %.1e with the reference's contact states — tighter buys nothing for the physics of this mesh."
-                         % (d["level"], d["err_u"], enough["eps"], enough["iterations"], enough["time_s"], enough["err_u"]))
+            lines.append("- %s, level %d: the discretization error is %.1e; rtol %.0e (%d iterations, %.3f s, %.2f yardsticks) puts the solver "
+                         "error at %.1e with the reference's contact states — tighter buys nothing for the physics of this mesh."
+                         % (path, d["level"], d["err_u"], enough["eps"], enough["iterations"], enough["time_s"], enough["yardsticks"], enough["err_u"]))
     return "\n".join(lines)
 
 
@@ -318,40 +516,66 @@ def baseline_advice(sweep, base):
                                 match["time_s"] / target["time_s"]))
             else:
                 parts.append("ssstar's error %.1e at rtol %.0e (%.4f s) is beyond every baseline run" % (target["err_u"], target["eps"], target["time_s"]))
-        lines.append("- level %d, at equal error: %s." % (level, "; ".join(parts)))
+        lines.append("- level %d, at equal error (dense route): %s." % (level, "; ".join(parts)))
     return ("\n" + "\n".join(lines)) if lines else ""
 
 
+SLIDER_TEXT = """The largest |ratio_error| is {slider_max:.1e} over these levels and tolerances: from rtol {slider_loose:.0e} on, a sliding
+contact's total force is right to that, with no tighter tolerance and no finer mesh. Node by node the tolerance does
+show: cone_error, the largest | |r_t| / (phi r_n) - 1 | of a sliding node, is up to {cone_loose:.1e} at rtol {slider_loose:.0e}
+and at most {cone_tight:.1e} at the tighter ones. |T| <= phi N with equality only when all slip directions are
+parallel: the shortfall (negative ratio_error) is the spread of the nodes' slip directions, not an error of the law."""
 TEMPLATE = """# What accuracy costs in time
 
-Generated by `make accuracy` (`bench/accuracy.py --levels {levels} --finest {finest} --methods {methods} --repeat {repeat} --baseline-levels {baseline_levels} --baseline-repeat {baseline_repeat}`)
-on {date}, {machine}. Every number below comes from that run: `docs/accuracy/sweep.csv` (one row per run),
-`docs/accuracy/discretization.csv`, and the pictures beside them.
+Generated by `{command}` (`make accuracy`; `make accuracy-quick` is the small version a test runs) on {date},
+{machine}. Every number below comes from that run: `docs/accuracy/sweep.csv` (one row per solve, both paths),
+`discretization.csv`, `hertz.csv`, `slider.csv`, `loadpath.csv`, `claims.json` and the pictures beside them, each stamped with the command, the
+date and the machine. Times are on a shared 2-core machine (2–3x swings): read them beside the **AMG yardstick of the
+same run**, one CG + GAMG solve of the prism's K at level {yardstick_level} on {ranks} rank(s) (`bench/yardstick -yardstick amg`),
+measured at the start, the middle and the end: {sticks} s, median **{yardstick:.3f} s**; the column "yardsticks" is
+time / yardstick.
+
+## What is re-measured by a test
+`tests/suite_accuracy.py` runs `make accuracy-quick` and re-measures these two claims (no timings in pass/fail):
+- the prism at level {claim_level}, rtol {claim_eps:.0e}: the solver error max|u - u_ref| / max|u_ref| is
+  **{claim_dense:.1e}** on the dense route and **{claim_whole:.1e}** on the whole body;
+- the hertz scene at level {claim_hertz_level}, rtol {claim_hertz_eps:.0e}: the peak pressure is **{claim_hertz:+.2%}** off Hertz's p0.
 
 ## The set-up
-The seed's prism at each level (`examples/prism -level L -save_reduced`), reduced to its contact dofs once; then the
-reduced problem is solved with the stopping tolerance `-snes_rtol` in {tols} by ssstar (semismooth* Newton) and by the
-first-order baseline of the same plugin (`-snes_ssstar_method fixedpoint`: u <- u + z, the approximation step alone,
-with gamma = 1/||P||_inf; on levels {baseline_levels}, {baseline_repeat} run(s) per tolerance: it needs thousands of iterations).
-Times are SNESSolve on the reduced problem (median of {repeat}); the fixed costs of a level (mesh and assembly, Schur
-complement) do not depend on the tolerance and are listed apart. Errors are maxima over the contact nodes relative to
-the reference's max |u| (max |r| for reactions); states: a node is in contact when r_n > {state_tol:g} max r_n, it sticks
-when in contact with |u_t| <= {state_tol:g} max |u|.
+The seed's prism at each level, solved from u = 0 with the stopping tolerance `-snes_rtol` in {tols}:
+- **the dense route** (`-snes_ssstar_reduction direct`): `examples/prism -level L -save_reduced` reduces K to the
+  contact dofs once (the fixed cost "schur"), then `bench/accuracy_worker.py` solves the reduced problem per
+  tolerance (time: SNESSolve, median of {repeat});
+- **the whole body** (`-snes_ssstar_reduction none -nested_levels 0`, P never formed, Newton steps by Krylov +
+  multigrid with the default `-snes_ssstar_ksp_rtol_max {default_krylov}`): one run of `examples/prism` per tolerance on
+  {ranks} rank(s); time: the summary row's solve less the set-up of the whole body (the fixed cost "setup", the
+  median over the tolerances), one run each;
+- **the first-order baseline** (`-snes_ssstar_method fixedpoint`, u <- u + z, on the dense route, levels
+  {baseline_levels}): the reference method.
+Errors of both paths are measured against the same reference, the dense route at rtol 1e-14 (the exact solution of
+the level's discrete problem to round-off): maxima over the contact nodes relative to the reference's max |u| (max
+|r| for reactions); states: a node is in contact when r_n > {state_tol:g} max r_n, it sticks when in contact with
+|u_t| <= {state_tol:g} max |u|.
 
-## The references
-Each level's reference is ssstar at rtol 1e-14, the tightest the solver reaches (its ||z|| ends at round-off). It is
-trustworthy because it satisfies the Coulomb law at every node to the residual shown ("law", the check of
-`tests/check_solution.py`), and because the first-order method, a different algorithm, converges to the same point
-("second": max difference of the displacement between the reference and the baseline's tightest converged run).
-"order" is the observed order of convergence q = log(z_k+1/z_k)/log(z_k/z_k-1) over the last steps.
+## The references and the fixed costs
+"law" is the reference's worst Coulomb-law violation (the check of `tests/check_solution.py`), "second" the
+distance of the baseline's tightest converged run from it (a different algorithm, the same point), "order" the
+observed order q = log(z_k+1/z_k)/log(z_k/z_k-1) of the last steps. Fixed costs in seconds: assembly (mesh to K),
+schur (the dense route's reduction), setup (the whole body's, inside SNESSolve).
 
 {refs}
 
 ![||z_k|| per iteration](accuracy/znorm_history.png)
 
-## Solver error against tolerance (ssstar)
+## Solver error against tolerance: the dense route
 
-{sweep}
+{dense}
+
+## Solver error against tolerance: the whole body
+
+{whole}
+
+{krylov}
 
 ![error against time](accuracy/error_vs_time.png)
 
@@ -360,33 +584,74 @@ trustworthy because it satisfies the Coulomb law at every node to the residual s
 {base}
 
 ## Discretization error beside solver error
-Each level's reference against the finest level's (level {finest}): the displacement at the level's nodes (the finest
-solution interpolated bilinearly on its contact face), the total normal force, and the areas in contact and sticking.
+Each level's reference against the finest level's (level {finest}, the whole body at rtol 1e-12): the displacement at
+the level's nodes (the finest solution interpolated bilinearly on its contact face), the total normal force, and the
+areas in contact and sticking.
 
 {disc}
 
 ![error against level](accuracy/error_vs_level.png)
 
-## Which tolerance for which purpose
+## Which tolerance for which purpose (the prism)
 {advice}
 
-- **What the stopping rule means.** ssstar stops when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar). z is
-  the approximation step: the distance, in the units of u (mm for the prism), from the iterate to its projection onto
-  the friction law; gamma = 1/mean(diag P) turns the forces of the reduced problem into displacements, so ||z|| is a
-  displacement whatever the units of the problem. rtol is therefore a relative displacement accuracy: with max|u| ~ 1e-3 mm,
-  rtol 1e-6 asks for the contact displacements to about a nanometre (times the conditioning of the problem, which the
-  tables show: err_u tracks rtol within a factor of ~10 once the states are right).
-- **The Coulomb-law residual** is what a user checks afterwards (tests/check_solution.py): the worst violation of
-  u_n >= 0, r_n >= 0, u_n r_n = 0, |r_t| <= phi r_n and the slip direction. At the solution z = 0 exactly when the law
-  holds, and near it the residual is of the order of ||z|| relative to max|u| — except the slip direction of nodes that
-  barely slide, which is only as accurate as |u_t| allows.
-- **Engineering quantities** (total normal force, contact area, stick/slip map) settle long before the displacement
-  does: once the states are those of the reference (state_diff = 0), the Newton step is exact for the remaining
-  iterations and the error falls superlinearly, so the last two or three orders of accuracy cost one or two iterations.
-- **The baseline** (the approximation step alone) converges linearly, at a rate set by the conditioning of P: its
-  iterations grow with the level and by a constant number per decade of rtol. The lines "at equal error" above compare
-  the two methods at the same accuracy; at the same rtol the baseline can be faster only where its error is far
-  larger than ssstar's (its table), because z with gamma = 1/||P||_inf is a short step, not a small error.
+## The mesh axis: Hertz
+`examples/contact -options_file scenes/hertz.opts -level L -snes_rtol t -o hertz.h5` and `tests/scene_answers.py hertz
+hertz.h5`: a half ball (R = 10) pressed on a rigid plane, frictionless; the contact radius a (fitted, and the bracket's
+midpoint between the outermost node in contact and the innermost out) and the peak pressure p0 (fitted) against
+Hertz's closed forms for the force the plane carries. Times: the whole run (mesh to file) on {ranks} rank(s); the
+route is `auto`'s. The error does not go to zero with the mesh: the half ball is not a half space (a/R = 0.1), a
+model error of the order of a few 1e-3 that Hertz's formulas carry.{hertz_dates}
+
+{hertz}
+
+![Hertz: error against time](accuracy/hertz_work_precision.png)
+
+**The rule** (the coarsest level, and at it the loosest tolerance, whose error is within the target and stays within it
+at every finer level and tighter tolerance measured; the whole run's time, this machine, the route and the nested
+start `auto`'s):
+{hertz_rule}
+
+**Where the tolerance stops mattering** (the loosest rtol from which on the answer moves by less than a tenth of its
+error; tighter buys nothing there, the mesh dominates):
+{floors}
+
+## A sliding contact: T = phi N
+The slider of `scenes/slider.opts` (`examples/contact -options_file scenes/slider.opts -level L -snes_rtol t`; measured
+{slider_date}): a block pushed along x beyond phi N on a block, phi = 0.5, node-to-surface; every touching node
+slides, so the contact's tangential force is phi times its normal force, whatever the mesh. ratio_error = |T| / (phi N) - 1
+(as `tests/suite_pairs.py` measures it), the whole run on one rank, beside the AMG yardstick above.
+
+{slider}
+
+{slider_text}
+
+## Load paths: the error of a path's end against the steps
+The block on a spring of `tests/suite_loadpath.py` (docs/derivation.md (11.1)-(11.2)): a nearly rigid block pressed by
+P = 10, held sideways by a spring k = 1000, sheared by Q = 7.5 > phi P = 5, released, sheared back, released (knots of
+the load at t = 1, ..., 5); its closed form ends at u_x = -(Q - phi P)/k = -2.5e-3. `examples/contact` with the
+options of `BLOCK` in `bench/accuracy_mesh.py` and `-steps N` (equal steps on [0, 5]); the error of u_x at the end,
+relative to 2.5e-3, the time of all steps (solve) and per step, the dense route on one rank. The incremental law is
+exact on a path that is proportional between two steps: with steps on the knots the end is exact up to the block's
+compliance; with steps off them the extreme load is missed by up to a step, an error of first order in the step.
+
+{loadpath}
+
+{loadpath_order}
+
+![load path: error against steps](accuracy/loadpath_steps.png)
+
+## Reading the stopping rule
+- ssstar stops when ||z|| <= rtol max(||u||, ||gamma f||); z is the approximation step, a displacement (gamma =
+  1/mean(diag P) turns forces into displacements), so rtol is a relative displacement accuracy, and err_u tracks it
+  once the contact states are those of the reference (state_diff = 0); with them the Newton step is exact, the error
+  falls superlinearly, and the last orders cost one or two iterations.
+- The whole body's Newton steps are inexact (Krylov to a tolerance that tightens with ||z||/||z_0||, loosest
+  `-snes_ssstar_ksp_rtol_max`); its iterations cost Krylov solves instead of LU solves, and it has no Schur
+  complement to pay first. Its sticking nodes keep a tangential displacement of the order of the solver error
+  instead of zero, so its state_diff (a threshold of {state_tol:g} max|u|) stays above zero until the error is below it.
+- Engineering quantities (total normal force, contact area, Hertz's a and p0) settle long before the displacement:
+  the mesh, not the solver, sets their error from a loose tolerance on.
 """
 
 

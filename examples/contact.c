@@ -130,6 +130,18 @@ static PetscErrorCode EventTime(PetscLogEvent event, PetscReal *t)
   PetscFunctionReturn(0);
 }
 
+/* The iterations of the solve just done: none for one linear solve (ksponly) */
+static PetscErrorCode Iterations(SNES snes, PetscInt *its)
+{
+  PetscBool linear;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESKSPONLY, &linear));
+  *its = 0;
+  if (!linear) PetscCall(SNESGetIterationNumber(snes, its));
+  PetscFunctionReturn(0);
+}
+
 /* -load_steps N: static solves at the loads k/N of the constant ones, each from the previous solution (continuation) */
 static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec load, Vec u, PetscBool hasContact, LoadSteps *steps, PetscInt *its, SNESConvergedReason *reason)
 {
@@ -148,8 +160,8 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
     if (nsteps == 1 && hasContact) PetscCall(SSStarSceneSolveNested(scene, snes, u)); /* -nested_levels */
     PetscCall(SNESSolve(snes, NULL, u)); /* from the previous step's solution */
     PetscCall(SNESGetConvergedReason(snes, reason));
-    PetscCall(SNESGetIterationNumber(snes, &stepIts));
-    *its += hasContact ? stepIts : 0;
+    PetscCall(Iterations(snes, &stepIts));
+    *its += stepIts;
     if (hasContact) {
       Vec                r;
       const SSStarState *states;
@@ -161,10 +173,10 @@ static PetscErrorCode SolveLoadSteps(SSStarScene scene, SNES snes, Vec b, Vec lo
     steps->factor[k - 1]       = factor;
     steps->area[k - 1]         = res.area;
     steps->normal_force[k - 1] = res.normal_force;
-    steps->iterations[k - 1]   = hasContact ? stepIts : 0;
+    steps->iterations[k - 1]   = stepIts;
     steps->n                   = k;
     if (nsteps > 1)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)factor, hasContact ? stepIts : 0, res.sliding + res.sticking, ncontact, (double)res.area,
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %g, %" PetscInt_FMT " iterations, %" PetscInt_FMT " of %" PetscInt_FMT " contact nodes touching, contact area %.6g, normal force %.6g%s%s\n", k, nsteps, (double)factor, stepIts, res.sliding + res.sticking, ncontact, (double)res.area,
                             (double)res.normal_force, *reason > 0 ? "" : ", not converged: ", *reason > 0 ? "" : SNESConvergedReasons[*reason]));
     if (*reason <= 0) break; /* the next steps would start from a point that is no solution */
   }
@@ -190,7 +202,7 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, P
 
     do {
       PetscCall(SSStarSceneAdvance(scene, snes, u, times[k], maxCuts, &step));
-      *its += hasContact ? step.iterations : 0;
+      *its += step.iterations; /* none for a linear solve (ksponly) */
       *reason = step.reason;
       if (step.accepted) PetscCall(StepLine(scene, snes, k, nsteps, step.time, step.cuts, load, hasContact));
       else if (!step.stopped) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "step %" PetscInt_FMT "/%" PetscInt_FMT " t %g: not converged (%s), retried at t %g\n", k + 1, nsteps, (double)step.time, step.why, (double)step.retry));
@@ -214,7 +226,7 @@ int main(int argc, char **argv)
   PetscReal          *times = NULL; /* the times of a load path */
   PetscReal           t0, t_assembly, t_schur = 0, t_recovery = 0, t_solve;
   PetscLogDouble      peak;
-  PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE;
+  PetscBool           hasOut, hasContact, hasHelp, hasLoadSteps, hasSteps, path = PETSC_FALSE, affine;
   char                out[PETSC_MAX_PATH_LEN] = "", stepsText[4096] = "";
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   const SSStarState  *states = NULL;
@@ -239,6 +251,7 @@ int main(int argc, char **argv)
   PetscCall(SSStarSceneSetProgress(scene, PETSC_TRUE));
   PetscCall(SSStarSceneSetFromOptions(scene));
   PetscCall(SSStarSceneHasContact(scene, &hasContact));
+  PetscCall(SSStarSceneIsAffine(scene, &affine));
   PetscCall(PetscOptionsHasHelp(NULL, &hasHelp));
   if (!hasHelp) {
     PetscCall(SSStarSceneHasPath(scene, &path));
@@ -246,19 +259,28 @@ int main(int argc, char **argv)
     PetscCheck(!(path && hasLoadSteps), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Option -load_steps scales the constant loads of a static problem; a load path is -steps with histories (-traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion): give one of them");
     if (path) PetscCall(SSStarSceneGetPathTimes(scene, hasSteps ? stepsText : NULL, &nsteps, &times)); /* -steps refused before the mesh */
   }
-  /* contact: ssstar on the whole body; no contact: one linear solve; -help lists the options of ssstar */
+  /* contact: ssstar on the whole body; no contact: one linear solve, or Newton's method (newtonls, LU of the tangent)
+     for a hyperelastic body, its line search cp: F is the gradient of the energy (dead loads, springs), and the
+     norm of F that bt minimizes grows along the Newton step of a body that bends or turns (-snes_linesearch_type
+     overrides it); -help lists the options of ssstar */
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   if (hasContact || hasHelp) PetscCall(SNESSetType(snes, SNESSSSTAR));
   else {
     KSP ksp;
     PC  pc;
 
-    PetscCall(SNESSetType(snes, SNESKSPONLY));
+    PetscCall(SNESSetType(snes, affine ? SNESKSPONLY : SNESNEWTONLS));
     PetscCall(SNESGetKSP(snes, &ksp));
     PetscCall(KSPSetType(ksp, KSPPREONLY));
     PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCSetType(pc, affine ? PCCHOLESKY : PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    if (!affine) {
+      SNESLineSearch ls;
+
+      PetscCall(SNESGetLineSearch(snes, &ls));
+      PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHCP));
+    }
   }
   PetscCall(SNESSetFromOptions(snes));
   if (hasHelp) { /* the options are listed: no mesh, no solve, no file */
@@ -279,7 +301,7 @@ int main(int argc, char **argv)
   PetscCall(SSStarSceneGetSizes(scene, &nodes, &ncontact));
 
   PetscCall(VecDuplicate(b, &load));
-  PetscCall(SSStarSceneSetSolver(scene, snes, K, load)); /* F(u) = K u - load, the load set at each step; the contact */
+  PetscCall(SSStarSceneSetSolver(scene, snes, K, load)); /* F(u) = K u - load (or a hyperelastic body's f(u) - load), the load set at each step; the contact */
   {
     DM dm;
 
@@ -307,7 +329,7 @@ int main(int argc, char **argv)
   if (hasContact) PetscCall(SSStarSceneContactView(scene, r, states, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s peak %.3f GB per rank\n", nodes, ncontact, (double)t_assembly,
-                        (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : " (one linear solve)", peak / 1e9));
+                        (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : affine ? " (one linear solve)" : " (Newton's method, no contact)", peak / 1e9));
   if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nLoadSteps > 1 ? WriteLoadSteps : NULL, &steps));
   if (hasContact) PetscCall(SSStarSceneViewNoEquilibrium(scene, snes, PETSC_VIEWER_STDOUT_WORLD));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));

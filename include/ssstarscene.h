@@ -62,6 +62,27 @@ PETSC_EXTERN void      SSStarHookeStress(PetscReal, PetscReal, const PetscReal[6
 PETSC_EXTERN PetscReal SSStarVonMises(const PetscReal[6]);
 
 /*
+   The material models of a volume group (-material_model, -material_model_<G>; docs/guide/large-deformation.md): linear
+   elasticity (small strain, the affine problem K u = b) or a hyperelastic body at finite strain, whose residual and
+   tangent the scene assembles at every iterate. The P1 tetrahedron's kernels, on 3 x 3 matrices row by row.
+*/
+typedef enum {
+  SSSTAR_MATERIAL_LINEAR,                 /* W = lambda/2 (tr eps)^2 + mu eps:eps, eps = sym(grad u)             */
+  SSSTAR_MATERIAL_SAINT_VENANT_KIRCHHOFF, /* W = lambda/2 (tr E)^2 + mu E:E, E = (F^T F - I)/2                   */
+  SSSTAR_MATERIAL_NEO_HOOKEAN             /* W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (compressible)      */
+} SSStarMaterialModel;
+PETSC_EXTERN const char *const SSStarMaterialModels[];
+PETSC_EXTERN PetscReal SSStarTetDeformationGradient(const PetscReal[12], const PetscReal[12], PetscReal[9]);
+PETSC_EXTERN PetscBool SSStarMaterialEnergy(SSStarMaterialModel, PetscReal, PetscReal, const PetscReal[9], PetscReal *);
+PETSC_EXTERN PetscBool SSStarMaterialStress(SSStarMaterialModel, PetscReal, PetscReal, const PetscReal[9], PetscReal[9]);
+PETSC_EXTERN PetscBool SSStarMaterialTangent(SSStarMaterialModel, PetscReal, PetscReal, const PetscReal[9], PetscReal[81]);
+PETSC_EXTERN void      SSStarCauchyStress(const PetscReal[9], const PetscReal[9], PetscReal[6]);
+PETSC_EXTERN void      SSStarGreenLagrangeStrain(const PetscReal[9], PetscReal[6]);
+PETSC_EXTERN PetscErrorCode SSStarSceneIsAffine(SSStarScene, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarSceneSetProblem(SSStarScene, SNES, Mat, Vec);
+PETSC_EXTERN PetscBool SSStarTetInternalForce(SSStarMaterialModel, PetscReal, PetscReal, const PetscReal[12], const PetscReal[12], PetscReal[12], PetscScalar[144]);
+
+/*
    Load paths (docs/load-paths.md): the loads as histories of a pseudo-time (-traction_<G>, -gravity), moving obstacles
    (-obstacle_<G>_motion), the steps solved with incremental friction (SNESSSStarSetContactOffsets()), and a file that
    holds every step.
@@ -86,7 +107,7 @@ typedef struct {
   PetscReal           time;           /* the time of the step solved                                                */
   PetscInt            cuts;           /* halvings of the step of the path it belongs to (SSStarSceneAdvance())       */
   PetscInt            linearizations; /* its solves: with large sliding, each linearized at the one before's solution */
-  PetscInt            iterations;     /* their iterations in all (SNESGetIterationNumber())                          */
+  PetscInt            iterations;     /* their iterations in all (SNESGetIterationNumber(); none for ksponly) */
   SNESConvergedReason reason;         /* DIVERGED_MAX_IT also when the contact measured at the solution did not settle */
   PetscBool           accepted;       /* converged and accepted: the next step starts from it                        */
   PetscBool           reached;        /* SSStarSceneAdvance(): the step reached the target time                       */

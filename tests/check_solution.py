@@ -24,8 +24,12 @@
       check. --phi gives a Coulomb coefficient for every node of a file without them.
       For a file with a mesh, the XDMF file beside it names datasets of the right shapes, and the stresses
       (/fields/strain, stress: cells x 6; von_mises: cells; stress_nodal: nodes x 6; each step's too) are finite, of
-      those shapes, with von_mises the von Mises stress of stress; /groups/<G>/reaction has 3 finite values. A file
-      without contact (no /contact) has these checks alone.
+      those shapes, with von_mises the von Mises stress of stress; /groups/<G>/reaction has 3 finite values. A file of
+      a hyperelastic scene (/fields/J: docs/derivation.md section 18) has, per cell, J = det F > 0 of the deformation
+      gradient F computed here from the file's vertices, cells and displacement, stress the Cauchy stress P F^T / J of
+      stress_pk1 and strain the Green-Lagrange strain (F^T F - I)/2 where material_model is hyperelastic (1, 2), stress
+      = P where it is linear (0), and /fields/position = vertices + displacement (each step's too). A file without
+      contact (no /contact) has these checks alone.
       An FCLib solution file (examples/fclib -o: the problem's /fclib_local or /fclib_global and /solution) is checked
       in FCLib's terms: FCLib's error of /solution/r (Siconos's measure, relative to ||q||) at most --tol, and /solution/u
       = W r + q, W and q from the problem in the file (a global problem condensed: W = H^T M^-1 H, q = H^T M^-1 f + w).
@@ -60,14 +64,14 @@ def coulomb(args):
     # against 1e-6 of the path's largest so far (a step where nothing touches has forces of round-off alone)
     before = lambda k: f["steps/%s/contact" % steps[k - 1]] if k > 0 else None  # noqa: E731
     path = [(0.0, 0.0)]
-    for k in steps:
+    contact = "contact" in f
+    for k in steps if contact else ():
         c = f["steps/%s/contact" % k]
         path.append((max(path[-1][0], np.abs(c["displacement"][:]).max()), max(path[-1][1], np.abs(c["reaction"][:]).max())))
     # the scales the solver measured its law residual against (at least the round-off of K u - b: a stiff body far
     # from its reference computes its forces to no better), recorded in the file
     solver = (f.attrs.get("law_displacement_scale", 0.0), f.attrs.get("law_force_scale", 0.0))
     recorded = lambda k: (f["steps/law_displacement_scale"][int(k)], f["steps/law_force_scale"][int(k)]) if "steps/law_force_scale" in f else (0.0, 0.0)  # noqa: E731
-    contact = "contact" in f
     ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver) if contact else True
     if args.steps:
         for j, k in enumerate(steps):
@@ -96,12 +100,53 @@ def check_fields(f, prefix):
     d = np.abs(vm - f[prefix + "fields/von_mises"][:]).max() / max(vm.max(), 1e-300)
     print("%-28s %9.1e %s" % ("/%sfields/von_mises" % prefix, d, "ok" if d <= 1e-12 else "WRONG"))
     good = d <= 1e-12
+    if prefix + "fields/J" in f:
+        good &= check_finite_strain(f, prefix)
     for g in f.get("groups", {}) if not prefix else ():
         r = f["groups/%s" % g].get("reaction")
         if r is not None and (r.shape != (3,) or not np.isfinite(r[:]).all()):
             print("/groups/%s/reaction: not 3 finite values" % g)
             good = False
     return good
+
+
+def check_finite_strain(f, prefix):
+    """a hyperelastic scene's <prefix>fields: J, stress_pk1, material_model against F computed from the file's mesh and
+    displacement, position = vertices + displacement (docs/derivation.md section 18)"""
+    x, cells = f["geometry/vertices"][:], f["viz/topology/cells"][:]
+    u = f[prefix + "fields/displacement"][:]
+    shapes = {"J": (len(cells),), "stress_pk1": (len(cells), 9), "material_model": (len(cells),), "position": x.shape}
+    for name, shape in shapes.items():
+        d = f.get(prefix + "fields/" + name)
+        if d is None or d.shape != shape or not np.isfinite(d[:]).all():
+            print("/%sfields/%s: not %s finite values" % (prefix, name, shape))
+            return False
+    X, U = x[cells], u[cells]  # cells x 4 x 3
+    G = np.transpose(X[:, 1:] - X[:, :1], (0, 2, 1))  # columns: the edges from vertex 0
+    F = np.eye(3) + np.transpose(U[:, 1:] - U[:, :1], (0, 2, 1)) @ np.linalg.inv(G)
+    J = np.linalg.det(F)
+    P = f[prefix + "fields/stress_pk1"][:].reshape(-1, 3, 3)
+    model = f[prefix + "fields/material_model"][:]
+    hyper = model > 0
+    sigma = np.where(hyper[:, None, None], P @ np.transpose(F, (0, 2, 1)) / J[:, None, None], P)
+    sigma = 0.5 * (sigma + np.transpose(sigma, (0, 2, 1)))  # its symmetric part (P F^T of a round-off P is not symmetric)
+    E = 0.5 * (np.transpose(F, (0, 2, 1)) @ F - np.eye(3))
+    pick = lambda t: t[:, [0, 1, 2, 1, 0, 0], [0, 1, 2, 2, 2, 1]]  # noqa: E731 (xx, yy, zz, yz, xz, xy)
+    stress, strain = f[prefix + "fields/stress"][:], f[prefix + "fields/strain"][:]
+    scale = max(np.abs(stress).max(), 1e-300)
+    errors = {
+        "J = det F": np.abs(J - f[prefix + "fields/J"][:]).max(),
+        "stress = P F^T/J (P where linear)": np.abs(pick(sigma) - stress).max() / scale,
+        "strain = (F^T F - I)/2": np.abs(pick(E) - strain)[hyper].max() if hyper.any() else 0.0,
+        "position = vertices + displacement": np.abs(f[prefix + "fields/position"][:] - x - u).max() / max(np.abs(x).max(), 1e-300),
+    }
+    ok = J.min() > 0 and model.min() >= 0 and model.max() <= 2
+    if not ok:
+        print("/%sfields: J <= 0 (%g) or a material_model code outside 0..2" % (prefix, J.min()))
+    for what, d in errors.items():
+        print("%-28s %9.1e %s (%s)" % ("/%sfields" % prefix, d, "ok" if d <= 1e-9 else "WRONG", what))
+        ok &= d <= 1e-9
+    return ok
 
 
 def check_law(f, c, where, args, previous=None, path=(0.0, 0.0), solver=(0.0, 0.0)):

@@ -265,7 +265,7 @@ BAD_INPUT = [
     ("mesh_too_large", ["-snes_ssstar_memory_limit", "0.001"], ["more than the 0.001 GB of -snes_ssstar_memory_limit", "refused before the work"]),
     ("unknown_law", ["-friction_law_contact", "sticky"], ["-friction_law_contact", "sticky"]),
     ("contact_group_emptied", lambda: ["-geo", emptied_geo(), "-dirichlet", "dirichlet,sides"],
-     'Contact group "contact" (option -contact) has no nodes once the nodes held fixed (-dirichlet) are removed'),
+     'Contact group "contact" (option -contact) has no nodes once the nodes held in every component (-dirichlet, -displacement_<G>) are removed'),
 ]
 
 

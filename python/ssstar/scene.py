@@ -40,6 +40,9 @@ _C = {name: _declare(name, *args) for name, args in {
     "SSStarSceneGetDM": (_Handle, _P(_Handle)),
     "SSStarSceneGetSizes": (_Handle, _P(_Int), _P(_Int)),
     "SSStarSceneSetSolver": (_Handle, _Handle, _Handle, _Handle),
+    "SSStarSceneIsAffine": (_Handle, _P(_Enum)),
+    "SNESGetLineSearch": (_Handle, _P(_Handle)),
+    "SNESLineSearchSetType": (_Handle, ctypes.c_char_p),
     "SSStarSceneSolveNested": (_Handle, _Handle, _Handle),
     "SSStarSceneView": (_Handle, _Handle),
     "SSStarSceneDestroy": (_P(_Handle),),
@@ -389,14 +392,19 @@ class Scene:
         if self._o is not None:
             _call(_C["SSStarCheckOutputFile"], self._comm, self._o.encode())
             self._target = self._o
+        self.affine = self._flag("SSStarSceneIsAffine")  # every body linear (-material_model linear, the default)
         if self.has_contact:
             self.snes.setType("ssstar")
-        else:  # one linear solve, as examples/contact
-            self.snes.setType("ksponly")
+        else:  # as examples/contact: one linear solve, or Newton's method for a hyperelastic body (docs/guide/large-deformation.md)
+            self.snes.setType("ksponly" if self.affine else "newtonls")
             ksp = self.snes.getKSP()
             ksp.setType("preonly")
-            ksp.getPC().setType("cholesky")
+            ksp.getPC().setType("cholesky" if self.affine else "lu")
             ksp.getPC().setFactorSolverType("mumps")
+            if not self.affine:
+                linesearch = _Handle()  # cp: F is the energy's gradient (petsc4py 3.18 has no SNES.getLineSearch)
+                _call(_C["SNESGetLineSearch"], _h(self.snes), ctypes.byref(linesearch))
+                _call(_C["SNESLineSearchSetType"], linesearch, b"cp")
         _petsc4py(self.snes.setFromOptions)
         names = [n for n, _ in self._options.pairs if n.lower() not in _DRIVER_OPTIONS]
         _call(_C["SSStarSceneCheckOptionsUsedOf"], self._scene, len(names), (ctypes.c_char_p * max(1, len(names)))(*[n.encode() for n in names]), _DRIVER_HELP, _h(self.snes))
@@ -407,7 +415,8 @@ class Scene:
         _call(_C["SSStarSceneGetDM"], self._scene, ctypes.byref(dm))
         self.dm = self._wrap(dm)
         self._load = self.b.duplicate()
-        # F(u) = K u - load, the load set at each step; the contact
+        # F(u) = K u - load (a hyperelastic scene's f(u) + k u - load, its tangent into K), the load set at each step; the
+        # contact (SSStarSceneSetSolver(): SSStarSceneSetProblem(), SSStarSceneSetContact())
         _call(_C["SSStarSceneSetSolver"], self._scene, _h(self.snes), _h(self.K), _h(self._load))
         self.u = self.dm.createGlobalVec()
         self.u.zeroEntries()
@@ -561,7 +570,7 @@ class Scene:
 
     def _count(self, solves, its):
         self._solves = (solves, its)
-        self.iterations += its if self.has_contact else 0  # examples/contact counts no iteration of a linear solve
+        self.iterations += its if self.has_contact or not self.affine else 0  # examples/contact counts no iteration of a linear solve
 
     def _default_times(self):
         """The times of the path (SSStarSceneGetPathTimes(): steps=..., else the knots, else one step at 0)"""

@@ -81,8 +81,9 @@ static PetscErrorCode NestedLevels(SSStarScene scene, SNES snes, PetscInt *level
   PetscCall(DMGetGlobalVector(scene->dm, &v));
   PetscCall(VecGetSize(v, &dofs));
   PetscCall(DMRestoreGlobalVector(scene->dm, &v));
-  /* auto: on problems above SSSTAR_AUTO_NESTED_MIN_DOFS, coarser meshes down to SSSTAR_NESTED_COARSEST_DOFS */
-  if (!(isauto || isnone) || dofs < SSSTAR_AUTO_NESTED_MIN_DOFS) PetscFunctionReturn(0);
+  /* auto: on problems above SSSTAR_AUTO_NESTED_MIN_DOFS, coarser meshes down to SSSTAR_NESTED_COARSEST_DOFS; not for a
+     hyperelastic scene: its coarse solves are as nonlinear as its own */
+  if (!(isauto || isnone) || dofs < SSSTAR_AUTO_NESTED_MIN_DOFS || !scene->affine) PetscFunctionReturn(0);
   for (PetscReal d = dofs; d > SSSTAR_NESTED_COARSEST_DOFS; d /= 8) (*levels)++;
   PetscFunctionReturn(0);
 }
@@ -114,7 +115,7 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
   PetscCall(SNESSetFromOptions(sc));
   PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, &maxf));
   PetscCall(SNESSetTolerances(sc, atol, PetscMax(rtol, SSSTAR_NESTED_RTOL), stol, maxit, maxf));
-  PetscCall(SNESSSStarSetLinearProblem(sc, K, b));
+  PetscCall(SSStarSceneSetProblem(coarse, sc, K, b));
   PetscCall(SSStarSceneSetContact(coarse, sc));
   PetscCall(DMCreateGlobalVector(coarse->dm, &uc));
   PetscCall(VecZeroEntries(uc));
@@ -149,7 +150,7 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
    Options Database Key:
 .  -nested_levels <auto> - the coarser meshes to solve first: 0 none; auto (the default) those that halve the mesh
    size down to 20 000 dofs of K (a problem of about a second), on problems above 50 000 dofs solved on the whole
-   body (-snes_ssstar_reduction none) or by auto
+   body (-snes_ssstar_reduction none) or by auto, of linear scenes
 
    Notes:
    A coarser mesh is the scene's with one refinement fewer (-dm_refine), else -geo at half the level. The finest

@@ -34,6 +34,7 @@ PetscErrorCode SSStarSceneCreate(MPI_Comm comm, SSStarScene *scene)
   (*scene)->slidingMaxIt    = 4;
   (*scene)->level     = -1;
   (*scene)->nested    = -1;
+  (*scene)->affine    = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -102,6 +103,10 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   for (PetscInt t = 0; t < s->nTractions; t++) PetscCall(SSStarHistoryDestroy(&s->tractions[t].history));
   PetscCall(PetscFree4(s->materials, s->tractions, s->springs, s->velocities));
   PetscCall(SSStarDynamicsDestroy(s));
+  PetscCall(PetscFree(s->models));
+  PetscCall(VecDestroy(&s->problemLoad));
+  PetscCall(MatDestroy(&s->Kref));
+  PetscCall(KSPDestroy(&s->predictor));
   PetscCall(SSStarHistoryDestroy(&s->gravityHistory));
   PetscCall(SSStarPrescribedDestroy(s));
   PetscCall(PetscFree(s->contactHeld));
@@ -405,10 +410,13 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   char effects[512] = "elasticity", text[1024];
 
   PetscFunctionBegin;
+  if (!scene->affine) PetscCall(PetscStrncpy(effects, "hyperelasticity (finite strain; tractions and gravity dead loads)", sizeof(effects)));
   if (scene->refine) PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s refined %" PetscInt_FMT " time%s (-dm_refine), %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->refine, scene->refine > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (scene->hasE && scene->hasNu) PetscCall(PetscViewerASCIIPrintf(viewer, "material: E = %g, nu = %g\n", (double)scene->E, (double)scene->nu));
+  if (!scene->affine) PetscCall(PetscViewerASCIIPrintf(viewer, "material model: %s\n", SSStarMaterialModels[scene->model]));
+  for (PetscInt m = 0; m < scene->nModels; m++) PetscCall(PetscViewerASCIIPrintf(viewer, "material model of %s: %s\n", scene->models[m].name, SSStarMaterialModels[scene->models[m].model]));
   for (PetscInt m = 0; m < scene->nMaterials; m++) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
     PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
@@ -421,7 +429,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   for (PetscInt g = 0; g < scene->nDirichlet; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "held fixed: %s\n", scene->dirichlet[g]));
   for (PetscInt g = 0; g < scene->nDisplacements; g++) {
     PetscCall(SSStarPrescribedText(&scene->displacements[g], text, sizeof(text)));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "displacement of %s: %s\n", scene->displacements[g].name, text));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s of %s: %s\n", scene->displacements[g].rotation ? "rotation" : "displacement", scene->displacements[g].name, text));
   }
   for (PetscInt s = 0; s < scene->nSprings; s++) PetscCall(PetscViewerASCIIPrintf(viewer, "spring on %s: k = %g per unit area, every direction\n", scene->springs[s].name, (double)scene->springs[s].value[0]));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
@@ -484,7 +492,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
         PetscCall(PetscStrlcat(effects, effect, sizeof(effects)));
       }
     }
-  } else PetscCall(PetscStrlcat(effects, "; no contact: one linear solve", sizeof(effects)));
+  } else PetscCall(PetscStrlcat(effects, scene->affine ? "; no contact: one linear solve" : "; no contact: Newton's method", sizeof(effects)));
   PetscCall(PetscViewerASCIIPrintf(viewer, "active effects: %s\n", effects));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);

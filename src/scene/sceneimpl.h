@@ -37,13 +37,22 @@ typedef struct {
 
 /*
    A group whose displacement is prescribed (-displacement_<G> x,y,z; prescribed.c): each component a number or free,
-   constant or a history of knots t:x,y,z;... (a component free in one knot is free in all)
+   constant or a history of knots t:x,y,z;... (a component free in one knot is free in all); or rotated rigidly
+   (-rotation_<G> rx,ry,rz about -rotation_center_<G>: the rotation vector in degrees, every component prescribed)
 */
 typedef struct {
   char          name[SSSTAR_GROUP_NAME_LEN];
-  SSStarHistory history; /* 3 components; a free one is 0 in it */
-  PetscInt      free;    /* bit k: component k is free */
+  SSStarHistory history;   /* 3 components; a free one is 0 in it; a rotation's: the rotation vector */
+  PetscInt      free;      /* bit k: component k is free */
+  PetscBool     rotation;  /* -rotation_<G> */
+  PetscReal     center[3]; /* its center */
 } SSStarPrescribed;
+
+/* The material model of a volume group (-material_model_<G>) */
+typedef struct {
+  char                name[SSSTAR_GROUP_NAME_LEN];
+  SSStarMaterialModel model;
+} SSStarGroupModel;
 
 /* A parameter of a contact group's friction law, given as -<parameter>_<G> (a name of SSStarLawGetParameterNames()) */
 typedef struct {
@@ -133,6 +142,13 @@ struct _n_SSStarScene {
   PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;
   PetscBool          hasE, hasNu;
+  SSStarMaterialModel model;       /* -material_model: of the cells without -material_model_<G>                 */
+  PetscInt           nModels;      /* -material_model_<G> groups                                               */
+  SSStarGroupModel  *models;
+  PetscBool          affine;       /* every model linear: F(u) = K u - b (residual.c)                          */
+  Vec                problemLoad;  /* a hyperelastic scene: the load of SSStarSceneSetProblem(), F(u) = f(u) - load */
+  Mat                Kref;         /* and its reference K' (the predictor of prescribed displacements, residual.c) */
+  KSP                predictor;    /* its solver                                                               */
   PetscInt           nMaterials, nTractions, nSprings, nDirichlet, nContact, nVelocities;
   SSStarGroupValues *materials, *tractions, *springs, *velocities; /* velocities: -initial_velocity_<G> */
   char             **dirichlet;
@@ -259,18 +275,23 @@ typedef struct {
   PetscInt           cStart, cEnd, vStart, vEnd;
   PetscInt          *vertices; /* 4 per cell, numbered from vStart */
   PetscReal        (*lame)[2]; /* lambda, mu per cell              */
+  SSStarMaterialModel *model; /* the material model per cell     */
   PetscSection       csec;
   Vec                coordinates;
   const PetscScalar *ca;
 } SSStarCells;
 PETSC_INTERN PetscReal      SSStarTetGradients(const PetscReal[12], PetscReal[4][3]);
 PETSC_INTERN void           SSStarTetStiffness(const PetscReal[12], PetscReal, PetscReal, PetscScalar[144]);
-PETSC_INTERN PetscErrorCode SSStarCellMaterials(SSStarScene, PetscInt, PetscInt, PetscReal (*)[2], PetscReal[]);
+PETSC_INTERN PetscErrorCode SSStarCellMaterials(SSStarScene, PetscInt, PetscInt, PetscReal (*)[2], SSStarMaterialModel[], PetscReal[]);
+PETSC_INTERN PetscReal      SSStarDeterminant3(const PetscReal[9]);
+PETSC_INTERN PetscErrorCode SSStarMaterialModelFromName(MPI_Comm, const char[], const char[], PetscInt *);
 PETSC_INTERN PetscErrorCode SSStarCellsBegin(SSStarScene, SSStarCells *);
 PETSC_INTERN PetscErrorCode SSStarCellsGet(const SSStarCells *, PetscInt, PetscReal[12]);
+PETSC_INTERN PetscErrorCode SSStarCellsGetValues(const SSStarCells *, PetscSection, const PetscScalar[], PetscInt, PetscReal[12]);
 PETSC_INTERN PetscErrorCode SSStarCellsEnd(SSStarCells *);
 /* Prescribed displacements (prescribed.c) */
 PETSC_INTERN PetscErrorCode SSStarPrescribedRead(SSStarScene, const char[], const char[], const char[], SSStarPrescribed *);
+PETSC_INTERN PetscErrorCode SSStarPrescribedReadRotation(SSStarScene, const char[], const char[], const char[], SSStarPrescribed *);
 PETSC_INTERN PetscErrorCode SSStarPrescribedDestroy(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarPrescribedText(const SSStarPrescribed *, char[], size_t);
 PETSC_INTERN PetscErrorCode SSStarSceneFindHeld(SSStarScene);
@@ -278,8 +299,9 @@ PETSC_INTERN PetscErrorCode SSStarHeldName(SSStarScene, PetscInt, char[], size_t
 PETSC_INTERN PetscErrorCode SSStarHeldValues(SSStarScene, PetscReal, PetscReal[]);
 PETSC_INTERN PetscBool      SSStarHeldIdentityRow(SSStarScene, PetscInt, PetscInt);
 PETSC_INTERN void           SSStarHeldElement(SSStarScene, const PetscInt[4], PetscScalar[144]);
-PETSC_INTERN PetscErrorCode SSStarHeldLift(SSStarScene, const SSStarCells *, const PetscReal[], Vec);
-PETSC_INTERN PetscErrorCode SSStarHeldPrescribe(SSStarScene, const PetscReal[], Vec);
+PETSC_INTERN PetscErrorCode SSStarHeldLocalValues(SSStarScene, const PetscReal[], Vec);
+PETSC_INTERN PetscErrorCode SSStarHeldLift(SSStarScene, const SSStarCells *, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarHeldDiagonal(SSStarScene, Vec, Vec, PetscBool);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckPartlyHeld(SSStarScene);
 PETSC_INTERN PetscErrorCode SSStarSetRigidBodyModes(SSStarScene, Mat);
 PETSC_INTERN PetscErrorCode SSStarSceneLoadFactor(SSStarScene, Vec, PetscReal *);
@@ -296,6 +318,8 @@ PETSC_INTERN PetscErrorCode SSStarDynamicsGetVelocity(SSStarScene, Vec *);
 PETSC_INTERN PetscErrorCode SSStarDynamicsView(SSStarScene, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarDynamicsDescribe(SSStarScene, const char **, PetscBool *, PetscReal[2], PetscReal[3]);
 PETSC_INTERN PetscErrorCode SSStarDynamicsDestroy(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarAssembleResidual(SSStarScene, Vec, Vec, Vec, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarAssembleTangent(SSStarScene, Vec, Mat, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
 PETSC_INTERN PetscErrorCode SSStarAssembleLoad(SSStarScene, PetscReal, Vec);
 PETSC_INTERN PetscErrorCode SSStarGroupArea(DM, const char[], PetscReal *);
@@ -340,6 +364,7 @@ PETSC_INTERN PetscErrorCode SSStarSceneObstacleGaps(SSStarScene, PetscInt, const
 PETSC_INTERN void           SSStarSceneObstacleDisplacement(SSStarScene, PetscInt, const SSStarPlacement *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckSmallSliding(SSStarScene, PetscInt, PetscReal);
 PETSC_INTERN PetscErrorCode SSStarSceneMeasureContact(SSStarScene, SNES);
+PETSC_INTERN PetscErrorCode SSStarSceneMeasureContactAt(SSStarScene, SNES, Vec);
 PETSC_INTERN PetscErrorCode SSStarSceneRelinearizeContact(SSStarScene, SNES, Vec, PetscBool *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene, Vec);
 PETSC_INTERN PetscErrorCode SSStarPairsReadOption(SSStarScene, SSStarContactGroup *, const char[]);

@@ -72,9 +72,18 @@ typedef enum {
   OPT_FRICTION_LAW,
   OPT_CONTACT_PAIR,
   OPT_DISPLACEMENT,
+  OPT_MATERIAL_MODEL,
+  OPT_ROTATION,
+  OPT_ROTATION_CENTER,
   OPT_LAW_PARAMETER
 } GroupOption;
-static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-initial_velocity_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-initial_velocity_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_", "-material_model_", "-rotation_", "-rotation_center_"};
+
+/* The options of a contact group (its obstacle, law, parameters, pair) */
+static PetscBool IsContactOption(GroupOption kind)
+{
+  return (PetscBool)(kind == OPT_OBSTACLE || kind == OPT_FRICTION_LAW || kind == OPT_CONTACT_PAIR || kind == OPT_LAW_PARAMETER);
+}
 
 static PetscBool IsContactGroup(SSStarScene scene, const char name[])
 {
@@ -97,6 +106,7 @@ static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], Gr
   const char *const *params;
   size_t             best = 0, bestContact = 0;
   GroupOption        bestKind = OPT_MATERIAL, bestContactKind = OPT_MATERIAL;
+  PetscBool          plain;
 
   PetscFunctionBegin;
   PetscCall(SSStarLawGetParameterNames(&nparams, &params));
@@ -115,13 +125,14 @@ static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], Gr
       best     = len;
       bestKind = option;
     }
-    if (option >= OPT_OBSTACLE && option != OPT_DISPLACEMENT && len > bestContact && IsContactGroup(scene, token + len)) {
+    if (IsContactOption(option) && len > bestContact && IsContactGroup(scene, token + len)) {
       bestContact     = len;
       bestContactKind = option;
     }
   }
-  *found = (PetscBool)(best > 0);
-  if (bestKind >= OPT_OBSTACLE && bestKind != OPT_DISPLACEMENT && bestContact && !IsContactGroup(scene, token + best)) {
+  PetscCall(PetscStrcmp(token, "-material_model", &plain));
+  *found = (PetscBool)(best > 0 && !plain); /* -material_model is the scene's, of no group */
+  if (IsContactOption(bestKind) && bestContact && !IsContactGroup(scene, token + best)) {
     best     = bestContact;
     bestKind = bestContactKind;
   }
@@ -159,7 +170,8 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   if (kind == OPT_TRACTION) scene->nTractions++;
   if (kind == OPT_SPRING) scene->nSprings++;
   if (kind == OPT_VELOCITY) scene->nVelocities++;
-  if (kind == OPT_DISPLACEMENT) scene->nDisplacements++;
+  if (kind == OPT_DISPLACEMENT || kind == OPT_ROTATION) scene->nDisplacements++;
+  if (kind == OPT_MATERIAL_MODEL) scene->nModels++;
   PetscFunctionReturn(0);
 }
 
@@ -303,6 +315,29 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(SSStarPairsReadOption(scene, cg, option));
     break;
+  case OPT_MATERIAL_MODEL: {
+    SSStarGroupModel *gm = &scene->models[scene->nModels++];
+    char              name[64] = "";
+    PetscInt          model;
+
+    PetscCall(PetscStrncpy(gm->name, group, sizeof(gm->name)));
+    PetscCall(PetscOptionsGetString(NULL, NULL, option, name, sizeof(name), &set));
+    PetscCall(SSStarMaterialModelFromName(scene->comm, option, name, &model));
+    gm->model = (SSStarMaterialModel)model;
+  } break;
+  case OPT_ROTATION: { /* a prescribed rigid rotation (prescribed.c) */
+    const char *value;
+
+    PetscCall(PetscOptionsFindPair(NULL, NULL, option, &value, &set));
+    PetscCall(SSStarPrescribedReadRotation(scene, option, group, value, &scene->displacements[scene->nDisplacements++]));
+  } break;
+  case OPT_ROTATION_CENTER: { /* read with its -rotation_<G> */
+    char rotation[SSSTAR_GROUP_NAME_LEN + 16];
+
+    PetscCall(PetscSNPrintf(rotation, sizeof(rotation), "-rotation_%s", group));
+    PetscCall(PetscOptionsHasName(NULL, NULL, rotation, &set));
+    PetscCheck(set, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s needs %s: the center of a rotation that is not prescribed", option, rotation);
+  } break;
   case OPT_DISPLACEMENT: { /* prescribed displacements: numbers or free, constant or a history (prescribed.c) */
     const char *value;
 
@@ -332,9 +367,14 @@ static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G (E,nu,rho: with its density)\n\
   -initial_velocity_<G> <vx,vy,vz>: with -dynamics, the initial velocity of the nodes of volume group G\n\
+  -material_model_<G> <linear>: the material model of volume group G: linear, saint_venant_kirchhoff or neo_hookean\n\
+      (hyperelastic at finite strain; docs/guide/large-deformation.md)\n\
   -displacement_<G> <x,y,z>: prescribed displacement of surface or volume group G (global axes), each component a\n\
       number or free (free,free,-0.01: only u_z prescribed); a constant or a history t:x,y,z;... (a component free\n\
       in one knot is free in all); its reaction force is in the output (docs/guide/displacements-and-stresses.md)\n\
+  -rotation_<G> <rx,ry,rz>: a rigid rotation prescribed on group G (every component of its nodes): the rotation\n\
+      vector in degrees (its direction the axis, its length the angle), a constant or a history t:rx,ry,rz;...\n\
+  -rotation_center_<G> <x,y,z>: the point its axis passes through (default 0,0,0)\n\
   -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
       t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
@@ -363,7 +403,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol -end_time -dynamics -dynamics_scheme -dynamics_mass -damping -initial_velocity";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -material_model -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol -end_time -dynamics -dynamics_scheme -dynamics_mass -damping -initial_velocity";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -442,11 +482,16 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -E <E> - Young's modulus of the cells without -material_<G>
 .  -nu <nu> - Poisson's ratio of those cells
 .  -material_<G> <E,nu> - the material of volume group G (E,nu,rho: with its density)
+.  -material_model <linear> - the material model of the cells without -material_model_<G>: linear (small strain, the
+   affine problem K u = b), saint_venant_kirchhoff or neo_hookean (hyperelastic at finite strain)
+.  -material_model_<G> <linear> - the material model of volume group G
 .  -initial_velocity_<G> <vx,vy,vz> - with -dynamics, the initial velocity of the nodes of volume group G
 .  -end_time <T> - the end of a path without knots: -steps N gives N equal steps from 0 to T
 .  -dynamics - the steps are time steps of elastodynamics (-dynamics_scheme, -dynamics_mass, -damping, -initial_velocity: SSStarSceneGetEnergies())
 .  -dirichlet <G1,G2> - groups held fixed
 .  -displacement_<G> <x,y,z> - the prescribed displacement of surface or volume group G: each component a number or free, a constant or a history t:x,y,z;...
+.  -rotation_<G> <rx,ry,rz> - a rigid rotation prescribed on group G: the rotation vector in degrees, a constant or a history t:rx,ry,rz;...
+.  -rotation_center_<G> <x,y,z> - the point its axis passes through (default the origin)
 .  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
 .  -gravity <gx,gy,gz> - gravity, with -density: a constant, or a history t:gx,gy,gz;...
@@ -511,6 +556,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsReal("-nu", "Poisson ratio of the cells without -material_<G>", NULL, scene->nu, &scene->nu, &scene->hasNu));
   PetscCall(PetscOptionsReal("-density", "Mass density (with -gravity or -dynamics)", NULL, scene->density, &scene->density, &hasDensity));
   PetscCall(PetscOptionsReal("-end_time", "The end of a path whose histories have no knots: -steps N gives N equal steps from 0 to it", "SSStarSceneGetPathTimes", scene->endTime, &scene->endTime, NULL));
+  PetscCall(PetscOptionsEnum("-material_model", "The material model of the cells without -material_model_<G>: linear (small strain), saint_venant_kirchhoff or neo_hookean (finite strain)", "SSStarSceneIsAffine", SSStarMaterialModels, (PetscEnum)scene->model, (PetscEnum *)&scene->model, NULL));
   {
     PetscInt sliding = (PetscInt)scene->sliding;
 
@@ -577,15 +623,19 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscFree4(scene->materials, scene->tractions, scene->springs, scene->velocities));
   PetscCall(PetscCalloc4(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs, scene->nVelocities, &scene->velocities));
   PetscCall(PetscCalloc1(scene->nDisplacements + 1, &scene->displacements));
-  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = scene->nPairs = scene->nDisplacements = 0;
+  PetscCall(PetscFree(scene->models));
+  PetscCall(PetscCalloc1(scene->nModels + 1, &scene->models));
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nVelocities = scene->nPairs = scene->nDisplacements = scene->nModels = 0;
   PetscCall(ForEachGroupOption(scene, ReadGroupOption));
+  scene->affine = (PetscBool)(scene->model == SSSTAR_MATERIAL_LINEAR);
+  for (PetscInt m = 0; m < scene->nModels; m++) scene->affine = (PetscBool)(scene->affine && scene->models[m].model == SSSTAR_MATERIAL_LINEAR);
   PetscCall(SSStarPairsCheckOptions(scene));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
   }
   for (PetscInt d = 0; d < scene->nDisplacements; d++) {
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[d].name));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s_%s", scene->displacements[d].rotation ? "rotation" : "displacement", scene->displacements[d].name));
     PetscCall(CheckNotHeld(scene, scene->displacements[d].name, option));
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -598,7 +648,8 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
     SSStarPlacementIdentity(&cg->motion.before);
   }
   PetscCall(SSStarDynamicsSetFromOptions(scene)); /* dynamics/dynamics.c */
-  PetscCheck(!scene->dynamics || !scene->nDisplacements, comm, PETSC_ERR_SUP, "Options -dynamics and -displacement_%s: a prescribed displacement in dynamics is not supported (the held components' mass and damping couple into the free ones); hold the group with -dirichlet, or drive it through a moving obstacle", scene->nDisplacements ? scene->displacements[0].name : "");
+  PetscCheck(!scene->dynamics || !scene->nDisplacements, comm, PETSC_ERR_SUP, "Options -dynamics and -displacement_%s (or -rotation_%s): a prescribed displacement in dynamics is not supported (the held components' mass and damping couple into the free ones); hold the group with -dirichlet, or drive it through a moving obstacle", scene->nDisplacements ? scene->displacements[0].name : "", scene->nDisplacements ? scene->displacements[0].name : "");
+  PetscCheck(!scene->dynamics || scene->affine, comm, PETSC_ERR_SUP, "Options -dynamics and -material_model: dynamics is for linear bodies (-material_model linear): a hyperelastic body's time step is not supported");
   {
     PetscBool groupDensity = PETSC_FALSE; /* a -material_<G> E,nu,rho */
 
@@ -612,7 +663,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 /* SSStarSceneGroupUses - every group an option names, with the kind of group the option needs (for the mesh checks) */
 PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
 {
-  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nVelocities + scene->nPairs + scene->nDisplacements, k = 0;
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nVelocities + scene->nPairs + scene->nDisplacements + scene->nModels, k = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(total, uses));
@@ -627,7 +678,7 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
 
     (*uses)[k].group = scene->displacements[g].name;
     (*uses)[k].kind  = SSSTAR_GROUP_ANY;
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[g].name));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s_%s", scene->displacements[g].rotation ? "rotation" : "displacement", scene->displacements[g].name));
     PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt g = 0; g < scene->nContact; g++, k++) {
@@ -658,6 +709,14 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
         PetscCall(PetscSNPrintf(option, sizeof(option), "%s%s", names[l], lists[l][g].name));
         PetscCall(PetscStrallocpy(option, &(*options)[k]));
       }
+  }
+  for (PetscInt g = 0; g < scene->nModels; g++, k++) {
+    char option[SSSTAR_GROUP_NAME_LEN + 24];
+
+    (*uses)[k].group = scene->models[g].name;
+    (*uses)[k].kind  = SSSTAR_GROUP_VOLUME;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-material_model_%s", scene->models[g].name));
+    PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt i = 0; i < total; i++) (*uses)[i].option = (*options)[i];
   *n = total;

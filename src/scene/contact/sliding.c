@@ -174,6 +174,17 @@ PetscErrorCode SSStarSceneMeasureContact(SSStarScene scene, SNES snes)
   PetscFunctionReturn(0);
 }
 
+/*
+   SSStarSceneMeasureContactAt - large sliding within a solve of a hyperelastic scene's step: the contact linearized at
+   the iterate u (docs/derivation.md (17.5), section 18), the step's gaps and slips re-expressed there. Collective.
+*/
+PetscErrorCode SSStarSceneMeasureContactAt(SSStarScene scene, SNES snes, Vec u)
+{
+  PetscFunctionBegin;
+  PetscCall(LinearizeAt(scene, snes, u, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
 /* What a linearization holds (the scene's gaps, normals, frames, masters and B), to put back */
 typedef struct {
   PetscReal *gap, *normal, *point, *frame, *masterWeight;

@@ -38,7 +38,7 @@ PetscErrorCode SSStarAssembleMass(SSStarScene scene, Mat K, PetscBool lumped, Ma
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(cEnd - cStart + 1, &rho));
-  PetscCall(SSStarCellMaterials(scene, cStart, cEnd, NULL, rho));
+  PetscCall(SSStarCellMaterials(scene, cStart, cEnd, NULL, NULL, rho));
   for (PetscInt c = cStart; c < cEnd; c++) missing += rho[c - cStart] <= 0;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &missing, 1, MPIU_INT, MPI_SUM, scene->comm));
   if (missing) PetscCall(PetscFree(rho));

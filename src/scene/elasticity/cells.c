@@ -1,7 +1,8 @@
 /*
    The P1 tetrahedron of linear elasticity, cell by cell: its basis gradients, stiffness, strain, Hooke's stress and the
-   von Mises stress (pure kernels, tests/test_kernels.c checks them on hand-computed cases), and the Lame parameters of
-   every cell of a scene (its -material_<G>, else -E, -nu). Used by the assembly (elasticity.c), the prescribed
+   von Mises stress (pure kernels, tests/test_stress.c checks them on hand-computed cases), and the Lame parameters and
+   material model of every cell of a scene (its -material_<G>, else -E, -nu; its -material_model_<G>, else
+   -material_model; the models' kernels in hyperelastic.c). Used by the assembly (elasticity.c), the prescribed
    displacements (prescribed.c), the reactions (reactions.c) and the stresses of the output (output/stress.c).
 */
 #include "../sceneimpl.h"
@@ -145,30 +146,32 @@ static PetscErrorCode LameParameters(MPI_Comm comm, PetscReal E, PetscReal nu, c
 }
 
 /*
-   The Lame parameters of every local cell (lame, or NULL): those of its -material_<G> group, else of -E, -nu; and its
-   density (rho, or NULL): its group's (-material_<G> E,nu,rho), else -density's (-1 where neither is given). A cell in
-   two material groups, or in none without -E and -nu, is an error naming the options.
+   The Lame parameters of every local cell (lame, or NULL): those of its -material_<G> group, else of -E, -nu; its
+   material model (model, or NULL): that of its -material_model_<G> group, else -material_model; and its density (rho,
+   or NULL): its group's (-material_<G> E,nu,rho), else -density's (-1 where neither is given). A cell in two material
+   groups (or two model groups), or in none without -E and -nu, is an error naming the options.
 */
-PetscErrorCode SSStarCellMaterials(SSStarScene scene, PetscInt cStart, PetscInt cEnd, PetscReal (*lame)[2], PetscReal rho[])
+PetscErrorCode SSStarCellMaterials(SSStarScene scene, PetscInt cStart, PetscInt cEnd, PetscReal (*lame)[2], SSStarMaterialModel model[], PetscReal rho[])
 {
   PetscReal(*groupLame)[2];
-  DMLabel    *labels;
-  PetscInt    conflict[2] = {-1, -1}; /* two groups of one cell (found * nMaterials + m); a cell without material */
+  DMLabel    *labels, *modelLabels;
+  PetscInt    conflict[3] = {-1, -1, -1}; /* two groups of one cell (found * nMaterials + m); a cell without material; two model groups */
   PetscBool   hasGlobal   = (PetscBool)(scene->hasE && scene->hasNu);
   PetscReal   global[2]   = {0, 0}, none[2];
   char        option[SSSTAR_GROUP_NAME_LEN + 16];
 
   PetscFunctionBegin;
   if (hasGlobal) PetscCall(LameParameters(scene->comm, scene->E, scene->nu, "-E, -nu", &global[0], &global[1]));
-  PetscCall(PetscMalloc2(scene->nMaterials, &labels, scene->nMaterials, &groupLame));
+  PetscCall(PetscMalloc3(scene->nMaterials, &labels, scene->nMaterials, &groupLame, scene->nModels, &modelLabels));
   for (PetscInt m = 0; m < scene->nMaterials; m++) {
     PetscCall(DMGetLabel(scene->dm, scene->materials[m].name, &labels[m]));
     PetscCall(PetscSNPrintf(option, sizeof(option), "-material_%s", scene->materials[m].name));
     PetscCall(LameParameters(scene->comm, scene->materials[m].value[0], scene->materials[m].value[1], option, &groupLame[m][0], &groupLame[m][1]));
   }
+  for (PetscInt m = 0; m < scene->nModels; m++) PetscCall(DMGetLabel(scene->dm, scene->models[m].name, &modelLabels[m]));
   for (PetscInt c = cStart; c < cEnd; c++) {
     PetscReal *cell  = lame ? lame[c - cStart] : none;
-    PetscInt   found = -1;
+    PetscInt   found = -1, foundModel = -1;
 
     cell[0] = global[0];
     cell[1] = global[1];
@@ -185,17 +188,29 @@ PetscErrorCode SSStarCellMaterials(SSStarScene scene, PetscInt cStart, PetscInt 
       if (rho && scene->materials[m].count > 2) rho[c - cStart] = scene->materials[m].value[2];
     }
     if (found < 0 && !hasGlobal) conflict[1] = c;
+    if (!model) continue;
+    model[c - cStart] = scene->model;
+    for (PetscInt m = 0; m < scene->nModels; m++) {
+      PetscInt value;
+
+      PetscCall(DMLabelGetValue(modelLabels[m], c, &value));
+      if (value < 0) continue;
+      if (foundModel >= 0 && scene->models[foundModel].model != scene->models[m].model) conflict[2] = foundModel * scene->nModels + m;
+      foundModel        = m;
+      model[c - cStart] = scene->models[m].model;
+    }
   }
-  PetscCall(PetscFree2(labels, groupLame));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, conflict, 2, MPIU_INT, MPI_MAX, scene->comm));
+  PetscCall(PetscFree3(labels, groupLame, modelLabels));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, conflict, 3, MPIU_INT, MPI_MAX, scene->comm));
   PetscCheck(conflict[0] < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Options -material_%s and -material_%s contradict each other: some cells are in both volume groups", scene->materials[conflict[0] / PetscMax(scene->nMaterials, 1)].name, scene->materials[conflict[0] % PetscMax(scene->nMaterials, 1)].name);
   PetscCheck(conflict[1] < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Incomplete material: some cells are in no -material_<G> volume group, and -E and -nu are not both given");
+  PetscCheck(conflict[2] < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Options -material_model_%s and -material_model_%s contradict each other: some cells are in both volume groups", scene->models[conflict[2] / PetscMax(scene->nModels, 1)].name, scene->models[conflict[2] % PetscMax(scene->nModels, 1)].name);
   PetscFunctionReturn(0);
 }
 
 /*
    A walk over the local cells with what the kernels need: the vertices of each (numbered from vStart), the cell's Lame
-   parameters, and (SSStarCellsGet()) the coordinates of its vertices
+   parameters and material model, and (SSStarCellsGet()) the coordinates of its vertices
 */
 PetscErrorCode SSStarCellsBegin(SSStarScene scene, SSStarCells *cells)
 {
@@ -206,8 +221,8 @@ PetscErrorCode SSStarCellsBegin(SSStarScene scene, SSStarCells *cells)
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cells->cStart, &cells->cEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &cells->vStart, &cells->vEnd));
   n = cells->cEnd - cells->cStart;
-  PetscCall(PetscMalloc2(4 * n + 1, &cells->vertices, n + 1, &cells->lame));
-  PetscCall(SSStarCellMaterials(scene, cells->cStart, cells->cEnd, cells->lame, NULL));
+  PetscCall(PetscMalloc3(4 * n + 1, &cells->vertices, n + 1, &cells->lame, n + 1, &cells->model));
+  PetscCall(SSStarCellMaterials(scene, cells->cStart, cells->cEnd, cells->lame, cells->model, NULL));
   for (PetscInt c = 0; c < n; c++) {
     PetscInt *v = &cells->vertices[4 * c];
 
@@ -234,10 +249,23 @@ PetscErrorCode SSStarCellsGet(const SSStarCells *cells, PetscInt c, PetscReal x[
   PetscFunctionReturn(0);
 }
 
+/* The values of a local vector (its array a, its local section sec) at the vertices of local cell c, 3 per vertex */
+PetscErrorCode SSStarCellsGetValues(const SSStarCells *cells, PetscSection sec, const PetscScalar a[], PetscInt c, PetscReal values[12])
+{
+  PetscFunctionBeginHot;
+  for (PetscInt v = 0; v < 4; v++) {
+    PetscInt off;
+
+    PetscCall(PetscSectionGetOffset(sec, cells->vStart + cells->vertices[4 * c + v], &off));
+    for (PetscInt k = 0; k < 3; k++) values[3 * v + k] = PetscRealPart(a[off + k]);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SSStarCellsEnd(SSStarCells *cells)
 {
   PetscFunctionBegin;
   PetscCall(VecRestoreArrayRead(cells->coordinates, &cells->ca));
-  PetscCall(PetscFree2(cells->vertices, cells->lame));
+  PetscCall(PetscFree3(cells->vertices, cells->lame, cells->model));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,7 @@
 /*
-   P1 linear elasticity on tetrahedra: stiffness K (materials per volume group, springs) and load b (tractions, gravity,
-   the lifting of prescribed displacements); the cells' kernels in cells.c, the held dofs in prescribed.c.
+   P1 elasticity on tetrahedra: stiffness K (materials per volume group, springs) and load b (tractions, gravity, the
+   lifting of prescribed displacements); for a hyperelastic scene the residual F(u) and its tangent at u
+   (docs/derivation.md section 18); the cells' kernels in cells.c and hyperelastic.c, the held dofs in prescribed.c.
 */
 #include "../sceneimpl.h"
 #include <petscsf.h>
@@ -175,40 +176,31 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
 }
 
 /*
-   K in 3x3 blocks: every cell adds its 12x12 matrix, every face of a spring group k area/3 to the diagonal of its
-   vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out; a prescribed component
-   (-displacement_<G>) gets an identity row (prescribed.c)
+   Adds to K every cell's 12x12 matrix -- Hooke's, or with ua (the local displacement's values) the tangent of the cell's
+   material model there (docs/derivation.md (18.3)) -- and the k area/3 of every face of a spring group to the diagonal of
+   its vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out; a prescribed component
+   (-displacement_<G>) gets an identity row (prescribed.c). *ok: no cell's model refused its deformation (det F <= 0)
 */
-static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
+static PetscErrorCode AddCellsAndSprings(SSStarScene scene, const SSStarCells *cells, const PetscInt blocks[], PetscSection sec, const PetscScalar ua[], Mat K, PetscBool *ok)
 {
-  DM          dm = scene->dm;
-  Vec         global;
-  PetscInt    n, N, *blocks;
-  SSStarCells cells;
+  DM dm = scene->dm;
 
   PetscFunctionBegin;
-  PetscCall(SSStarCellsBegin(scene, &cells));
-  PetscCall(SSStarVertexBlocks(dm, cells.vStart, cells.vEnd, &blocks));
-  PetscCall(DMGetGlobalVector(dm, &global));
-  PetscCall(VecGetLocalSize(global, &n));
-  PetscCall(VecGetSize(global, &N));
-  PetscCall(DMRestoreGlobalVector(dm, &global));
-  PetscCall(MatCreate(PetscObjectComm((PetscObject)dm), K));
-  PetscCall(MatSetSizes(*K, n, n, N, N));
-  PetscCall(MatSetBlockSize(*K, 3));
-  PetscCall(MatSetType(*K, MATAIJ));
-  PetscCall(PreallocateStiffness(dm, *K, cells.cStart, cells.cEnd, cells.vStart, cells.vEnd, cells.vertices, blocks));
-  for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) {
-    const PetscInt *v = &cells.vertices[4 * c];
+  *ok = PETSC_TRUE;
+  for (PetscInt c = 0; c < cells->cEnd - cells->cStart; c++) {
+    const PetscInt *v = &cells->vertices[4 * c];
     PetscInt        b[4];
-    PetscReal       x[12];
+    PetscReal       x[12], ue[12], fe[12];
     PetscScalar     Ke[144];
 
-    PetscCall(SSStarCellsGet(&cells, c, x));
+    PetscCall(SSStarCellsGet(cells, c, x));
     for (PetscInt a = 0; a < 4; a++) b[a] = blocks[v[a]];
-    SSStarTetStiffness(x, cells.lame[c][0], cells.lame[c][1], Ke);
+    if (ua) {
+      PetscCall(SSStarCellsGetValues(cells, sec, ua, c, ue));
+      if (!SSStarTetInternalForce(cells->model[c], cells->lame[c][0], cells->lame[c][1], x, ue, fe, Ke)) *ok = PETSC_FALSE;
+    } else SSStarTetStiffness(x, cells->lame[c][0], cells->lame[c][1], Ke);
     SSStarHeldElement(scene, v, Ke);
-    PetscCall(MatSetValuesBlocked(*K, 4, b, 4, b, Ke, ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(K, 4, b, 4, b, Ke, ADD_VALUES));
   }
   for (PetscInt s = 0; s < scene->nSprings; s++) {
     IS              faces;
@@ -228,19 +220,145 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
       for (PetscInt k = 0; k < 2 * ncl; k += 2) {
         PetscInt bk;
 
-        if (closure[k] < cells.vStart || closure[k] >= cells.vEnd) continue;
-        bk = blocks[closure[k] - cells.vStart];
-        PetscCall(MatSetValuesBlocked(*K, 1, &bk, 1, &bk, D, ADD_VALUES));
+        if (closure[k] < cells->vStart || closure[k] >= cells->vEnd) continue;
+        bk = blocks[closure[k] - cells->vStart];
+        PetscCall(MatSetValuesBlocked(K, 1, &bk, 1, &bk, D, ADD_VALUES));
       }
       PetscCall(DMPlexRestoreTransitiveClosure(dm, f[i], PETSC_TRUE, &ncl, &closure));
     }
     PetscCall(ISRestoreIndices(faces, &f));
     PetscCall(ISDestroy(&faces));
   }
+  PetscFunctionReturn(0);
+}
+
+/* K in 3x3 blocks, preallocated from the cells' vertices (AddCellsAndSprings() at the reference configuration) */
+static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
+{
+  DM          dm = scene->dm;
+  Vec         global;
+  PetscInt    n, N, *blocks;
+  PetscBool   ok;
+  SSStarCells cells;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarCellsBegin(scene, &cells));
+  PetscCall(SSStarVertexBlocks(dm, cells.vStart, cells.vEnd, &blocks));
+  PetscCall(DMGetGlobalVector(dm, &global));
+  PetscCall(VecGetLocalSize(global, &n));
+  PetscCall(VecGetSize(global, &N));
+  PetscCall(DMRestoreGlobalVector(dm, &global));
+  PetscCall(MatCreate(PetscObjectComm((PetscObject)dm), K));
+  PetscCall(MatSetSizes(*K, n, n, N, N));
+  PetscCall(MatSetBlockSize(*K, 3));
+  PetscCall(MatSetType(*K, MATAIJ));
+  PetscCall(PreallocateStiffness(dm, *K, cells.cStart, cells.cEnd, cells.vStart, cells.vEnd, cells.vertices, blocks));
+  PetscCall(AddCellsAndSprings(scene, &cells, blocks, NULL, NULL, *K, &ok));
   PetscCall(MatAssemblyBegin(*K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*K, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscFree(blocks));
   PetscCall(SSStarCellsEnd(&cells));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarAssembleTangent - the tangent stiffness J = dF/du of a hyperelastic scene at u, into J (K's matrix, its
+   pattern): the cells' tangents of their material models (18.3), the springs, the identity rows of the prescribed
+   components as in K. *ok (the same on every rank): no cell refused its deformation (neo-Hookean det F <= 0)
+*/
+PetscErrorCode SSStarAssembleTangent(SSStarScene scene, Vec u, Mat J, PetscBool *ok)
+{
+  DM                 dm = scene->dm;
+  PetscInt          *blocks;
+  PetscSection       sec;
+  Vec                uloc;
+  const PetscScalar *ua;
+  SSStarCells        cells;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscCall(DMGetLocalSection(dm, &sec));
+  PetscCall(DMGetLocalVector(dm, &uloc));
+  PetscCall(VecZeroEntries(uloc)); /* the -dirichlet dofs: 0 */
+  PetscCall(DMGlobalToLocal(dm, u, INSERT_VALUES, uloc));
+  PetscCall(VecGetArrayRead(uloc, &ua));
+  PetscCall(SSStarCellsBegin(scene, &cells));
+  PetscCall(SSStarVertexBlocks(dm, cells.vStart, cells.vEnd, &blocks));
+  PetscCall(MatZeroEntries(J));
+  PetscCall(AddCellsAndSprings(scene, &cells, blocks, sec, ua, J, ok));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscFree(blocks));
+  PetscCall(SSStarCellsEnd(&cells));
+  PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscCall(DMRestoreLocalVector(dm, &uloc));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ok, 1, MPIU_BOOL, MPI_LAND, scene->comm));
+  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarAssembleResidual - the residual F(u) = f(u) + k u - load of a hyperelastic scene (docs/derivation.md (18.2)):
+   the cells' internal forces of their material models and the springs' forces on the dofs that are not prescribed,
+   diag(K) u at the prescribed components (whose load is diag(K) g: SSStarAssembleLoad()). *ok (the same on every rank):
+   no cell refused its deformation (neo-Hookean det F <= 0; F is then NaN there)
+*/
+PetscErrorCode SSStarAssembleResidual(SSStarScene scene, Vec u, Vec load, Vec r, PetscBool *ok)
+{
+  DM                 dm = scene->dm;
+  PetscSection       sec;
+  Vec                uloc, floc, wloc;
+  const PetscScalar *ua;
+  PetscScalar       *fa;
+  SSStarCells        cells;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
+  *ok = PETSC_TRUE;
+  PetscCall(DMGetLocalSection(dm, &sec));
+  PetscCall(DMGetLocalVector(dm, &uloc));
+  PetscCall(DMGetLocalVector(dm, &floc));
+  PetscCall(VecZeroEntries(uloc)); /* the -dirichlet dofs: 0 */
+  PetscCall(DMGlobalToLocal(dm, u, INSERT_VALUES, uloc));
+  PetscCall(VecZeroEntries(floc));
+  PetscCall(VecGetArrayRead(uloc, &ua));
+  PetscCall(VecGetArray(floc, &fa));
+  PetscCall(SSStarCellsBegin(scene, &cells));
+  for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) {
+    const PetscInt *v = &cells.vertices[4 * c];
+    PetscReal       x[12], ue[12], fe[12];
+
+    PetscCall(SSStarCellsGet(&cells, c, x));
+    PetscCall(SSStarCellsGetValues(&cells, sec, ua, c, ue));
+    if (!SSStarTetInternalForce(cells.model[c], cells.lame[c][0], cells.lame[c][1], x, ue, fe, NULL)) *ok = PETSC_FALSE;
+    for (PetscInt a = 0; a < 4; a++) {
+      PetscInt off;
+
+      PetscCall(PetscSectionGetOffset(sec, cells.vStart + v[a], &off));
+      for (PetscInt k = 0; k < 3; k++) fa[off + k] += fe[3 * a + k];
+    }
+  }
+  PetscCall(SSStarCellsEnd(&cells));
+  PetscCall(VecRestoreArray(floc, &fa));
+  PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscCall(DMGetLocalVector(dm, &wloc)); /* the springs: k area/3 u per face vertex */
+  for (PetscInt s = 0; s < scene->nSprings; s++) {
+    const PetscReal k3[3] = {scene->springs[s].value[0], scene->springs[s].value[0], scene->springs[s].value[0]};
+
+    PetscCall(VecZeroEntries(wloc));
+    PetscCall(SSStarAddTraction(dm, scene->springs[s].name, k3, wloc));
+    PetscCall(VecPointwiseMult(wloc, wloc, uloc));
+    PetscCall(VecAXPY(floc, 1.0, wloc));
+  }
+  PetscCall(DMRestoreLocalVector(dm, &wloc));
+  PetscCall(VecZeroEntries(r));
+  PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, r));
+  PetscCall(DMRestoreLocalVector(dm, &floc));
+  PetscCall(DMRestoreLocalVector(dm, &uloc));
+  PetscCall(SSStarHeldDiagonal(scene, u, r, PETSC_FALSE)); /* the prescribed rows: diag(K) u, whatever was added there */
+  PetscCall(VecAXPY(r, -1.0, load));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ok, 1, MPIU_BOOL, MPI_LAND, scene->comm));
+  PetscCall(PetscLogEventEnd(SSSTAR_Assembly, dm, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -290,7 +408,7 @@ static PetscErrorCode AddGravity(SSStarScene scene, const PetscReal g[3], Vec Fl
   PetscFunctionBegin;
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   PetscCall(PetscMalloc1(cEnd - cStart + 1, &rho));
-  PetscCall(SSStarCellMaterials(scene, cStart, cEnd, NULL, rho));
+  PetscCall(SSStarCellMaterials(scene, cStart, cEnd, NULL, NULL, rho));
   for (PetscInt c = cStart; c < cEnd; c++) {
     PetscScalar load[12];
     PetscReal   x[12], grad[4][3], vol;
@@ -364,7 +482,7 @@ static PetscErrorCode RecordLoad(SSStarScene scene, Vec Floc)
 /*
    The load b at the time t of the histories: the tractions and gravity evaluated at t (a surface and a volume loop),
    with the prescribed displacements at t: b - K_{:,D} g on the dofs not held, diag(K) g on the prescribed ones
-   (docs/derivation.md section 15)
+   (docs/derivation.md section 15); a hyperelastic scene has no lifting, its residual takes u_D as it is (18.2)
 */
 PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
 {
@@ -387,15 +505,24 @@ PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
   if (scene->nDisplacements) {
     PetscReal  *values;
     SSStarCells cells;
+    Vec         gloc, g;
 
     PetscCall(PetscMalloc1(3 * (scene->nDirichlet + scene->nDisplacements), &values));
     PetscCall(SSStarHeldValues(scene, t, values));
-    PetscCall(SSStarCellsBegin(scene, &cells));
-    PetscCall(SSStarHeldLift(scene, &cells, values, Floc));
-    PetscCall(SSStarCellsEnd(&cells));
+    PetscCall(DMGetLocalVector(dm, &gloc));
+    PetscCall(SSStarHeldLocalValues(scene, values, gloc));
+    if (scene->affine) { /* a hyperelastic scene's residual takes u_D = g as it is: no lifting (18.2) */
+      PetscCall(SSStarCellsBegin(scene, &cells));
+      PetscCall(SSStarHeldLift(scene, &cells, gloc, Floc));
+      PetscCall(SSStarCellsEnd(&cells));
+    }
     PetscCall(VecZeroEntries(b));
     PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
-    PetscCall(SSStarHeldPrescribe(scene, values, b));
+    PetscCall(DMGetGlobalVector(dm, &g));
+    PetscCall(DMLocalToGlobal(dm, gloc, INSERT_VALUES, g));
+    PetscCall(SSStarHeldDiagonal(scene, g, b, PETSC_FALSE)); /* diag(K) g at the prescribed components */
+    PetscCall(DMRestoreGlobalVector(dm, &g));
+    PetscCall(DMRestoreLocalVector(dm, &gloc));
     PetscCall(PetscFree(values));
   } else {
     PetscCall(VecZeroEntries(b));

@@ -182,6 +182,9 @@ PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Mat K)
   }
   PetscCall(VecRestoreArrayRead(cloc, &ca));
   PetscCall(DMRestoreLocalVector(dm, &xloc));
+  /* a hyperelastic body's tangent at a loaded state has its translations in its null space but not its rotations (the
+     derivative of R f(u) is W f(u)): the floating machinery of docs/derivation.md section 14 does not apply to it */
+  PetscCheck(scene->affine || !nmodes, scene->comm, PETSC_ERR_SUP, "A hyperelastic body (-material_model) held by contact alone: %" PetscInt_FMT " of its rigid motions are free, and its tangent's null space changes with its load; hold it by -spring_<G>, -dirichlet or -displacement_<G> (docs/guide/large-deformation.md), or give it -material_model linear", nmodes);
   if (nmodes) {
     for (PetscInt f = 0; f < scene->nFloating; f++) /* Gram-Schmidt, twice, body by body */
       for (PetscInt k = first[f]; k < first[f] + count[f]; k++)

@@ -1,7 +1,8 @@
 /*
    Held dofs: the -dirichlet groups (u = 0, their nodes have no dofs: the section's constraints, mesh.c) and the
    prescribed displacements of -displacement_<G> x,y,z (each component a number or free, constant or a history
-   t:x,y,z;...). A prescribed component keeps its dof, with an identity row of K: its row and column of every cell's
+   t:x,y,z;...) and the rigid rotations of -rotation_<G> rx,ry,rz about -rotation_center_<G> (every component of every
+   node of G: u = R (X - c) - (X - c), R the rotation of the vector r, its angle |r| in degrees). A prescribed component keeps its dof, with an identity row of K: its row and column of every cell's
    matrix are zero but the diagonal, and the load there is diag(K) g, so that K u = b gives u = g there; the other dofs
    get the lifting b - K_{:,D} g of the prescribed values (docs/derivation.md section 15). A node prescribed in every
    component is no contact node; a contact node with some components prescribed is held so only as on a plane of
@@ -78,6 +79,50 @@ PetscErrorCode SSStarPrescribedRead(SSStarScene scene, const char option[], cons
   PetscFunctionReturn(0);
 }
 
+/*
+   SSStarPrescribedReadRotation - the rotation of group prescribed by option (-rotation_<G>) with the value text: the
+   rotation vector rx,ry,rz in degrees, constant or a history; its center from -rotation_center_<G> (default the origin)
+*/
+PetscErrorCode SSStarPrescribedReadRotation(SSStarScene scene, const char option[], const char group[], const char text[], SSStarPrescribed *p)
+{
+  char      center[SSSTAR_GROUP_NAME_LEN + 24];
+  PetscInt  n = 3;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscCheck(text && text[0], scene->comm, PETSC_ERR_ARG_WRONG, "Option %s needs a value: the rotation vector rx,ry,rz in degrees (its direction the axis, its length the angle), or knots t:rx,ry,rz separated by ';'", option);
+  PetscCall(SSStarHistoryDestroy(&p->history));
+  PetscCall(SSStarHistoryCreateFromString(scene->comm, option, text, 3, &p->history));
+  p->free     = 0;
+  p->rotation = PETSC_TRUE;
+  PetscCall(PetscStrncpy(p->name, group, sizeof(p->name)));
+  PetscCall(PetscSNPrintf(center, sizeof(center), "-rotation_center_%s", group));
+  p->center[0] = p->center[1] = p->center[2] = 0;
+  PetscCall(PetscOptionsGetRealArray(NULL, NULL, center, p->center, &n, &set));
+  PetscCheck(!set || n == 3, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s needs 3 numbers x,y,z", center);
+  PetscFunctionReturn(0);
+}
+
+/* The displacement g of the point X (3) of a rotation about center by the rotation vector r (degrees) */
+static void RotationDisplacement(const PetscReal r[3], const PetscReal center[3], const PetscReal X[3], PetscReal g[3])
+{
+  const PetscReal theta = PetscSqrtReal(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) * PETSC_PI / 180;
+  PetscReal       n[3], d[3], nd, c, s;
+
+  g[0] = g[1] = g[2] = 0;
+  if (theta == 0) return;
+  for (PetscInt k = 0; k < 3; k++) {
+    n[k] = r[k] * PETSC_PI / 180 / theta;
+    d[k] = X[k] - center[k];
+  }
+  nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+  c  = PetscCosReal(theta);
+  s  = PetscSinReal(theta);
+  g[0] = (c - 1) * d[0] + s * (n[1] * d[2] - n[2] * d[1]) + (1 - c) * nd * n[0]; /* Rodrigues: R d - d */
+  g[1] = (c - 1) * d[1] + s * (n[2] * d[0] - n[0] * d[2]) + (1 - c) * nd * n[1];
+  g[2] = (c - 1) * d[2] + s * (n[0] * d[1] - n[1] * d[0]) + (1 - c) * nd * n[2];
+}
+
 /* "free,free,-0.01" or "history t:free,free,-0.01;..." of a prescription */
 PetscErrorCode SSStarPrescribedText(const SSStarPrescribed *p, char text[], size_t len)
 {
@@ -87,6 +132,15 @@ PetscErrorCode SSStarPrescribedText(const SSStarPrescribed *p, char text[], size
   PetscFunctionBegin;
   PetscCall(SSStarHistoryGetKnots(p->history, &n, &times, &v));
   text[0] = 0;
+  if (p->rotation) {
+    char about[128];
+
+    PetscCall(PetscStrlcat(text, "rotation vector (degrees) ", len));
+    PetscCall(PetscSNPrintf(about, sizeof(about), " about (%g, %g, %g)", (double)p->center[0], (double)p->center[1], (double)p->center[2]));
+    PetscCall(SSStarHistoryDescribe(p->history, text + strlen(text), len - strlen(text)));
+    PetscCall(PetscStrlcat(text, about, len));
+    PetscFunctionReturn(0);
+  }
   if (n) PetscCall(PetscStrlcat(text, "history ", len));
   for (PetscInt i = 0; i < PetscMax(n, 1); i++) {
     char knot[128] = "", comp[3][32];
@@ -122,7 +176,7 @@ PetscErrorCode SSStarHeldName(SSStarScene scene, PetscInt h, char name[], size_t
 {
   PetscFunctionBegin;
   if (h < scene->nDirichlet) PetscCall(PetscSNPrintf(name, len, "-dirichlet %s", scene->dirichlet[h]));
-  else PetscCall(PetscSNPrintf(name, len, "-displacement_%s", scene->displacements[h - scene->nDirichlet].name));
+  else PetscCall(PetscSNPrintf(name, len, "-%s_%s", scene->displacements[h - scene->nDirichlet].rotation ? "rotation" : "displacement", scene->displacements[h - scene->nDirichlet].name));
   PetscFunctionReturn(0);
 }
 
@@ -148,28 +202,35 @@ PetscErrorCode SSStarHeldValues(SSStarScene scene, PetscReal t, PetscReal values
   PetscFunctionReturn(0);
 }
 
-/* Whether component k of held groups a and b is the same function of time (at every knot of both: both are linear between) */
+/*
+   Whether component k of held groups a and b is the same function of time (at every knot of both: both are linear
+   between); a rotation is the same as another rotation of the same center and rotation vector only
+*/
 static PetscErrorCode SameValues(SSStarScene scene, PetscInt a, PetscInt b, PetscInt k, PetscBool *same)
 {
-  PetscInt         n[2] = {0, 0};
-  const PetscReal *times[2] = {NULL, NULL};
+  PetscInt                n[2] = {0, 0};
+  const PetscReal        *times[2] = {NULL, NULL};
+  const SSStarPrescribed *pa = a >= scene->nDirichlet ? &scene->displacements[a - scene->nDirichlet] : NULL;
+  const SSStarPrescribed *pb = b >= scene->nDirichlet ? &scene->displacements[b - scene->nDirichlet] : NULL;
+  const PetscBool         ra = (PetscBool)(pa && pa->rotation), rb = (PetscBool)(pb && pb->rotation);
 
   PetscFunctionBegin;
-  *same = PETSC_TRUE;
+  *same = (PetscBool)(ra == rb && (!ra || (pa->center[0] == pb->center[0] && pa->center[1] == pb->center[1] && pa->center[2] == pb->center[2])));
   for (PetscInt s = 0; s < 2; s++) {
     const PetscInt h = s ? b : a;
 
     if (h >= scene->nDirichlet) PetscCall(SSStarHistoryGetKnots(scene->displacements[h - scene->nDirichlet].history, &n[s], &times[s], NULL));
   }
   for (PetscInt s = 0; s < 2; s++)
-    for (PetscInt i = -1; i < n[s] && *same; i++) { /* i = -1: any time of a constant */
-      const PetscReal t = i < 0 ? 0 : times[s][i];
-      PetscReal       va, vb;
+    for (PetscInt i = -1; i < n[s] && *same; i++) /* i = -1: any time of a constant */
+      for (PetscInt j = ra ? 0 : k; j <= (ra ? 2 : k) && *same; j++) { /* a rotation's every component */
+        const PetscReal t = i < 0 ? 0 : times[s][i];
+        PetscReal       va, vb;
 
-      PetscCall(HeldValue(scene, a, k, t, &va));
-      PetscCall(HeldValue(scene, b, k, t, &vb));
-      *same = (PetscBool)(PetscAbsReal(va - vb) <= 1e-14 * PetscMax(PetscAbsReal(va), PetscAbsReal(vb)));
-    }
+        PetscCall(HeldValue(scene, a, j, t, &va));
+        PetscCall(HeldValue(scene, b, j, t, &vb));
+        *same = (PetscBool)(PetscAbsReal(va - vb) <= 1e-14 * PetscMax(PetscAbsReal(va), PetscAbsReal(vb)));
+      }
   PetscFunctionReturn(0);
 }
 
@@ -266,29 +327,77 @@ void SSStarHeldElement(SSStarScene scene, const PetscInt v[4], PetscScalar K[144
     }
 }
 
-/*
-   SSStarHeldLift - subtracts the lifting K_{:,D} g of the prescribed values (values: SSStarHeldValues()) from the local
-   load Floc at the dofs that are not held (the held ones get diag(K) g: SSStarHeldPrescribe())
-*/
-PetscErrorCode SSStarHeldLift(SSStarScene scene, const SSStarCells *cells, const PetscReal values[], Vec Floc)
+/* SSStarHeldLocalValues - a local vector with the prescribed values (values: SSStarHeldValues(); a rotation's: its
+   rotation vector, turned into each node's displacement here) at the prescribed components of every local vertex, 0
+   elsewhere */
+PetscErrorCode SSStarHeldLocalValues(SSStarScene scene, const PetscReal values[], Vec gloc)
 {
-  PetscSection sec;
-  PetscScalar *fa;
+  PetscSection       sec, csec;
+  PetscInt           vStart, vEnd;
+  PetscScalar       *ga;
+  const PetscScalar *xa;
+  Vec                coordinates;
+  DM                 cdm;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetLocalSection(scene->dm, &sec));
+  PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(VecZeroEntries(gloc));
+  PetscCall(VecGetArray(gloc, &ga));
+  PetscCall(VecGetArrayRead(coordinates, &xa));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off, xoff;
+
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscInt h = scene->heldBy[3 * (v - vStart) + k];
+
+      if (!SSStarHeldIdentityRow(scene, v - vStart, k)) continue;
+      if (scene->displacements[h - scene->nDirichlet].rotation) {
+        PetscReal X[3], g[3];
+
+        PetscCall(PetscSectionGetOffset(csec, v, &xoff));
+        for (PetscInt j = 0; j < 3; j++) X[j] = PetscRealPart(xa[xoff + j]);
+        RotationDisplacement(&values[3 * h], scene->displacements[h - scene->nDirichlet].center, X, g);
+        ga[off + k] = g[k];
+      } else ga[off + k] = values[3 * h + k];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(coordinates, &xa));
+  PetscCall(VecRestoreArray(gloc, &ga));
+  PetscFunctionReturn(0);
+}
+
+/*
+   SSStarHeldLift - subtracts the lifting K_{:,D} g of prescribed values from the local load Floc at the dofs that are
+   not held (the held ones get diag(K) g: SSStarHeldDiagonal()): g the prescribed components of the local vector gloc
+   (SSStarHeldLocalValues(), or a hyperelastic step's increment of them), K the cells' Hooke matrices
+*/
+PetscErrorCode SSStarHeldLift(SSStarScene scene, const SSStarCells *cells, Vec gloc, Vec Floc)
+{
+  PetscSection       sec;
+  PetscScalar       *fa;
+  const PetscScalar *ga;
 
   PetscFunctionBegin;
   if (!scene->nDisplacements) PetscFunctionReturn(0);
   PetscCall(DMGetLocalSection(scene->dm, &sec));
   PetscCall(VecGetArray(Floc, &fa));
+  PetscCall(VecGetArrayRead(gloc, &ga));
   for (PetscInt c = 0; c < cells->cEnd - cells->cStart; c++) {
     const PetscInt *v = &cells->vertices[4 * c];
     PetscReal       g[12], x[12];
     PetscScalar     Ke[144];
     PetscBool       any = PETSC_FALSE;
 
+    PetscCall(SSStarCellsGetValues(cells, sec, ga, c, g));
     for (PetscInt a = 0; a < 4; a++)
       for (PetscInt k = 0; k < 3; k++) {
-        g[3 * a + k] = SSStarHeldIdentityRow(scene, v[a], k) ? values[3 * scene->heldBy[3 * v[a] + k] + k] : 0;
-        any          = (PetscBool)(any || g[3 * a + k] != 0);
+        if (!SSStarHeldIdentityRow(scene, v[a], k)) g[3 * a + k] = 0;
+        any = (PetscBool)(any || g[3 * a + k] != 0);
       }
     if (!any) continue;
     PetscCall(SSStarCellsGet(cells, c, x));
@@ -306,36 +415,46 @@ PetscErrorCode SSStarHeldLift(SSStarScene scene, const SSStarCells *cells, const
       }
     }
   }
+  PetscCall(VecRestoreArrayRead(gloc, &ga));
   PetscCall(VecRestoreArray(Floc, &fa));
   PetscFunctionReturn(0);
 }
 
-/* SSStarHeldPrescribe - b = diag(K) g at the owned dofs of prescribed components (values: SSStarHeldValues()) */
-PetscErrorCode SSStarHeldPrescribe(SSStarScene scene, const PetscReal values[], Vec b)
+/*
+   SSStarHeldDiagonal - at the owned dofs of prescribed components, y = diag(K) x, or (inverse) y = x / diag(K): a
+   hyperelastic residual's prescribed rows diag(K) u, and the prescribed values g = b / diag(K) of a load b put into an
+   iterate (x, y global vectors of the scene's DM)
+*/
+PetscErrorCode SSStarHeldDiagonal(SSStarScene scene, Vec x, Vec y, PetscBool inverse)
 {
   PetscSection       gsec;
   PetscInt           vStart, vEnd, rstart;
-  PetscScalar       *ba;
-  const PetscScalar *da;
+  PetscScalar       *ya;
+  const PetscScalar *xa, *da;
 
   PetscFunctionBegin;
   if (!scene->nDisplacements) PetscFunctionReturn(0);
-  PetscCheck(scene->diagK, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The load of prescribed displacements needs K: SSStarSceneAssemble() first");
+  PetscCheck(scene->diagK, scene->comm, PETSC_ERR_ARG_WRONGSTATE, "The rows of prescribed displacements need K: SSStarSceneAssemble() first");
   PetscCall(DMGetGlobalSection(scene->dm, &gsec));
   PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetOwnershipRange(b, &rstart, NULL));
-  PetscCall(VecGetArray(b, &ba));
+  PetscCall(VecGetOwnershipRange(y, &rstart, NULL));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
   PetscCall(VecGetArrayRead(scene->diagK, &da));
   for (PetscInt v = vStart; v < vEnd; v++) {
     PetscInt off;
 
     PetscCall(PetscSectionGetOffset(gsec, v, &off));
     if (off < 0) continue; /* a ghost */
-    for (PetscInt k = 0; k < 3; k++)
-      if (SSStarHeldIdentityRow(scene, v - vStart, k)) ba[off - rstart + k] = da[off - rstart + k] * values[3 * scene->heldBy[3 * (v - vStart) + k] + k];
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscInt i = off - rstart + k;
+
+      if (SSStarHeldIdentityRow(scene, v - vStart, k)) ya[i] = inverse ? xa[i] / da[i] : da[i] * xa[i];
+    }
   }
   PetscCall(VecRestoreArrayRead(scene->diagK, &da));
-  PetscCall(VecRestoreArray(b, &ba));
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
   PetscFunctionReturn(0);
 }
 

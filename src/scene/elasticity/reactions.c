@@ -2,7 +2,7 @@
    The reaction forces of the held groups (-dirichlet, -displacement_<G>): the force each prescription exerts on the
    body, r = K u - b summed over the group's held components in global axes (the convention of /contact/reaction), with
    K the stiffness before the identity rows (every cell's matrix, the springs) and b the tractions and gravity there
-   (docs/derivation.md section 15). A cell (or a face) is on one rank: each rank sums its cells' contributions.
+   (docs/derivation.md section 15); for a hyperelastic body K u is the cells' internal force f(u) (section 18). A cell (or a face) is on one rank: each rank sums its cells' contributions.
 */
 #include "../sceneimpl.h"
 
@@ -115,30 +115,22 @@ PetscErrorCode SSStarSceneGetReactions(SSStarScene scene, SNES snes, Vec u, Pets
   PetscCall(DMGlobalToLocal(dm, u, INSERT_VALUES, uloc));
   PetscCall(VecGetArrayRead(uloc, &ua));
   PetscCall(SSStarCellsBegin(scene, &cells));
-  for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) { /* K u at the held components of the cell's vertices */
+  for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) { /* K u (f(u)) at the held components of the cell's vertices */
     const PetscInt *v = &cells.vertices[4 * c];
-    PetscInt        off[4];
-    PetscReal       x[12], ue[12];
-    PetscScalar     Ke[144];
+    PetscReal       x[12], ue[12], fe[12];
     PetscBool       held = PETSC_FALSE;
 
     for (PetscInt a = 0; a < 4; a++)
       for (PetscInt k = 0; k < 3; k++) held = (PetscBool)(held || scene->heldBy[3 * v[a] + k] >= 0);
     if (!held) continue;
-    for (PetscInt a = 0; a < 4; a++) {
-      PetscCall(PetscSectionGetOffset(sec, cells.vStart + v[a], &off[a]));
-      for (PetscInt k = 0; k < 3; k++) ue[3 * a + k] = PetscRealPart(ua[off[a] + k]);
-    }
+    PetscCall(SSStarCellsGetValues(&cells, sec, ua, c, ue));
     PetscCall(SSStarCellsGet(&cells, c, x));
-    SSStarTetStiffness(x, cells.lame[c][0], cells.lame[c][1], Ke);
+    (void)SSStarTetInternalForce(cells.model[c], cells.lame[c][0], cells.lame[c][1], x, ue, fe, NULL);
     for (PetscInt a = 0; a < 4; a++)
       for (PetscInt k = 0; k < 3; k++) {
         const PetscInt h = scene->heldBy[3 * v[a] + k];
-        PetscReal      f = 0;
 
-        if (h < 0) continue;
-        for (PetscInt j = 0; j < 12; j++) f += PetscRealPart(Ke[12 * (3 * a + k) + j]) * ue[j];
-        reaction[3 * h + k] += f;
+        if (h >= 0) reaction[3 * h + k] += fe[3 * a + k];
       }
   }
   PetscCall(SSStarCellsEnd(&cells));

@@ -332,20 +332,32 @@ PetscErrorCode SSStarWriteVertexField(SSStarScene scene, hid_t file, const char 
   PetscCall(SSStarH5GroupOpen(file, path, &group));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
-  PetscCall(PetscStrlcat(path, "/", sizeof(path)));
-  PetscCall(PetscStrlcat(path, name, sizeof(path)));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/%s", prefix, name));
   PetscCall(SSStarWriteVec(file, path, 3, nat));
   PetscCall(VecDestroy(&nat));
   PetscFunctionReturn(0);
 }
 
-/* <prefix>/fields/displacement, and with -dynamics <prefix>/fields/velocity */
+/* <prefix>/fields/displacement; of a hyperelastic scene <prefix>/fields/position too, X + u: the current configuration;
+   with -dynamics <prefix>/fields/velocity */
 PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char prefix[], Vec u)
 {
   Vec v;
 
   PetscFunctionBegin;
   PetscCall(SSStarWriteVertexField(scene, file, prefix, "displacement", u));
+  if (!scene->affine) {
+    Vec  nat, x;
+    char path[PETSC_MAX_PATH_LEN];
+
+    PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
+    PetscCall(SSStarVertexFieldInFileOrder(scene, NULL, &x));
+    PetscCall(VecAXPY(nat, 1.0, x));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/position", prefix));
+    PetscCall(SSStarWriteVec(file, path, 3, nat));
+    PetscCall(VecDestroy(&x));
+    PetscCall(VecDestroy(&nat));
+  }
   PetscCall(SSStarDynamicsGetVelocity(scene, &v));
   if (v) PetscCall(SSStarWriteVertexField(scene, file, prefix, "velocity", v));
   PetscFunctionReturn(0);

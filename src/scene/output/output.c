@@ -5,14 +5,16 @@
                                                -dynamics /fields/velocity too
      /viz/topology/cells                       the tetrahedra by their vertices' file numbers, in a canonical order
      /fields/strain, stress, von_mises         per tetrahedron in that order; /fields/stress_nodal per vertex (stress.c)
+     /fields/J, stress_pk1, material_model     a hyperelastic scene's: det F, P and the model per tetrahedron, and
+     /fields/position                          X + u per vertex (the current configuration)
      /groups/<G>/reaction                      the force of each held group (-dirichlet, -displacement_<G>) on the body
      /contact/...                              per contact node, in file order (contact.c)
      /contact_faces/...                        the contact faces' triangles and the point fields ParaView colours them by
      /scene/...                                what was simulated: mesh, material, loads, contact groups (metadata.c)
      attributes of /                           how: versions, command line, reason, iterations, ||z||, tolerance
 
-   and the XDMF file beside it with two grids, the mesh and the contact faces; both written to temporary names and
-   renamed when complete.
+   and the XDMF file beside it with the grids of the mesh (a hyperelastic scene's in its current configuration too) and
+   the contact faces; both written to temporary names and renamed when complete.
 */
 #include "outputimpl.h"
 #include <unistd.h>
@@ -31,9 +33,9 @@ static PetscErrorCode XDMFName(const char h5[], char xmf[], size_t size)
 }
 
 /*
-   An attribute of a grid: at its nodes or cells, a scalar (cols 0), a vector (3) or a symmetric tensor (6: our
+   An attribute of a grid: at its nodes or cells, a scalar (cols 0), a vector (3), a symmetric tensor (6: our
    columns xx, yy, zz, yz, xz, xy joined in XDMF's Tensor6 order xx, xy, xz, yy, yz, zz, so that VTK's reader, and
-   ParaView, make the full tensor of each point with its components where they belong)
+   ParaView, make the full tensor of each point with its components where they belong) or a tensor (9, row by row)
 */
 static PetscErrorCode XDMFAttribute(FILE *fp, const char base[], const char name[], const char path[], PetscInt rows, PetscInt cols, PetscBool isInt, PetscBool cell)
 {
@@ -52,34 +54,36 @@ static PetscErrorCode XDMFAttribute(FILE *fp, const char base[], const char name
   }
   if (cols) PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " %" PetscInt_FMT, rows, cols));
   else PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, rows));
-  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n    <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n   </Attribute>\n", name, cols ? "Vector" : "Scalar", center, dims, isInt ? "Int" : "Float", isInt ? 4 : 8, base, path));
+  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n    <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n   </Attribute>\n", name, cols == 9 ? "Tensor" : cols ? "Vector" : "Scalar", center, dims, isInt ? "Int" : "Float", isInt ? 4 : 8, base, path));
   PetscFunctionReturn(0);
 }
 
-/* The grid "mesh" at one state: the tetrahedra with the fields of <prefix>/fields: the displacement and the recovered
-   stress at the nodes, the strain, stress and von Mises stress of the cells */
-static PetscErrorCode XDMFMeshGrid(SSStarScene scene, FILE *fp, const char base[], const char prefix[], const char time[])
+/* A grid of the tetrahedra at one state, named name, its vertices at geometry (the reference /geometry/vertices, or a
+   hyperelastic scene's current configuration <prefix>/fields/position), with the fields of <prefix>/fields: the
+   displacement and the recovered stress at the nodes, the strain, stress and von Mises stress of the cells (and a
+   hyperelastic scene's J and first Piola-Kirchhoff stress) */
+static PetscErrorCode XDMFMeshGrid(SSStarScene scene, FILE *fp, const char base[], const char prefix[], const char time[], const char name[], const char geometry[])
 {
   const PetscInt N = scene->nodesGlobal, C = scene->cellsGlobal;
   char           path[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBegin;
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp,
-                         "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n%s"
+                         "  <Grid Name=\"%s\" GridType=\"Uniform\">\n%s"
                          "   <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n"
                          "    <DataItem Dimensions=\"%" PetscInt_FMT " 4\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n"
                          "   </Topology>\n"
                          "   <Geometry GeometryType=\"XYZ\">\n"
-                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n"
+                         "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n"
                          "   </Geometry>\n",
-                         time, C, C, base, N, base));
+                         name, time, C, C, base, N, base, geometry));
   {
-    const char    *names[] = {"displacement", "stress_nodal", "strain", "stress", "von_mises"};
-    const PetscInt cols[]  = {3, 6, 6, 6, 0};
+    const char    *names[] = {"displacement", "stress_nodal", "strain", "stress", "von_mises", "J", "stress_pk1", "material_model"};
+    const PetscInt cols[]  = {3, 6, 6, 6, 0, 0, 9, 0};
 
-    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(names); k++) {
+    for (size_t k = 0; k < (scene->affine ? 5 : PETSC_STATIC_ARRAY_LENGTH(names)); k++) {
       PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/%s", prefix, names[k]));
-      PetscCall(XDMFAttribute(fp, base, names[k], path, k < 2 ? N : C, cols[k], PETSC_FALSE, (PetscBool)(k >= 2)));
+      PetscCall(XDMFAttribute(fp, base, names[k], path, k < 2 ? N : C, cols[k], (PetscBool)(k == 7), (PetscBool)(k >= 2)));
     }
   }
   if (scene->dynamics) {
@@ -116,13 +120,15 @@ static PetscErrorCode XDMFContactGrid(FILE *fp, const char base[], const char pr
 }
 
 /*
-   Writes xmf (rank 0): the grid "mesh" (tetrahedra, displacement) and, with contact, the grid "contact" (the contact
-   faces' triangles with the state, pressure, tangential traction, slip, gap and displacement of their vertices), both
-   naming the HDF5 file h5 without its folder (they sit side by side). Along a load path (nsteps > 0 at the times
-   times) each is a temporal collection of one grid per step (/steps/<k>), which ParaView animates.
+   Writes xmf (rank 0): the grid "mesh" (tetrahedra, displacement), for a hyperelastic scene the grid "current" (the
+   same in the current configuration X + u) and, with contact, the grid "contact" (the contact faces' triangles with the
+   state, pressure, tangential traction, slip, gap and displacement of their vertices), all naming the HDF5 file h5
+   without its folder (they sit side by side). Along a load path (nsteps > 0 at the times times) each is a temporal
+   collection of one grid per step (/steps/<k>), which ParaView animates.
 */
 static PetscErrorCode WriteXDMF(SSStarScene scene, const char h5[], const char xmf[], PetscInt nfaceVertices, PetscInt ntriangles, PetscInt nsteps, const PetscReal times[])
 {
+  const char *grids[3] = {"mesh", "current", "contact"};
   PetscMPIInt rank;
   const char *base;
   FILE       *fp;
@@ -134,17 +140,19 @@ static PetscErrorCode WriteXDMF(SSStarScene scene, const char h5[], const char x
   base = base ? base + 1 : h5;
   PetscCall(PetscFOpen(PETSC_COMM_SELF, xmf, "w", &fp));
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"));
-  for (PetscInt grid = 0; grid < (scene->nContact ? 2 : 1); grid++) {
-    if (nsteps) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grid ? "contact" : "mesh"));
+  for (PetscInt grid = 0; grid < 3; grid++) {
+    if ((grid == 1 && scene->affine) || (grid == 2 && !scene->nContact)) continue;
+    if (nsteps) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grids[grid]));
     for (PetscInt k = 0; k < PetscMax(nsteps, 1); k++) {
-      char prefix[64] = "", time[96] = "";
+      char prefix[64] = "", time[96] = "", position[96];
 
       if (nsteps) {
         PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "/steps/%" PetscInt_FMT, k));
         PetscCall(PetscSNPrintf(time, sizeof(time), "   <Time Value=\"%.17g\"/>\n", (double)times[k]));
       }
-      if (grid) PetscCall(XDMFContactGrid(fp, base, prefix, time, nfaceVertices, ntriangles));
-      else PetscCall(XDMFMeshGrid(scene, fp, base, prefix, time));
+      PetscCall(PetscSNPrintf(position, sizeof(position), "%s/fields/position", prefix));
+      if (grid == 2) PetscCall(XDMFContactGrid(fp, base, prefix, time, nfaceVertices, ntriangles));
+      else PetscCall(XDMFMeshGrid(scene, fp, base, prefix, time, grids[grid], grid ? position : "/geometry/vertices"));
     }
     if (nsteps) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
   }

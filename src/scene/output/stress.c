@@ -1,13 +1,15 @@
 /*
-   Stresses and strains of the output (docs/derivation.md section 15): the P1 strain of every tetrahedron (constant in
-   it), Hooke's stress with the cell's material, the von Mises stress, in the order of /viz/topology/cells; and a
-   nodal recovery for smooth pictures, each vertex the volume-weighted mean of the stresses of its cells. Components
-   xx, yy, zz, yz, xz, xy (tensor components: the strain's yz is half the engineering shear strain).
+   Stresses and strains of the output (docs/derivation.md sections 15 and 18): the P1 strain of every tetrahedron
+   (constant in it), Hooke's stress with the cell's material, the von Mises stress, in the order of /viz/topology/cells;
+   for a cell of a hyperelastic model the Green-Lagrange strain and the Cauchy stress instead, and in a hyperelastic
+   scene every cell's J = det F and first Piola-Kirchhoff stress; and a nodal recovery for smooth pictures, each vertex
+   the (reference) volume-weighted mean of the stresses of its cells. Components xx, yy, zz, yz, xz, xy (tensor
+   components: the strain's yz is half the engineering shear strain); P row by row.
 */
 #include "outputimpl.h"
 #include <petscsf.h>
 
-#define NCELL 13 /* per cell: strain (6), stress (6), von Mises (1) */
+#define NCELL 24 /* per cell: strain (6), stress (6), von Mises (1), J (1), first Piola-Kirchhoff stress (9), model (1) */
 #define NNODE 7  /* per vertex: sum of volume times stress (6), sum of volumes */
 
 /*
@@ -37,18 +39,22 @@ PetscErrorCode SSStarStressFields(SSStarScene scene, Vec u, PetscReal **cellValu
   PetscCall(PetscCalloc1(NNODE * (pEnd - pStart) + 1, &acc));
   for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) {
     const PetscInt *v = &cells.vertices[4 * c];
-    PetscReal       x[12], ue[12], vol, *cv = &(*cellValues)[NCELL * c];
+    PetscReal       x[12], ue[12], F[9], vol, *cv = &(*cellValues)[NCELL * c];
 
-    for (PetscInt a = 0; a < 4; a++) {
-      PetscInt off;
-
-      PetscCall(PetscSectionGetOffset(sec, cells.vStart + v[a], &off));
-      for (PetscInt k = 0; k < 3; k++) ue[3 * a + k] = PetscRealPart(ua[off + k]);
-    }
+    PetscCall(SSStarCellsGetValues(&cells, sec, ua, c, ue));
     PetscCall(SSStarCellsGet(&cells, c, x));
-    vol = SSStarTetStrain(x, ue, cv);
-    SSStarHookeStress(cells.lame[c][0], cells.lame[c][1], cv, cv + 6);
+    vol = SSStarTetDeformationGradient(x, ue, F);
+    (void)SSStarMaterialStress(cells.model[c], cells.lame[c][0], cells.lame[c][1], F, cv + 14);
+    if (cells.model[c] == SSSTAR_MATERIAL_LINEAR) { /* small strain: eps, Hooke's sigma (= P) */
+      (void)SSStarTetStrain(x, ue, cv);
+      SSStarHookeStress(cells.lame[c][0], cells.lame[c][1], cv, cv + 6);
+    } else {
+      SSStarGreenLagrangeStrain(F, cv);
+      SSStarCauchyStress(F, cv + 14, cv + 6);
+    }
     cv[12] = SSStarVonMises(cv + 6);
+    cv[13] = SSStarDeterminant3(F);
+    cv[23] = (PetscReal)cells.model[c];
     for (PetscInt a = 0; a < 4; a++) {
       PetscReal *va = &acc[NNODE * (cells.vStart + v[a] - pStart)];
 
@@ -86,7 +92,8 @@ PetscErrorCode SSStarStressFields(SSStarScene scene, Vec u, PetscReal **cellValu
   PetscFunctionReturn(0);
 }
 
-/* <prefix>/fields/strain, stress (cells x 6), von_mises (cells) and stress_nodal (nodes x 6) at u */
+/* <prefix>/fields/strain, stress (cells x 6), von_mises (cells) and stress_nodal (nodes x 6) at u; a hyperelastic
+   scene's J (cells), stress_pk1 (cells x 9) and material_model (cells: the index of SSStarMaterialModels) too */
 PetscErrorCode SSStarWriteStresses(SSStarScene scene, hid_t file, const char prefix[], Vec u)
 {
   PetscReal   *cellValues, *rows, *column;
@@ -94,25 +101,26 @@ PetscErrorCode SSStarWriteStresses(SSStarScene scene, hid_t file, const char pre
   PetscInt     nrows;
   Vec          nat;
   char         path[PETSC_MAX_PATH_LEN];
-  const char  *names[3] = {"strain", "stress", "von_mises"};
+  const char    *names[6] = {"strain", "stress", "von_mises", "J", "stress_pk1", "material_model"};
+  const PetscInt cols[6] = {6, 6, 1, 1, 9, 1}, first[6] = {0, 6, 12, 13, 14, 23};
+  PetscInt      *codes;
 
   PetscFunctionBegin;
   PetscCall(SSStarStressFields(scene, u, &cellValues, &nodal));
   PetscCall(SSStarCellValuesInFileOrder(scene, NCELL, cellValues, &nrows, &rows));
-  PetscCall(PetscMalloc1(6 * nrows + 1, &column));
-  for (PetscInt f = 0; f < 3; f++) {
-    const PetscInt cols = f < 2 ? 6 : 1;
-
+  PetscCall(PetscMalloc2(9 * nrows + 1, &column, nrows + 1, &codes));
+  for (PetscInt f = 0; f < (scene->affine ? 3 : 6); f++) {
     for (PetscInt i = 0; i < nrows; i++)
-      for (PetscInt k = 0; k < cols; k++) column[cols * i + k] = rows[NCELL * i + 6 * f + k];
+      for (PetscInt k = 0; k < cols[f]; k++) column[cols[f] * i + k] = rows[NCELL * i + first[f] + k];
+    for (PetscInt i = 0; i < nrows; i++) codes[i] = (PetscInt)column[i];
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/%s", prefix, names[f]));
-    PetscCall(SSStarH5WriteRows(scene->comm, file, path, nrows, f < 2 ? 6 : 0, column, NULL));
+    PetscCall(SSStarH5WriteRows(scene->comm, file, path, nrows, cols[f] > 1 ? cols[f] : 0, f == 5 ? NULL : column, f == 5 ? codes : NULL));
   }
   PetscCall(SSStarVertexValuesInFileOrder(scene, 6, nodal, &nat));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/stress_nodal", prefix));
   PetscCall(SSStarWriteVec(file, path, 6, nat));
   PetscCall(VecDestroy(&nat));
-  PetscCall(PetscFree(column));
+  PetscCall(PetscFree2(column, codes));
   PetscCall(PetscFree(rows));
   PetscCall(PetscFree(nodal));
   PetscCall(PetscFree(cellValues));

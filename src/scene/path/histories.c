@@ -92,14 +92,16 @@ PetscErrorCode SSStarSceneSetHistory(SSStarScene scene, const char option[], con
   PetscFunctionBegin;
   PetscCheck(option && value, scene->comm, PETSC_ERR_ARG_NULL, "SSStarSceneSetHistory(): give the option and its value");
   for (PetscInt d = 0; d < scene->nDisplacements; d++) { /* a prescribed displacement: the same components free */
-    SSStarPrescribed *p = &scene->displacements[d], q = {"", NULL, 0};
+    SSStarPrescribed *p = &scene->displacements[d], q;
     char              name[SSSTAR_GROUP_NAME_LEN + 16];
     PetscBool         match;
 
-    PetscCall(PetscSNPrintf(name, sizeof(name), "-displacement_%s", p->name));
+    PetscCall(PetscMemzero(&q, sizeof(q)));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%s", p->rotation ? "rotation" : "displacement", p->name));
     PetscCall(PetscStrcmp(option, name, &match));
     if (!match) continue;
-    PetscCall(SSStarPrescribedRead(scene, option, p->name, value, &q));
+    if (p->rotation) PetscCall(SSStarHistoryCreateFromString(scene->comm, option, value, 3, &q.history)); /* the same center */
+    else PetscCall(SSStarPrescribedRead(scene, option, p->name, value, &q));
     if (q.free != p->free) {
       PetscCall(SSStarHistoryDestroy(&q.history));
       SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "Option %s %s: the free components of a prescribed displacement are fixed when the scene is made (K holds them)", option, value);

@@ -208,6 +208,21 @@ static PetscErrorCode SetOffsets(SSStarScene scene, SNES snes)
   PetscFunctionReturn(0);
 }
 
+/*
+   The contact update of a hyperelastic scene's step (SNESSSStarSetContactUpdate()): with large sliding the contact is
+   measured at every iterate of the solve, not only between solves (docs/derivation.md (17.5), section 18), and the
+   step's offsets follow
+*/
+static PetscErrorCode MeasureAtIterate(SNES snes, Vec u, void *ctx)
+{
+  SSStarScene scene = (SSStarScene)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarSceneMeasureContactAt(scene, snes, u));
+  PetscCall(SetOffsets(scene, snes));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    SSStarSceneCheckSteps - checks the steps of a load path before any is solved: the motions of its obstacles at every
    step (SSStarSceneSetStep() checks its own step again)
@@ -276,8 +291,9 @@ PetscErrorCode SSStarSceneSetStep(SSStarScene scene, SNES snes, PetscReal t)
   scene->stepTime = t;
   for (PetscInt g = 0; g < scene->nContact; g++) PetscCall(SSStarMotionPlacementAt(&scene->contact[g].motion, t, &scene->contact[g].motion.now));
   PetscCall(SSStarSceneCheckSmallSliding(scene, scene->accepted + 1, t));
-  if (scene->sliding == SSSTAR_SLIDING_LARGE) PetscCall(SSStarSceneMeasureContact(scene, snes));
+  if (scene->sliding == SSSTAR_SLIDING_LARGE && scene->nContact) PetscCall(SSStarSceneMeasureContact(scene, snes));
   PetscCall(SetOffsets(scene, snes));
+  if (!scene->affine && scene->sliding == SSSTAR_SLIDING_LARGE && scene->nContact) PetscCall(SNESSSStarSetContactUpdate(snes, MeasureAtIterate, scene));
   PetscFunctionReturn(0);
 }
 

@@ -69,9 +69,10 @@ PetscErrorCode SSStarSceneGetPathTimes(SSStarScene scene, const char steps[], Pe
 }
 
 /*@C
-   SSStarSceneSetSolver - hands the scene's problem to the SNES that solves it: F(u) = K u - load with Jacobian K
-   (SNESSSStarSetLinearProblem()) and, with contact groups, the contact (SSStarSceneSetContact()); with -dynamics the
-   time step's F(u) = A u - b instead (docs/derivation.md (16.6)), the load then the physical load of the step
+   SSStarSceneSetSolver - hands the scene's problem to the SNES that solves it: F(u) = K u - load with Jacobian K, or a
+   hyperelastic scene's residual and tangent (SSStarSceneSetProblem()), and, with contact groups, the contact
+   (SSStarSceneSetContact()); with -dynamics the time step's F(u) = A u - b instead (docs/derivation.md (16.6)), the
+   load then the physical load of the step
 
    Collective
 
@@ -90,7 +91,7 @@ PetscErrorCode SSStarSceneSetSolver(SSStarScene scene, SNES snes, Mat K, Vec loa
 {
   PetscFunctionBegin;
   if (scene->dynamics) PetscCall(SSStarDynamicsSetUp(scene, snes, K, load)); /* dynamics/dynamics.c */
-  else PetscCall(SNESSSStarSetLinearProblem(snes, K, load));
+  else PetscCall(SSStarSceneSetProblem(scene, snes, K, load));
   if (scene->nContact) PetscCall(SSStarSceneSetContact(scene, snes));
   PetscCall(PetscObjectReference((PetscObject)load));
   PetscCall(VecDestroy(&scene->stepLoad));
@@ -154,7 +155,8 @@ PetscErrorCode SSStarSceneSolveStep(SSStarScene scene, SNES snes, Vec u, PetscRe
   PetscCall(SSStarSceneSetStep(scene, snes, t));
   PetscCall(VecCopy(scene->stepStart, u));
   while (again) {
-    PetscInt its;
+    PetscInt  its;
+    PetscBool linear;
 
     if (scene->dynamics) { /* the time step's A and b (after a new linearization: its projection again) */
       PetscCall(SSStarDynamicsBeginStep(scene, t, u, (PetscBool)!step->linearizations, &step->reason));
@@ -166,7 +168,9 @@ PetscErrorCode SSStarSceneSolveStep(SSStarScene scene, SNES snes, Vec u, PetscRe
     }
     PetscCall(SNESSolve(snes, NULL, u));
     PetscCall(SNESGetConvergedReason(snes, &step->reason));
-    PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESKSPONLY, &linear));
+    its = 0; /* none for one linear solve (ksponly) */
+    if (!linear) PetscCall(SNESGetIterationNumber(snes, &its));
     step->linearizations++;
     step->iterations += its;
     if (step->reason <= 0) {

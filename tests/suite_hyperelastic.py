@@ -1,0 +1,273 @@
+"""Hyperelastic bodies (docs/guide/large-deformation.md, docs/derivation.md section 18): the material models' kernels
+and their numerical check, homogeneous compressions against the closed forms of uniaxial stress, a rigid rotation of
+90 degrees (no stress; the linear model's spurious one beside it), Newton's convergence, the small-strain limit, the
+file's fields, bad input refused by name."""
+import os
+import re
+import subprocess
+
+import h5py
+import numpy as np
+
+from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+
+CONTACT = os.path.join(ROOT, "examples", "contact")
+E, NU = 1000.0, 0.3
+LAM, MU = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+CUBE = ["-geo", os.path.join(ROOT, "meshes", "cube.geo"), "-E", "1000", "-nu", "0.3"]
+# the unit cube held on three planes of symmetry (x = 0, y = 0, z = 0: each in its normal only), its top moved down:
+# a homogeneous uniaxial stress
+SYMMETRY = ["-displacement_bottom", "free,free,0", "-displacement_left", "0,free,free", "-displacement_front", "free,0,free"]
+STRAINS = (0.1, 0.3, 0.5)
+TIGHT = ["-snes_rtol", "1e-12", "-snes_atol", "1e-9"]
+
+
+def uniaxial(model, l3):
+    """The closed form of a uniaxial stress (sigma_xx = sigma_yy = 0) at the stretch l3 along z: the lateral stretch s
+    and the nominal stress P_33 (the force per reference area) of each model (docs/derivation.md (18.6))"""
+    if model == "linear":
+        return 1 - NU * (l3 - 1), E * (l3 - 1)
+    if model == "saint_venant_kirchhoff":
+        E33 = 0.5 * (l3 * l3 - 1)
+        return np.sqrt(1 - 2 * NU * E33), l3 * E * E33
+    lo, hi = 0.5, 2.0  # neo-Hookean: mu (s^2 - 1) + lambda ln(s^2 l3) = 0
+    for _ in range(200):
+        s = 0.5 * (lo + hi)
+        if MU * (s * s - 1) + LAM * np.log(s * s * l3) > 0:
+            hi = s
+        else:
+            lo = s
+    s = 0.5 * (lo + hi)
+    return s, MU * (l3 - 1 / l3) + LAM * np.log(s * s * l3) / l3
+
+
+def contact(args, h5, ranks=1, expect_rc=0):
+    out = run(mpiexec(ranks, CONTACT, *args, "-o", os.path.join(OUT, h5)), expect_rc=expect_rc)
+    return out, h5py.File(os.path.join(OUT, h5), "r")
+
+
+def law(h5):
+    out = run(CHECK + ["law", os.path.join(OUT, h5), "--steps"])
+    expect("VIOLATED" not in out and "WRONG" not in out, "check_solution.py law %s" % h5, out)
+
+
+def steps(f):
+    return sorted((k for k in f.get("steps", {}) if k.isdigit()), key=int)
+
+
+@test("docs/derivation.md section 18 holds (tests/hyperelastic_check.py, numpy, independent of the C code): each model's P = dW/dF and A = dP/dF (central differences), Hooke's at F = I; a P1 cell's force balances, has no moment about any point of the current configuration and is the gradient of V W; its tangent is the force's derivative and symmetric; the closed forms of uniaxial stress at stretches 0.9, 0.7, 0.5; no stress from a rotation, the linear model's at 90 degrees; the small-strain limit falls as the strain; neo-Hookean's Cauchy stress; the predictor of prescribed displacements")
+def hyperelastic_derivation():
+    out = run([PYTHON, os.path.join(ROOT, "tests", "hyperelastic_check.py")])
+    expect("all checks passed" in out and "FAIL" not in out, "tests/hyperelastic_check.py", out)
+
+
+@test("the material models' kernels give hand-computed values and their own derivatives (tests/test_hyperelastic.c): P = dW/dF and A = dP/dF by central differences to 1e-7 for the linear, Saint Venant-Kirchhoff and neo-Hookean models, A's major symmetry, Hooke's at F = I; a rotation of 90 degrees stresses neither hyperelastic model and gives the linear one the spurious stress of eps = diag(-1, -1, 0); the uniaxial stretch by hand; the Cauchy stress objective; det F <= 0 refused by neo-Hookean; a cell's force the gradient of V W and its tangent the force's derivative")
+def hyperelastic_kernels():
+    out = run([os.path.join(ROOT, "tests", "test_hyperelastic")])
+    expect("passed: 0 failures" in out, "tests/test_hyperelastic", out)
+
+
+@test("a homogeneous compression of the unit cube (meshes/cube.geo, E = 1000, nu = 0.3) held on three planes of symmetry, its top moved down by 10 %, 30 %, 50 % with x and y free (a load path, no contact: Newton's method): for saint_venant_kirchhoff, neo_hookean and linear the top's reaction /steps/groups/top/reaction is the closed form P_33 A of uniaxial stress to 1e-8 relative at every step, u_x = (s - 1) x with the lateral stretch s of the closed form, every cell's J = s^2 lambda_3, Cauchy stress (0, 0, P_33 lambda_3 / J) and (hyperelastic) Green-Lagrange strain to 1e-8; check_solution.py law --steps accepts the file; 1 rank, and 2 for neo_hookean")
+def hyperelastic_compression():
+    history = "0:free,free,0;" + ";".join("%d:free,free,%g" % (k + 1, -d) for k, d in enumerate(STRAINS))
+    for model in ("saint_venant_kirchhoff", "neo_hookean", "linear"):
+        for ranks in (1, 2) if model == "neo_hookean" else (1,):
+            h5 = "hyperelastic_compression_%s_%d.h5" % (model, ranks)
+            out, f = contact(CUBE + ["-level", "1", "-material_model", model, "-displacement_top", history] + SYMMETRY + TIGHT, h5, ranks)
+            what = "%s, %d ranks" % (model, ranks)
+            reactions = f["steps/groups/top/reaction"][:]
+            for k, delta in enumerate((0.0,) + STRAINS):
+                l3 = 1 - delta
+                s, P33 = uniaxial(model, l3)
+                expect(np.abs(reactions[k] - [0, 0, P33]).max() <= 1e-8 * max(abs(P33), 1.0), "%s, %g %%: the top's reaction %s, not the closed form (0, 0, %.10g)" % (what, 100 * delta, reactions[k], P33), out)
+                prefix = "steps/%d/" % k
+                x, u = f["geometry/vertices"][:], f[prefix + "fields/displacement"][:]
+                expect(np.abs(u[:, 0] - (s - 1) * x[:, 0]).max() <= 1e-8 and np.abs(u[:, 2] + delta * x[:, 2]).max() <= 1e-8, "%s, %g %%: the displacement is not the homogeneous (s - 1) x, -delta z" % (what, 100 * delta))
+                stress = f[prefix + "fields/stress"][:]
+                if model == "linear":
+                    sigma = [0, 0, P33]
+                    expect("steps/0/fields/J" not in f, "%s: a linear scene's file has J" % what)
+                else:
+                    J = s * s * l3
+                    sigma = [0, 0, P33 * l3 / J]
+                    strain = 0.5 * np.array([s * s - 1, s * s - 1, l3 * l3 - 1, 0, 0, 0])
+                    expect(np.abs(f[prefix + "fields/J"][:] - J).max() <= 1e-8, "%s, %g %%: J is not s^2 lambda_3 = %g" % (what, 100 * delta, J))
+                    expect(np.abs(f[prefix + "fields/strain"][:] - strain).max() <= 1e-8, "%s, %g %%: the Green-Lagrange strain is not the closed form's" % (what, 100 * delta))
+                expect(np.abs(stress - np.array(sigma + [0, 0, 0])).max() <= 1e-8 * max(abs(P33), 1.0), "%s, %g %%: the Cauchy stress is off the closed form (0, 0, %g) by %g" % (what, 100 * delta, sigma[2], np.abs(stress - np.array(sigma + [0, 0, 0])).max()))
+            law(h5)
+
+
+@test("the same compression with the cube's bottom in contact with the rigid plane z = 0 (-contact bottom, frictionless; the planes x = 0, y = 0 of symmetry; the top's z prescribed to 10 %, 30 %, 50 %; ssstar on the nonlinear residual, the whole body; Saint Venant-Kirchhoff to 50 % past its limit point with -pc_type lu, to 30 % with the defaults): for saint_venant_kirchhoff and neo_hookean the top's reaction and the contact's normal force are both the closed form P_33 A of uniaxial stress to 1e-8 relative at every step, every contact node touches with no gap, every cell's J = s^2 lambda_3; check_solution.py law --steps accepts the file; 1 rank, and 2 for neo_hookean")
+def hyperelastic_compression_contact():
+    # Saint Venant-Kirchhoff's tangent is indefinite past its limit point lambda_3 = 1/sqrt(3) (0.577): the whole body's
+    # default Krylov solver (conjugate gradients) stops there; a direct solver (-pc_type lu, MUMPS) takes it to 50 %
+    lu = ["-pc_type", "lu", "-pc_factor_mat_solver_type", "mumps"]
+    for model, strains, extra in (("neo_hookean", STRAINS, []), ("saint_venant_kirchhoff", STRAINS[:2], []), ("saint_venant_kirchhoff", STRAINS, lu)):
+        history = "0:free,free,0;" + ";".join("%d:free,free,%g" % (k + 1, -d) for k, d in enumerate(strains))
+        for ranks in (1, 2) if model == "neo_hookean" else (1,):
+            h5 = "hyperelastic_contact_%s_%d%s.h5" % (model, ranks, "_lu" if extra else "")
+            out, f = contact(CUBE + ["-level", "1", "-material_model", model, "-displacement_top", history, "-contact", "bottom", "-friction_law_bottom", "none"] + SYMMETRY[2:] + TIGHT + extra, h5, ranks)
+            what = "%s, %d ranks%s" % (model, ranks, " " + " ".join(extra) if extra else "")
+            for k, delta in enumerate(strains, start=1):
+                l3 = 1 - delta
+                s, P33 = uniaxial(model, l3)
+                top = f["steps/groups/top/reaction"][k]
+                normal = f["steps/%d/contact/reaction" % k][:, 2].sum()
+                expect(abs(top[2] - P33) <= 1e-8 * abs(P33) and abs(normal + P33) <= 1e-8 * abs(P33), "%s, %g %%: the top's reaction %g and the contact's normal force %g, not the closed form %.10g" % (what, 100 * delta, top[2], normal, -P33), out)
+                expect(np.abs(f["steps/%d/contact/final_gap" % k][:]).max() <= 1e-9, "%s, %g %%: a contact node off the plane" % (what, 100 * delta), out)
+                expect(np.abs(f["steps/%d/fields/J" % k][:] - s * s * l3).max() <= 1e-8, "%s, %g %%: J is not s^2 lambda_3" % (what, 100 * delta))
+            law(h5)
+
+
+def pressed_ball(ranks):
+    args = ["-geo", os.path.join(ROOT, "meshes", "indent.geo"), "-level", "1", "-E", "1000", "-nu", "0.3", "-material_model", "neo_hookean", "-contact", "top", "-obstacle_top", "sphere:0,0,10,10", "-friction_law_top", "none", "-displacement_bottom", "0:0,0,0;1:0,0,0.5;2:0,0,1"]
+    h5 = "hyperelastic_ball_%d.h5" % ranks
+    out, f = contact(args, h5, ranks)
+    what = "%d ranks" % ranks
+    expect(out.count("set-up:") == len(re.findall(r"^step \d+/\d+ ", out, re.M)), "%s: a step solved more than once (the contact not measured at the iterates)" % what, out)
+    x, c = f["geometry/vertices"][:], f["contact/coordinates"][:]
+    nodes = np.argmin(((c[:, None, :] - x[None, :, :]) ** 2).sum(axis=-1), axis=1)
+    for k in (1, 2):
+        gap = np.linalg.norm(f["steps/%d/fields/position" % k][:][nodes] - [0, 0, 10], axis=1) - 10
+        touching = f["steps/%d/contact/state" % k][:] > 0
+        expect(touching.sum() > 100 and np.abs(gap[touching]).max() <= 1e-8 and gap.min() >= -1e-8, "%s, step %d: %d touching nodes, off the sphere by up to %g, the deepest %g" % (what, k, touching.sum(), np.abs(gap[touching]).max(), gap.min()), out)
+        forces = f["steps/%d/contact/reaction" % k][:].sum(axis=0)
+        expect(np.abs(f["steps/groups/bottom/reaction"][k] + forces).max() <= 1e-8 * np.abs(forces).max(), "%s, step %d: the bottom's reaction %s does not balance the contact forces %s" % (what, k, f["steps/groups/bottom/reaction"][k], forces), out)
+    law(h5)
+
+
+BALL = "a neo-Hookean block (meshes/indent.geo level 1, E = 1000) pushed by its bottom 0.5 and 1.0 into the rigid ball of radius 10 (frictionless, a load path): the contact is measured at every iterate (large sliding within the Newton loop, SNESSSStarSetContactUpdate), so every touching node's current position lies on the sphere to 1e-8 (the loop between solves left 1e-4) with no node inside it, every step (or halved step) is solved once, the bottom's reaction balances the contact forces to 1e-8 of them, and check_solution.py law --steps accepts the file"
+
+
+@test(BALL + "; 1 rank")
+def hyperelastic_ball():
+    pressed_ball(1)
+
+
+@test(BALL + "; 2 ranks (slow: about a minute on the shared machine)", full=True)
+def hyperelastic_ball_parallel():
+    pressed_ball(2)
+
+
+@test("Coulomb friction on a load path with a hyperelastic body: the neo-Hookean unit cube on the rigid plane with phi = 0.3 (-friction_bottom), its top pressed down 20 % then moved sideways by 0.2 and 0.5 (x), the slip incremental: check_solution.py law --steps accepts every step, the top's reaction balances the contact forces to 1e-8 of them at every step, the first sideways step leaves nodes sticking, at the last every contact node slides and the tangential resultant is within 1 % below phi times the normal force (the nodes' slips nearly parallel); 1 and 2 ranks")
+def hyperelastic_friction():
+    args = CUBE + ["-level", "1", "-material_model", "neo_hookean", "-contact", "bottom", "-friction_bottom", "0.3", "-displacement_top", "0:0,0,0;1:0,0,-0.2;2:0.2,0,-0.2;3:0.5,0,-0.2"]
+    for ranks in (1, 2):
+        h5 = "hyperelastic_friction_%d.h5" % ranks
+        out, f = contact(args, h5, ranks)
+        what = "%d ranks" % ranks
+        for k in (1, 2, 3):
+            forces = f["steps/%d/contact/reaction" % k][:].sum(axis=0)
+            expect(np.abs(f["steps/groups/top/reaction"][k] + forces).max() <= 1e-8 * np.abs(forces).max(), "%s, step %d: the top's reaction %s does not balance the contact forces %s" % (what, k, f["steps/groups/top/reaction"][k], forces), out)
+        states = [f["steps/%d/contact/state" % k][:] for k in (2, 3)]
+        expect((states[0] == 1).sum() < len(states[0]) and (states[1] == 1).all(), "%s: the sliding nodes %d, %d of %d, not some then all" % (what, (states[0] == 1).sum(), (states[1] == 1).sum(), len(states[1])), out)
+        forces = f["steps/3/contact/reaction"][:].sum(axis=0)
+        ratio = np.hypot(forces[0], forces[1]) / (0.3 * abs(forces[2]))
+        expect(0.99 <= ratio <= 1 + 1e-9, "%s: the tangential resultant is %g of phi N" % (what, ratio), out)
+        law(h5)
+
+
+@test("a rigid rotation of 90 degrees about z (-rotation_bottom, through the cube's axis x = y = 0.5, in three steps of 30 degrees) prescribed on the bottom of the unit cube, nothing else holding or loading it: a hyperelastic body (saint_venant_kirchhoff, neo_hookean) turns rigidly, every cell's Cauchy stress zero to 1e-9 E and the displacement the rigid rotation's to 1e-9, J = 1; the linear model's answer to the same prescription is strained (its von Mises stress reaches more than 0.1 E): the small-strain model's spurious stress; 1 and 2 ranks")
+def hyperelastic_rotation():
+    args = CUBE + ["-level", "1", "-rotation_bottom", "0:0,0,0;1:0,0,30;2:0,0,60;3:0,0,90", "-rotation_center_bottom", "0.5,0.5,0"] + TIGHT
+    for model in ("saint_venant_kirchhoff", "neo_hookean"):
+        for ranks in (1, 2):
+            h5 = "hyperelastic_rotation_%s_%d.h5" % (model, ranks)
+            out, f = contact(args + ["-material_model", model], h5, ranks)
+            x, u = f["geometry/vertices"][:], f["fields/displacement"][:]
+            rigid = np.column_stack([1 - x[:, 1], x[:, 0], x[:, 2]]) - x  # 90 degrees about (0.5, 0.5, z)
+            what = "%s, %d ranks" % (model, ranks)
+            expect(np.abs(u - rigid).max() <= 1e-9, "%s: the displacement is off the rigid rotation by %g" % (what, np.abs(u - rigid).max()), out)
+            expect(np.abs(f["fields/stress"][:]).max() <= 1e-9 * E and np.abs(f["fields/J"][:] - 1).max() <= 1e-9, "%s: the rotated body is stressed (%g) or its volume changed" % (what, np.abs(f["fields/stress"][:]).max()), out)
+            law(h5)
+    out, f = contact(args, "hyperelastic_rotation_linear.h5")
+    vm = f["fields/von_mises"][:].max()
+    expect(vm > 0.1 * E, "the linear model's answer to a rotation of 90 degrees is not strained (max von Mises %g)" % vm, out)
+
+
+def monitor_norms(out):
+    """the -snes_monitor norms of each solve: a list per solve"""
+    solves, current = [], []
+    for line in out.splitlines():
+        m = re.match(r"\s*(\d+) SNES Function norm ([0-9.eE+-]+)", line)
+        if m:
+            if int(m.group(1)) == 0 and current:
+                solves.append(current)
+                current = []
+            current.append(float(m.group(2)))
+    return solves + [current] if current else solves
+
+
+@test("Newton's method on a hyperelastic body converges quadratically: a cantilever (meshes/cantilever.geo level 1, 10 x 1 x 1, E = 1000, clamped root) bent by a tip traction of 0.1 (a tip deflection of 4 % of its length: its rotation makes the problem nonlinear; the homogeneous compressions converge in one Newton step after the predictor) converges in at most 6 iterations for saint_venant_kirchhoff and neo_hookean, and the observed order log(r_k+1/r_k)/log(r_k/r_k-1) of its last three residuals above 1e-9 r_0 is at least 1.8")
+def hyperelastic_newton_order():
+    args = ["-geo", os.path.join(ROOT, "meshes", "cantilever.geo"), "-level", "1", "-E", "1000", "-nu", "0.3", "-dirichlet", "root", "-traction_tip", "0,0,-0.1", "-snes_monitor", "-snes_rtol", "1e-14", "-snes_atol", "1e-13"]
+    for model in ("saint_venant_kirchhoff", "neo_hookean"):
+        out, f = contact(args + ["-material_model", model], "hyperelastic_newton_%s.h5" % model)
+        r = monitor_norms(out)[-1]
+        expect(len(r) - 1 <= 6, "%s: %d iterations" % (model, len(r) - 1), out)
+        above = [x for x in r if x > 1e-9 * r[0]]  # above round-off
+        expect(len(above) >= 3, "%s: too few iterations to measure an order: %s" % (model, r), out)
+        order = np.log(above[-1] / above[-2]) / np.log(above[-2] / above[-3])
+        expect(order >= 1.8, "%s: observed order %.2f of %s" % (model, order, r), out)
+
+
+@test("the small-strain limit: a cantilever (meshes/cantilever.geo level 1, clamped root) under a tip traction of 1e-4 (strains about 1e-4): the hyperelastic models' displacements equal the linear model's to 1e-3 relative (the strain's order) but not to 1e-7 (they are not the linear model); the root's reactions balance the load")
+def hyperelastic_small_strain():
+    args = ["-geo", os.path.join(ROOT, "meshes", "cantilever.geo"), "-level", "1", "-E", "1000", "-nu", "0.3", "-dirichlet", "root", "-traction_tip", "0,0,-1e-4"] + TIGHT
+    _, lin = contact(args, "hyperelastic_small_linear.h5")
+    ul = lin["fields/displacement"][:]
+    for model in ("saint_venant_kirchhoff", "neo_hookean"):
+        out, f = contact(args + ["-material_model", model], "hyperelastic_small_%s.h5" % model)
+        d = np.abs(f["fields/displacement"][:] - ul).max() / np.abs(ul).max()
+        expect(1e-7 < d < 1e-3, "%s: its displacement differs from the linear model's by %g relative" % (model, d), out)
+        expect(abs(f["groups/root/reaction"][2] - 1e-4) <= 1e-10, "%s: the root's reaction %s does not balance the load" % (model, f["groups/root/reaction"][:]))
+
+
+@test("bad input is refused by name, before any work: an unknown -material_model or -material_model_<G> value, a -material_model_<G> of a surface group or a group the mesh lacks, a -rotation_center_<G> without -rotation_<G>, a rotation and a displacement on the same nodes, a hyperelastic body held by contact alone (its rotations are not in its loaded tangent's null space); exit with an error, no file")
+def hyperelastic_refused():
+    cases = [
+        (["-material_model", "rubber"], "rubber"),
+        (["-material_model_cube", "rubber"], "-material_model_cube rubber: unknown material model"),
+        (["-material_model_top", "neo_hookean"], "not a volume group"),
+        (["-material_model_block", "neo_hookean"], "no physical group named \"block\""),
+        (["-rotation_center_top", "0,0,0"], "-rotation_center_top needs -rotation_top"),
+        (["-rotation_top", "0,0,10", "-displacement_top", "0,0,-0.1"], "prescribed twice"),
+    ]
+    floating = ["-contact", "bottom", "-friction_law_bottom", "none", "-traction_top", "0,0,-1", "-material_model", "neo_hookean"]
+    for extra, message in cases:
+        h5 = os.path.join(OUT, "hyperelastic_refused.h5")
+        if os.path.exists(h5):
+            os.remove(h5)
+        out = run([CONTACT] + CUBE + ["-level", "1", "-dirichlet", "bottom"] + extra + ["-o", h5], expect_rc=1)
+        expect(message in out, "%s: no error naming it (%s)" % (" ".join(extra), message), out)
+        expect(not os.path.exists(h5), "%s: a file was written" % " ".join(extra))
+    out = run([CONTACT] + CUBE + ["-level", "1"] + floating + ["-o", h5], expect_rc=1)
+    expect("A hyperelastic body (-material_model) held by contact alone" in out and "-spring_<G>" in out, "a floating hyperelastic body: no error saying how to hold it", out)
+    expect(not os.path.exists(h5), "a floating hyperelastic body: a file was written")
+
+
+@test("the Python module solves a hyperelastic scene as examples/contact does: ssstar.Scene(material_model=\"neo_hookean\") of the cube compressed on the frictionless plane by 10 % and 30 % (ssstar, nonlinear residual) and of the cube held on its planes of symmetry (Newton's method, no contact): the top's reactions are the closed form P_33 A to 1e-8, the displacements of every step agree with examples/contact's to 2e-6 (and the contact's: check_solution.py compare) and pass check_solution.py law --steps")
+def hyperelastic_python():
+    history = "0:free,free,0;1:free,free,-0.1;2:free,free,-0.3"
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+    cases = {"contact": ["-contact", "bottom", "-friction_law_bottom", "none"] + SYMMETRY[2:], "symmetry": SYMMETRY}
+    for name, extra in cases.items():
+        options = CUBE + ["-level", "1", "-material_model", "neo_hookean", "-displacement_top", history] + extra
+        keywords = ", ".join("%s=%r" % (options[k][1:], options[k + 1]) for k in range(0, len(options), 2))
+        h5 = os.path.join(OUT, "hyperelastic_python_%s.h5" % name)
+        script = "import ssstar\nscene = ssstar.Scene(%s, o=%r)\nscene.solve()\nscene.close()\n" % (keywords, h5)
+        p = subprocess.run([PYTHON, "-c", script], cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300)
+        expect(p.returncode == 0, "%s: the Python scene failed" % name, p.stdout)
+        f = h5py.File(h5, "r")
+        for k, delta in enumerate((0.1, 0.3), start=1):
+            P33 = uniaxial("neo_hookean", 1 - delta)[1]
+            r = f["steps/groups/top/reaction"][k][2]
+            expect(abs(r - P33) <= 1e-8 * abs(P33), "%s, %g %%: the top's reaction %g, not %.10g" % (name, 100 * delta, r, P33), p.stdout)
+        law(os.path.basename(h5))
+        c = "hyperelastic_python_%s_c.h5" % name
+        _, g = contact(options, c)
+        for k in steps(g):
+            a, b = g["steps/%s/fields/displacement" % k][:], f["steps/%s/fields/displacement" % k][:]
+            expect(np.abs(a - b).max() <= AGREE * max(np.abs(a).max(), 1e-300), "%s, step %s: the Python scene's displacement is not examples/contact's" % (name, k))
+        if "contact" in g:
+            run(CHECK + ["compare", os.path.join(OUT, c), h5, "--steps", "--tol", str(AGREE)])

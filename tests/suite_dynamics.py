@@ -334,7 +334,7 @@ with ssstar.Scene(**opts) as scene:
     expect("DIFFERENT" not in out.split("full field")[1].split("\n")[0], "Python's rod differs from examples/contact's", out)
 
 
-@test("refusals of -dynamics and its options, each one line naming the option, before any work: -initial_velocity, -damping, -dynamics_scheme, -dynamics_mass, -initial_velocity_<G> without -dynamics; -dynamics without -steps; a time before t = 0; -dynamics with -load_steps; a negative damping; an unknown scheme; cells without density (-dynamics without -density); -density alone without -gravity or -dynamics; -material_<G> with a density <= 0; -dynamics with a prescribed displacement -displacement_<G> (not supported)")
+@test("refusals of -dynamics and its options, each one line naming the option, before any work: -initial_velocity, -damping, -dynamics_scheme, -dynamics_mass, -initial_velocity_<G> without -dynamics; -dynamics without -steps; a time before t = 0; -dynamics with -load_steps; a negative damping; an unknown scheme; cells without density (-dynamics without -density); -density alone without -gravity or -dynamics; -material_<G> with a density <= 0; -dynamics with a prescribed displacement -displacement_<G> or a hyperelastic body -material_model (not supported)")
 def dynamics_refusals():
     base = ROD[:ROD.index("-dynamics")] + ["-contact", "tip", "-friction_law_tip", "none"]
     cases = [
@@ -349,6 +349,7 @@ def dynamics_refusals():
         (["-dynamics", "-steps", "3", "-end_time", "1", "-damping", "-1,0"], "-damping"),
         (["-dynamics", "-steps", "3", "-end_time", "1", "-dynamics_scheme", "leapfrog"], "-dynamics_scheme"),
         (["-dynamics", "-steps", "3", "-end_time", "1", "-displacement_top", "0,0,-0.01"], "-dynamics and -displacement_top"),
+        (["-dynamics", "-steps", "3", "-end_time", "1", "-material_model", "neo_hookean"], "-dynamics and -material_model"),
     ]
     for extra, words in cases:
         out = run([CONTACT] + base + extra, expect_rc=1)

@@ -60,7 +60,7 @@ def converged(tag, level, options, max_iters=20, ranks=1):
     return s, out, error
 
 
-@test("friction far beyond 'sufficiently small' (phi = 0.6, 2, 5) on the default scene and under a strong tangential load (level 4): converged, Coulomb law, 1e-8 from a tight reference")
+@test("friction far beyond 'sufficiently small' (phi = 0.6, 2, 5) on the default scene and under a strong tangential load (level 4): converged, Coulomb law, 1e-8 from a tight reference", full=True)
 def hard_friction():
     for name, scene in (("default", []), ("tangential", TANGENTIAL)):
         for phi in (0.6, 2, 5):

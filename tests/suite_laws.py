@@ -32,7 +32,7 @@ def forces(h5):
     return N, r.sum(axis=0) - N * n[0], c["slip"][:], c["state"][:]
 
 
-@test("scenes/orthotropic.opts (a block pressed by 10 and pushed, phi_1 = 0.3 along the friction direction x, phi_2 = 0.6 across, nu = 0): pushed along x by 4 every touching node slides along x and the tangential force is phi_1 times the normal force (1e-8); pushed across by 4 it holds (phi_1 N < F_t < phi_2 N, no slip above 1e-5); pushed across by 7 it slides with phi_2 (1e-8); no force across the push (1e-5 of N); the orthotropic law at every node (check_solution.py); direct and none, 1 and 2 ranks")
+@test("scenes/orthotropic.opts (a block pressed by 10 and pushed, phi_1 = 0.3 along the friction direction x, phi_2 = 0.6 across, nu = 0): pushed along x by 4 every touching node slides along x and the tangential force is phi_1 times the normal force (1e-8); pushed across by 4 it holds (phi_1 N < F_t < phi_2 N, no slip above 1e-5); pushed across by 7 it slides with phi_2 (1e-8); no force across the push (1e-5 of N); the orthotropic law at every node (check_solution.py); direct and none, 1 and 2 ranks", full=True)
 def laws_orthotropic_scene():
     for push, axis, kind, phi in PUSHES:
         for red in ("direct", "none"):

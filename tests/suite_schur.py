@@ -30,7 +30,7 @@ def schur_paths_agree_lattice():
             expect(float(value) <= 1e-12, "%d ranks: %s leaves an interior residual %s" % (ranks, path, value), out)
 
 
-@test("the prism (level 4) solved through the direct reduction on 1, 2 and 3 ranks has the reference iterations and the same solution (contact face and whole mesh) as the mumps and explicit paths to 2e-6 (harness.AGREE)")
+@test("the prism (level 4) solved through the direct reduction on 1, 2 and 3 ranks has the reference iterations and the same solution (contact face and whole mesh) as the mumps and explicit paths to 2e-6 (harness.AGREE)", full=True)
 def schur_paths_agree_prism():
     cases = [("direct", 1), ("direct", 2), ("direct", 3), ("mumps", 1), ("explicit", 2)]
     for path, ranks in cases:

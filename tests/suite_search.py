@@ -177,7 +177,7 @@ def search_pairs_node_to_surface():
 
 
 @test("contact pairs, dual mortar (hertz2 level 1; the block's top under the curved cap): the gaps and normals on 2, 3 "
-      "and 4 ranks (each slave face's master triangles found on the ranks that hold them) are those of 1 rank to 1e-14")
+      "and 4 ranks (each slave face's master triangles found on the ranks that hold them) are those of 1 rank to 1e-14", full=True)
 def search_pairs_mortar():
     for name, args, _, rc in PAIR_CASES:
         same_on_ranks(name + "_mortar", args + ["-pair_discretization", "dual_mortar"], expect_rc=rc)

@@ -180,7 +180,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     PetscBool      plain;
 
     PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, &peak, &plain));
-    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank%s", scene->mesh, scene->nodesGlobal, peak / 1e9, plain ? " (plain aggregation)" : ""));
+    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank%s", scene->mesh, scene->nodesGlobal, peak / 1e9, plain ? "" : " (smoothed aggregation)"));
   }
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
@@ -201,7 +201,12 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
-  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base, PETSC_FALSE) / 1e9));
+  if (scene->refine) {
+    PetscBool plain;
+
+    PetscCall(SSStarAggregationPlain(&plain));
+    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base, plain) / 1e9));
+  }
   else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));

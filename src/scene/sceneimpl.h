@@ -164,6 +164,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
 PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
 PETSC_INTERN PetscLogDouble SSStarPeakFrom(PetscMPIInt, PetscReal, PetscLogDouble, PetscBool);
+PETSC_INTERN PetscErrorCode SSStarAggregationPlain(PetscBool *);
 PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscInt       SSStarSliceStart(PetscMPIInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscErrorCode SSStarExchange(MPI_Comm, const PetscMPIInt[], size_t, const void *, PetscMPIInt[], void **);

@@ -12,8 +12,10 @@ const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERG
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
-/* ... and of the one from u = 0 that only gives the load's scale (||gamma f||, a given u being the start): two digits */
-#define SSSTAR_SCALE_RTOL 1e-2
+/* ... and of the one from u = 0 that only gives the load's scale (||gamma f||, a given u being the start): one digit
+   of the residual gives the scale to 1e-3 (prism level 12: 1.13526e-3 against 1.13621e-3 at 1e-2, in 6 CG
+   iterations instead of 10) */
+#define SSSTAR_SCALE_RTOL 1e-1
 
 /*
    gamma = 1/mean(diag K_CC) unless the user set it (section 6); the fixed-point baseline takes 1/(the largest sum

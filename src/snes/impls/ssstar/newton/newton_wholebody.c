@@ -22,12 +22,13 @@
    has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.
 */
 #include "newtonimpl.h"
-#include "../../../../sys/meminfo.h"
 
 /* GMRES's restart when ssstar chooses GMRES: restarts stall it on the hard steps, and its basis is affordable */
 #define SSSTAR_GMRES_RESTART 100
 /* GAMG's smoothers unless the options name others: one sweep of SOR per level and direction (bench/levers.py) */
 #define SSSTAR_SMOOTHER_OPTIONS 4
+/* the multigrid's levels that cycle twice through the next coarser one (CycleDefaults) */
+#define SSSTAR_W_LEVELS 2
 /* floating bodies: the preconditioner's shift on the free motions' unknown contact dofs, in units of 1/gamma */
 #define SSSTAR_FREE_SHIFT (1e-2 * SSSTAR_FREE_STIFFNESS)
 
@@ -43,7 +44,7 @@ typedef struct {
   PetscBool        refinable;   /* the KSP holds the last step's solution (SSStarNewtonRefine)                   */
   PetscInt         nnodesGlobal;
   PetscBool        userKSPType, userTolerances, userRestart;
-  PetscBool        plain;       /* the multigrid aggregates plainly: the smoothed one's set-up did not fit the memory */
+  PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid defaults in effect (the options did not choose) */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
   Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
@@ -161,33 +162,76 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 }
 
 /*
-   Smoothed aggregation (GAMG's default: fewer Krylov iterations) unless its set-up does not fit the memory the SNES may
-   plan for (-snes_ssstar_memory_limit, else MemAvailable) and the options do not name the smoothing steps: then plain
-   aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a sixth of the entries (measured at prism level 12 on
-   2 ranks: the set-up 0.6 kB per dof instead of 1.8, the peak 28 % lower, 58 % more Krylov iterations)
+   Plain aggregation (-pc_gamg_agg_nsmooths 0) unless the options name the smoothing steps: its interpolation has a
+   sixth of the smoothed one's entries, and the set-up a third of its peak (bench/memory.py: prism level 24 on 2 ranks,
+   the set-up 0.57 kB per dof instead of 1.86) for a tenth of its flops; the Krylov iterations it adds are won back by
+   the W-cycle (CycleDefaults)
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
   Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
-  SNES_SSStar *ss = (SNES_SSStar *)nt->snes->data;
-  PetscBool      isgamg, set, fits;
-  PetscInt       m;
-  PetscMPIInt    size;
-  PetscLogDouble now = 0;
+  PetscBool         isgamg, set;
 
   PetscFunctionBegin;
   nw->plain = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &set));
   if (!isgamg || set) PetscFunctionReturn(0);
-  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
-  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
-  /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
-  if (ss->problem.memoryLimit > 0) PetscCall(PetscMemoryGetCurrentUsage(&now));
-  PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
-  if (fits) PetscFunctionReturn(0);
   PetscCall(PCGAMGSetNSmooths(pc, 0));
   nw->plain = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   GAMG's Galerkin products P^T A P all at once (-matptap_via allatonce) unless the options choose: PETSc's default for
+   several ranks keeps A P, rows of A by the columns of P, through the set-up and for the next one (bench/memory.py:
+   level 16 on 2 ranks, 59 MB per rank where the all-at-once product holds 11). MatPtAP() reads the option from the
+   default database, for any product of the program: it is there only while the multigrid is set up. One rank's
+   products (SeqAIJ) hold no A P and have no such algorithm.
+*/
+static PetscErrorCode GalerkinProductBegin(PC pc, PetscBool *set)
+{
+  PetscBool   isgamg, given;
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  *set = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-matptap_via", &given));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
+  if (!isgamg || given || size == 1) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", "allatonce"));
+  *set = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GalerkinProductEnd(PetscBool set)
+{
+  PetscFunctionBegin;
+  if (set) PetscCall(PetscOptionsClearValue(NULL, "-matptap_via"));
+  PetscFunctionReturn(0);
+}
+
+/*
+   A W-cycle on the SSSTAR_W_LEVELS finest levels of GAMG's hierarchy (each visits the next coarser level twice), a
+   V-cycle below, unless the options name the cycle (-pc_mg_cycle_type): plain aggregation's piecewise rigid
+   interpolation needs the second coarse correction (prism level 16, 2 ranks: 86 Krylov iterations on the finest mesh
+   with V-cycles, 59 with these, 57 for smoothed aggregation with V-cycles, in fewer flops than either); on the coarser
+   levels it adds messages, not iterations (59 with W-cycles on all six levels)
+*/
+static PetscErrorCode CycleDefaults(PC pc, PetscBool *wCycle)
+{
+  PetscBool isgamg, set;
+  PetscInt  nlevels;
+
+  PetscFunctionBegin;
+  *wCycle = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
+  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_mg_cycle_type", &set));
+  if (!isgamg || set) PetscFunctionReturn(0);
+  PetscCall(PCMGGetLevels(pc, &nlevels));
+  for (PetscInt l = 1; l < nlevels; l++) PetscCall(PCMGSetCycleTypeOnLevel(pc, l, l >= nlevels - SSSTAR_W_LEVELS ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
+  *wCycle = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -394,6 +438,8 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   KSP          ksp = nt->snes->ksp;
   MatNullSpace own = NULL;
   Mat          op;
+  PC           pc;
+  PetscBool    allAtOnce;
 
   PetscFunctionBegin;
   PetscCall(KSPSetReusePreconditioner(ksp, reuse));
@@ -404,8 +450,15 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
     PetscCall(PetscObjectReference((PetscObject)own));
     PetscCall(MatSetNearNullSpace(M, nw->nearNull));
   }
+  PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  PetscCall(GalerkinProductBegin(pc, &allAtOnce));
   PetscCall(KSPSetUp(ksp));
+  PetscCall(GalerkinProductEnd(allAtOnce));
+  if (!reuse) { /* the levels of a new hierarchy */
+    PetscCall(CycleDefaults(pc, &nw->wCycle));
+    nw->allAtOnce = allAtOnce;
+  }
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
   if (nw->nearNull) {
     PetscCall(MatSetNearNullSpace(M, own));
@@ -525,7 +578,7 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
   PetscCall(SSStarWholeBodyMatrixInPlace(nw->wm, &inPlace));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nw->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
-  if (nw->plain) PetscCall(PetscViewerASCIIPrintf(viewer, "    plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable)\n"));
+  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's defaults:%s%s%s\n", nw->plain ? " plain aggregation (-pc_gamg_agg_nsmooths 1: smoothed);" : "", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));
   PetscFunctionReturn(0);

@@ -1,5 +1,6 @@
 # ssstar: `make` builds lib/libssstar.so and the examples, `make run` solves the prism,
-# `make test` runs the test suite (`make test-full` with its slow tests), `make bench` the timing table. configure.py runs first if needed.
+# `make test` runs the test suite (`make test-full` with its slow tests), `make bench` the timing table, `make docs`
+# regenerates docs/options.md and docs/manual.md. configure.py runs first if needed.
 
 # builds on every core unless make -j N says otherwise
 ifeq ($(filter -j%,$(MAKEFLAGS)),)
@@ -23,8 +24,8 @@ LIB_SRC  := src/ssstarregister.c src/options.c $(wildcard src/sys/*.c) \
             $(wildcard src/history/*.c)
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 EXAMPLES := examples/prism examples/generic examples/fclib examples/contact
-TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_scenes tests/test_reduction tests/test_operator \
-            tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets
+TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/test_nonlinear tests/test_scenes tests/test_reduction tests/test_operator \
+            tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu bench/refine_petsc
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
@@ -44,7 +45,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test test-full bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
+.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -64,7 +65,7 @@ examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets: tests/%: tests/%.c $(LIB)
+tests/test_kernels tests/test_newton tests/test_scenes tests/test_reduction tests/test_operator tests/test_geometry tests/test_search tests/test_collective tests/test_history tests/test_offsets tests/test_stress: tests/%: tests/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 tests/test_geometry tests/test_search: tests/brute_region.h
@@ -77,8 +78,8 @@ bench/newton_step bench/dense_lu: bench/%: bench/%.c $(LIB)
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(CFLAGS_SSSTAR) $< -o $@ $(LINK_SSSTAR)
 
-# deliberately not linked with libssstar: it gets the type through -dll_append
-tests/test_plain_contact: tests/test_plain_contact.c
+# deliberately not linked with libssstar: they get the type through -dll_append
+tests/test_plain_contact tests/test_nonlinear: tests/%: tests/%.c
 	$(SAY) "  CCLD    $@"
 	$(Q)$(PCC) $(PCC_FLAGS) -Wall $(PETSC_CC_INCLUDES) $< -o $@ $(PETSC_LIB)
 
@@ -108,6 +109,12 @@ test: all
 
 test-full: all
 	$(PYTHON) tests/run.py --full
+
+# the generated documentation: docs/options.md from the examples' -help, docs/manual.md from the sources (make test
+# fails when either is stale)
+docs: all
+	$(PYTHON) docs/mkoptions.py
+	$(PYTHON) docs/mkmanual.py
 
 bench: all
 	$(PYTHON) bench/table2.py

@@ -8,7 +8,7 @@ rank are closest, with -ssstar_progress_ranks, -log_view and -memory_view.
 Per run: dofs per rank, Newton iterations, Krylov iterations per Newton step, the peak memory per rank (largest,
 least: max/min), the largest ratio over the phases of rank 0's memory to the least rank's, and from -log_view the
 messages, bytes and global reductions of the Krylov solves per Krylov iteration (summed over the ranks), the same of
-the multigrid set-ups per set-up. Writes bench/output/ranks.csv; the README's model of 64-1024 ranks reads it."""
+the multigrid set-ups per set-up. Writes bench/output/ranks.csv; docs/guide/large-problems.md's model of 64-1024 ranks reads it."""
 import argparse
 import csv
 import os

@@ -18,7 +18,7 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
   sliding: large sliding (issue 24): balls, cylinders and flat punches dragged along a slab and back by several of
           their sizes (scenes/drag.opts, scenes/punch.opts), a punch off the slab's end, blocks slid across a block by
           twice their length and part of the way back (scenes/track.opts), node-to-surface and dual mortar
-  floating: bodies held by contact alone, no spring (issue 25, README "Bodies held by contact alone"): slopes at
+  floating: bodies held by contact alone, no spring (issue 25, docs/guide/floating-bodies.md): slopes at
           several phi / tan alpha, pushed slopes, stacks, squeezed balls, a slider pushed on its base. Where no
           equilibrium exists a member must instead stop before its first iteration on both paths (DIVERGED_DTOL, the
           line "no equilibrium: ..."), within EARLY seconds (mesh and set-up included)
@@ -54,7 +54,7 @@ KRYLOV = re.compile(r"last solve: \d+ linear solves, (\d+) Krylov iterations")
 DISTANCE = re.compile(r"^distance to the law\s+(\S+)", re.M)
 DIFFERENCE = re.compile(r"^(?:displacement|reaction|full field)\s+max difference\s+(\S+)", re.M)
 TIMEOUT = 600  # seconds: a run this long at these sizes hangs
-TOLERANCE = 1e-6  # the error to the exact discrete solution at the defaults (README "What converged means")
+TOLERANCE = 1e-6  # the error to the exact discrete solution at the defaults (docs/guide/converged.md)
 
 
 def scene(name):
@@ -194,6 +194,42 @@ FLOATING = {
 }
 
 
+# the law's degenerate points (issue 34): steps that land exactly on a kink of the law, where the semismooth* Newton
+# step's blocks are ambiguous and strict complementarity fails (docs/derivation.md section 19, docs/guide/kinks.md).
+# The block of BLOCK (level 2, 1 x 1 x 0.5 on the plane z = 0) on a spring of k per unit area on its top, E = 2e8
+# (stiff: E/k = 5e6 and 1e7) or 1e6 (soft), pressed by 1 against phi = 0.5
+def block(E, k, level="2"):
+    return ["-geo", "meshes/block.geo", "-level", level, "-E", E, "-nu", "0.3", "-spring_top", k, "-contact", "bottom", "-friction_bottom", "0.5"]
+
+
+# pressed, sheared to 0.8 > phi P (it slides until the spring holds 0.3), released, sheared back, released: in 20 steps
+# the step t = 3.25 lands exactly on the onset of sliding back (the shear -0.2 plus the spring's 0.3 is phi P = 0.5)
+BACK = ["-traction_top", history((0, 0, 0), (0, 0, -1), (0.8, 0, -1), (0, 0, -1), (-0.8, 0, -1), (0, 0, -1)), "-steps", "20"]
+DEGENERATE = {
+    "onset of sliding back, stiff (E/k = 5e6), 20 steps (issue 34's)": block("2e8", "40") + BACK,
+    "onset of sliding back, stiff (E/k = 1e7), 20 steps": block("2e8", "20") + BACK,
+    "onset of sliding back, stiffer (E/k = 2e7), level 1, 20 steps": block("2e8", "10", level="1") + BACK,
+    "onset of sliding back, soft (E/k = 2.5e4), 20 steps": block("1e6", "40") + BACK,
+    "onset of sliding, static: sheared by exactly phi P, stiff (E/k = 1e7)": block("2e8", "20") + ["-traction_top", "0.5,0,-1"],
+    "onset of sliding, static: sheared by exactly phi P, soft": block("1e6", "40") + ["-traction_top", "0.5,0,-1"],
+    "onset of sliding on a path: pressed, sheared to exactly phi P in 4 steps, stiff (E/k = 1e7)":
+        block("2e8", "20") + ["-traction_top", history((0, 0, 0), (0, 0, -1), (0.5, 0, -1)), "-steps", "4"],
+    # the plane drags the block (BLOCK: k = 1000, E/k = 2e5) by exactly phi P/k: the spring holds exactly phi P
+    "onset of sliding under displacement control: the plane moved by exactly phi P/k, then back": dragged(0.0005, 0),
+    "touching, static: zero gap, no normal load, sheared by 0.1, stiff (E/k = 1e7)": block("2e8", "20") + ["-traction_top", "0.1,0,0"],
+    "touching, static: zero gap, no normal load, sheared by 0.1, soft": block("1e6", "40") + ["-traction_top", "0.1,0,0"],
+    # the plane 0.001 below the block raised by exactly its gap (touching, no force), then the block sheared, then pressed
+    "touching on a path: the plane raised by exactly its gap, the block sheared, then pressed, stiff (E/k = 1e7)":
+        block("2e8", "20") + ["-obstacle_bottom", "0,0,-0.001,0,0,1", "-obstacle_bottom_motion", history((0, 0, 0), (0, 0, 0.001), (0, 0, 0.001), (0, 0, 0.0011)),
+                              "-traction_top", history((0, 0, 0), (0, 0, 0), (0.1, 0, 0), (0.1, 0, 0))],
+    "release on a path: pressed, sheared by 0.3, the normal load released to exactly 0, pressed again, stiff (E/k = 1e7)":
+        block("2e8", "20") + ["-traction_top", history((0, 0, 0), (0, 0, -1), (0.3, 0, -1), (0.3, 0, 0), (0.3, 0, -1))],
+    "release on a path: a ball pressed 0.02 into a held block and lifted back to exactly touching, 4 steps": ["-geo", "meshes/indent.geo", "-level", "1", "-E", "2.1e5",
+        "-nu", "0.3", "-dirichlet", "bottom", "-contact", "top", "-obstacle_top", "sphere:0,0,10,10", "-friction_top", "0.5",
+        "-obstacle_top_motion", history((0, 0, 0), (0, 0, -0.02), (0, 0, 0)), "-steps", "4"],
+}
+
+
 def env():
     return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
 
@@ -275,14 +311,14 @@ def cell(r):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--family", choices=("static", "paths", "sliding", "floating", "all"), default="all")
+    parser.add_argument("--family", choices=("static", "paths", "sliding", "floating", "degenerate", "all"), default="all")
     parser.add_argument("--ranks", default="1,2,3,4")
     parser.add_argument("--only", default="")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)
     ranks = [int(r) for r in args.ranks.split(",")]
     floating = {name: options for name, (options, exists) in FLOATING.items() if exists}
-    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING), ("floating", floating)) if args.family in (f, "all")]
+    families = [(f, m) for f, m in (("static", FAMILY), ("paths", PATHS), ("sliding", SLIDING), ("floating", floating), ("degenerate", DEGENERATE)) if args.family in (f, "all")]
     print("| family | member | ranks | dense route: its, law, error | whole body: its (Krylov), law, error |")
     print("|---|---|---|---|---|")
     rows, total, converged, lawful, exact, unbalanced, early = [], 0, 0, 0, 0, 0, 0

@@ -37,7 +37,7 @@ SEED = {3: (637, 0.13, 0.02, 84, 0.03, 6), 4: (1377, 0.19, 0.09, 144, 0.07, 6), 
         15: (58621, 11.92, 684.17, 1860, 43.00, 11), 16: (70785, 13.78, 1217.38, 2112, 57.80, 11)}
 CHOLESKY = re.compile(r"cholesky level \d+ ranks \d+ dofs (\d+) time (\S+) flops (\S+)")
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
-ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
+ROW = re.compile(r"^\s*(\d+)(?:r\d+)?\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 KRYLOV_FULL = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations")
 SETUP = re.compile(r"^\s*set-up: .*, ([\d.]+) s, [\d.]+ GB per rank", re.M)
 NESTED = re.compile(r"^nested: .*, ([\d.]+) s, [\d.]+ GB per rank", re.M)

@@ -1,15 +1,21 @@
 static const char help[] = "Contact of elastic bodies with rigid obstacles and with each other: solves the scene the options\n\
 describe, and only what they name (no contact group: one linear solve; frictionless groups: no friction work; no\n\
 -gravity: no body force).\n\
-A scene is an options file: examples/contact -options_file scenes/hertz.opts (README \"Scenes\").\n\
+A scene is an options file: examples/contact -options_file scenes/hertz.opts (docs/guide/scenes.md).\n\
   -mesh <file.msh> | -geo <file.geo> -level <L>   the body (gmsh), physical groups by name; the options of the groups\n\
-                                  (-dirichlet, -contact, -traction_<G>, ...) are listed under \"Scene\" below\n\
+                                  (-dirichlet, -displacement_<G>, -contact, -traction_<G>, ...) are listed under\n\
+                                  \"Scene\" below\n\
+  -mesh_cache <folder>            where the meshes of -geo are made and kept (default $XDG_CACHE_HOME/ssstar, else\n\
+                                  ~/.cache/ssstar; the mesh line names the file, e.g. meshes-1a2b3c4d/prism_L6.msh)\n\
   -load_steps <1>                 solve at the loads k/N of the given constant ones, k = 1..N (the last is written)\n\
-  -steps <t1,t2,...|N>            a load path (histories -traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion):\n\
+  -steps <t1,t2,...|N>            a load path (histories -traction_<G> t:x,y,z;..., -gravity, -obstacle_<G>_motion,\n\
+                                  -displacement_<G>):\n\
                                   the times solved, or N equal steps from the first knot to the last (default: the\n\
                                   knots), each from the step before with incremental friction (docs/load-paths.md)\n\
   -steps_max_cuts <4>             a step that does not converge is halved and retried, at most this many times\n\
-  -o <file.h5>                    write the solution (HDF5 + XDMF; on a load path every step, /steps)\n\
+  -o <file.h5>                    write the solution (HDF5 + XDMF; on a load path every step, /steps): displacement,\n\
+                                  contact, the reaction of each held group (/groups/<G>/reaction), the cells' strain,\n\
+                                  stress and von Mises stress, a nodal stress (docs/guide/displacements-and-stresses.md)\n\
   -ssstar_progress <true>         a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                                   Newton step, output), with seconds and the memory of the largest rank\n\
 The solver's options (-snes_ssstar_*) apply. An option nothing reads is refused before any work. Exit status 0 when every\n\
@@ -47,7 +53,8 @@ typedef struct {
   PetscReal time;
 } PathFailure;
 
-/* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion */
+/* One line per step of a load path: time, load, forces, contact area, nodes sliding, iterations, obstacles' motion,
+   the held groups' reactions */
 static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscInt n, PetscReal t, PetscInt cuts, Vec load, PetscBool hasContact)
 {
   SSStarContactResult res = {0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0};
@@ -76,6 +83,24 @@ static PetscErrorCode StepLine(SSStarScene scene, SNES snes, PetscInt k, PetscIn
     if (!moving) continue;
     PetscCall(PetscSNPrintf(item, sizeof(item), ", obstacle of %s at (%.6g, %.6g, %.6g)", name, (double)d[0], (double)d[1], (double)d[2]));
     PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+  }
+  { /* the held groups' reactions */
+    PetscInt           nheld;
+    const char *const *held;
+    PetscReal         *reaction;
+    Vec                u;
+
+    PetscCall(SSStarSceneGetHeldGroups(scene, &nheld, &held));
+    PetscCall(SNESGetSolution(snes, &u));
+    PetscCall(PetscMalloc1(3 * nheld + 1, &reaction));
+    PetscCall(SSStarSceneGetReactions(scene, snes, u, reaction));
+    for (PetscInt h = 0; h < nheld; h++) {
+      char item[256];
+
+      PetscCall(PetscSNPrintf(item, sizeof(item), ", reaction of %s (%.6g, %.6g, %.6g)", held[h], (double)reaction[3 * h], (double)reaction[3 * h + 1], (double)reaction[3 * h + 2]));
+      PetscCall(PetscStrlcat(motion, item, sizeof(motion)));
+    }
+    PetscCall(PetscFree(reaction));
   }
   T = PetscSqrtReal(res.tangential_force[0] * res.tangential_force[0] + res.tangential_force[1] * res.tangential_force[1] + res.tangential_force[2] * res.tangential_force[2]);
   if (cuts) PetscCall(PetscSNPrintf(cut, sizeof(cut), " (halved %" PetscInt_FMT "x)", cuts));

@@ -3,22 +3,30 @@ solved by the semismooth* Newton method (SNES type ssstar) on the contact dofs.\
   -level <6>                 mesh level L of meshes/prism.geo: (4L+1)x(2L+1)x(2L+1) nodes\n\
   -mesh <file.msh>           any gmsh mesh with physical groups dirichlet, top, right, contact (instead of -geo, -level)\n\
   -geo <file.geo>            the geometry meshed for -level (default: meshes/prism.geo of the source tree)\n\
+  -mesh_cache <folder>       where the meshes of -geo are made and kept: <folder>/<folder of the .geo>-<hash>/\n\
+                             <name>_L<level>.msh (default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar; the mesh\n\
+                             line names the file); nothing is written into the source tree\n\
   -mesh_scale <1>            multiply the mesh coordinates by this (a change of length unit, e.g. 1e-3 for mm -> m)\n\
   -E <2.1e5> -nu <0.3>       Young's modulus and Poisson ratio\n\
   -traction_top <0,0,-500>   traction on the group top\n\
   -traction_right <-200,30,200> traction on the group right\n\
   -initial_guess <zero>      the solver's starting point: zero, elastic (K u = b, no contact) or random\n\
   -initial_guess_scale <1>   random: entries uniform in [-scale, scale]\n\
-  -o <file.h5>               write the solution (HDF5 + XDMF)\n\
+  -o <file.h5>               write the solution (HDF5 + XDMF): displacement, contact, the held group's reaction\n\
+                             /groups/dirichlet/reaction, the cells' strain, stress and von Mises stress\n\
   -save_reduced <file.bin>   write P, f, the contact solution u_C and the contact nodes' coordinates (PETSc binary);\n\
                              it sets -snes_ssstar_reduction direct unless a reduction is given\n\
-  -summary_header <true>     print the header line of the summary table\n\
+  -save_whole <file.bin>     write K, b and the contact nodes (their dofs, normals, gaps) before the solve (PETSc\n\
+                             binary): the whole-body problem for a program of one's own (tests/test_nonlinear.c)\n\
+  -summary_header <true>     print the header line of the summary table (its level reads 4r1 for level 4 refined\n\
+                             once by -dm_refine 1: level 8's number of nodes; -1 for -mesh)\n\
   -ssstar_progress <true>    a line as each phase ends (mesh, contact nodes, assembly, the solver's set-up and each\n\
                              Newton step, output), with seconds and the memory of the largest rank; 0: the summary only\n\
-The solver's options (-snes_ssstar_*, README \"The solver\") apply: -snes_ssstar_reduction <auto> reduces K to the\n\
-contact dofs by a Schur complement (direct: the seed's route) up to SSSTAR_AUTO_DENSE_MAX_DOFS dofs and solves on the\n\
-whole body (none: Krylov + multigrid, P never formed) above; the friction coefficient is\n\
--snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies too (README \"Scenes\"):\n\
+The solver's options (-snes_ssstar_*, docs/options.md) apply: -snes_ssstar_reduction <auto> reduces K to the\n\
+contact dofs by a Schur complement (direct: the seed's route) where that costs less than the whole body (none: Krylov\n\
++ multigrid, P never formed) by auto's estimate (docs/guide/choosing-a-route.md; the prism: up to level 7); the\n\
+friction coefficient is -snes_ssstar_friction <0.3> (or -friction_contact). Every option of examples/contact applies\n\
+too (docs/guide/scenes.md):\n\
 the prism is the scene scenes/prism.opts. An option nothing reads is refused before any work. Exit status 0 when the\n\
 solve converged, 2 when it did not (the -o file says so: attributes converged_reason, residual_norm, iterations of \"/\";\n\
 no -save_reduced file), PETSc's error code for bad input (one\n\
@@ -31,7 +39,7 @@ line naming the option or file; -ssstar_traceback adds PETSc's report). -help li
   #define SSSTAR_MESH_DIR "meshes"
 #endif
 
-/* The prism scene (README "The prism") unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
+/* The prism scene (docs/guide/prism.md) unless the options say otherwise; -mesh replaces -geo and -level; -save_reduced
    writes P: the dense route unless a reduction is named */
 static PetscErrorCode SetPrismDefaults(void)
 {
@@ -162,14 +170,56 @@ static PetscErrorCode SaveReduced(const char file[], SSStarScene scene, SNES sne
   PetscFunctionReturn(0);
 }
 
+/*
+   K, b and the contact nodes of the whole-body problem, before the solve: the global indices of their dofs (3 per node,
+   as reals), their obstacle normals (3 per node) and gaps, each a Vec laid out by the nodes
+*/
+static PetscErrorCode SaveWhole(const char file[], SSStarScene scene, Body *body)
+{
+  IS                 isC;
+  PetscInt           n;
+  const PetscInt    *idx;
+  const PetscReal   *normals, *gaps;
+  PetscScalar       *a;
+  Vec                v;
+  PetscViewer        viewer;
+
+  PetscFunctionBeginUser;
+  PetscCall(SSStarSceneGetContactDofs(scene, &isC));
+  PetscCall(SSStarSceneGetContactNodes(scene, &n, NULL, &normals, &gaps, NULL));
+  PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_WRITE, &viewer));
+  PetscCall(MatView(body->K, viewer));
+  PetscCall(VecView(body->b, viewer));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, 3 * n, PETSC_DETERMINE, &v));
+  PetscCall(ISGetIndices(isC, &idx));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt k = 0; k < 3 * n; k++) a[k] = (PetscScalar)idx[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(ISRestoreIndices(isC, &idx));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt k = 0; k < 3 * n; k++) a[k] = normals[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecDestroy(&v));
+  PetscCall(VecCreateMPI(PETSC_COMM_WORLD, n, PETSC_DETERMINE, &v));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt k = 0; k < n; k++) a[k] = gaps[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecDestroy(&v));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   SSStarScene         scene;
-  PetscInt            level = -1, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
+  PetscInt            level = -1, refine = 0, nnodes, counts[SSSTAR_NUM_STATES], its, ncontact;
   PetscReal           t_assembly, t_schur, t_solve, t_recovery, t0;
   PetscLogDouble      peak;
-  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "";
-  PetscBool           hasMesh, hasOut, hasReduced, header = PETSC_TRUE, isssstar, hasHelp;
+  char                out[PETSC_MAX_PATH_LEN] = "", reduced[PETSC_MAX_PATH_LEN] = "", whole[PETSC_MAX_PATH_LEN] = "", levelText[32];
+  PetscBool           hasMesh, hasOut, hasReduced, hasWhole, header = PETSC_TRUE, isssstar, hasHelp;
   DM                  dm;
   Vec                 u, r;
   Body                body;
@@ -189,14 +239,17 @@ int main(int argc, char **argv)
   PetscCall(SetPrismDefaults());
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh", &hasMesh));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-level", &level, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-dm_refine", &refine, NULL));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Prism contact problem", "ssstar");
   PetscCall(PetscOptionsString("-o", "Output file (HDF5; an XDMF file is written beside it)", NULL, out, out, sizeof(out), &hasOut));
   PetscCall(PetscOptionsString("-save_reduced", "Write P, f, u_C and the contact coordinates to this PETSc binary file", NULL, reduced, reduced, sizeof(reduced), &hasReduced));
+  PetscCall(PetscOptionsString("-save_whole", "Write K, b and the contact nodes (dofs, normals, gaps) to this PETSc binary file", NULL, whole, whole, sizeof(whole), &hasWhole));
   PetscCall(PetscOptionsBool("-summary_header", "Print the header of the summary table", NULL, header, &header, NULL));
   PetscOptionsEnd();
   PetscCall(InitialGuessSetFromOptions(&guess));
   if (hasOut) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, out)); /* before the work, not after */
   if (hasReduced) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, reduced));
+  if (hasWhole) PetscCall(SSStarCheckOutputFile(PETSC_COMM_WORLD, whole));
   PetscCall(SSStarSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(SSStarSceneSetProgress(scene, PETSC_TRUE));
   PetscCall(SSStarSceneSetFromOptions(scene));
@@ -224,6 +277,7 @@ int main(int argc, char **argv)
   /* the whole body with its contact nodes: SNESSolve reduces K to them, solves, recovers u */
   PetscCall(SNESSSStarSetLinearProblem(snes, body.K, body.b));
   PetscCall(SSStarSceneSetContact(scene, snes));
+  if (hasWhole) PetscCall(SaveWhole(whole, scene, &body));
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
   PetscCall(DMCreateGlobalVector(dm, &u));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
@@ -245,8 +299,10 @@ int main(int argc, char **argv)
   else PetscCall(PetscArrayzero(counts, SSSTAR_NUM_STATES));
   PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
   if (header) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "level ranks  nodes assembly[s] schur[s] contact solve[s] iters  L/M1/M2/M3+/M3-/M4  separated/sliding/sticking reason peak[GB/rank]\n"));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%5" PetscInt_FMT " %5d %6" PetscInt_FMT " %11.3f %8.3f %7" PetscInt_FMT " %8.3f %5" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s %.3f\n",
-                        hasMesh ? -1 : level, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
+  if (refine > 0) PetscCall(PetscSNPrintf(levelText, sizeof(levelText), "%" PetscInt_FMT "r%" PetscInt_FMT, hasMesh ? -1 : level, refine)); /* 4r1: level 4 refined once */
+  else PetscCall(PetscSNPrintf(levelText, sizeof(levelText), "%" PetscInt_FMT, hasMesh ? -1 : level));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%5s %5d %6" PetscInt_FMT " %11.3f %8.3f %7" PetscInt_FMT " %8.3f %5" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "  %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s %.3f\n",
+                        levelText, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
                         SNESConvergedReasons[reason], peak / 1e9));
 
   /* the solution file says how the solve ended; the reduced problem's u_C is written only as a solution */

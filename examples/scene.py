@@ -137,9 +137,9 @@ def sweep(args):
 
 
 def onset(out=None):
-    """A load path decided by its own loop (the README's example): press the block, then raise the shear Q; a step
+    """A load path decided by its own loop (the example of docs/guide/python.md): press the block, then raise the shear Q; a step
     that makes more than 8 nodes begin to slide is refused (accept=False) and halved, until no node sticks"""
-    scene = ssstar.Scene(geo="meshes/block.geo", level=2, E=2e8, nu=0.3, spring={"top": 1000}, contact=["bottom"],
+    scene = ssstar.Scene(geo=os.path.join(ROOT, "meshes", "block.geo"), level=2, E=2e8, nu=0.3, spring={"top": 1000}, contact=["bottom"],
                          friction={"bottom": 0.5}, traction={"top": (0, 0, -10)})
     if out:
         scene.write(out)                          # every accepted step goes into the file

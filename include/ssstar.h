@@ -12,7 +12,9 @@
    Reduced: without SNESSSStarSetContactNodes() every dof is a contact dof, the SNES function is
    c(u) = P u - f (or P u with SNESSolve(snes, f, u)) and the Jacobian P, on 3-blocks (u_t1, u_t2, u_n).
    In both, 0 in c(u) + Q(u) with non-penetration u_n + gap >= 0 and Q the friction law
-   (docs/derivation.md section 0).
+   (docs/derivation.md section 0). Any other F(u) with its Jacobian J(u) (SNESSetFunction(), SNESSetJacobian()) is
+   treated as nonlinear unless declared affine (SNESSSStarSetAffine()): the iteration evaluates F at its iterates and
+   J again as -snes_lag_jacobian says, on the whole body (docs/derivation.md section 17).
 */
 #include <petscsnes.h>
 #include <ssstarreduction.h>
@@ -48,6 +50,9 @@ PETSC_EXTERN const char *const SSStarStateNames[];
 #define SSSTARLAWTRESCA      "tresca"      /* |r_t| <= s, a given slip bound s (a force), whatever r_n               */
 #define SSSTARLAWCOULOMB     "coulomb"     /* |r_t| <= phi r_n                                                       */
 #define SSSTARLAWORTHOTROPIC "orthotropic" /* |M^-1/2 r_t| <= r_n: phi_1 along a given direction, phi_2 across it   */
+/* a node's value of a law parameter that is not given (SNESSSStarSetNodeLawParameter(); for a direction its first
+   component): NaN, which no parameter takes (PETSC_DEFAULT, -2, is a direction's component like any other) */
+#define SSSTAR_NOT_GIVEN ((PetscReal)NAN)
 typedef struct _n_SSStarLaw *SSStarLaw;
 /* What a law's parameter is: a coefficient (a number >= 0), a force (>= 0) or a direction (x, y, z in global axes) */
 typedef enum {
@@ -78,7 +83,8 @@ typedef enum {
   SSSTAR_REASON_CYCLE,            /* the iterates cycle (period 2) and the remedies did not break it  */
   SSSTAR_REASON_LAW_STALLED,      /* ||z|| met its threshold, the law residual of the iterate stalled above its own */
   SSSTAR_REASON_NO_EQUILIBRIUM,   /* no contact forces the friction laws allow balance the load on a floating body */
-  SSSTAR_REASON_USER              /* a convergence test set with SNESSetConvergenceTest() decided     */
+  SSSTAR_REASON_USER,             /* a convergence test set with SNESSetConvergenceTest() decided     */
+  SSSTAR_REASON_NOT_AFFINE        /* a residual declared affine is not: F at the solution is off the affine model's */
 } SSStarReason;
 PETSC_EXTERN const char *const SSStarReasons[];
 
@@ -110,6 +116,7 @@ PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsed(MPI_Comm, const char *const[]
 PETSC_EXTERN PetscErrorCode SSStarCheckOptionsUsedOf(MPI_Comm, PetscInt, const char *const[], const char *const[], SNES);
 PETSC_EXTERN PetscErrorCode SSStarWriteOutcome(SNES, PetscViewer);
 PETSC_EXTERN PetscErrorCode SSStarPushErrorHandler(void);
+PETSC_EXTERN PetscErrorCode SSStarOptionsNameBadValue(const char[], char[], size_t);
 
 /* Checks of a local condition that end every rank with the message of the first rank that failed */
 PETSC_EXTERN PetscErrorCode SSStarCheckAllRanks(MPI_Comm, PetscErrorCode, const char[]);
@@ -128,6 +135,12 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetReducedProblem(SNES, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetReductionType(SNES, SSStarReductionType);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReductionType(SNES, SSStarReductionType *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetMemoryLimit(SNES, PetscReal);
+
+/* The residual: affine (K u - b, the Jacobian evaluated once) or nonlinear, and the contact measured at the iterates */
+PETSC_EXTERN PetscErrorCode SNESSSStarSetAffine(SNES, PetscBool);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetAffine(SNES, PetscBool *);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetContactUpdate(SNES, PetscErrorCode (*)(SNES, Vec, void *), void *);
+PETSC_EXTERN PetscErrorCode SNESSSStarGetNonlinearCounts(SNES, PetscInt *, PetscInt *);
 
 /* The friction law and its parameters */
 PETSC_EXTERN PetscErrorCode SNESSSStarSetFrictionLaw(SNES, const char[]);

@@ -7,13 +7,6 @@
 */
 #include <petscksp.h>
 
-/* auto takes the direct reduction up to this many dofs of K, none above: the crossover measured on the prism, quiet
-   (bench/table2.py --levels 6,8,10,12 --ranks 1,2 --repeat 3 --yardsticks amg, medians, paths interleaved): whole run
-   dense / whole body, 1 rank and 2 ranks: level 6 (12 675 dofs) 0.80 / 0.81 s, 0.72 / 0.65 s; level 8 (28 611)
-   1.57 / 1.39 s, 1.30 / 0.94 s; level 10 (54 243) 3.56 / 2.59 s, 2.76 / 1.66 s. Level 6 is a tie, the whole body
-   is ahead from level 8: the limit sits between them, level 7 (19 575 dofs) keeps the dense route */
-#define SSSTAR_AUTO_DENSE_MAX_DOFS 20000
-
 PETSC_EXTERN PetscLogEvent SSSTAR_Schur, SSSTAR_Recovery;
 /* phases of the direct reduction: METIS ordering, MUMPS analysis, factorization with the Schur block, P to its rows */
 PETSC_EXTERN PetscLogEvent SSSTAR_SchurOrdering, SSSTAR_SchurAnalysis, SSSTAR_SchurFactor, SSSTAR_SchurScatter;
@@ -28,7 +21,7 @@ typedef const char *SSStarReductionType;
 #define SSSTARREDUCTIONMUMPS    "mumps"    /* PETSc's MUMPS Schur complement (MatFactorSetSchurIS), computed on rank 0      */
 #define SSSTARREDUCTIONEXPLICIT "explicit" /* MATSCHURCOMPLEMENT made explicit, distributed                                */
 #define SSSTARREDUCTIONNONE     "none"     /* no reduction: P is never formed, the operator is K                            */
-#define SSSTARREDUCTIONAUTO     "auto"     /* not a type: direct where the dense route is the faster one and P fits, else none */
+#define SSSTARREDUCTIONAUTO     "auto"     /* not a type: direct where its estimated work is less and it fits, else none (auto.c) */
 
 typedef struct _n_SSStarReduction *SSStarReduction;
 PETSC_EXTERN PetscFunctionList SSStarReductionList;
@@ -47,5 +40,7 @@ PETSC_EXTERN PetscErrorCode    SSStarReductionGetSchurComplement(SSStarReduction
 PETSC_EXTERN PetscErrorCode    SSStarReductionReduceLoad(SSStarReduction, Vec, Vec);
 PETSC_EXTERN PetscErrorCode    SSStarReductionRecover(SSStarReduction, Vec, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode    SSStarReductionDestroy(SSStarReduction *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionAutoCosts(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode    SSStarReductionGetAutoCosts(SSStarReduction, PetscBool *, PetscReal *, PetscReal *, PetscReal *);
 
 #endif

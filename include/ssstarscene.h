@@ -16,7 +16,8 @@ PETSC_EXTERN PetscLogEvent SSSTAR_MeshGmsh, SSSTAR_MeshCache, SSSTAR_MeshBuild, 
 
 /*
    A scene: the body, its material, supports and loads, and its contact groups, read from the options
-   (README "Scenes": -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -traction_<G>, -spring_<G>, -gravity,
+   (docs/guide/scenes.md: -mesh or -geo/-level, -E, -nu, -material_<G>, -dirichlet, -displacement_<G>, -traction_<G>,
+   -spring_<G>, -gravity,
    -density, -contact, -obstacle_<G>, -friction_law_<G> and -<parameter>_<G> for every parameter of the table of laws
    (-friction_<G>, -slip_bound_<G>, -friction_1_<G>, ...), -mesh_scale; two bodies: -contact_pair_<G> H,
    -pair_discretization).
@@ -52,6 +53,13 @@ typedef struct {
 PETSC_EXTERN PetscErrorCode SSStarSceneGetContactResult(SSStarScene, PetscInt, Vec, const SSStarState[], SSStarContactResult *);
 PETSC_EXTERN PetscErrorCode SSStarSceneContactView(SSStarScene, Vec, const SSStarState[], PetscViewer);
 PETSC_EXTERN PetscErrorCode SSStarSceneViewNoEquilibrium(SSStarScene, SNES, PetscViewer);
+/* The held groups (-dirichlet, -displacement_<G>) and the force each prescription exerts on the body */
+PETSC_EXTERN PetscErrorCode SSStarSceneGetHeldGroups(SSStarScene, PetscInt *, const char *const *[]);
+PETSC_EXTERN PetscErrorCode SSStarSceneGetReactions(SSStarScene, SNES, Vec, PetscReal[]);
+/* The P1 tetrahedron's strain (B u), Hooke's stress and the von Mises stress: xx, yy, zz, yz, xz, xy (tensor components) */
+PETSC_EXTERN PetscReal SSStarTetStrain(const PetscReal[12], const PetscReal[12], PetscReal[6]);
+PETSC_EXTERN void      SSStarHookeStress(PetscReal, PetscReal, const PetscReal[6], PetscReal[6]);
+PETSC_EXTERN PetscReal SSStarVonMises(const PetscReal[6]);
 
 /*
    Load paths (docs/load-paths.md): the loads as histories of a pseudo-time (-traction_<G>, -gravity), moving obstacles
@@ -92,8 +100,9 @@ PETSC_EXTERN PetscErrorCode SSStarWriteNodeFriction(SNES, PetscViewer, const cha
 
 /* The pieces a scene is made of, for programs of their own */
 PETSC_EXTERN PetscErrorCode SSStarMeshGenerate(MPI_Comm, const char[], PetscInt, const char[]);
+PETSC_EXTERN PetscErrorCode SSStarMeshCacheFile(MPI_Comm, const char[], const char[], PetscInt, char[]);
 PETSC_EXTERN PetscErrorCode SSStarMeshFileNodes(MPI_Comm, const char[], PetscInt *);
 PETSC_EXTERN PetscErrorCode SSStarCheckMemory(MPI_Comm, PetscReal, const char[]);
-PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscLogDouble *, PetscBool *);
+PETSC_EXTERN PetscErrorCode SSStarEstimateMemory(MPI_Comm, PetscReal, PetscReal, PetscLogDouble *, PetscLogDouble *, PetscBool *);
 
 #endif

@@ -1,5 +1,5 @@
 /*
-   What ssstar's programs promise a scripted user (README, "What a scripted user can rely on"): an option that nobody
+   What ssstar's programs promise a scripted user (docs/guide/scripting.md): an option that nobody
    read is refused before any work, naming it and the nearest option the program knows; a solve that did not converge
    ends with the exit status SSSTAR_EXIT_NOT_CONVERGED, and the file it writes says so.
 */
@@ -481,6 +481,84 @@ static void SSStarErrorExit(PetscErrorCode n)
   exit((int)n);
 }
 
+/* PETSc's words for a value its options parser could not read ("Input string abc has no numeric value"), with what the value should be */
+static const struct {
+  const char *before, *after, *expected;
+} ValueErrors[] = {
+  {"Input string ", " has no numeric value", "a number"},
+  {"Input string ", " has no integer value", "an integer"},
+  {"Unknown logical value: ", "", "true or false"},
+};
+
+/* Whether value (an option's value in the database) is bad, or holds bad as one of its comma-separated entries (an array option) */
+static PetscBool ValueHolds(const char value[], const char bad[])
+{
+  const size_t n = strlen(bad);
+
+  for (const char *s = value; s && *s; s = strchr(s, ',') ? strchr(s, ',') + 1 : NULL)
+    if (!strncmp(s, bad, n) && (s[n] == 0 || s[n] == ',')) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/*@C
+   SSStarOptionsNameBadValue - the message of an error of PETSc's options parser with the option named: PETSc names
+   the value it cannot read, not the option (-snes_rtol abc: "Input string abc has no numeric value"); the options of
+   the database whose value (or an entry of whose comma-separated list) is that one are named instead, "Option
+   -snes_rtol abc: abc is not a number", for every real, integer and logical option of ours and of PETSc's, whenever
+   it is read
+
+   Not Collective
+
+   Input Parameters:
++  message - the message of an error (PetscErrorMessage())
+-  len     - the size of named
+
+   Output Parameter:
+.  named - the message naming the option; empty when message is no such error or no option of the database has the
+           value
+
+   Notes:
+   ssstar's programs print it in place of PETSc's message (SSStarPushErrorHandler()), and so does the Python module.
+
+   Level: developer
+
+.seealso: `SSStarPushErrorHandler()`, `SSStarCheckOptionsUsed()`
+@*/
+PetscErrorCode SSStarOptionsNameBadValue(const char message[], char named[], size_t len)
+{
+  char        bad[256] = "", *all = NULL, *token, *save = NULL, *name = NULL;
+  const char *expected = NULL;
+  size_t      used     = 0;
+
+  PetscFunctionBegin;
+  named[0] = 0;
+  for (size_t k = 0; message && k < PETSC_STATIC_ARRAY_LENGTH(ValueErrors) && !expected; k++) {
+    const size_t lb = strlen(ValueErrors[k].before);
+    const char  *end;
+
+    if (strncmp(message, ValueErrors[k].before, lb)) continue;
+    end = ValueErrors[k].after[0] ? strstr(message + lb, ValueErrors[k].after) : message + strlen(message);
+    if (!end || end == message + lb || (size_t)(end - message - lb) >= sizeof(bad)) continue;
+    PetscCall(PetscSNPrintf(bad, sizeof(bad), "%.*s", (int)(end - message - lb), message + lb));
+    expected = ValueErrors[k].expected;
+  }
+  if (!expected) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsGetAll(NULL, &all));
+  for (token = strtok_r(all, " ", &save); token; token = strtok_r(NULL, " ", &save)) {
+    if (token[0] == '-' && isalpha((unsigned char)token[1])) { /* a name; its value, if any, follows */
+      name = token;
+      continue;
+    }
+    if (!name || !ValueHolds(token, bad)) continue;
+    used += (size_t)snprintf(named + used, used < len ? len - used : 0, "%s%s %s", used ? " or " : "Option ", name, token);
+    name = NULL;
+  }
+  if (used && used < len) snprintf(named + used, len - used, ": %s is not %s", bad, expected);
+  else named[0] = 0;
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SSStarErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   if (p == PETSC_ERROR_INITIAL) {
@@ -495,6 +573,12 @@ static PetscErrorCode SSStarErrorHandler(MPI_Comm comm, int line, const char *fu
     MPI_Comm_rank(MPI_COMM_WORLD, &world);
     MPI_Comm_size(MPI_COMM_WORLD, &worldSize);
     if (!text || !text[0] || !strcmp(text, " ")) (void)PetscErrorMessage(n, &text, NULL); /* no message of its own: PETSc's words for the code */
+    else {
+      static char named[1024];
+
+      if (SSStarOptionsNameBadValue(text, named, sizeof(named))) named[0] = 0;
+      if (named[0]) text = named;
+    }
     (void)PetscGetProgramName(name, sizeof(name));
     if (size == 1 && worldSize > 1) fprintf(stderr, "%s, rank %d: %s\n", name, (int)world, text ? text : "error"); /* a rank's own error */
     else if (!rank) fprintf(stderr, "%s: %s\n", name, text ? text : "error");

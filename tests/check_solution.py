@@ -22,11 +22,21 @@
       its attribute names (the table of laws; without it none, tresca, coulomb), and its parameters are the datasets
       /contact/<parameter> (written by the scenes and by examples/generic); a law this script does not know fails the
       check. --phi gives a Coulomb coefficient for every node of a file without them.
-      For a file with a mesh, the XDMF file beside it names datasets of the right shapes.
-  check_solution.py compare A.h5 B.h5 [--tol 1e-10]
-      the contact displacement and reaction of two runs agree (relative to their max norms), and so do the
+      For a file with a mesh, the XDMF file beside it names datasets of the right shapes, and the stresses
+      (/fields/strain, stress: cells x 6; von_mises: cells; stress_nodal: nodes x 6; each step's too) are finite, of
+      those shapes, with von_mises the von Mises stress of stress; /groups/<G>/reaction has 3 finite values. A file
+      without contact (no /contact) has these checks alone.
+      An FCLib solution file (examples/fclib -o: the problem's /fclib_local or /fclib_global and /solution) is checked
+      in FCLib's terms: FCLib's error of /solution/r (Siconos's measure, relative to ||q||) at most --tol, and /solution/u
+      = W r + q, W and q from the problem in the file (a global problem condensed: W = H^T M^-1 H, q = H^T M^-1 f + w).
+  check_solution.py compare A.h5 B.h5 [--tol 2e-6]
+      the contact displacement and reaction of two runs agree (relative to their max norms, at least the scales A's
+      solver measured its law against: /law_displacement_scale, /law_force_scale), and so do the
       displacement on the whole mesh and the contact states where both files have them (a file of examples/generic
-      has /contact alone)
+      has /contact alone); of two FCLib solution files, r, u (and v) of /solution. The default tolerance is the
+      agreement the solver guarantees between two runs at its defaults, 2e-6 (harness.AGREE: each run within 1e-6 of
+      the exact discrete solution, README "What converged means"): runs on other ranks or the other route differ by
+      round-off and by less than that (1 against 2 ranks: 1e-9 to 1e-8); --tol 1e-10 asks for the same computation.
 Exit status 0 when the check passes.
 """
 import argparse
@@ -37,9 +47,14 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import AGREE  # noqa: E402 (2e-6: the agreement of two runs at the defaults)
+
 
 def coulomb(args):
     f = h5py.File(args.file, "r")
+    if is_fclib(f):
+        return fclib_law(f, args.tol)
     steps = sorted((k for k in f["steps"] if k.isdigit()), key=int) if "steps" in f else []
     # a load path's step is measured against its own forces and displacements too (those of the step before), and
     # against 1e-6 of the path's largest so far (a step where nothing touches has forces of round-off alone)
@@ -52,15 +67,41 @@ def coulomb(args):
     # from its reference computes its forces to no better), recorded in the file
     solver = (f.attrs.get("law_displacement_scale", 0.0), f.attrs.get("law_force_scale", 0.0))
     recorded = lambda k: (f["steps/law_displacement_scale"][int(k)], f["steps/law_force_scale"][int(k)]) if "steps/law_force_scale" in f else (0.0, 0.0)  # noqa: E731
-    ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver)
+    contact = "contact" in f
+    ok = check_law(f, f["contact"], "/contact", args, before(len(steps) - 1) if steps else None, path[-1], solver) if contact else True
     if args.steps:
         for j, k in enumerate(steps):
-            print("-- step %s (/steps/%s/contact)" % (k, k))
-            ok &= check_law(f, f["steps/%s/contact" % k], "/steps/%s/contact" % k, args, before(j), path[j + 1], recorded(j))
+            print("-- step %s (/steps/%s%s)" % (k, k, "/contact" if contact else ""))
+            ok &= check_law(f, f["steps/%s/contact" % k], "/steps/%s/contact" % k, args, before(j), path[j + 1], recorded(j)) if contact else True
+            ok &= check_fields(f, "steps/%s/" % k)
         print("%d steps checked" % len(steps))
     if "geometry" in f:
-        ok &= check_xdmf(args.file, f)
+        ok &= check_xdmf(args.file, f) and check_fields(f, "")
     return ok
+
+
+def check_fields(f, prefix):
+    """the stresses of <prefix>fields (where the file has them) and the reactions /groups/<G>/reaction"""
+    if prefix + "fields/stress" not in f:
+        return True
+    cells, nodes = len(f["viz/topology/cells"]), len(f["geometry/vertices"])
+    shapes = {"strain": (cells, 6), "stress": (cells, 6), "von_mises": (cells,), "stress_nodal": (nodes, 6)}
+    for name, shape in shapes.items():
+        d = f.get(prefix + "fields/" + name)
+        if d is None or d.shape != shape or not np.isfinite(d[:]).all():
+            print("/%sfields/%s: not %s finite values" % (prefix, name, shape))
+            return False
+    s = f[prefix + "fields/stress"][:]
+    vm = np.sqrt(0.5 * ((s[:, 0] - s[:, 1]) ** 2 + (s[:, 1] - s[:, 2]) ** 2 + (s[:, 2] - s[:, 0]) ** 2) + 3 * (s[:, 3:] ** 2).sum(axis=1))
+    d = np.abs(vm - f[prefix + "fields/von_mises"][:]).max() / max(vm.max(), 1e-300)
+    print("%-28s %9.1e %s" % ("/%sfields/von_mises" % prefix, d, "ok" if d <= 1e-12 else "WRONG"))
+    good = d <= 1e-12
+    for g in f.get("groups", {}) if not prefix else ():
+        r = f["groups/%s" % g].get("reaction")
+        if r is not None and (r.shape != (3,) or not np.isfinite(r[:]).all()):
+            print("/groups/%s/reaction: not 3 finite values" % g)
+            good = False
+    return good
 
 
 def check_law(f, c, where, args, previous=None, path=(0.0, 0.0), solver=(0.0, 0.0)):
@@ -299,6 +340,83 @@ def friction(c, p, phi):
     return [(law, np.arange(p))]
 
 
+# --- FCLib solution files (examples/fclib -o): the problem and /solution ----------------------------------------------
+
+def is_fclib(f):
+    return ("fclib_local" in f or "fclib_global" in f) and "solution" in f
+
+
+def fclib_sparse(g):
+    """An FCLib sparse matrix group as a dense array (nz = -2 rows, -1 columns, >= 0 triplets: i row, p column)."""
+    m, n, nz = int(g["m"][0]), int(g["n"][0]), int(g["nz"][0])
+    p, i, x = g["p"][:], g["i"][:], g["x"][:]
+    a = np.zeros((m, n))
+    if nz >= 0:
+        np.add.at(a, (i[:nz], p[:nz]), x[:nz])
+    else:
+        outer = np.repeat(np.arange(len(p) - 1), np.diff(p))
+        rows, cols = (outer, i[:p[-1]]) if nz == -2 else (i[:p[-1]], outer)
+        np.add.at(a, (rows, cols), x[:p[-1]])
+    return a
+
+
+def fclib_problem(f):
+    """(W, q, mu, global parts or None) of an open FCLib file; a global problem condensed: W = H^T M^-1 H, q = H^T M^-1 f + w."""
+    if "fclib_local" in f:
+        g = f["fclib_local"]
+        return fclib_sparse(g["W"]), g["vectors/q"][:], g["vectors/mu"][:], None
+    g = f["fclib_global"]
+    M, H, load, w = fclib_sparse(g["M"]), fclib_sparse(g["H"]), g["vectors/f"][:], g["vectors/w"][:]
+    return H.T @ np.linalg.solve(M, H), H.T @ np.linalg.solve(M, load) + w, g["vectors/mu"][:], (M, H, load, w)
+
+
+def fclib_error(W, q, mu, r):
+    """FCLib's measure (Siconos fc3d_compute_error with norm ||q||): ||r - proj_C(r - u^)|| / ||q||, u^ = u + mu|u_t| e_n."""
+    u = (W @ r + q).reshape(-1, 3)
+    r = r.reshape(-1, 3)
+    x = r - u
+    x[:, 0] -= mu * np.hypot(u[:, 1], u[:, 2])
+    xt = np.hypot(x[:, 1], x[:, 2])
+    proj = x.copy()
+    polar = mu * xt <= -x[:, 0]
+    outside = ~polar & (xt > mu * x[:, 0])
+    proj[polar] = 0
+    xn = (mu * xt + x[:, 0]) / (mu * mu + 1)
+    proj[outside, 0] = xn[outside]
+    proj[outside, 1:] = (mu * xn / np.where(xt > 0, xt, 1))[outside, None] * x[outside, 1:]
+    return np.linalg.norm(r - proj) / np.linalg.norm(q)
+
+
+def fclib_law(f, tol):
+    """FCLib's error of /solution/r and u = W r + q, relative to ||q||"""
+    W, q, mu, _ = fclib_problem(f)
+    r, u = f["solution/r"][:], f["solution/u"][:]
+    error, mismatch = fclib_error(W, q, mu, r), np.linalg.norm(u - (W @ r + q)) / np.linalg.norm(q)
+    print("%d contacts (FCLib %s problem)" % (len(mu), "global" if "fclib_global" in f else "local"))
+    print("FCLib error   %9.1e (relative to ||q||) %s" % (error, "ok" if error <= tol else "VIOLATED"))
+    print("u = W r + q   %9.1e (relative to ||q||) %s" % (mismatch, "ok" if mismatch <= tol else "VIOLATED"))
+    return error <= tol and mismatch <= tol
+
+
+def fclib_compare(a, b, tol):
+    """/solution/r, u (and v) of two FCLib solution files, relative to their max norms"""
+    ok = True
+    for name in ("r", "u", "v"):
+        if ("solution/" + name in a) != ("solution/" + name in b):
+            print("one file has /solution/%s, the other not" % name)
+            return False
+        if "solution/" + name not in a:
+            continue
+        x, y = a["solution/" + name][:], b["solution/" + name][:]
+        if x.shape != y.shape:
+            print("/solution/%s: shapes %s and %s" % (name, x.shape, y.shape))
+            return False
+        d = relative(x, y)
+        ok &= d <= tol
+        print("%-12s max difference %9.1e relative %s" % ("solution/" + name, d, "ok" if d <= tol else "DIFFERENT"))
+    return ok
+
+
 def text(value):
     return value.decode() if isinstance(value, bytes) else str(value)
 
@@ -340,6 +458,7 @@ def compare_steps(a, b, tol):
     order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (vertices by coordinates)
     oa, ob = (order(a), order(b)) if "geometry" in a and "geometry" in b else (None, None)
     worst, largest = {}, {}  # the largest of each field over the path so far: its scale is at least 1e-6 of that
+    recorded = lambda name, j: a["steps/law_%s_scale" % name][j] if "steps/law_%s_scale" % name in a else 0.0  # noqa: E731
     for j, k in enumerate(steps):
         fields = [("displacement", "contact/displacement", None), ("reaction", "contact/reaction", None)]
         if oa is not None:
@@ -353,7 +472,7 @@ def compare_steps(a, b, tol):
             if j > 0:
                 before = a["steps/%s/%s" % (steps[j - 1], path)][:]
                 scale = max(scale, np.abs(x - (before[vertex[0]] if vertex is not None else before)).max())
-            scale = max(scale, 1e-6 * largest[name])
+            scale = max(scale, 1e-6 * largest[name], floor(name, recorded("force", j), recorded("displacement", j)))
             d = np.abs(x - y).max() / (scale if scale > 0 else 1.0)
             if d >= worst.get(name, (-1, None))[0]:
                 worst[name] = (d, k)
@@ -366,15 +485,29 @@ def compare_steps(a, b, tol):
     return ok
 
 
-def relative(x, y):
-    """max|x - y| relative to max|x|; absolute where x is zero (every contact node stuck where it started)"""
-    scale = np.abs(x).max()
+def floor(name, force, displacement):
+    """the least scale of a contact field: the force and displacement scales the solver measured the law against
+    (docs/derivation.md (12.2), /law_force_scale, /law_displacement_scale): where nothing presses (a body exactly
+    touching its obstacle, section 19) the reactions are round-off of the terms |K| |u|, which the law's force scale
+    counts; their relative difference would compare noise with noise"""
+    return {"reaction": force, "displacement": displacement}.get(name, 0.0)
+
+
+def relative(x, y, least=0.0):
+    """max|x - y| relative to max|x| (at least least); absolute where both are zero (every contact node stuck where it
+    started)"""
+    scale = max(np.abs(x).max(), least)
     return np.abs(x - y).max() / (scale if scale > 0 else 1.0)
 
 
 def compare(args):
     a, b = h5py.File(args.a, "r"), h5py.File(args.b, "r")
     ok = True
+    if is_fclib(a) or is_fclib(b):
+        if not (is_fclib(a) and is_fclib(b)):
+            print("one file is an FCLib solution, the other not")
+            return False
+        return fclib_compare(a, b, args.tol)
     if not np.array_equal(a["contact/coordinates"][:], b["contact/coordinates"][:]):
         print("contact nodes differ (coordinates)")
         return False
@@ -382,7 +515,7 @@ def compare(args):
         return compare_steps(a, b, args.tol)
     for name in ("displacement", "reaction"):
         x, y = a["contact/" + name][:], b["contact/" + name][:]
-        d = relative(x, y)
+        d = relative(x, y, floor(name, a.attrs.get("law_force_scale", 0.0), a.attrs.get("law_displacement_scale", 0.0)))
         good = d <= args.tol
         ok &= good
         print("%-12s max difference %9.1e relative %s" % (name, d, "ok" if good else "DIFFERENT"))
@@ -416,7 +549,7 @@ def main():
     m.add_argument("a")
     m.add_argument("b")
     m.add_argument("--steps", action="store_true", help="every step of two load paths, each relative to its own scale (not the states)")
-    m.add_argument("--tol", type=float, default=1e-10)
+    m.add_argument("--tol", type=float, default=AGREE, help="relative to the max norms (default 2e-6, harness.AGREE: the agreement of two runs at the solver's defaults)")
     args = parser.parse_args()
     ok = coulomb(args) if args.cmd in ("coulomb", "law") else compare(args)
     sys.exit(0 if ok else 1)

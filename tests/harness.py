@@ -17,6 +17,19 @@ REFERENCE_ITERATIONS = {3: 7, 4: 7, 5: 8, 6: 9, 7: 9, 8: 10, 9: 9, 10: 10}
 REFERENCE_STATES = {3: "14/55/15", 4: "26/89/29", 6: "51/182/79"}
 
 
+def mesh_of(geo, level, cache=None):
+    """The mesh file the programs make of geo (a path relative to the source tree, or absolute) at level: in the mesh
+    cache, out of the source tree (SSStarMeshCacheFile(): <cache>/<folder of geo>-<djb2 hash of its real path>/
+    <name>_L<level>.msh; cache -mesh_cache, else $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)"""
+    xdg = os.environ.get("XDG_CACHE_HOME", "")
+    cache = cache or (os.path.join(xdg, "ssstar") if xdg.startswith("/") else os.path.expanduser("~/.cache/ssstar"))
+    path = os.path.realpath(os.path.join(ROOT, geo))
+    h = 5381
+    for c in path.encode():
+        h = (33 * h + c) & 0xFFFFFFFF
+    return os.path.join(cache, "%s-%08x" % (os.path.basename(os.path.dirname(path)), h), os.path.basename(path)[:-4] + "_L%d.msh" % level)
+
+
 def mpiexec(n, *args):
     return ["mpiexec", "--oversubscribe", "-n", str(n)] + list(args)
 
@@ -41,7 +54,7 @@ def malloc_check(cmd):
     return ["-malloc_dump"] if parallel else ["-malloc_debug", "-malloc_dump"]
 
 
-# README "What converged means": a solve at the default settings ends within 1e-6 of the exact discrete solution
+# docs/guide/converged.md: a solve at the default settings ends within 1e-6 of the exact discrete solution
 # (displacements relative to the largest, forces to the largest; a load path's steps each to their own scale), so two
 # such runs (other ranks, the other path, another reduction, the scene turned) agree to twice that: the bound of every
 # comparison of runs that are not the same computation (issue 23: a bound at round-off fails on another machine's BLAS)
@@ -79,7 +92,7 @@ def expect(cond, message, output=""):
         raise Failure(message + ("\n" + output[-3000:] if output else ""))
 
 
-SUMMARY = re.compile(r"^\s*(-?\d+)\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
+SUMMARY = re.compile(r"^\s*(-?\d+)(?:r(\d+))?\s+(\d+)\s+(\d+)\s+[\d.]+\s+[\d.]+\s+(\d+)\s+[\d.]+\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 
 
 def prism(level, ranks=1, extra=(), h5=None, expect_rc=0):
@@ -91,9 +104,9 @@ def prism(level, ranks=1, extra=(), h5=None, expect_rc=0):
     out = run(cmd, expect_rc=expect_rc)
     m = SUMMARY.search(out)
     expect(m is not None, "no summary row", out)
-    return out, {"level": int(m.group(1)), "ranks": int(m.group(2)), "nodes": int(m.group(3)), "contact": int(m.group(4)),
-                 "iters": int(m.group(5)), "states": m.group(6), "sep_sl_st": m.group(7), "reason": m.group(8),
-                 "peak_gb": float(m.group(9))}
+    return out, {"level": int(m.group(1)), "refined": int(m.group(2) or 0), "ranks": int(m.group(3)), "nodes": int(m.group(4)), "contact": int(m.group(5)),
+                 "iters": int(m.group(6)), "states": m.group(7), "sep_sl_st": m.group(8), "reason": m.group(9),
+                 "peak_gb": float(m.group(10))}
 
 
 def last_znorm(out):

@@ -52,11 +52,15 @@ def main():
     # the lists the module reads from the library (none written in the module)
     expect(ssstar.REDUCTION_TYPES == ["direct", "mumps", "explicit", "none", "auto"], "REDUCTION_TYPES %s" % ssstar.REDUCTION_TYPES)
     expect(ssstar.LAW_PARAMETERS == ["slip_bound", "friction", "friction_1", "friction_2", "friction_direction"], "LAW_PARAMETERS %s" % ssstar.LAW_PARAMETERS)
-    expect((len(ssstar.STATE_NAMES), len(ssstar.REASONS), len(ssstar.METHODS), len(ssstar.REMEDIES)) == (7, 11, 2, 5) and ssstar.STATE_NAMES[-1] == "LS" and "NO_EQUILIBRIUM" in ssstar.REASONS, "the enum names")
+    expect((len(ssstar.STATE_NAMES), len(ssstar.REASONS), len(ssstar.METHODS), len(ssstar.REMEDIES)) == (7, 12, 2, 5) and ssstar.STATE_NAMES[-1] == "LS" and "NO_EQUILIBRIUM" in ssstar.REASONS and ssstar.REASONS[-1] == "NOT_AFFINE", "the enum names")
     source = open(ssstar.__file__).read()
     expect('"direct", "mumps"' not in source and not any(n in source for n in ('Names", 7)', 'Reasons", 11)')), "the module writes a list of the library's names itself")
 
     # setters and getters
+    expect(ssstar.get_affine(snes), "set_linear_problem's F is affine")
+    ssstar.set_affine(snes, False)
+    expect(not ssstar.get_affine(snes), "set_affine/get_affine")
+    ssstar.set_affine(snes, True)
     ssstar.set_friction(snes, 0.4)
     expect(ssstar.get_friction(snes) == 0.4, "set_friction/get_friction")
     ssstar.set_friction_law(snes, "tresca")
@@ -141,6 +145,7 @@ def main():
     ssstar.set_contact_offsets(snes, None)
     expect(ssstar.get_contact_offsets(snes) is None, "set_contact_offsets(None) kept the offsets")
     a, b, c = ssstar.get_newton_step_counts(snes)
+    expect(ssstar.get_nonlinear_counts(snes) == (1, 0), "an affine residual's Jacobian evaluated once, no contact update: %s" % (ssstar.get_nonlinear_counts(snes),))
     remedies = ssstar.get_remedy_counts(snes)
     expect(set(remedies) == set(ssstar.REMEDIES) and min(a, b, c) >= 0, "remedy or Newton step counts")
     PETSc.Sys.Print("test_module: ok; %d nodes on %d ranks, %d iterations, states %s, laws %s; library %s"

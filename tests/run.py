@@ -53,7 +53,7 @@ def environment(out):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("-k", default="", help="run only tests whose name contains this")
+    parser.add_argument("-k", action="append", default=[], help="run only tests whose name (or suite's name) contains this; repeatable")
     parser.add_argument("-j", type=int, default=os.cpu_count() or 1, help="tests run at the same time (default: cores)")
     parser.add_argument("--full", action="store_true", help="also the slow tests (make test-full)")
     parser.add_argument("--list", action="store_true", help="list the tests that would run, with their requirements")
@@ -65,7 +65,7 @@ def main():
 
     load_suites()
     from harness import OUT, TESTS
-    chosen = [t for t in TESTS if args.k in t[0] and (args.full or not t[3])]
+    chosen = [t for t in TESTS if (not args.k or any(k in t[0] or k in t[2].__module__ for k in args.k)) and (args.full or not t[3])]
     if args.list:
         for name, requirement, fn, full in chosen:
             print("%-32s %-16s %s%s" % (name, fn.__module__, "[full] " if full else "", requirement))

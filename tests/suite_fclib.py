@@ -8,6 +8,7 @@ import h5py
 import numpy as np
 
 from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
+from check_solution import fclib_error, fclib_problem
 
 FCLIB = os.path.join(ROOT, "examples", "fclib")
 DATA = os.path.join(ROOT, "tests", "data", "fclib")
@@ -31,48 +32,12 @@ def fclib(path, *extra, ranks=1, expect_rc=0):
                  "z": float(m.group(6)), "coulomb": float(m.group(7)), "reason": m.group(8)}
 
 
-# --- an independent reading of FCLib files (numpy, dense) -------------------------------------------------------
-
-def sparse(g):
-    """An FCLib sparse matrix group as a dense array (nz = -2 rows, -1 columns, >= 0 triplets: i row, p column)."""
-    m, n, nz = int(g["m"][0]), int(g["n"][0]), int(g["nz"][0])
-    p, i, x = g["p"][:], g["i"][:], g["x"][:]
-    a = np.zeros((m, n))
-    if nz >= 0:
-        np.add.at(a, (i[:nz], p[:nz]), x[:nz])
-    else:
-        outer = np.repeat(np.arange(len(p) - 1), np.diff(p))
-        rows, cols = (outer, i[:p[-1]]) if nz == -2 else (i[:p[-1]], outer)
-        np.add.at(a, (rows, cols), x[:p[-1]])
-    return a
-
+# --- an independent reading of FCLib files (numpy, dense): tests/check_solution.py's, which reads -o files too ---------
 
 def problem(path):
-    """(W, q, mu, global parts or None) of an FCLib file; a global problem condensed: W = H^T M^-1 H, q = H^T M^-1 f + w."""
-    f = h5py.File(path, "r")
-    if "fclib_local" in f:
-        g = f["fclib_local"]
-        return sparse(g["W"]), g["vectors/q"][:], g["vectors/mu"][:], None
-    g = f["fclib_global"]
-    M, H, load, w = sparse(g["M"]), sparse(g["H"]), g["vectors/f"][:], g["vectors/w"][:]
-    return H.T @ np.linalg.solve(M, H), H.T @ np.linalg.solve(M, load) + w, g["vectors/mu"][:], (M, H, load, w)
-
-
-def fclib_error(W, q, mu, r):
-    """FCLib's measure (Siconos fc3d_compute_error with norm ||q||): ||r - proj_C(r - u^)|| / ||q||, u^ = u + mu|u_t| e_n."""
-    u = (W @ r + q).reshape(-1, 3)
-    r = r.reshape(-1, 3)
-    x = r - u
-    x[:, 0] -= mu * np.hypot(u[:, 1], u[:, 2])
-    xt = np.hypot(x[:, 1], x[:, 2])
-    proj = x.copy()
-    polar = mu * xt <= -x[:, 0]
-    outside = ~polar & (xt > mu * x[:, 0])
-    proj[polar] = 0
-    xn = (mu * xt + x[:, 0]) / (mu * mu + 1)
-    proj[outside, 0] = xn[outside]
-    proj[outside, 1:] = (mu * xn / np.where(xt > 0, xt, 1))[outside, None] * x[outside, 1:]
-    return np.linalg.norm(r - proj) / np.linalg.norm(q)
+    """(W, q, mu, global parts or None) of an FCLib file (check_solution.fclib_problem())"""
+    with h5py.File(path, "r") as f:
+        return fclib_problem(f)
 
 
 def check_solution_file(problem_path, solution_path):

@@ -226,7 +226,7 @@ def hard_bad_input():
     options = {("-snes_rtol", "nan"): "-snes_rtol nan", ("-snes_ssstar_friction", "nan"): "-snes_ssstar_friction nan",
                ("-snes_ssstar_friction_law", "dry"): "Unknown option dry for -snes_ssstar_friction_law",
                ("-snes_ssstar_reduction", "lu"): "Unknown option lu for -snes_ssstar_reduction",
-               ("-snes_ssstar_globalization", "maybe"): "Unknown logical value: maybe",
+               ("-snes_ssstar_globalization", "maybe"): "Option -snes_ssstar_globalization maybe: maybe is not true or false",
                ("-snes_ssstar_damping_min", "0"): "-snes_ssstar_damping_min 0", ("-snes_ssstar_stagnation_its", "0"): "-snes_ssstar_stagnation_its 0",
                ("-snes_ssstar_scaling", "-1"): "-snes_ssstar_scaling -1", ("-initial_guess", "far"): "Unknown option far for -initial_guess"}
     for option, message in options.items():

@@ -112,7 +112,7 @@ def refine_scenes():
 ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank( \(smoothed aggregation\))?")
 
 
-@test("the memory estimate printed before the work (the mesh line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks with ssstar's plain aggregation (-snes_view says so), and on 2 ranks with the smoothed one (-pc_gamg_agg_nsmooths 1), which the estimate follows; a limit below the estimate is refused before the work")
+@test("the memory estimate printed before the work (the contact line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks with ssstar's plain aggregation (-snes_view says so), and on 2 ranks with the smoothed one (-pc_gamg_agg_nsmooths 1), which the estimate follows; a limit below the estimate is refused before the work")
 def memory_estimate():
     for ranks, extra, smoothed in ((1, [], False), (2, [], False), (2, ["-pc_gamg_agg_nsmooths", "1"], True)):
         out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_smoothed" if smoothed else ""), ranks)

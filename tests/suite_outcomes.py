@@ -1,4 +1,4 @@
-"""What a scripted user can rely on (README, "What a scripted user can rely on"): every example refuses an option that
+"""What a scripted user can rely on (docs/guide/scripting.md): every example refuses an option that
 nothing reads, before any work, naming the nearest known one; a solve that did not converge exits with
 NOT_CONVERGED (2) and its file says so; one option owns each parameter; the documented defaults are the code's; the
 pictures carry a scale for the slip and keep their legends off the labels; ssstar's error message comes first."""
@@ -60,7 +60,7 @@ def refused(cmd, option, nearest):
 def options_unknown_refused():
     geo = out("outcomes_fresh.geo")
     shutil.copy(os.path.join(ROOT, "meshes", "prism.geo"), geo)
-    msh = out("outcomes_fresh_L2.msh")
+    msh = mesh_of(geo, 2)
     if os.path.exists(msh):
         os.remove(msh)
     refused(mpiexec(1, PRISM, "-geo", geo, "-level", "2", "-levle", "8"), "-levle", "-level")
@@ -186,7 +186,7 @@ def normalize(value):
 
 
 @test("the documented defaults of every -snes_ssstar_* option (docs/manual.md: '<default>' of the option lines and "
-      "'default V' of a setter's page; the solver's option table of README.md) are those -help prints")
+      "'default V' of a setter's page; the solver's rows of the option table docs/options.md) are those -help prints")
 def docs_defaults_match_help():
     text = run(mpiexec(1, GENERIC, "-snes_type", "ssstar", "-help"))
     defaults = {name: normalize(default) for name, _, default in HELP_DEFAULT.findall(text)}
@@ -209,16 +209,14 @@ def docs_defaults_match_help():
             if name in defaults and not (isinstance(v, str) and v not in defaults.values()):
                 expect(v == defaults[name], "docs/manual.md, page %s: default %s of -snes_ssstar_%s, -help: %s" % (page.split()[0], value, name, defaults[name]))
                 checked.append(name + " (page)")
-    readme = open(os.path.join(ROOT, "README.md")).read()
-    readme = readme[readme.index("## `-snes_type ssstar` in your own program"):]  # the solver's table (the prism's sets its own)
-    readme = readme[:readme.index("\n## ", 10)]
-    for name, value in re.findall(r"^\| `-snes_ssstar_(\w+)[^`]*` \| ([^|]*) \|", readme, re.M):
-        if name in defaults and value.strip():
-            v = normalize(value.split("=")[0].split()[0])
-            expect(v == defaults[name], "README: -snes_ssstar_%s default %s, -help: %s" % (name, value.strip(), defaults[name]))
-            checked.append(name + " (README)")
+    table = open(os.path.join(ROOT, "docs", "options.md")).read()  # the solver's rows (generated from -help: make docs)
+    for name, value, where in re.findall(r"^\| `-snes_ssstar_(\w+)` \| `([^`]*)`[^|]* \| (\w+) \|", table, re.M):
+        if name in defaults and where == "solver":
+            v = normalize(value)
+            expect(v == defaults[name], "docs/options.md: -snes_ssstar_%s default %s, -help: %s (make docs)" % (name, value, defaults[name]))
+            checked.append(name + " (options)")
     for name in ("friction", "reduction", "lu_reuse", "pc_reuse", "ksp_rtol_max", "damping_min"):
-        expect(name in checked and name + " (README)" in checked, "the default of -snes_ssstar_%s is not checked (%s)" % (name, checked))
+        expect(name in checked and name + " (options)" in checked, "the default of -snes_ssstar_%s is not checked (%s)" % (name, checked))
     expect("lu_reuse (page)" in checked, "the page of SNESSSStarSetLUReuse states no default", manual)
 
 
@@ -343,7 +341,7 @@ def error_traceback_on_request():
 def help_without_work():
     geo = out("outcomes_help.geo")
     shutil.copy(os.path.join(ROOT, "meshes", "prism.geo"), geo)
-    msh = out("outcomes_help_L2.msh")
+    msh = mesh_of(geo, 2)
     own = {"prism": "-initial_guess", "contact": "-obstacle_<G>", "generic": "-obstacle_normal", "fclib": "-summary_header"}
     work = {"prism": "level ranks  nodes", "contact": "summary: nodes", "generic": " iterations\n", "fclib": "FCLib-error"}  # what a solve prints
     args = {"prism": ["-geo", geo, "-level", "2"], "contact": [], "generic": [], "fclib": []}

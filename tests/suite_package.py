@@ -70,6 +70,38 @@ def help_lists_every_option():
             expect(re.search(pattern, text) is not None, "examples/%s -help does not list %s with its default" % (program, name), text)
 
 
+@test("docs/options.md, the one table of every option, is what docs/mkoptions.py makes from the examples' -help today (make docs; --check), and it has a row for every option the library, the scenes and each example read: each -snes_ssstar_* option of src/ (with its default), each scene option of src/scene, each option an example reads")
+def options_table_fresh():
+    run([PYTHON, os.path.join(ROOT, "docs", "mkoptions.py"), "--check"])
+    table = open(os.path.join(ROOT, "docs", "options.md")).read()
+    rows = set(re.findall(r"^\| `(-[\w<>]+)[^`]*` \|", table, re.M))
+    sources = glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)
+    library = {o for o in options_in(sources) if o.startswith("-snes_ssstar")}
+    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "scene", "**", "*.c"), recursive=True), LITERAL) if not o.startswith("-dm_") or o == "-dm_refine"}
+    examples = set()
+    for source in glob.glob(os.path.join(ROOT, "examples", "*.c")):
+        examples |= {o for o in options_in([source], LITERAL) if not o.startswith(("-snes_type", "-pc_", "-ksp_", "-da_"))}
+    expect(len(library) >= 15 and len(scene) >= 10 and len(examples) >= 10, "found only %s, %s and %s" % (sorted(library), sorted(scene), sorted(examples)))
+    missing = sorted(o for o in library | scene | examples if o not in rows and (o + "<G>") not in rows and not any(r.startswith(o + "<G>") for r in rows))
+    expect(not missing, "docs/options.md has no row for %s" % missing)
+    for name in library:
+        if name in rows and not name.startswith(("-snes_ssstar_monitor", "-snes_ssstar_newton")):
+            expect(re.search(r"^\| `%s` \| `[^`]+`" % re.escape(name), table, re.M) is not None, "docs/options.md gives no default for %s" % name)
+
+
+@test("README.md, docs/guide/*.md and docs/options.md link only to files that exist and to headings those pages have (tests/doc_commands.py), and the README links the guide's index and every page of docs/guide/")
+def guide_links_resolve():
+    import doc_commands
+    broken = doc_commands.broken_links()
+    expect(not broken, "broken links: %s" % broken)
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    unlinked = [os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "docs", "guide", "*.md")) if "docs/guide/" + os.path.basename(p) not in readme]
+    expect(not unlinked, "the README does not link these guide pages: %s" % unlinked)
+    index = open(os.path.join(ROOT, "docs", "guide", "README.md")).read()
+    missing = [os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "docs", "guide", "*.md")) if os.path.basename(p) != "README.md" and "(%s)" % os.path.basename(p) not in index]
+    expect(not missing, "docs/guide/README.md does not list these pages: %s" % missing)
+
+
 PY_LINE = re.compile(r"petsc4py \+ ssstar: (\S+) after (\d+) iterations; (\d+) contact nodes; Coulomb law violation (\S+); \|u - u_C\|/\|u_C\| = (\S+)")
 
 
@@ -118,7 +150,7 @@ def manual_synopses_compile():
     expect(not ok and "incompatible" in out, "a drifted synopsis compiles", out)
 
 
-@test("the derivation lives in the project (docs/derivation.md, cited by README and the code) and its checks hold: tests/derivation_check.py on a random 16-node problem gives (d, b) in gph Q, the 6p and 3p Newton steps equal to 1e-12, T G = S H, quadratic convergence with omega = +d_t/|d_t| and at least twice the iterations with the slides' sign, and the library's kernels equal to the page's blocks")
+@test("the derivation lives in the project (docs/derivation.md, cited by the README and the code) and its checks hold: tests/derivation_check.py on a random 16-node problem gives (d, b) in gph Q, the 6p and 3p Newton steps equal to 1e-12, T G = S H, quadratic convergence with omega = +d_t/|d_t| and at least twice the iterations with the slides' sign, and the library's kernels equal to the page's blocks")
 def derivation_checks():
     page = open(os.path.join(ROOT, "docs", "derivation.md")).read()
     for equation in ("(1.1)", "(3.2)", "(4.1)", "(5.1)", "(5.2)", "(6.1)"):

@@ -23,8 +23,8 @@ def prism_level_run(level, extra, slack):
 
 
 def prism_level(level):
-    """The default (auto): the dense route up to SSSTAR_AUTO_DENSE_MAX_DOFS (20 000) dofs, the reference iterations +- 1;
-    the whole body above, whose inexact steps may take up to two more (README "Large problems"), and there the dense
+    """The default (auto): the dense route up to level 7 (auto's cost model, src/reduction/auto.c), the reference iterations +- 1;
+    the whole body above, whose inexact steps may take up to two more (docs/guide/large-problems.md), and there the dense
     route named (-snes_ssstar_reduction direct) for the reference iterations +- 1; above 50 000 dofs auto starts from
     the coarser level's solution (nested iteration: fewer iterations), and from u = 0 with -nested_levels 0"""
     dofs = 3 * (4 * level + 1) * (2 * level + 1) ** 2
@@ -41,7 +41,7 @@ def prism_level(level):
 
 
 for _L in sorted(REFERENCE_ITERATIONS):
-    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice above 20 000 dofs) without any remedy of the globalization, with the reference node counts%s; above 50 000 dofs auto starts from the coarser level's solution and takes fewer"
+    test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice from level 8) without any remedy of the globalization, with the reference node counts%s; above 50 000 dofs auto starts from the coarser level's solution and takes fewer"
          % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""))(
         (lambda L: (lambda: prism_level(L)))(_L))
     TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]
@@ -113,7 +113,7 @@ def prism_user_mesh():
     run(["gmsh", "-3", "-setnumber", "L", "3", "-format", "msh41", os.path.join(ROOT, "meshes", "prism.geo"), "-o", msh])
     out = run(mpiexec(2, PRISM, "-mesh", msh, "-snes_converged_reason"))
     m = SUMMARY.search(out)
-    expect(m is not None and m.group(7) == REFERENCE_STATES[3] and m.group(8) == "CONVERGED_FNORM_RELATIVE", "different result from -mesh", out)
+    expect(m is not None and m.group(8) == REFERENCE_STATES[3] and m.group(9) == "CONVERGED_FNORM_RELATIVE", "different result from -mesh", out)
 
 
 @test("bad input is refused with an error naming it: a missing mesh file, a mesh without a physical group, a negative friction, an output file that cannot be written")

@@ -1,5 +1,5 @@
-"""Scenes from Python (ssstar.Scene, python/ssstar/scene.py, over the C scene library; examples/scene.py): the README's
-load path, a parameter sweep, scenes of the README's table and a load path decided by a Python loop, each against
+"""Scenes from Python (ssstar.Scene, python/ssstar/scene.py, over the C scene library; examples/scene.py): the block
+load path (README, docs/guide/load-paths.md), a parameter sweep, scenes of docs/guide/scenes.md and a load path decided by a Python loop, each against
 examples/contact with the same options (-snes_rtol named on both, so that the solver's defaults do not matter); the
 module's contract (tests/python_scene_check.py); pip install ./python and make install."""
 import os
@@ -16,7 +16,7 @@ CONTACT = os.path.join(ROOT, "examples", "contact")
 SCENE_PY = os.path.join(ROOT, "examples", "scene.py")
 SCENE_CHECK = os.path.join(ROOT, "tests", "python_scene_check.py")
 RTOL = ["-snes_rtol", "1e-12"]
-# the block of the README's load path (examples/scene.py's BLOCK)
+# the block of the load path of the README and docs/guide/load-paths.md (examples/scene.py's BLOCK)
 BLOCK = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2e8", "-nu", "0.3", "-spring_top", "1000", "-contact", "bottom", "-friction_bottom", "0.5"]
 README_PATH = "0:0,0,0;1:0,0,-10;2:7.5,0,-10;3:0,0,-10;4:-7.5,0,-10;5:0,0,-10"
 # The path of each rank count: on 2 ranks MUMPS's parallel factorization is not reproducible on a loaded machine (its
@@ -78,7 +78,7 @@ def same_files(c_h5, py_h5, rtol=1e-12):
     return worst
 
 
-@test("the README's block load path from Python (examples/scene.py block: ssstar.Scene with the history as (t, (x, y, z)) pairs, steps() and write()) writes the file examples/contact writes for the README's command: every dataset of every step within 1e-12 of it on 1 and 2 ranks (on 2 ranks the whole body, -snes_ssstar_reduction none: MUMPS's parallel factorization is not reproducible under load); the top face back at u_x = +-2.49994e-3 after the releases (README); check_solution.py coulomb judges it as it judges examples/contact's, and passes it at every step (--steps); no PETSc memory left")
+@test("the block load path of the README and docs/guide/load-paths.md from Python (examples/scene.py block: ssstar.Scene with the history as (t, (x, y, z)) pairs, steps() and write()) writes the file examples/contact writes for the documented command: every dataset of every step within 1e-12 of it on 1 and 2 ranks (on 2 ranks the whole body, -snes_ssstar_reduction none: MUMPS's parallel factorization is not reproducible under load); the top face back at u_x = +-2.49994e-3 after the releases (docs/guide/load-paths.md); check_solution.py coulomb judges it as it judges examples/contact's, and passes it at every step (--steps); no PETSc memory left")
 def pyscene_block_path():
     for ranks in (1, 2):
         c_h5, py_h5 = out("pyscene_block_c_np%d.h5" % ranks), out("pyscene_block_py_np%d.h5" % ranks)
@@ -125,7 +125,7 @@ def pyscene_sweep():
     expect(np.abs(slips - closed).max() <= 1e-6 and abs(slips[0]) < 1e-8, "against (11.2): %s, %s" % (slips, closed))
 
 
-@test("scenes of the README's table from Python (examples/scene.py run scenes/X.opts -o: ssstar.Scene from the options file, solve(), o=...) write the files of examples/contact -options_file scenes/X.opts -o: shear (a stick-slip front; and with -nested_levels 1, started from the coarser mesh's solution: the same iterations), gap (-load_steps 10: /load_steps too), incline (gravity, a tilted plane) and slider (two bodies, a contact pair), every dataset within 1e-12; the incline's tangential/normal force is tan 20 degrees (README)")
+@test("scenes of docs/guide/scenes.md from Python (examples/scene.py run scenes/X.opts -o: ssstar.Scene from the options file, solve(), o=...) write the files of examples/contact -options_file scenes/X.opts -o: shear (a stick-slip front; and with -nested_levels 1, started from the coarser mesh's solution: the same iterations), gap (-load_steps 10: /load_steps too), incline (gravity, a tilted plane) and slider (two bodies, a contact pair), every dataset within 1e-12; the incline's tangential/normal force is tan 20 degrees (docs/guide/scenes.md)")
 def pyscene_table_scenes():
     for name, extra in (("shear", []), ("shear", ["-nested_levels", "1"]), ("gap", []), ("incline", []), ("slider", [])):
         tag = name + "".join(extra).replace("-", "_")
@@ -146,11 +146,11 @@ def pyscene_table_scenes():
             expect(abs(ratio - np.tan(np.radians(20))) < 1e-3, "incline: tangential/normal force %.6f, tan 20 = %.6f" % (ratio, np.tan(np.radians(20))), text)
 
 
-@test("step cutting from Python (ssstar.Scene's steps(), examples/scene.py run on an options file): the README's block path with -snes_max_it 6, whose step t = 2 does not converge, is halved as examples/contact halves it (retried at t 1.5, then on in sub-steps, 4 halvings, then the path stops): the same rows, cuts and reasons, the same file to 1e-12 with failed_step and failed_time, and exit status 2 as examples/contact's")
+@test("step cutting from Python (ssstar.Scene's steps(), examples/scene.py run on an options file): the block load path with -snes_max_it 6, whose step t = 2 does not converge, is halved as examples/contact halves it (retried at t 1.5, then on in sub-steps, 4 halvings, then the path stops): the same rows, cuts and reasons, the same file to 1e-12 with failed_step and failed_time, and exit status 2 as examples/contact's")
 def pyscene_step_cutting():
     opts = out("pyscene_cut.opts")
     with open(opts, "w") as f:
-        f.write("# the README's block path, with too few iterations for the step to t = 2\n")
+        f.write("# the block load path, with too few iterations for the step to t = 2\n")
         for name, value in zip(BLOCK[::2], BLOCK[1::2]):
             f.write("%s %s\n" % (name, value))
         f.write("-traction_top %s\n-snes_max_it 6\n" % README_PATH)
@@ -200,7 +200,7 @@ def pyscene_large_sliding():
 
 
 def onset_code():
-    """The lines of examples/scene.py's onset() that the README shows: the scene and the loop"""
+    """The lines of examples/scene.py's onset() that docs/guide/python.md shows: the scene and the loop"""
     text = open(SCENE_PY).read()
     body = text[text.index("def onset("):text.index("\n\n\n", text.index("def onset("))].split("\n")
     first = next(i for i, line in enumerate(body) if "scene = ssstar.Scene(" in line)
@@ -208,7 +208,7 @@ def onset_code():
     return [line.split("#")[0].strip() for line in body[first:last + 1] if line.strip() and not line.strip().startswith(("if out", "scene.write"))]
 
 
-@test("a load path decided by a Python loop (examples/scene.py onset, the README's example: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike, and passes every step); the README holds the loop's code")
+@test("a load path decided by a Python loop (examples/scene.py onset, the example of docs/guide/python.md: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike, and passes every step); docs/guide/python.md holds the loop's code")
 def pyscene_user_loop():
     for ranks in (1, 2):
         py_h5, c_h5 = out("pyscene_onset_py_np%d.h5" % ranks), out("pyscene_onset_c_np%d.h5" % ranks)
@@ -228,9 +228,9 @@ def pyscene_user_loop():
         same_law(c_h5, py_h5)
         law = run(CHECK + ["coulomb", "--steps", py_h5])
         expect("VIOLATED" not in law, "%d ranks: the law at some step" % ranks, law)
-    readme = open(os.path.join(ROOT, "README.md")).read()
-    missing = [line for line in onset_code() if line not in readme]
-    expect(not missing, "the README does not show these lines of examples/scene.py's onset(): %s" % missing)
+    guide = open(os.path.join(ROOT, "docs", "guide", "python.md")).read()
+    missing = [line for line in onset_code() if line not in guide]
+    expect(not missing, "docs/guide/python.md does not show these lines of examples/scene.py's onset(): %s" % missing)
 
 
 @test("ssstar.Scene's contract (tests/python_scene_check.py) on 1 and 2 ranks: each Step's arrays and row equal the file's datasets bit for bit; keywords override the options file; a misspelt keyword raises ssstar.Error (a PETSc.Error, code 95) naming the nearest option, a bad value the library's message, a missing options file on every rank; two scenes used in turn give what each gives alone and leave petsc4py's database as it was; a tentative step leaves no trace; set(), write() and accept() refuse what they cannot do; a scene per rank on PETSC_COMM_SELF; help(ssstar.Scene) documents solve, steps, step, set, write, close")

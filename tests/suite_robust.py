@@ -2,7 +2,7 @@
 23): nearly floating bodies (soft springs against a stiff body: Newton matrices of condition 1e5 and more) under tilted
 rollers, rigid balls and two-body pairs, sheared, with friction from 0.1 to 2, on 1 to 4 ranks: both paths converge,
 their files satisfy the law (tests/check_solution.py) and lie within 1e-6 of the exact discrete solution (the dense route
-on one rank at -snes_rtol 1e-13; README "What converged means"). bench/robust.py sweeps the whole families (FAMILY,
+on one rank at -snes_rtol 1e-13; docs/guide/converged.md). bench/robust.py sweeps the whole families (FAMILY,
 PATHS) on 1-4 ranks and prints the table; here members of them (tests/suite_converged.py has the load-path ones)."""
 import os
 import re

@@ -6,6 +6,7 @@ points compared with B's first nodes through interpolation weights, in tilted fr
                    singular: a point's own block of B is singular (refused, naming the point)\n\
                    shared: a point's master dof is another point's own dof (refused, naming the point)\n\
   -n <6>           nodes per body\n\
+  -update          declare B again at every iterate (SNESSSStarSetContactUpdate): the points' variables are taken again\n\
   -o <file>        write u (PETSc binary), to compare runs\n";
 
 #include <ssstar.h>
@@ -285,6 +286,22 @@ static PetscErrorCode CheckFormula(PetscInt n, Body *body, Mat B, SNES snes)
   PetscFunctionReturn(0);
 }
 
+/* -update: the same B declared again at every iterate (the iterate taken into the points' variables of a new T) */
+typedef struct {
+  IS  dofs;
+  Mat B;
+  Vec gaps;
+} Declaration;
+
+static PetscErrorCode DeclareAgain(SNES snes, Vec x, void *ctx)
+{
+  Declaration *d = (Declaration *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESSSStarSetContactOperator(snes, d->dofs, d->B, d->gaps));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   Body      body;
@@ -294,7 +311,8 @@ int main(int argc, char **argv)
   Vec       gaps, u;
   PetscInt  n = 6;
   char      which[32] = "law", out[PETSC_MAX_PATH_LEN] = "";
-  PetscBool formula, hasOut;
+  PetscBool formula, hasOut, update = PETSC_FALSE;
+  Declaration declaration;
   PetscReal phi;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -302,6 +320,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-n", &n, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-case", which, sizeof(which), NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-o", out, sizeof(out), &hasOut));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-update", &update, NULL));
   PetscCall(PetscStrcmp(which, "formula", &formula));
   PetscCall(AssembleBodies(n, &body));
   PetscCall(ContactOperator(n, which, body.K, &dofs, &B, &gaps));
@@ -311,11 +330,20 @@ int main(int argc, char **argv)
   PetscCall(SNESSSStarSetLinearProblem(snes, body.K, body.b));
   PetscCall(SNESSSStarSetContactOperator(snes, dofs, B, gaps));
   if (formula) PetscCall(SNESSSStarSetReductionType(snes, SSSTARREDUCTIONDIRECT));
+  declaration = (Declaration){dofs, B, gaps};
+  if (update) PetscCall(SNESSSStarSetContactUpdate(snes, DeclareAgain, &declaration));
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(MatCreateVecs(body.K, &u, NULL));
   PetscCall(VecZeroEntries(u));
   PetscCall(SNESSolve(snes, NULL, u));
   PetscCall(SNESSSStarGetFriction(snes, &phi));
+  if (update) {
+    PetscInt updates, its;
+
+    PetscCall(SNESSSStarGetNonlinearCounts(snes, NULL, &updates));
+    PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "contact updates: %" PetscInt_FMT " in %" PetscInt_FMT " iterations\n", updates, its));
+  }
   if (formula) PetscCall(CheckFormula(n, &body, B, snes));
   else PetscCall(CheckLaw(n, &body, B, gaps, u, phi));
   if (hasOut) {

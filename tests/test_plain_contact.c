@@ -4,7 +4,8 @@ Run with -dll_append <dir>/libssstar.so -snes_type ssstar: it checks the Coulomb
   -snes_ssstar_friction <0.3>     friction coefficient (read here too, for the check)\n\
   -dense                          hand P to the solver as a dense matrix\n\
   -singular                       node 0 gets no stiffness and is pulled off the plane: the Newton matrix is singular\n\
-  -poison <load|stiffness|guess>  a NaN in f, an Inf in P or a NaN in the initial guess at node 3 (the solver must refuse it)\n";
+  -poison <load|stiffness|guess>  a NaN in f, an Inf in P or a NaN in the initial guess at node 3 (the solver must refuse it)\n\
+  -kappa <0>                      a nonlinear residual P u + kappa u^3 - f (Jacobian P + 3 kappa diag(u^2)), not declared affine\n";
 
 /* Requirement: the SNES type "ssstar" is usable, through -dll_append only, from a program that does not link
    libssstar, on 1 and 2 ranks and with a sparse (AIJ) P; its solution satisfies the Coulomb law at every node
@@ -12,8 +13,9 @@ Run with -dll_append <dir>/libssstar.so -snes_type ssstar: it checks the Coulomb
 #include <petscsnes.h>
 
 typedef struct {
-  Mat P;
-  Vec f;
+  Mat       P, J; /* J: the Jacobian's matrix (P itself when kappa = 0) */
+  Vec       f;
+  PetscReal kappa;
 } Problem;
 
 static PetscErrorCode FormFunction(SNES snes, Vec u, Vec c, void *ctx)
@@ -23,12 +25,31 @@ static PetscErrorCode FormFunction(SNES snes, Vec u, Vec c, void *ctx)
   PetscFunctionBeginUser;
   PetscCall(MatMult(pb->P, u, c));
   PetscCall(VecAXPY(c, -1.0, pb->f));
+  if (pb->kappa != 0) {
+    Vec u3;
+
+    PetscCall(VecDuplicate(u, &u3));
+    PetscCall(VecPointwiseMult(u3, u, u));
+    PetscCall(VecPointwiseMult(u3, u3, u));
+    PetscCall(VecAXPY(c, pb->kappa, u3));
+    PetscCall(VecDestroy(&u3));
+  }
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jp, void *ctx)
 {
+  Problem *pb = (Problem *)ctx;
+  Vec      d;
+
   PetscFunctionBeginUser;
+  if (pb->kappa == 0) PetscFunctionReturn(0); /* J = P, constant */
+  PetscCall(MatCopy(pb->P, J, SAME_NONZERO_PATTERN));
+  PetscCall(VecDuplicate(u, &d));
+  PetscCall(VecPointwiseMult(d, u, u));
+  PetscCall(VecScale(d, 3 * pb->kappa));
+  PetscCall(MatDiagonalSet(J, d, ADD_VALUES));
+  PetscCall(VecDestroy(&d));
   PetscFunctionReturn(0);
 }
 
@@ -158,11 +179,18 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-snes_ssstar_friction", &phi, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-singular", &singular, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-dense", &dense, NULL));
+  pb.kappa = 0;
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-kappa", &pb.kappa, NULL));
   PetscCall(CreateProblem(PETSC_COMM_WORLD, p, singular, &pb));
   if (dense) PetscCall(MatConvert(pb.P, MATDENSE, MAT_INPLACE_MATRIX, &pb.P));
+  if (pb.kappa != 0) PetscCall(MatDuplicate(pb.P, MAT_COPY_VALUES, &pb.J));
+  else {
+    PetscCall(PetscObjectReference((PetscObject)pb.P));
+    pb.J = pb.P;
+  }
   PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
   PetscCall(SNESSetFunction(snes, NULL, FormFunction, &pb));
-  PetscCall(SNESSetJacobian(snes, pb.P, pb.P, FormJacobian, &pb));
+  PetscCall(SNESSetJacobian(snes, pb.J, pb.J, FormJacobian, &pb));
   PetscCall(SNESSetFromOptions(snes));
   PetscCall(MatCreateVecs(pb.P, &u, NULL));
   PetscCall(VecZeroEntries(u));
@@ -176,6 +204,7 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&pb.f));
   PetscCall(MatDestroy(&pb.P));
+  PetscCall(MatDestroy(&pb.J));
   PetscCall(PetscFinalize());
   return (reason > 0 && violation <= 1e-8) ? 0 : 1;
 }

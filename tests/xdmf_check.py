@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Reads an XDMF file of ssstar with VTK's XDMF reader (vtkXdmfReader, what ParaView uses) and prints, as JSON, its
 time steps and, per time step and grid, the number of points and cells and the mean of each point array per
-component: tests/suite_loadpath.py compares them with the HDF5 file. Needs a Python with VTK (pip install vtk).
+component (and of each cell array, "cell_means"): tests/suite_loadpath.py and tests/suite_displacement.py compare
+them with the HDF5 file. Needs a Python with VTK (pip install vtk).
 
   xdmf_check.py FILE.xmf"""
 import json
@@ -34,7 +35,12 @@ def main():
             for i in range(data.GetNumberOfArrays()):
                 a = vtk_to_numpy(data.GetArray(i)).astype(float)
                 arrays[data.GetArrayName(i)] = a.reshape(len(a), -1).mean(axis=0).tolist()
-            grids[name] = {"points": block.GetNumberOfPoints(), "cells": block.GetNumberOfCells(), "means": arrays}
+            cells = block.GetCellData()
+            cell_means = {}
+            for i in range(cells.GetNumberOfArrays()):
+                a = vtk_to_numpy(cells.GetArray(i)).astype(float)
+                cell_means[cells.GetArrayName(i)] = a.reshape(len(a), -1).mean(axis=0).tolist()
+            grids[name] = {"points": block.GetNumberOfPoints(), "cells": block.GetNumberOfCells(), "means": arrays, "cell_means": cell_means}
         steps.append({"time": t, "grids": grids})
     print(json.dumps(steps))
 

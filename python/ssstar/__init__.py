@@ -1,7 +1,7 @@
 """ssstar from Python: the SNES type "ssstar" (semismooth* Newton for 3D contact with friction) over petsc4py.
 
 Importing the module loads libssstar.so (ctypes) and registers the type; the functions take petsc4py objects and call
-the C API of include/ssstar.h with their handles (README "Python", docs/manual.md for each C function):
+the C API of include/ssstar.h with their handles (docs/guide/python.md, docs/manual.md for each C function):
 
     from petsc4py import PETSc
     import ssstar
@@ -43,7 +43,7 @@ import numpy as np
 from petsc4py import PETSc
 
 __all__ = ["Scene", "Step", "Error", "__version__", "SNESSSSTAR", "STATE_NAMES", "FRICTION_LAWS", "LAW_PARAMETERS", "REASONS", "REDUCTION_TYPES", "METHODS", "REMEDIES", "library",
-           "set_linear_problem", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
+           "set_linear_problem", "set_affine", "get_affine", "get_nonlinear_counts", "set_contact_nodes", "get_contact_nodes", "set_contact_operator",
            "set_contact_offsets", "get_contact_offsets",
            "set_reduction_type", "get_reduction_type", "set_memory_limit", "set_friction_law", "get_friction_law",
            "law_parameters", "set_law_parameter", "set_friction", "get_friction", "set_node_law_parameter",
@@ -111,14 +111,35 @@ class Error(PETSc.Error):
 
 
 _error_message = _declare("PetscErrorMessage", ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_char_p))
+_name_bad_value = _declare("SSStarOptionsNameBadValue", ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t)
+
+
+def _error(ierr):
+    """The Error of PETSc's error code ierr: the message of the error's first call, naming the option whose value PETSc's
+    options parser could not read (SSStarOptionsNameBadValue(): "Option -snes_rtol abc: abc is not a number")"""
+    text, specific = ctypes.c_char_p(), ctypes.c_char_p()
+    _error_message(ierr, ctypes.byref(text), ctypes.byref(specific))
+    message = (specific.value or b"").decode(errors="replace").strip()
+    named = ctypes.create_string_buffer(1024)
+    if message and not _name_bad_value(message.encode(), named, len(named)) and named.value:
+        message = named.value.decode(errors="replace")
+    return Error(ierr, message, (text.value or b"").decode(errors="replace"))
 
 
 def _call(f, *args):
     ierr = f(*args)
     if ierr:
-        text, specific = ctypes.c_char_p(), ctypes.c_char_p()
-        _error_message(ierr, ctypes.byref(text), ctypes.byref(specific))  # the message of the error's first call
-        raise Error(ierr, (specific.value or b"").decode(errors="replace").strip(), (text.value or b"").decode(errors="replace"))
+        raise _error(ierr)
+
+
+def _petsc4py(f, *args):
+    """f(*args), a petsc4py call; its PETSc error raised as an Error that names a bad option (_error())"""
+    try:
+        return f(*args)
+    except Error:
+        raise
+    except PETSc.Error as e:
+        raise _error(e.ierr) from None
 
 
 _call(_declare("SSStarInitializePackage"))  # registers the SNES type "ssstar"
@@ -158,6 +179,9 @@ _C = {name: _declare(name, *args) for name, args in {
     "SNESSSStarSetContactOffsets": (_Handle, _Handle),
     "SNESSSStarGetContactOffsets": (_Handle, ctypes.POINTER(_Handle)),
     "SNESSSStarSetLinearProblem": (_Handle, _Handle, _Handle),
+    "SNESSSStarSetAffine": (_Handle, _Enum),
+    "SNESSSStarGetAffine": (_Handle, ctypes.POINTER(_Enum)),
+    "SNESSSStarGetNonlinearCounts": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Int)),
     "SNESSSStarSetReductionType": (_Handle, ctypes.c_char_p),
     "SNESSSStarGetReductionType": (_Handle, ctypes.POINTER(ctypes.c_char_p)),
     "SNESSSStarSetMemoryLimit": (_Handle, _Real),
@@ -286,6 +310,26 @@ def set_linear_problem(snes, K, b):
     """SNESSSStarSetLinearProblem(): F(u) = K u - b with Jacobian K (a whole body), or the reduced c(u) = P u - f; the
     SNES keeps K and b (change b's values to change the load)"""
     _call(_C["SNESSSStarSetLinearProblem"], _h(snes), _h(K), _h(b))
+
+
+def set_affine(snes, affine):
+    """SNESSSStarSetAffine(): whether F is affine (K u - b: the Jacobian once per solve, the fast route) or nonlinear (F at
+    the iterates, the Jacobian again as -snes_lag_jacobian says, on the whole body); docs/guide/nonlinear-residuals.md"""
+    _call(_C["SNESSSStarSetAffine"], _h(snes), 1 if affine else 0)
+
+
+def get_affine(snes):
+    """SNESSSStarGetAffine(): whether the next solve treats F as affine (set_linear_problem's F is, others are not)"""
+    v = _Enum()
+    _call(_C["SNESSSStarGetAffine"], _h(snes), ctypes.byref(v))
+    return bool(v.value)
+
+
+def get_nonlinear_counts(snes):
+    """SNESSSStarGetNonlinearCounts(): (Jacobian evaluations, contact updates) of the last solve"""
+    a, b = _Int(), _Int()
+    _call(_C["SNESSSStarGetNonlinearCounts"], _h(snes), ctypes.byref(a), ctypes.byref(b))
+    return a.value, b.value
 
 
 def set_reduction_type(snes, kind):

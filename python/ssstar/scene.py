@@ -10,7 +10,7 @@ import weakref
 import numpy as np
 from petsc4py import PETSc
 
-from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, set_linear_problem, STATE_NAMES
+from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, _petsc4py, set_linear_problem, STATE_NAMES
 
 _P = ctypes.POINTER
 _C = {name: _declare(name, *args) for name, args in {
@@ -79,7 +79,7 @@ _EXTRA = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p)  # SSS
 _DRIVER_OPTIONS = ("steps", "steps_max_cuts", "load_steps", "o")
 _DRIVER_HELP = b"-steps -steps_max_cuts -load_steps -o"
 # the histories set() changes (SSStarSceneSetHistory())
-_HISTORIES = ("traction", "gravity", "obstacle_motion")
+_HISTORIES = ("traction", "gravity", "obstacle_motion", "displacement")
 # the kinds of contact states, as SSStarSceneGetContactResult() counts them
 _KINDS = {"separated": ("L", "LS"), "sliding": ("M1", "M2"), "sticking": ("M3+", "M3-", "M4")}
 # the datasets of /steps/<k>/contact: at a state (normal: of the frames the state was linearized at), then of a load
@@ -90,6 +90,9 @@ _SCENE_FIELDS = ("coordinates", "normal", "gap", "area", "group")
 
 
 def _number(x):
+    """A component of a value: a number, or None (a free component of a prescribed displacement) as free"""
+    if x is None:
+        return "free"
     return repr(float(x)) if isinstance(x, (float, np.floating)) else str(x)
 
 
@@ -110,7 +113,7 @@ def _text(value):
         for r in rows:
             r = list(r)
             t, v = (r[0], r[1]) if len(r) == 2 else (r[0], r[1:])
-            v = [v] if isinstance(v, (int, float, np.integer, np.floating)) else list(v)
+            v = [v] if v is None or isinstance(v, (int, float, np.integer, np.floating)) else list(v)
             knots.append("%s:%s" % (_number(t), ",".join(_number(x) for x in v)))
         return ";".join(knots)
     return ",".join(_number(x) for x in rows)
@@ -218,7 +221,8 @@ class Step:
                      DIVERGED_MAX_IT (and cut, as examples/contact cuts it)
       row            {column: value} of the table of the steps (/steps of the file): time, iterations, reason,
                      residual_norm, cuts, load (3), normal_force, tangential_force (3), area, sliding, sticking,
-                     separated, dissipation, motion/<G> (3), groups/<G>/displacement (3)
+                     separated, dissipation, motion/<G> (3), groups/<G>/displacement (3), groups/<G>/reaction (3) of
+                     every held group (-dirichlet, displacement=: the force its prescription exerts on the body)
       displacement   the displacement of every mesh node, n x 3 (/fields/displacement)
       contact        {name: array} per contact node (/contact/<name>): displacement, reaction (the force on the body),
                      normal (of the frames the step was solved in: with large sliding the current configuration's),
@@ -262,7 +266,7 @@ class Step:
 
 
 class Scene:
-    """A scene of examples/contact (README "Scenes", "Load paths"): a body meshed by gmsh, its material, supports,
+    """A scene of examples/contact (docs/guide/scenes.md, docs/guide/load-paths.md): a body meshed by gmsh, its material, supports,
     loads, contact groups against rigid obstacles or other bodies with a friction law each, solved by the solver ssstar,
     through the same C scene library and calls as examples/contact, so with its answers.
 
@@ -273,9 +277,11 @@ class Scene:
 
     Options. The keywords are examples/contact's options, one name per parameter as in C: name=value gives -name value,
     name={G: value} gives -name_G value for each group G (obstacle_motion={G: ...} gives -obstacle_G_motion), keywords
-    after the file's options. Values: a number, a string, a sequence (x, y, z) or ["bottom", "top"] joined by commas,
-    True a flag, False "false", a history a sequence of (t, (x, y, z)) pairs (or "t:x,y,z;..."). So geo, mesh, level,
-    mesh_scale, E, nu, material={G: (E, nu)}, dirichlet=[...], traction={G: ...}, spring={G: k}, gravity, density,
+    after the file's options. Values: a number, a string, a sequence (x, y, z) or ["bottom", "top"] joined by commas
+    (None in it: free), True a flag, False "false", a history a sequence of (t, (x, y, z)) pairs (or "t:x,y,z;...").
+    So geo, mesh, level, mesh_scale, E, nu, material={G: (E, nu)}, dirichlet=[...], displacement={G: (None, None,
+    -0.01)} (a prescribed displacement, None or "free" a free component; a constant or a history), traction={G: ...},
+    spring={G: k}, gravity, density,
     contact=[...], obstacle={G: "sphere:0,0,10,10" or (px, py, pz, nx, ny, nz)}, obstacle_motion={G: history},
     friction_law={G: "tresca"}, friction={G: phi}, slip_bound, friction_1, friction_2, friction_direction ({G: ...}),
     contact_pair={G: H}, pair_discretization, steps (times, or N), steps_max_cuts, load_steps, o (the file solve()
@@ -297,8 +303,9 @@ class Scene:
                             two steps the loop may change the loads (set()) or stop
       step(t, accept=True)  one step at t from the last accepted one, without cutting; accept=False leaves it tentative:
                             accept() takes it, another step(t) replaces it
-      set(traction={G: v}, gravity=v, obstacle_motion={G: v})   new values of the scene's histories (constants or
-                            histories, as the keywords), for the steps to come
+      set(traction={G: v}, gravity=v, obstacle_motion={G: v}, displacement={G: v})   new values of the scene's
+                            histories (constants or histories, as the keywords; a displacement keeps its free
+                            components), for the steps to come
       write(file)           the file examples/contact -o writes (o=file in the options does the same): given before
                             the solve, solve() of a static scene writes its solution there, and the steps of a load
                             path (solve(), steps(), step()) go into it as they are solved, completed by close() or the
@@ -367,7 +374,7 @@ class Scene:
             ksp.setType("preonly")
             ksp.getPC().setType("cholesky")
             ksp.getPC().setFactorSolverType("mumps")
-        self.snes.setFromOptions()
+        _petsc4py(self.snes.setFromOptions)
         names = [n for n, _ in self._options.pairs if n.lower() not in _DRIVER_OPTIONS]
         _call(_C["SSStarSceneCheckOptionsUsedOf"], self._scene, len(names), (ctypes.c_char_p * max(1, len(names)))(*[n.encode() for n in names]), _DRIVER_HELP, _h(self.snes))
         _call(_C["SSStarSceneSetUp"], self._scene)
@@ -677,8 +684,9 @@ class Scene:
 
     def set(self, **histories):
         """New values of the scene's histories for the steps to come: traction={G: value}, gravity=value,
-        obstacle_motion={G: value}, each a constant (x, y, z) or a history as the keywords of Scene() (SSStarSceneSetHistory():
-        only loads and motions the scene was made with)"""
+        obstacle_motion={G: value}, displacement={G: value}, each a constant (x, y, z) or a history as the keywords of
+        Scene() (SSStarSceneSetHistory(): only loads, motions and prescribed displacements the scene was made with, a
+        displacement with the same free components)"""
         self._check_open()
         for key in histories:
             if key not in _HISTORIES:
@@ -689,7 +697,7 @@ class Scene:
 
     # ------------------------------------------------------------------------------------------------------ output
     def write(self, file):
-        """Writes the file examples/contact -o writes (HDF5 + XDMF, README "Output"). Before anything is solved: the file
+        """Writes the file examples/contact -o writes (HDF5 + XDMF, docs/guide/output.md). Before anything is solved: the file
         of what comes (o=file does the same): solve() of a static scene writes its solution there; the steps of a load
         path (solve(), steps(), step()) go into it as they are solved, and close() (or the end of solve()) completes it.
         After a static solve: its solution (with /load_steps after -load_steps N)"""

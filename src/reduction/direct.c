@@ -397,16 +397,10 @@ static PetscErrorCode MoveSchurToRows(SSStarDirect d, PetscInt NC, PetscInt nb, 
   PetscFunctionReturn(0);
 }
 
-/*
-   Factors K with the Schur block isC and returns P (MPIDENSE, rows like isC); refuses before the factorization when
-   MUMPS's estimate, P and the caller's dense work exceed memoryLimit (GB per rank, 0: MemAvailable)
-*/
-static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memoryLimit, const char prefix[], Mat *P)
+/* MUMPS set up for K with the Schur block isC, ordered and analysed (JOB = 1): its estimates of the flops and memory */
+static PetscErrorCode DirectAnalyse(SSStarDirect d, Mat K, IS isC, const char prefix[])
 {
-  PetscInt       N, NC, mC, nb;
-  PetscLogDouble dense;
-  PetscScalar   *schur;
-  Vec            x, c;
+  PetscInt N, NC, nb;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_dup(PetscObjectComm((PetscObject)K), &d->comm));
@@ -414,7 +408,6 @@ static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memo
   PetscCallMPI(MPI_Comm_size(d->comm, &d->size));
   PetscCall(MatGetSize(K, &N, NULL));
   PetscCall(ISGetSize(isC, &NC));
-  PetscCall(ISGetLocalSize(isC, &mC));
   PetscCheck(NC > 0, d->comm, PETSC_ERR_ARG_WRONG, "No contact dofs to reduce K to");
   PetscCheck(N < PETSC_MPI_INT_MAX, d->comm, PETSC_ERR_SUP, "K has %" PetscInt_FMT " rows, more than MUMPS's 32-bit indices hold", N);
 
@@ -454,13 +447,36 @@ static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memo
 
     PetscCheck(d->id.schur_mloc == NC && d->id.schur_nloc == expect, PETSC_COMM_SELF, PETSC_ERR_LIB, "MUMPS laid the Schur complement out as %d x %d on rank %d, not %" PetscInt_FMT " x %" PetscInt_FMT, (int)d->id.schur_mloc, (int)d->id.schur_nloc, d->rank, NC, expect);
   }
+  PetscFunctionReturn(0);
+}
 
+/* The dense memory of this rank beside MUMPS's factors: P, and MUMPS's Schur block (several ranks) or later the caller's dense work */
+static PetscLogDouble DenseBytes(SSStarDirect d, PetscInt NC, PetscInt mC)
+{
+  return 8.0 * NC * (mC + PetscMax(d->size > 1 ? d->id.schur_nloc : 0, SSSTAR_DENSE_WORK * (PetscLogDouble)mC));
+}
+
+/*
+   Factors the analysed K with its Schur block isC and returns P (MPIDENSE, rows like isC); refuses before the
+   factorization when MUMPS's estimate, P and the caller's dense work exceed memoryLimit (GB per rank, 0: MemAvailable)
+*/
+static PetscErrorCode DirectFactor(SSStarDirect d, Mat K, IS isC, PetscReal memoryLimit, Mat *P)
+{
+  PetscInt       NC, mC, nb;
+  PetscLogDouble dense;
+  PetscScalar   *schur;
+  Vec            x, c;
+
+  PetscFunctionBegin;
+  PetscCall(ISGetSize(isC, &NC));
+  PetscCall(ISGetLocalSize(isC, &mC));
+  nb = (NC + d->size - 1) / d->size;
   /*
      Memory, before any of it is taken: MUMPS's estimate (MB = 1e6 bytes), P, and MUMPS's Schur block (several ranks)
      or later the caller's dense work. When MUMPS's factors do not fit in core, they go out of core (to disk,
      MUMPS_OOC_TMPDIR) if that fits.
   */
-  dense = 8.0 * NC * (mC + PetscMax(d->size > 1 ? d->id.schur_nloc : 0, SSSTAR_DENSE_WORK * (PetscLogDouble)mC));
+  dense = DenseBytes(d, NC, mC);
   if (!d->id.ICNTL(22)) {
     PetscBool fits;
 
@@ -581,9 +597,15 @@ static PetscErrorCode SSStarReductionDestroy_Direct(SSStarReduction red)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction red, Mat K)
+/*
+   The direct reduction ordered and analysed, not factored (auto's cost model reads MUMPS's estimates, then either
+   SSStarReductionCreate_Direct() factors it or the reduction is dropped): MUMPS's flops to factor K with its Schur
+   block (RINFOG(1)) and the bytes of this rank (its factors in core, P and the dense work) for the memory check
+*/
+PetscErrorCode SSStarReductionAnalyse_Direct(SSStarReduction red, Mat K, PetscLogDouble *flops, PetscLogDouble *sparse, PetscLogDouble *dense)
 {
   SSStarDirect d;
+  PetscInt     NC, mC;
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&d));
@@ -593,6 +615,21 @@ PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction red, Mat K)
   red->ops.recover    = SSStarReductionRecover_Direct;
   red->ops.destroy    = SSStarReductionDestroy_Direct;
   PetscCall(SSStarReductionOptionName(red, "schur_direct_mumps_icntl_", d->icntl, sizeof(d->icntl)));
-  PetscCall(DirectFactor(d, K, red->isC, red->memoryLimit, red->prefix, &red->P));
+  PetscCall(DirectAnalyse(d, K, red->isC, red->prefix));
+  PetscCall(ISGetSize(red->isC, &NC));
+  PetscCall(ISGetLocalSize(red->isC, &mC));
+  *flops  = d->id.RINFOG(1);
+  *sparse = 1e6 * (PetscLogDouble)d->id.INFO(15);
+  *dense  = DenseBytes(d, NC, mC);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction red, Mat K)
+{
+  PetscLogDouble flops, sparse, dense;
+
+  PetscFunctionBegin;
+  if (!red->data) PetscCall(SSStarReductionAnalyse_Direct(red, K, &flops, &sparse, &dense)); /* auto analysed it already */
+  PetscCall(DirectFactor((SSStarDirect)red->data, K, red->isC, red->memoryLimit, &red->P));
   PetscFunctionReturn(0);
 }

@@ -25,6 +25,9 @@ struct _n_SSStarReduction {
   IS                         isC, isI;
   Mat                        P;           /* the operator: the Schur complement, or K for none                */
   PetscReal                  memoryLimit; /* GB per rank; 0: MemAvailable of the node split over its ranks    */
+  PetscBool                  autoChosen;  /* auto resolved to this type, with the costs below                  */
+  PetscReal                  autoCost[2]; /* auto's estimates: the dense route, the whole body (dense-LU flops)  */
+  PetscReal                  autoHolding; /* how firmly K holds the body (SSStarReductionAutoCosts())          */
   void                      *data;        /* the implementation's                                             */
 };
 
@@ -39,6 +42,8 @@ struct _n_SSStarReduction {
 
 PETSC_EXTERN PetscBool      SSStarReductionRegisterAllCalled;
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_Direct(SSStarReduction, Mat);
+PETSC_INTERN PetscErrorCode SSStarReductionAnalyse_Direct(SSStarReduction, Mat, PetscLogDouble *, PetscLogDouble *, PetscLogDouble *);
+PETSC_INTERN PetscErrorCode SSStarReductionResolveAuto(SSStarReduction, Mat, SSStarReductionType *);
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_MUMPS(SSStarReduction, Mat);
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_Explicit(SSStarReduction, Mat);
 PETSC_INTERN PetscErrorCode SSStarReductionCreate_None(SSStarReduction, Mat);

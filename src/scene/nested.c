@@ -7,8 +7,10 @@
 */
 #include "sceneimpl.h"
 
-/* auto starts from a coarser mesh above this many dofs of K (the crossover measured: README "Nested iteration") */
+/* auto starts from a coarser mesh above this many dofs of K (the crossover measured: docs/guide/large-problems.md, "Nested iteration") */
 #define SSSTAR_AUTO_NESTED_MIN_DOFS 50000
+/* auto's coarsest mesh has at most this many dofs of K (a problem of about a second on either route) */
+#define SSSTAR_NESTED_COARSEST_DOFS 20000
 /* the relative tolerance of the coarse solves: a start needs no more digits than the finer mesh changes */
 #define SSSTAR_NESTED_RTOL 1e-6
 
@@ -79,9 +81,9 @@ static PetscErrorCode NestedLevels(SSStarScene scene, SNES snes, PetscInt *level
   PetscCall(DMGetGlobalVector(scene->dm, &v));
   PetscCall(VecGetSize(v, &dofs));
   PetscCall(DMRestoreGlobalVector(scene->dm, &v));
-  /* auto: on the whole body's problems above the crossover, coarser meshes down to the dense route's size */
+  /* auto: on problems above SSSTAR_AUTO_NESTED_MIN_DOFS, coarser meshes down to SSSTAR_NESTED_COARSEST_DOFS */
   if (!(isauto || isnone) || dofs < SSSTAR_AUTO_NESTED_MIN_DOFS) PetscFunctionReturn(0);
-  for (PetscReal d = dofs; d > SSSTAR_AUTO_DENSE_MAX_DOFS; d /= 8) (*levels)++;
+  for (PetscReal d = dofs; d > SSSTAR_NESTED_COARSEST_DOFS; d /= 8) (*levels)++;
   PetscFunctionReturn(0);
 }
 
@@ -146,7 +148,8 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
 
    Options Database Key:
 .  -nested_levels <auto> - the coarser meshes to solve first: 0 none; auto (the default) those that halve the mesh
-   size down to the dense route's size, on whole-body problems above SSSTAR_AUTO_NESTED_MIN_DOFS dofs
+   size down to 20 000 dofs of K (a problem of about a second), on problems above 50 000 dofs solved on the whole
+   body (-snes_ssstar_reduction none) or by auto
 
    Notes:
    A coarser mesh is the scene's with one refinement fewer (-dm_refine), else -geo at half the level. The finest

@@ -102,6 +102,8 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   for (PetscInt t = 0; t < s->nTractions; t++) PetscCall(SSStarHistoryDestroy(&s->tractions[t].history));
   PetscCall(PetscFree3(s->materials, s->tractions, s->springs));
   PetscCall(SSStarHistoryDestroy(&s->gravityHistory));
+  PetscCall(SSStarPrescribedDestroy(s));
+  PetscCall(PetscFree(s->contactHeld));
   for (PetscInt g = 0; g < s->nContact; g++) {
     PetscCall(SSStarObstacleDestroy(&s->contact[g].obstacle));
     PetscCall(SSStarHistoryDestroy(&s->contact[g].motion));
@@ -124,21 +126,10 @@ PetscErrorCode SSStarSceneDestroy(SSStarScene *scene)
   PetscFunctionReturn(0);
 }
 
-/* The mesh file of -geo at -level: meshes/prism.geo at level 6 -> meshes/prism_L6.msh */
-static PetscErrorCode MeshFileOfLevel(SSStarScene scene)
-{
-  size_t len;
-
-  PetscFunctionBegin;
-  PetscCall(PetscStrlen(scene->geo, &len));
-  PetscCheck(len > 4 && !strcmp(scene->geo + len - 4, ".geo"), scene->comm, PETSC_ERR_ARG_WRONG, "-geo %s: expected a .geo file", scene->geo);
-  PetscCall(PetscSNPrintf(scene->mesh, sizeof(scene->mesh), "%.*s_L%" PetscInt_FMT ".msh", (int)(len - 4), scene->geo, scene->level));
-  PetscFunctionReturn(0);
-}
-
 /*@C
    SSStarSceneSetUp - builds the scene: meshes -geo at -level (or reads -mesh), checks the groups the options name,
-   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups), finds the bodies (connected parts of the
+   distributes the mesh, sets the dofs (u = 0 on the -dirichlet groups; the components -displacement_<G> prescribes,
+   refusing a node prescribed twice with different values), finds the bodies (connected parts of the
    mesh; one that no -dirichlet or -spring_<G> group holds is refused, named by its volume groups), the contact nodes
    and the contact operator B (each node's rows from its group's rigid obstacle or contact pair)
 
@@ -160,7 +151,8 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   char          **options;
   PetscInt        nuses = 0, cells;
   Vec             coordinates;
-  PetscLogDouble  t, base;
+  PetscLogDouble  t, base, peak;
+  PetscBool       plain = PETSC_FALSE;
   PetscMPIInt     size;
   char            line[PETSC_MAX_PATH_LEN + 128];
 
@@ -168,20 +160,14 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(PetscLogEventBegin(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscCall(PetscTime(&t));
   if (scene->geo[0]) {
-    PetscCall(MeshFileOfLevel(scene));
+    PetscCall(SSStarMeshCacheFile(scene->comm, scene->meshCache, scene->geo, scene->level, scene->mesh));
     PetscCall(SSStarMeshGenerate(scene->comm, scene->geo, scene->level, scene->mesh));
   }
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
   PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));
-  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
-  else {
-    PetscLogDouble peak;
-    PetscBool      plain;
-
-    PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, &peak, &plain));
-    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes, estimated peak %.3f GB per rank%s", scene->mesh, scene->nodesGlobal, peak / 1e9, plain ? "" : " (smoothed aggregation)"));
-  }
+  PetscCall(SSStarAggregationPlain(&plain)); /* the multigrid's aggregation, for the estimate */
+  PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
   PetscCall(SSStarSceneGroupUses(scene, &nuses, &uses, &options));
@@ -191,6 +177,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(PetscFree(uses));
   PetscCall(SSStarMeshScale(scene->dm, scene->meshScale));
   PetscCall(SSStarMeshCreateSection(scene->dm, scene->nDirichlet, scene->dirichlet));
+  PetscCall(SSStarSceneFindHeld(scene));
   PetscCall(DMGetCoordinates(scene->dm, &coordinates));
   PetscCall(VecGetSize(coordinates, &scene->nodesGlobal));
   scene->nodesGlobal /= 3;
@@ -201,18 +188,22 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
     cells = cEnd - cStart;
     PetscCall(MPIU_Allreduce(&cells, &scene->cellsGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   }
-  if (scene->refine) {
-    PetscBool plain;
-
-    PetscCall(SSStarAggregationPlain(&plain));
-    PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, estimated peak %.3f GB per rank", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal, SSStarPeakFrom(size, scene->nodesGlobal, base, plain) / 1e9));
-  }
+  if (scene->refine) PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read, refined %" PetscInt_FMT " time%s and distributed over %d rank%s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells", scene->refine, scene->refine > 1 ? "s" : "", size, size > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal));
   else PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: read and distributed over %d rank%s, %" PetscInt_FMT " cells", size, size > 1 ? "s" : "", scene->cellsGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarSceneFindBodies(scene));
   PetscCall(SSStarSceneFindContactNodes(scene));
   PetscCall(SSStarSceneBuildContactOperator(scene, NULL));
-  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s"));
+  PetscCall(SSStarSceneCheckPartlyHeld(scene));
+  /* the estimates before the work, now that the contact nodes are known: the whole body's and the dense route's */
+  peak = SSStarPeakFrom(size, scene->nodesGlobal, base, plain);
+  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? "" : " (smoothed aggregation)", scene->nGlobal ? " on the whole body" : ""));
+  if (scene->nGlobal) {
+    char dense[64];
+
+    PetscCall(PetscSNPrintf(dense, sizeof(dense), ", %.3f GB on the dense route", SSStarPeakDenseFrom(size, scene->nodesGlobal, scene->nGlobal, base) / 1e9));
+    PetscCall(PetscStrlcat(line, dense, sizeof(line)));
+  }
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(PetscLogEventEnd(SSSTAR_Mesh, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -412,11 +403,16 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   char effects[512] = "elasticity", text[1024];
 
   PetscFunctionBegin;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
+  if (scene->refine) PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s refined %" PetscInt_FMT " time%s (-dm_refine), %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->refine, scene->refine > 1 ? "s" : "", scene->nodesGlobal, scene->cellsGlobal));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "Scene: mesh %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra\n", scene->mesh, scene->nodesGlobal, scene->cellsGlobal));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (scene->hasE && scene->hasNu) PetscCall(PetscViewerASCIIPrintf(viewer, "material: E = %g, nu = %g\n", (double)scene->E, (double)scene->nu));
   for (PetscInt m = 0; m < scene->nMaterials; m++) PetscCall(PetscViewerASCIIPrintf(viewer, "material of %s: E = %g, nu = %g\n", scene->materials[m].name, (double)scene->materials[m].value[0], (double)scene->materials[m].value[1]));
   for (PetscInt g = 0; g < scene->nDirichlet; g++) PetscCall(PetscViewerASCIIPrintf(viewer, "held fixed: %s\n", scene->dirichlet[g]));
+  for (PetscInt g = 0; g < scene->nDisplacements; g++) {
+    PetscCall(SSStarPrescribedText(&scene->displacements[g], text, sizeof(text)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "displacement of %s: %s\n", scene->displacements[g].name, text));
+  }
   for (PetscInt s = 0; s < scene->nSprings; s++) PetscCall(PetscViewerASCIIPrintf(viewer, "spring on %s: k = %g per unit area, every direction\n", scene->springs[s].name, (double)scene->springs[s].value[0]));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(HistoryText(scene->tractions[t].history, text, sizeof(text)));
@@ -447,6 +443,7 @@ PetscErrorCode SSStarSceneView(SSStarScene scene, PetscViewer viewer)
   if (scene->nBodies > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "bodies: %" PetscInt_FMT " (connected parts of the mesh)\n", scene->nBodies));
   if (scene->nPairs && scene->pairMethod == SSSTAR_PAIR_DUAL_MORTAR) PetscCall(PetscViewerASCIIPrintf(viewer, "dual mortar: %" PetscInt_FMT " slave nodes not covered by their master surface keep node-to-surface\n", scene->pairFallback));
   if (scene->nSprings) PetscCall(PetscStrlcat(effects, ", springs", sizeof(effects)));
+  if (scene->nDisplacements) PetscCall(PetscStrlcat(effects, ", prescribed displacements", sizeof(effects)));
   if (scene->nTractions) PetscCall(PetscStrlcat(effects, ", tractions", sizeof(effects)));
   if (scene->hasGravity) PetscCall(PetscStrlcat(effects, ", gravity", sizeof(effects)));
   {

@@ -34,6 +34,16 @@ typedef struct {
   SSStarHistory history; /* a traction's; NULL for the others */
 } SSStarGroupValues;
 
+/*
+   A group whose displacement is prescribed (-displacement_<G> x,y,z; prescribed.c): each component a number or free,
+   constant or a history of knots t:x,y,z;... (a component free in one knot is free in all)
+*/
+typedef struct {
+  char          name[SSSTAR_GROUP_NAME_LEN];
+  SSStarHistory history; /* 3 components; a free one is 0 in it */
+  PetscInt      free;    /* bit k: component k is free */
+} SSStarPrescribed;
+
 /* A parameter of a contact group's friction law, given as -<parameter>_<G> (a name of SSStarLawGetParameterNames()) */
 typedef struct {
   char      name[64];
@@ -75,6 +85,7 @@ struct _n_SSStarScene {
 
   /* the description (options) */
   char               mesh[PETSC_MAX_PATH_LEN], geo[PETSC_MAX_PATH_LEN];
+  char               meshCache[PETSC_MAX_PATH_LEN]; /* -mesh_cache: where meshes of -geo go ("": the default) */
   PetscInt           level;
   PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
   PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */
@@ -89,12 +100,27 @@ struct _n_SSStarScene {
   PetscBool          hasGravity;
   PetscReal          gravity[3], density; /* gravity: its value at the last knot of its history */
   SSStarHistory      gravityHistory;
+  PetscInt           nDisplacements; /* -displacement_<G> groups, in the order of the options database */
+  SSStarPrescribed  *displacements;
 
   /* set up */
   DM       dm;
   Vec      tags;          /* file index of each local vertex                                      */
   PetscInt nodesGlobal;   /* mesh nodes                                                           */
   PetscInt cellsGlobal;
+
+  /*
+     the held dofs (prescribed.c): the groups that hold nodes, -dirichlet's then -displacement_<G>'s ("held group" h:
+     h < nDirichlet the -dirichlet group h, else the -displacement group h - nDirichlet); a -dirichlet node has no dofs
+     (the section's constraints), a prescribed component of a -displacement node keeps its dof with an identity row of
+     K (docs/derivation.md section 15)
+  */
+  PetscInt *heldBy;       /* 3 per local vertex: the held group of each component (the first), or -1 (free)   */
+  Vec       diagK;        /* K's diagonal: b = diag(K) g at the dofs of prescribed components                   */
+  Vec       lastLoad;     /* the load SSStarAssembleLoad() assembled last (a copy), to find a load's factor     */
+  PetscReal loadFree[3];  /* of that load: the resultant of the tractions and gravity on the dofs not held        */
+  PetscReal *loadHeld;    /* and on the held dofs of each held group (3 per held group)                          */
+  char     **heldNames;   /* the held groups' names (SSStarSceneGetHeldGroups())                                */
 
   /* the owned contact nodes, in vertex order (their global dofs increase) */
   PetscInt   n, nGlobal;
@@ -104,6 +130,7 @@ struct _n_SSStarScene {
   PetscReal *normal;      /* 3 per node: the normal of its obstacle or master surface, into the body */
   PetscReal *gap;         /* its initial normal gap to it                                        */
   PetscReal *area;        /* tributary area (a third of the adjacent faces of its group)         */
+  PetscInt  *contactHeld; /* 3 per node: the held group of each component (prescribed.c), or -1     */
   IS         isC;         /* the 3 global dofs of each node                                       */
 
   /* bodies (bodies.c) and contact pairs (pairs.c, mortar.c) */
@@ -165,6 +192,7 @@ PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
 PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
 PETSC_INTERN PetscLogDouble SSStarPeakFrom(PetscMPIInt, PetscReal, PetscLogDouble, PetscBool);
 PETSC_INTERN PetscErrorCode SSStarAggregationPlain(PetscBool *);
+PETSC_INTERN PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt, PetscReal, PetscReal, PetscLogDouble);
 PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscInt       SSStarSliceStart(PetscMPIInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscErrorCode SSStarExchange(MPI_Comm, const PetscMPIInt[], size_t, const void *, PetscMPIInt[], void **);
@@ -178,6 +206,35 @@ PETSC_INTERN PetscErrorCode SSStarTripleExchange(MPI_Comm, PetscInt, const Petsc
 PETSC_INTERN PetscErrorCode SSStarMeshCellVertices(DM, PetscInt, PetscInt[4]);
 PETSC_INTERN PetscErrorCode SSStarMeshCreateSection(DM, PetscInt, char *const[]);
 PETSC_INTERN PetscErrorCode SSStarMeshScale(DM, PetscReal);
+/* The local cells with their vertices and materials (cells.c) */
+typedef struct {
+  PetscInt           cStart, cEnd, vStart, vEnd;
+  PetscInt          *vertices; /* 4 per cell, numbered from vStart */
+  PetscReal        (*lame)[2]; /* lambda, mu per cell              */
+  PetscSection       csec;
+  Vec                coordinates;
+  const PetscScalar *ca;
+} SSStarCells;
+PETSC_INTERN PetscReal      SSStarTetGradients(const PetscReal[12], PetscReal[4][3]);
+PETSC_INTERN void           SSStarTetStiffness(const PetscReal[12], PetscReal, PetscReal, PetscScalar[144]);
+PETSC_INTERN PetscErrorCode SSStarCellMaterials(SSStarScene, PetscInt, PetscInt, PetscReal (*)[2]);
+PETSC_INTERN PetscErrorCode SSStarCellsBegin(SSStarScene, SSStarCells *);
+PETSC_INTERN PetscErrorCode SSStarCellsGet(const SSStarCells *, PetscInt, PetscReal[12]);
+PETSC_INTERN PetscErrorCode SSStarCellsEnd(SSStarCells *);
+/* Prescribed displacements (prescribed.c) */
+PETSC_INTERN PetscErrorCode SSStarPrescribedRead(SSStarScene, const char[], const char[], const char[], SSStarPrescribed *);
+PETSC_INTERN PetscErrorCode SSStarPrescribedDestroy(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarPrescribedText(const SSStarPrescribed *, char[], size_t);
+PETSC_INTERN PetscErrorCode SSStarSceneFindHeld(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarHeldName(SSStarScene, PetscInt, char[], size_t);
+PETSC_INTERN PetscErrorCode SSStarHeldValues(SSStarScene, PetscReal, PetscReal[]);
+PETSC_INTERN PetscBool      SSStarHeldIdentityRow(SSStarScene, PetscInt, PetscInt);
+PETSC_INTERN void           SSStarHeldElement(SSStarScene, const PetscInt[4], PetscScalar[144]);
+PETSC_INTERN PetscErrorCode SSStarHeldLift(SSStarScene, const SSStarCells *, const PetscReal[], Vec);
+PETSC_INTERN PetscErrorCode SSStarHeldPrescribe(SSStarScene, const PetscReal[], Vec);
+PETSC_INTERN PetscErrorCode SSStarSceneCheckPartlyHeld(SSStarScene);
+PETSC_INTERN PetscErrorCode SSStarSetRigidBodyModes(SSStarScene, Mat);
+PETSC_INTERN PetscErrorCode SSStarSceneLoadFactor(SSStarScene, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, PetscReal, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarAddTraction(DM, const char[], const PetscReal[3], Vec);
 PETSC_INTERN PetscErrorCode SSStarAssembleLoad(SSStarScene, PetscReal, Vec);

@@ -1,5 +1,5 @@
 /*
-   The scene's description from the options database (README "Scenes"): the body, its material, supports, loads and
+   The scene's description from the options database (docs/guide/scenes.md): the body, its material, supports, loads and
    contact groups, each option checked where it is read, with errors that name the option; the groups the options
    name, for the checks against the mesh; the refusal of unread options with the scene's own among the known ones.
 */
@@ -70,9 +70,10 @@ typedef enum {
   OPT_OBSTACLE,
   OPT_FRICTION_LAW,
   OPT_CONTACT_PAIR,
+  OPT_DISPLACEMENT,
   OPT_LAW_PARAMETER
 } GroupOption;
-static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_"};
+static const char *const GroupOptionPrefix[OPT_LAW_PARAMETER] = {"-material_", "-traction_", "-spring_", "-obstacle_", "-friction_law_", "-contact_pair_", "-displacement_"};
 
 static PetscBool IsContactGroup(SSStarScene scene, const char name[])
 {
@@ -113,13 +114,13 @@ static PetscErrorCode MatchGroupOption(SSStarScene scene, const char token[], Gr
       best     = len;
       bestKind = option;
     }
-    if (option >= OPT_OBSTACLE && len > bestContact && IsContactGroup(scene, token + len)) {
+    if (option >= OPT_OBSTACLE && option != OPT_DISPLACEMENT && len > bestContact && IsContactGroup(scene, token + len)) {
       bestContact     = len;
       bestContactKind = option;
     }
   }
   *found = (PetscBool)(best > 0);
-  if (bestKind >= OPT_OBSTACLE && bestContact && !IsContactGroup(scene, token + best)) {
+  if (bestKind >= OPT_OBSTACLE && bestKind != OPT_DISPLACEMENT && bestContact && !IsContactGroup(scene, token + best)) {
     best     = bestContact;
     bestKind = bestContactKind;
   }
@@ -156,6 +157,7 @@ static PetscErrorCode CountGroupOption(SSStarScene scene, GroupOption kind, cons
   if (kind == OPT_MATERIAL) scene->nMaterials++;
   if (kind == OPT_TRACTION) scene->nTractions++;
   if (kind == OPT_SPRING) scene->nSprings++;
+  if (kind == OPT_DISPLACEMENT) scene->nDisplacements++;
   PetscFunctionReturn(0);
 }
 
@@ -277,6 +279,12 @@ static PetscErrorCode ReadGroupOption(SSStarScene scene, GroupOption kind, const
     PetscCall(ContactGroup(scene, group, option, &cg));
     PetscCall(SSStarPairsReadOption(scene, cg, option));
     break;
+  case OPT_DISPLACEMENT: { /* prescribed displacements: numbers or free, constant or a history (prescribed.c) */
+    const char *value;
+
+    PetscCall(PetscOptionsFindPair(NULL, NULL, option, &value, &set));
+    PetscCall(SSStarPrescribedRead(scene, option, group, value, &scene->displacements[scene->nDisplacements++]));
+  } break;
   default:
     break;
   }
@@ -299,6 +307,9 @@ static PetscErrorCode CheckNotHeld(SSStarScene scene, const char group[], const 
 static const char SceneGroupHelp[] = "\
   -dirichlet <G1,G2,...>: groups held fixed (u = 0)\n\
   -material_<G> <E,nu>: material of volume group G\n\
+  -displacement_<G> <x,y,z>: prescribed displacement of surface or volume group G (global axes), each component a\n\
+      number or free (free,free,-0.01: only u_z prescribed); a constant or a history t:x,y,z;... (a component free\n\
+      in one knot is free in all); its reaction force is in the output (docs/guide/displacements-and-stresses.md)\n\
   -traction_<G> <x,y,z>: traction on surface group G (global axes): a constant, or a load history of knots\n\
       t:x,y,z separated by ';' (\"0:0,0,0;1:0,0,-1\"), linear between them (docs/load-paths.md)\n\
   -spring_<G> <k>: soft elastic support of surface group G, k per unit area in every direction\n\
@@ -324,7 +335,7 @@ static PetscErrorCode GroupHelp(char text[], size_t len)
 }
 
 /* The options the scene reads (for SSStarSceneCheckOptionsUsed(): -mesh ... by PetscOptions*, the groups' by name) */
-static const char SceneOptionNames[] = "-mesh -geo -level -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
+static const char SceneOptionNames[] = "-mesh -geo -level -mesh_cache -dm_refine -nested_levels -mesh_scale -E -nu -density -sliding -sliding_tol -sliding_max_it -small_sliding_tol";
 
 /*@C
    SSStarSceneCheckOptionsUsed - refuses, before any work, an option that neither the program, nor the scene, nor its
@@ -383,7 +394,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 }
 
 /*@C
-   SSStarSceneSetFromOptions - reads the scene from the options database (README "Scenes"), with errors that name the
+   SSStarSceneSetFromOptions - reads the scene from the options database (docs/guide/scenes.md), with errors that name the
    option for unknown, contradictory or incomplete entries
 
    Collective
@@ -395,6 +406,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 +  -mesh <file.msh> - the body, a gmsh mesh
 .  -geo <file.geo> - or a geometry meshed at -level
 .  -level <L> - the level of -geo
+.  -mesh_cache <folder> - where the meshes of -geo are made and kept (SSStarMeshCacheFile(); default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)
 .  -ssstar_progress_ranks - the progress lines give rank 0's memory and the least rank's beside the largest one's
 .  -nested_levels <auto> - solve this many coarser meshes first (SSStarSceneSolveNested()): 0 none, auto by the size
 .  -dm_refine <0> - refine the mesh this many times in parallel (each tetrahedron 1:8, the groups carried), as PETSc's option of the name does
@@ -403,6 +415,7 @@ PetscErrorCode SSStarSceneCheckOptionsUsedOf(SSStarScene scene, PetscInt n, cons
 .  -nu <nu> - Poisson's ratio of those cells
 .  -material_<G> <E,nu> - the material of volume group G
 .  -dirichlet <G1,G2> - groups held fixed
+.  -displacement_<G> <x,y,z> - the prescribed displacement of surface or volume group G: each component a number or free, a constant or a history t:x,y,z;...
 .  -traction_<G> <x,y,z> - traction on surface group G: a constant, or a history t:x,y,z;... (docs/load-paths.md)
 .  -spring_<G> <k> - soft support of surface group G
 .  -gravity <gx,gy,gz> - gravity, with -density: a constant, or a history t:gx,gy,gz;...
@@ -446,6 +459,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file", NULL, scene->mesh, scene->mesh, sizeof(scene->mesh), &hasMesh));
   PetscCall(PetscOptionsString("-geo", "gmsh geometry meshed at -level", NULL, scene->geo, scene->geo, sizeof(scene->geo), &hasGeo));
   PetscCall(PetscOptionsInt("-level", "Mesh level of -geo (the number L of the .geo)", NULL, scene->level, &scene->level, &hasLevel));
+  PetscCall(PetscOptionsString("-mesh_cache", "Folder of the meshes made from -geo (default $XDG_CACHE_HOME/ssstar, else ~/.cache/ssstar)", "SSStarMeshCacheFile", scene->meshCache, scene->meshCache, sizeof(scene->meshCache), NULL));
   {
     char      nested[32] = "auto";
     PetscBool set, isauto;
@@ -520,16 +534,22 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
   PetscCall(PetscFree(contact));
 
   /* the options -<prefix><G>: count, then read */
+  PetscCall(SSStarPrescribedDestroy(scene));
   scene->nMaterials = scene->nTractions = scene->nSprings = 0;
   PetscCall(ForEachGroupOption(scene, CountGroupOption));
   PetscCall(PetscFree3(scene->materials, scene->tractions, scene->springs));
   PetscCall(PetscCalloc3(scene->nMaterials, &scene->materials, scene->nTractions, &scene->tractions, scene->nSprings, &scene->springs));
-  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = 0;
+  PetscCall(PetscCalloc1(scene->nDisplacements + 1, &scene->displacements));
+  scene->nMaterials = scene->nTractions = scene->nSprings = scene->nPairs = scene->nDisplacements = 0;
   PetscCall(ForEachGroupOption(scene, ReadGroupOption));
   PetscCall(SSStarPairsCheckOptions(scene));
   for (PetscInt t = 0; t < scene->nTractions; t++) {
     PetscCall(PetscSNPrintf(option, sizeof(option), "-traction_%s", scene->tractions[t].name));
     PetscCall(CheckNotHeld(scene, scene->tractions[t].name, option));
+  }
+  for (PetscInt d = 0; d < scene->nDisplacements; d++) {
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[d].name));
+    PetscCall(CheckNotHeld(scene, scene->displacements[d].name, option));
   }
   for (PetscInt g = 0; g < scene->nContact; g++) {
     const SSStarContactGroup *cg = &scene->contact[g];
@@ -543,7 +563,7 @@ PetscErrorCode SSStarSceneSetFromOptions(SSStarScene scene)
 /* SSStarSceneGroupUses - every group an option names, with the kind of group the option needs (for the mesh checks) */
 PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupUse **uses, char ***options)
 {
-  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs, k = 0;
+  PetscInt total = scene->nDirichlet + scene->nContact + scene->nMaterials + scene->nTractions + scene->nSprings + scene->nPairs + scene->nDisplacements, k = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(total, uses));
@@ -552,6 +572,14 @@ PetscErrorCode SSStarSceneGroupUses(SSStarScene scene, PetscInt *n, SSStarGroupU
     (*uses)[k].group = scene->dirichlet[g];
     (*uses)[k].kind  = SSSTAR_GROUP_ANY;
     PetscCall(PetscStrallocpy("-dirichlet", &(*options)[k]));
+  }
+  for (PetscInt g = 0; g < scene->nDisplacements; g++, k++) {
+    char option[SSSTAR_GROUP_NAME_LEN + 16];
+
+    (*uses)[k].group = scene->displacements[g].name;
+    (*uses)[k].kind  = SSSTAR_GROUP_ANY;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-displacement_%s", scene->displacements[g].name));
+    PetscCall(PetscStrallocpy(option, &(*options)[k]));
   }
   for (PetscInt g = 0; g < scene->nContact; g++, k++) {
     (*uses)[k].group = scene->contact[g].name;

@@ -14,6 +14,15 @@ PETSC_INTERN PetscErrorCode SSStarMemAvailable(PetscLogDouble *);
 */
 #define SSSTAR_BODY_BYTES(size)         ((size) == 1 ? 1900.0 : 2200.0)
 #define SSSTAR_SOLVE_BYTES(size, plain) ((plain) ? ((size) == 1 ? 410.0 : 870.0) : ((size) == 1 ? 620.0 : 1960.0))
+/*
+   The dense route's additions (issue 31's slab: 1.64 GB where the whole body's estimate said 0.18): MUMPS's factors of
+   K, about SSSTAR_MUMPS_ENTRIES N^(4/3) entries for N dofs (measured 15-25 on the prism, the slab, balls and blocks),
+   with 20 % more of its workspace, and its front of the Schur block (NC x NC); then P (NC x NC, rows over the ranks) and
+   the Newton step's dense matrices (SSSTAR_DENSE_WORK of P's size: the Newton matrix's rows, its LU on rank 0, ...)
+*/
+#define SSSTAR_MUMPS_ENTRIES 20.0
+#define SSSTAR_DENSE_BYTES(size, dofs, NC) \
+  ((8.0 * 1.2 * SSSTAR_MUMPS_ENTRIES * PetscPowReal((PetscReal)(dofs), 4.0 / 3.0) + 8.0 * (NC) * (NC)) / (size) + 8.0 * (NC) * (NC) * (1.0 + 3.0 / (size)))
 /* "0.233 GB per rank" (the largest rank's resident memory), with -ssstar_progress_ranks " (rank 0: 0.231, least: 0.210)" */
 PETSC_INTERN PetscErrorCode SSStarMemoryText(MPI_Comm, char[], size_t);
 

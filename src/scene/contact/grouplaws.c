@@ -173,7 +173,7 @@ PetscErrorCode SSStarGroupLawView(const SSStarContactGroup *cg, PetscViewer view
 /*
    The laws of the contact nodes and their parameters to the solver: one law for every node (SNESSSStarSetFrictionLaw())
    or one per node (SNESSSStarSetNodeFrictionLaws()), and every parameter a group gives as one value per node
-   (SNESSSStarSetNodeLawParameter()), PETSC_DEFAULT at the nodes of the groups without it: they keep the solver's
+   (SNESSSStarSetNodeLawParameter()), SSSTAR_NOT_GIVEN at the nodes of the groups without it: they keep the solver's
    value, whenever it is set
 */
 PetscErrorCode SSStarSceneSetContactLaws(SSStarScene scene, SNES snes)
@@ -212,7 +212,7 @@ PetscErrorCode SSStarSceneSetContactLaws(SSStarScene scene, SNES snes)
     for (PetscInt i = 0; i < scene->n; i++) {
       const SSStarGroupParameter *gp = FindGiven(&scene->contact[scene->group[i]], params[p]);
 
-      for (PetscInt k = 0; k < size; k++) values[size * i + k] = gp ? gp->value[k] : (PetscReal)PETSC_DEFAULT;
+      for (PetscInt k = 0; k < size; k++) values[size * i + k] = gp ? gp->value[k] : SSSTAR_NOT_GIVEN;
     }
     PetscCall(SSStarSceneNodeVec(scene, size, values, &v));
     PetscCall(SNESSSStarSetNodeLawParameter(snes, params[p], v));

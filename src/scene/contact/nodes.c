@@ -1,5 +1,6 @@
 /*
-   The contact nodes of a scene: the vertices of its contact groups that are not held fixed, owned by this rank, in
+   The contact nodes of a scene: the vertices of its contact groups that are not held in every component (-dirichlet,
+   -displacement_<G>: prescribed.c), owned by this rank, in
    vertex order (their global dofs increase), each with its group (the first listed in -contact when it is in two groups
    whose obstacles agree at the node), its coordinates, its dofs and its tributary area. Their gaps, normals and rows
    of the contact operator come from their groups' contact sources (operator.c).
@@ -108,35 +109,6 @@ static PetscErrorCode SharedNodes(SSStarScene scene, PetscInt n, const PetscInt 
   PetscFunctionReturn(0);
 }
 
-/* SSStarSceneShareBadNode - the node an error is about: the owner's data reach every rank (the lowest file index wins) */
-PetscErrorCode SSStarSceneShareBadNode(MPI_Comm comm, SSStarBadNode *bad, PetscBool *found)
-{
-  PetscInt  tag = bad->tag >= 0 ? bad->tag : PETSC_MAX_INT, first;
-  PetscReal data[7];
-
-  PetscFunctionBegin;
-  PetscCall(MPIU_Allreduce(&tag, &first, 1, MPIU_INT, MPI_MIN, comm));
-  *found = (PetscBool)(first != PETSC_MAX_INT);
-  if (!*found) PetscFunctionReturn(0);
-  for (PetscInt k = 0; k < 7; k++) data[k] = 0;
-  if (tag == first) {
-    data[0] = (PetscReal)bad->group;
-    data[1] = (PetscReal)bad->other;
-    data[2] = bad->x[0];
-    data[3] = bad->x[1];
-    data[4] = bad->x[2];
-    data[5] = bad->gap;
-    data[6] = 1;
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, data, 7, MPIU_REAL, MPIU_SUM, comm));
-  bad->tag   = first;
-  bad->group = (PetscInt)(data[0] / data[6]);
-  bad->other = (PetscInt)(data[1] / data[6]);
-  for (PetscInt k = 0; k < 3; k++) bad->x[k] = data[2 + k] / data[6];
-  bad->gap = data[5] / data[6];
-  PetscFunctionReturn(0);
-}
-
 /* SSStarSceneFindContactNodes - the owned contact nodes (tag, group, coordinates, dofs, area), the nodes per group */
 PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
 {
@@ -164,6 +136,8 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
   PetscCall(DMGetLocalSection(cdm, &csec));
   PetscCall(PetscMalloc4(vEnd - vStart, &scene->tag, vEnd - vStart, &scene->group, 3 * (vEnd - vStart), &scene->coords, 3 * (vEnd - vStart), &scene->normal));
   PetscCall(PetscMalloc2(vEnd - vStart, &scene->gap, vEnd - vStart, &scene->area));
+  PetscCall(PetscFree(scene->contactHeld));
+  PetscCall(PetscMalloc1(3 * (vEnd - vStart) + 1, &scene->contactHeld));
   PetscCall(PetscMalloc1(3 * (vEnd - vStart), &dofs));
   maxShared = PetscMax(0, scene->nContact - 1) * (vEnd - vStart); /* a node in k groups: k - 1 pairs to compare */
   PetscCall(PetscMalloc3(maxShared + 1, &sharedTag, 2 * maxShared + 1, &sharedGroup, 3 * maxShared + 1, &sharedX));
@@ -174,12 +148,13 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
   for (PetscInt g = 0; g < scene->nContact; g++) scene->contact[g].nodes = 0;
   /* vertices in point order have increasing global offsets, so the dofs are sorted */
   for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt  off, ncon, coff, group = -1;
-    PetscReal x[3];
+    PetscInt        off, ncon, coff, group = -1;
+    PetscReal       x[3];
+    const PetscInt *held = &scene->heldBy[3 * (v - vStart)];
 
     PetscCall(PetscSectionGetOffset(gsec, v, &off));
     PetscCall(PetscSectionGetConstraintDof(sec, v, &ncon));
-    if (off < 0 || ncon) continue; /* not owned, or held fixed */
+    if (off < 0 || ncon || (held[0] >= 0 && held[1] >= 0 && held[2] >= 0)) continue; /* not owned, or held in every component */
     PetscCall(PetscSectionGetOffset(csec, v, &coff));
     for (PetscInt k = 0; k < 3; k++) x[k] = PetscRealPart(xa[coff + k]);
     for (PetscInt g = 0; g < scene->nContact; g++) {
@@ -202,8 +177,9 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
     scene->group[n] = group;
     scene->area[n]  = PetscRealPart(aa[off - rstart]); /* in the x-dof */
     for (PetscInt k = 0; k < 3; k++) {
-      scene->coords[3 * n + k] = x[k];
-      dofs[3 * n + k]          = off + k;
+      scene->coords[3 * n + k]      = x[k];
+      dofs[3 * n + k]               = off + k;
+      scene->contactHeld[3 * n + k] = held[k];
     }
     scene->contact[group].nodes++;
     n++;
@@ -224,7 +200,7 @@ PetscErrorCode SSStarSceneFindContactNodes(SSStarScene scene)
     SSStarContactGroup *cg = &scene->contact[g];
 
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &cg->nodes, 1, MPIU_INT, MPI_SUM, scene->comm));
-    PetscCheck(cg->nodes > 0, scene->comm, PETSC_ERR_ARG_WRONG, "Contact group \"%s\" (option -contact) has no nodes once the nodes held fixed (-dirichlet) are removed", cg->name);
+    PetscCheck(cg->nodes > 0, scene->comm, PETSC_ERR_ARG_WRONG, "Contact group \"%s\" (option -contact) has no nodes once the nodes held in every component (-dirichlet, -displacement_<G>) are removed", cg->name);
   }
   PetscCall(MPIU_Allreduce(&n, &scene->nGlobal, 1, MPIU_INT, MPI_SUM, scene->comm));
   PetscFunctionReturn(0);

@@ -205,7 +205,7 @@ PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene, Vec u)
    A group's -<parameter>_<G> (-friction_<G>, -slip_bound_<G>, -friction_1_<G>, ...: every parameter of the table of
    laws) gives its nodes their own value (SNESSSStarSetNodeLawParameter()); the nodes of groups without one keep the
    solver's (SNESSSStarSetLawParameter(), -snes_ssstar_<parameter>: coulomb's friction 0.3 by default), whether it is
-   set before or after this call (their entries are PETSC_DEFAULT). One law for all groups is set with
+   set before or after this call (their entries are SSSTAR_NOT_GIVEN). One law for all groups is set with
    SNESSSStarSetFrictionLaw(), several with SNESSSStarSetNodeFrictionLaws().
 
    Level: beginner

@@ -1,9 +1,10 @@
 /*
    The bodies of a scene: the connected components of its mesh (cells sharing a vertex), each named by the smallest file
-   index of its nodes. A body is held by a -dirichlet or -spring_<G> group, or by contact alone: a contact group of its
-   own against a rigid obstacle, or a contact pair with a body held so (the pairs chain them). A body held by contact
-   alone floats: its rigid-body motions are K's null space (elasticity.c), which the solver needs (docs/derivation.md
-   section 14). A body nothing can hold (no such group, no such pair) is refused, named by its volume groups. Contact
+   index of its nodes. A body is held by a -dirichlet or -spring_<G> group, by prescribed displacements
+   (-displacement_<G>), or by contact alone: a contact group of its own against a rigid obstacle, or a contact pair with
+   a body held so (the pairs chain them). A body no -dirichlet or -spring_<G> holds floats: its rigid-body motions that
+   its prescribed displacements leave free are K's null space (modes.c), which the solver needs (docs/derivation.md
+   sections 14, 15). A body nothing can hold (no such group, no such pair) is refused, named by its volume groups. Contact
    pairs (pairs.c) are between two bodies.
 */
 #include "../sceneimpl.h"
@@ -12,8 +13,8 @@
 #define SSSTAR_MAX_VOLUME_GROUPS 62 /* bits of the body's volume-group mask */
 #define SSSTAR_MAX_CONTACT_MASK  63 /* bits of the body's contact-group masks */
 /* per body: its number, held (-dirichlet, -spring_<G>), volume groups, contact groups, master surfaces of pairs on
-   it (bit g: the master of contact group g), held through contact (set after the merge) */
-#define SSSTAR_BODY_INFO 6
+   it (bit g: the master of contact group g), held through contact (set after the merge), prescribed displacements */
+#define SSSTAR_BODY_INFO 7
 
 /* union-find with path halving */
 static PetscInt Find(PetscInt parent[], PetscInt v)
@@ -81,7 +82,7 @@ static PetscErrorCode HeldThroughContact(SSStarScene scene, PetscMPIInt nent, lo
   for (PetscMPIInt e = 0; e < nent; e++) {
     long long *a = &all[SSSTAR_BODY_INFO * e];
 
-    a[5] = a[0] >= 0 && (a[1] || (a[3] & obstacles));
+    a[5] = a[0] >= 0 && (a[1] || a[6] || (a[3] & obstacles));
   }
   while (changed) {
     changed = PETSC_FALSE;
@@ -122,7 +123,7 @@ static PetscErrorCode RecordFloating(SSStarScene scene, PetscMPIInt nent, const 
   }
   if (loose) {
     PetscCall(BodyName(loose, nvol, volName, name, sizeof(name)));
-    SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "The body of %s, one of %" PetscInt_FMT " bodies, is held by nothing: no -dirichlet or -spring_<G> group, no contact group against an obstacle (-contact), no contact pair with a body held so. Hold it by one of them", name, scene->nBodies);
+    SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "The body of %s, one of %" PetscInt_FMT " bodies, is held by nothing: no -dirichlet, -displacement_<G> or -spring_<G> group, no contact group against an obstacle (-contact), no contact pair with a body held so. Hold it by one of them", name, scene->nBodies);
   }
   PetscCall(SSStarSceneDestroyFloating(scene));
   for (PetscMPIInt e = 0; e < nent; e++) scene->nFloating += all[SSSTAR_BODY_INFO * e] >= 0 && !all[SSSTAR_BODY_INFO * e + 1];
@@ -267,6 +268,7 @@ PetscErrorCode SSStarSceneFindBodies(SSStarScene scene)
       held = (PetscBool)(value >= 0);
     }
     if (held) e[1] = 1;
+    if (scene->heldBy[3 * (v - vStart)] >= 0 || scene->heldBy[3 * (v - vStart) + 1] >= 0 || scene->heldBy[3 * (v - vStart) + 2] >= 0) e[6] = 1;
     for (PetscInt g = 0; g < scene->nContact; g++) {
       PetscInt value;
 

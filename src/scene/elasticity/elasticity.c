@@ -1,48 +1,9 @@
-/* P1 linear elasticity on tetrahedra: stiffness K (materials per volume group, springs) and load b (tractions, gravity). */
+/*
+   P1 linear elasticity on tetrahedra: stiffness K (materials per volume group, springs) and load b (tractions, gravity,
+   the lifting of prescribed displacements); the cells' kernels in cells.c, the held dofs in prescribed.c.
+*/
 #include "../sceneimpl.h"
 #include <petscsf.h>
-
-/* Gradients of the four barycentric basis functions of the tetrahedron x[12]; returns its volume. */
-static PetscReal TetGradients(const PetscReal x[12], PetscReal grad[4][3])
-{
-  PetscReal J[3][3], inv[3][3], det;
-
-  for (PetscInt r = 0; r < 3; r++)
-    for (PetscInt k = 0; k < 3; k++) J[r][k] = x[3 * (k + 1) + r] - x[r]; /* columns: edges from vertex 0 */
-  det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-  inv[0][0] = (J[1][1] * J[2][2] - J[1][2] * J[2][1]) / det;
-  inv[0][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
-  inv[0][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / det;
-  inv[1][0] = (J[1][2] * J[2][0] - J[1][0] * J[2][2]) / det;
-  inv[1][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / det;
-  inv[1][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / det;
-  inv[2][0] = (J[1][0] * J[2][1] - J[1][1] * J[2][0]) / det;
-  inv[2][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / det;
-  inv[2][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / det;
-  /* grad lambda_{a+1} = row a of J^{-1}; grad lambda_0 = -sum */
-  for (PetscInt k = 0; k < 3; k++) {
-    grad[0][k] = 0;
-    for (PetscInt a = 0; a < 3; a++) {
-      grad[a + 1][k] = inv[a][k];
-      grad[0][k] -= inv[a][k];
-    }
-  }
-  return PetscAbsReal(det) / 6.0;
-}
-
-/* K_{ai,bj} = vol (lambda g_a,i g_b,j + mu g_a,j g_b,i + mu delta_ij g_a.g_b) */
-static void TetStiffness(const PetscReal x[12], PetscReal lambda, PetscReal mu, PetscScalar K[144])
-{
-  PetscReal g[4][3];
-  PetscReal vol = TetGradients(x, g);
-
-  for (PetscInt a = 0; a < 4; a++)
-    for (PetscInt b = 0; b < 4; b++) {
-      const PetscReal gab = g[a][0] * g[b][0] + g[a][1] * g[b][1] + g[a][2] * g[b][2];
-      for (PetscInt i = 0; i < 3; i++)
-        for (PetscInt j = 0; j < 3; j++) K[(3 * a + i) * 12 + 3 * b + j] = vol * (lambda * g[a][i] * g[b][j] + mu * g[a][j] * g[b][i] + (i == j ? mu * gab : 0.0));
-    }
-}
 
 /* The coordinates of the vertices of point (in closure order); n is the count expected, 3 per vertex. */
 static PetscErrorCode GetVertexCoordinates(DM dm, PetscInt point, PetscInt n, PetscReal x[], PetscBool *ok)
@@ -61,62 +22,6 @@ static PetscErrorCode GetVertexCoordinates(DM dm, PetscInt point, PetscInt n, Pe
   *ok = (PetscBool)(nx == n);
   for (PetscInt k = 0; k < PetscMin(n, nx); k++) x[k] = PetscRealPart(xc[k]);
   PetscCall(DMPlexVecRestoreClosure(cdm, csec, coordinates, point, &nx, &xc));
-  PetscFunctionReturn(0);
-}
-
-/* The Lame parameters of E, nu, with the checks naming the option they came from */
-static PetscErrorCode LameParameters(MPI_Comm comm, PetscReal E, PetscReal nu, const char option[], PetscReal *lambda, PetscReal *mu)
-{
-  PetscFunctionBegin;
-  PetscCheck(E > 0 && !PetscIsInfOrNanReal(E), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: Young's modulus E = %g must be a positive number", option, (double)E);
-  PetscCheck(nu > -1 && nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: Poisson's ratio nu = %g must be in (-1, 0.5)", option, (double)nu);
-  *lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-  *mu     = E / (2 * (1 + nu));
-  PetscFunctionReturn(0);
-}
-
-/*
-   The Lame parameters of every local cell: those of its -material_<G> group, else of -E, -nu. A cell in two material
-   groups, or in none without -E and -nu, is an error naming the options.
-*/
-static PetscErrorCode CellMaterials(SSStarScene scene, PetscInt cStart, PetscInt cEnd, PetscReal (*lame)[2])
-{
-  PetscReal(*groupLame)[2];
-  DMLabel    *labels;
-  PetscInt    conflict[2] = {-1, -1}; /* two groups of one cell (found * nMaterials + m); a cell without material */
-  PetscBool   hasGlobal   = (PetscBool)(scene->hasE && scene->hasNu);
-  PetscReal   global[2]   = {0, 0};
-  char        option[SSSTAR_GROUP_NAME_LEN + 16];
-
-  PetscFunctionBegin;
-  if (hasGlobal) PetscCall(LameParameters(scene->comm, scene->E, scene->nu, "-E, -nu", &global[0], &global[1]));
-  PetscCall(PetscMalloc2(scene->nMaterials, &labels, scene->nMaterials, &groupLame));
-  for (PetscInt m = 0; m < scene->nMaterials; m++) {
-    PetscCall(DMGetLabel(scene->dm, scene->materials[m].name, &labels[m]));
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-material_%s", scene->materials[m].name));
-    PetscCall(LameParameters(scene->comm, scene->materials[m].value[0], scene->materials[m].value[1], option, &groupLame[m][0], &groupLame[m][1]));
-  }
-  for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt found = -1;
-
-    lame[c - cStart][0] = global[0];
-    lame[c - cStart][1] = global[1];
-    for (PetscInt m = 0; m < scene->nMaterials; m++) {
-      PetscInt value;
-
-      PetscCall(DMLabelGetValue(labels[m], c, &value));
-      if (value < 0) continue;
-      if (found >= 0) conflict[0] = found * scene->nMaterials + m;
-      found               = m;
-      lame[c - cStart][0] = groupLame[m][0];
-      lame[c - cStart][1] = groupLame[m][1];
-    }
-    if (found < 0 && !hasGlobal) conflict[1] = c;
-  }
-  PetscCall(PetscFree2(labels, groupLame));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, conflict, 2, MPIU_INT, MPI_MAX, scene->comm));
-  PetscCheck(conflict[0] < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Options -material_%s and -material_%s contradict each other: some cells are in both volume groups", scene->materials[conflict[0] / PetscMax(scene->nMaterials, 1)].name, scene->materials[conflict[0] % PetscMax(scene->nMaterials, 1)].name);
-  PetscCheck(conflict[1] < 0, scene->comm, PETSC_ERR_ARG_WRONG, "Incomplete material: some cells are in no -material_<G> volume group, and -E and -nu are not both given");
   PetscFunctionReturn(0);
 }
 
@@ -176,20 +81,6 @@ static PetscErrorCode VertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscI
       off = -(off + 1);
     }
     (*blocks)[v - vStart] = dof - cdof == 3 ? off / 3 : -1;
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The four vertices of every local cell, numbered from vStart */
-static PetscErrorCode CellVertices(DM dm, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt **cv)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscMalloc1(4 * (cEnd - cStart), cv));
-  for (PetscInt c = cStart; c < cEnd; c++) {
-    PetscInt *v = &(*cv)[4 * (c - cStart)];
-
-    PetscCall(SSStarMeshCellVertices(dm, c, v));
-    for (PetscInt k = 0; k < 4; k++) v[k] -= vStart;
   }
   PetscFunctionReturn(0);
 }
@@ -285,24 +176,19 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
 
 /*
    K in 3x3 blocks: every cell adds its 12x12 matrix, every face of a spring group k area/3 to the diagonal of its
-   vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out.
+   vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out; a prescribed component
+   (-displacement_<G>) gets an identity row (prescribed.c)
 */
 static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
 {
-  DM                 dm = scene->dm, cdm;
-  PetscSection       csec;
-  Vec                cloc, global;
-  const PetscScalar *ca;
-  PetscInt           cStart, cEnd, vStart, vEnd, n, N, *cv, *blocks;
-  PetscReal(*lame)[2];
+  DM          dm = scene->dm;
+  Vec         global;
+  PetscInt    n, N, *blocks;
+  SSStarCells cells;
 
   PetscFunctionBegin;
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(PetscMalloc1(cEnd - cStart, &lame));
-  PetscCall(CellMaterials(scene, cStart, cEnd, lame));
-  PetscCall(CellVertices(dm, cStart, cEnd, vStart, &cv));
-  PetscCall(VertexBlocks(dm, vStart, vEnd, &blocks));
+  PetscCall(SSStarCellsBegin(scene, &cells));
+  PetscCall(VertexBlocks(dm, cells.vStart, cells.vEnd, &blocks));
   PetscCall(DMGetGlobalVector(dm, &global));
   PetscCall(VecGetLocalSize(global, &n));
   PetscCall(VecGetSize(global, &N));
@@ -311,29 +197,19 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscCall(MatSetSizes(*K, n, n, N, N));
   PetscCall(MatSetBlockSize(*K, 3));
   PetscCall(MatSetType(*K, MATAIJ));
-  PetscCall(PreallocateStiffness(dm, *K, cStart, cEnd, vStart, vEnd, cv, blocks));
-
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &csec));
-  PetscCall(DMGetCoordinatesLocal(dm, &cloc));
-  PetscCall(VecGetArrayRead(cloc, &ca));
-  for (PetscInt c = cStart; c < cEnd; c++) {
-    const PetscInt *v = &cv[4 * (c - cStart)];
+  PetscCall(PreallocateStiffness(dm, *K, cells.cStart, cells.cEnd, cells.vStart, cells.vEnd, cells.vertices, blocks));
+  for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) {
+    const PetscInt *v = &cells.vertices[4 * c];
     PetscInt        b[4];
     PetscReal       x[12];
     PetscScalar     Ke[144];
 
-    for (PetscInt a = 0; a < 4; a++) {
-      PetscInt off;
-
-      PetscCall(PetscSectionGetOffset(csec, vStart + v[a], &off));
-      for (PetscInt k = 0; k < 3; k++) x[3 * a + k] = PetscRealPart(ca[off + k]);
-      b[a] = blocks[v[a]];
-    }
-    TetStiffness(x, lame[c - cStart][0], lame[c - cStart][1], Ke);
+    PetscCall(SSStarCellsGet(&cells, c, x));
+    for (PetscInt a = 0; a < 4; a++) b[a] = blocks[v[a]];
+    SSStarTetStiffness(x, cells.lame[c][0], cells.lame[c][1], Ke);
+    SSStarHeldElement(scene, v, Ke);
     PetscCall(MatSetValuesBlocked(*K, 4, b, 4, b, Ke, ADD_VALUES));
   }
-  PetscCall(VecRestoreArrayRead(cloc, &ca));
   for (PetscInt s = 0; s < scene->nSprings; s++) {
     IS              faces;
     const PetscInt *f;
@@ -352,8 +228,8 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
       for (PetscInt k = 0; k < 2 * ncl; k += 2) {
         PetscInt bk;
 
-        if (closure[k] < vStart || closure[k] >= vEnd) continue;
-        bk = blocks[closure[k] - vStart];
+        if (closure[k] < cells.vStart || closure[k] >= cells.vEnd) continue;
+        bk = blocks[closure[k] - cells.vStart];
         PetscCall(MatSetValuesBlocked(*K, 1, &bk, 1, &bk, D, ADD_VALUES));
       }
       PetscCall(DMPlexRestoreTransitiveClosure(dm, f[i], PETSC_TRUE, &ncl, &closure));
@@ -364,8 +240,7 @@ static PetscErrorCode AssembleStiffness(SSStarScene scene, Mat *K)
   PetscCall(MatAssemblyBegin(*K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*K, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscFree(blocks));
-  PetscCall(PetscFree(cv));
-  PetscCall(PetscFree(lame));
+  PetscCall(SSStarCellsEnd(&cells));
   PetscFunctionReturn(0);
 }
 
@@ -418,97 +293,11 @@ static PetscErrorCode AddGravity(DM dm, PetscReal rho, const PetscReal g[3], Vec
     PetscBool   tet;
 
     PetscCall(GetVertexCoordinates(dm, c, 12, x, &tet));
-    vol = TetGradients(x, grad);
+    vol = SSStarTetGradients(x, grad);
     for (PetscInt v = 0; v < 4; v++)
       for (PetscInt k = 0; k < 3; k++) load[3 * v + k] = vol / 4.0 * rho * g[k];
     PetscCall(DMPlexVecSetClosure(dm, NULL, Floc, c, load, ADD_VALUES));
   }
-  PetscFunctionReturn(0);
-}
-
-/*
-   The stiffness K and load b of P1 linear elasticity with the scene's materials, springs, tractions and gravity
-   (u = 0 on the Dirichlet groups is built into the dofs)
-*/
-/*
-   The rigid-body modes in the layout of K (the coordinates of its free dofs, block size 3): as K's near-null space, the
-   six of the whole mesh, from which algebraic multigrid (PCGAMG) builds its coarse spaces (it halves its iterations on
-   elasticity; the whole-body Newton step of ssstar uses it); as K's null space, six for each floating body (held by
-   contact alone, bodies.c), orthonormal: K does not resist them, and the solver needs to know it (docs/derivation.md
-   section 14)
-*/
-static PetscErrorCode SetRigidBodyModes(SSStarScene scene, Mat K)
-{
-  DM                 dm = scene->dm, cdm;
-  PetscSection       sec, csec;
-  Vec                cloc, xloc, x, *modes;
-  PetscInt           vStart, vEnd, nmodes = 6 * scene->nFloating;
-  const PetscScalar *ca;
-  PetscScalar       *xa;
-  MatNullSpace       nsp;
-
-  PetscFunctionBegin;
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &csec));
-  PetscCall(DMGetLocalSection(dm, &sec));
-  PetscCall(DMGetCoordinatesLocal(dm, &cloc));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(DMGetLocalVector(dm, &xloc));
-  PetscCall(VecGetArrayRead(cloc, &ca));
-  PetscCall(PetscMalloc1(nmodes + 1, &modes));
-  /* mode 6 b + k of floating body b: the translation along axis k (k < 3), the rotation about axis k - 3 */
-  for (PetscInt mode = -1; mode < nmodes; mode++) {
-    PetscCall(VecGetArrayWrite(xloc, &xa));
-    for (PetscInt v = vStart; v < vEnd; v++) {
-      PetscInt off, coff, dof;
-
-      PetscCall(PetscSectionGetDof(sec, v, &dof));
-      if (dof != 3) continue;
-      PetscCall(PetscSectionGetOffset(sec, v, &off));
-      PetscCall(PetscSectionGetOffset(csec, v, &coff));
-      for (PetscInt k = 0; k < 3; k++) xa[off + k] = mode < 0 ? ca[coff + k] : 0.0;
-      if (mode >= 0 && scene->body[v - vStart] == scene->floating[mode / 6]) {
-        const PetscInt k = mode % 6;
-
-        if (k < 3) xa[off + k] = 1;
-        else { /* e_a x x */
-          const PetscInt a = k - 3, b = (a + 1) % 3, c = (a + 2) % 3;
-
-          xa[off + b] = -ca[coff + c];
-          xa[off + c] = ca[coff + b];
-        }
-      }
-    }
-    PetscCall(VecRestoreArrayWrite(xloc, &xa));
-    PetscCall(DMCreateGlobalVector(dm, &x)); /* the held dofs are not in it */
-    PetscCall(DMLocalToGlobal(dm, xloc, INSERT_VALUES, x));
-    PetscCall(VecSetBlockSize(x, 3));
-    if (mode < 0) {
-      PetscCall(MatNullSpaceCreateRigidBody(x, &nsp));
-      PetscCall(MatSetNearNullSpace(K, nsp));
-      PetscCall(MatNullSpaceDestroy(&nsp));
-      PetscCall(VecDestroy(&x));
-    } else modes[mode] = x;
-  }
-  PetscCall(VecRestoreArrayRead(cloc, &ca));
-  PetscCall(DMRestoreLocalVector(dm, &xloc));
-  if (nmodes) {
-    for (PetscInt k = 0; k < nmodes; k++) /* Gram-Schmidt, twice: the rotations about the body's centroid */
-      for (PetscInt pass = 0; pass < 2; pass++) {
-        for (PetscInt j = 6 * (k / 6); j < k; j++) {
-          PetscScalar dot;
-
-          PetscCall(VecDot(modes[k], modes[j], &dot));
-          PetscCall(VecAXPY(modes[k], -dot, modes[j]));
-        }
-        PetscCall(VecNormalize(modes[k], NULL));
-      }
-    PetscCall(MatNullSpaceCreate(scene->comm, PETSC_FALSE, nmodes, modes, &nsp));
-    PetscCall(MatSetNullSpace(K, nsp));
-    PetscCall(MatNullSpaceDestroy(&nsp));
-  }
-  for (PetscInt k = 0; k < nmodes; k++) PetscCall(VecDestroy(&modes[k]));
-  PetscCall(PetscFree(modes));
   PetscFunctionReturn(0);
 }
 
@@ -519,8 +308,12 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, PetscReal t, Mat *K, 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
   PetscCall(AssembleStiffness(scene, K));
-  PetscCall(MatSetOption(*K, scene->nFloating ? MAT_SYMMETRIC : MAT_SPD, PETSC_TRUE)); /* floating: semidefinite */
-  PetscCall(SetRigidBodyModes(scene, *K));
+  PetscCall(SSStarSetRigidBodyModes(scene, *K));
+  if (scene->nDisplacements) { /* the load of a prescribed component: diag(K) g */
+    PetscCall(VecDestroy(&scene->diagK));
+    PetscCall(MatCreateVecs(*K, &scene->diagK, NULL));
+    PetscCall(MatGetDiagonal(*K, scene->diagK));
+  }
 
   PetscCall(DMCreateGlobalVector(dm, b));
   PetscCall(PetscObjectSetName((PetscObject)*b, "load"));
@@ -529,7 +322,45 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, PetscReal t, Mat *K, 
   PetscFunctionReturn(0);
 }
 
-/* The load b at the time t of the histories: the tractions and gravity evaluated at t (a surface and a volume loop) */
+/*
+   The resultants of the external load Floc (local) on the dofs that are not held and on each held group's, recorded
+   for the reactions and the load's resultant (reactions.c): each rank's entries, summed over the ranks (a cell or a
+   face is on one rank)
+*/
+static PetscErrorCode RecordLoad(SSStarScene scene, Vec Floc)
+{
+  const PetscInt     nheld = scene->nDirichlet + scene->nDisplacements;
+  PetscSection       sec;
+  PetscInt           vStart, vEnd;
+  const PetscScalar *fa;
+  PetscReal         *sums;
+
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc1(3 * nheld + 3, &sums)); /* the free dofs', then each held group's */
+  PetscCall(DMGetLocalSection(scene->dm, &sec));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(Floc, &fa));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off;
+
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    for (PetscInt k = 0; k < 3; k++) sums[3 * (scene->heldBy[3 * (v - vStart) + k] + 1) + k] += PetscRealPart(fa[off + k]);
+  }
+  PetscCall(VecRestoreArrayRead(Floc, &fa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 3 * nheld + 3, MPIU_REAL, MPIU_SUM, scene->comm));
+  PetscCall(PetscArraycpy(scene->loadFree, sums, 3));
+  PetscCall(PetscFree(scene->loadHeld));
+  PetscCall(PetscMalloc1(3 * nheld + 1, &scene->loadHeld));
+  PetscCall(PetscArraycpy(scene->loadHeld, sums + 3, 3 * nheld));
+  PetscCall(PetscFree(sums));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The load b at the time t of the histories: the tractions and gravity evaluated at t (a surface and a volume loop),
+   with the prescribed displacements at t: b - K_{:,D} g on the dofs not held, diag(K) g on the prescribed ones
+   (docs/derivation.md section 15)
+*/
 PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
 {
   DM        dm = scene->dm;
@@ -547,9 +378,27 @@ PetscErrorCode SSStarAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
     PetscCall(SSStarHistoryEvaluate(scene->gravityHistory, t, value));
     PetscCall(AddGravity(dm, scene->density, value, Floc));
   }
-  PetscCall(VecZeroEntries(b));
-  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
+  PetscCall(RecordLoad(scene, Floc));
+  if (scene->nDisplacements) {
+    PetscReal  *values;
+    SSStarCells cells;
+
+    PetscCall(PetscMalloc1(3 * (scene->nDirichlet + scene->nDisplacements), &values));
+    PetscCall(SSStarHeldValues(scene, t, values));
+    PetscCall(SSStarCellsBegin(scene, &cells));
+    PetscCall(SSStarHeldLift(scene, &cells, values, Floc));
+    PetscCall(SSStarCellsEnd(&cells));
+    PetscCall(VecZeroEntries(b));
+    PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
+    PetscCall(SSStarHeldPrescribe(scene, values, b));
+    PetscCall(PetscFree(values));
+  } else {
+    PetscCall(VecZeroEntries(b));
+    PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, b));
+  }
   PetscCall(DMRestoreLocalVector(dm, &Floc));
+  if (!scene->lastLoad) PetscCall(VecDuplicate(b, &scene->lastLoad));
+  PetscCall(VecCopy(b, scene->lastLoad));
   PetscFunctionReturn(0);
 }
 

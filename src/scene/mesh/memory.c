@@ -24,6 +24,13 @@ PetscErrorCode SSStarAggregationPlain(PetscBool *plain)
   PetscFunctionReturn(0);
 }
 
+/* The same on the dense route, with contactNodes contact nodes: the mesh to the output, MUMPS's factors of K with the
+   Schur block, P and the Newton step's dense matrices (sys/meminfo.h) */
+PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt size, PetscReal nodes, PetscReal contactNodes, PetscLogDouble base)
+{
+  return base + SSSTAR_BODY_BYTES(size) * 3 * nodes / size + SSSTAR_DENSE_BYTES(size, 3 * nodes, 3 * contactNodes);
+}
+
 /* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
    summed over the machines */
 static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *perRank)
@@ -68,38 +75,51 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
 }
 
 /*@C
-   SSStarEstimateMemory - the peak memory a whole-body run over a mesh of nodes nodes is expected to reach on the
-   largest of the ranks of comm: what that rank holds now (before the mesh) and its share of the mesh, the assembly and
-   the solve, with the multigrid the solver will take
+   SSStarEstimateMemory - the peak memory a run over a mesh of nodes nodes is expected to reach on the largest of the
+   ranks of comm: what that rank holds now (before the mesh) and its share of the mesh, the assembly and the solve, on
+   the whole body (with the multigrid the solver will take) and on the dense route (a Schur complement P of the
+   contactNodes contact nodes)
 
    Collective
 
    Input Parameters:
-+  comm  - the ranks that will share the work
--  nodes - mesh nodes (estimated or counted)
++  comm         - the ranks that will share the work
+.  nodes        - mesh nodes (estimated or counted)
+-  contactNodes - contact nodes (0 if not known: the dense route's estimate is then the whole body's without P)
 
    Output Parameters:
-+  peak  - bytes at the peak on the largest rank
++  peak  - bytes at the peak on the largest rank, on the whole body
+.  dense - bytes at the peak on the largest rank, on the dense route (MUMPS's factors of K with the Schur block of the
+           3 contactNodes contact dofs, P and the Newton step's dense matrices: 5 matrices of P's size on one rank,
+           the factorization's about N^(4/3)), or pass NULL
 -  plain - PETSC_TRUE when the estimate is of the multigrid's plain aggregation (ssstar's default), PETSC_FALSE of the
            smoothed one (-pc_gamg_agg_nsmooths 1 in the options database), or pass NULL
 
    Notes:
-   Measured per dof with bench/memory.py on the prism, one rank and several (README "Memory"); the limit is
-   -snes_ssstar_memory_limit or MemAvailable (SSStarCheckMemory()).
+   Measured per dof with bench/memory.py on the prism, one rank and several (docs/guide/large-problems.md, "Where the
+   memory goes"), and on the dense route with bench/auto.py (docs/guide/choosing-a-route.md); the limit is
+   -snes_ssstar_memory_limit or MemAvailable (SSStarCheckMemory()). auto takes the dense route only where it costs
+   less time and fits.
 
    Level: intermediate
 
 .seealso: `SSStarCheckMemory()`, `SSStarMemoryGetUsage()`
 @*/
-PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscLogDouble *peak, PetscBool *plain)
+PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscReal contactNodes, PetscLogDouble *peak, PetscLogDouble *dense, PetscBool *plain)
 {
-  PetscLogDouble extra;
+  PetscLogDouble extra, now;
   PetscBool      fits, plainAgg;
+  PetscMPIInt    size;
 
   PetscFunctionBegin;
   PetscCall(SSStarAggregationPlain(&plainAgg));
   PetscCall(Estimate(comm, nodes, plainAgg, peak, &extra, &fits));
   if (plain) *plain = plainAgg;
+  if (dense) {
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
+    *dense = SSStarPeakDenseFrom(size, nodes, contactNodes, now);
+  }
   PetscFunctionReturn(0);
 }
 

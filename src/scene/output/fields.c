@@ -181,8 +181,8 @@ static PetscErrorCode VertexField(SSStarScene scene, Vec u, Vec *v)
            dataset at entries k cols .. k cols + cols - 1; the caller destroys it
 
    Notes:
-   The values are those the output file holds (SSStarSceneWriteSolution(), SSStarSceneOutputStep(), README
-   "Output"): the same functions compute them. Integer datasets (state, group) come as reals. Every rank gets the
+   The values are those the output file holds (SSStarSceneWriteSolution(), SSStarSceneOutputStep(),
+   docs/guide/output.md): the same functions compute them. Integer datasets (state, group) come as reals. Every rank gets the
    whole field: /fields/displacement costs 3 reals per mesh node on every rank.
 
    Level: intermediate
@@ -225,5 +225,5 @@ PetscErrorCode SSStarSceneGetField(SSStarScene scene, SNES snes, Vec u, const ch
       PetscCall(ContactField(scene, f, u, r, states, field));
       PetscFunctionReturn(0);
     }
-  SETERRQ(scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown field %s: /geometry/vertices, /fields/displacement or /contact/<field> (README \"Output\")", name);
+  SETERRQ(scene->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown field %s: /geometry/vertices, /fields/displacement or /contact/<field> (docs/guide/output.md)", name);
 }

@@ -36,14 +36,14 @@ static PetscErrorCode EvenRanges(MPI_Comm comm, PetscInt N, PetscInt **ranges)
 }
 
 /*
-   A field of bs values per mesh vertex (local vector local with its section sec) in file order: nat holds this rank's
-   rows of the even split
+   A field of bs values per mesh vertex in file order: vertex v's values at la[off] with off its offset in sec (NULL: bs
+   per vertex from vStart); nat holds this rank's rows of the even split
 */
-static PetscErrorCode VertexFieldInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt bs, Vec local, PetscSection sec, Vec *nat)
+static PetscErrorCode VertexFieldInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt bs, const PetscScalar la[], PetscSection sec, Vec *nat)
 {
   PetscInt           pStart, vStart, vEnd, *ranges;
   PetscMPIInt        rank;
-  const PetscScalar *la, *ta;
+  const PetscScalar *ta;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
@@ -53,23 +53,21 @@ static PetscErrorCode VertexFieldInFileOrder(SSStarScene scene, const PetscBool 
   PetscCall(PetscFree(ranges));
   PetscCall(DMPlexGetChart(scene->dm, &pStart, NULL));
   PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
-  PetscCall(VecGetArrayRead(local, &la));
   PetscCall(VecGetArrayRead(scene->tags, &ta));
   for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt off, row = (PetscInt)PetscRealPart(ta[v - vStart]);
+    PetscInt off = bs * (v - vStart), row = (PetscInt)PetscRealPart(ta[v - vStart]);
 
     if (ghost[v - pStart]) continue;
-    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    if (sec) PetscCall(PetscSectionGetOffset(sec, v, &off));
     PetscCall(VecSetValuesBlocked(*nat, 1, &row, &la[off], INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayRead(scene->tags, &ta));
-  PetscCall(VecRestoreArrayRead(local, &la));
   PetscCall(VecAssemblyBegin(*nat));
   PetscCall(VecAssemblyEnd(*nat));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteVec(hid_t file, const char path[], PetscInt cols, Vec v)
+PetscErrorCode SSStarWriteVec(hid_t file, const char path[], PetscInt cols, Vec v)
 {
   const PetscScalar *a;
   PetscReal         *w;
@@ -132,15 +130,25 @@ int SSStarCompareRows(const void *a, const void *b, void *ctx)
   return 0;
 }
 
+/* The order of rows of 4 vertex numbers (ctx), for PetscTimSort() of their indices */
+static int CompareRowIndices(const void *a, const void *b, void *ctx)
+{
+  const PetscInt *rows = (const PetscInt *)ctx, cols = 4;
+
+  return SSStarCompareRows(&rows[4 * *(const PetscInt *)a], &rows[4 * *(const PetscInt *)b], (void *)&cols);
+}
+
 /*
    The tetrahedra of the mesh as rows of 4 file vertex numbers, canonical and sorted: each cell goes to the rank whose
    even-split vertex range holds its smallest vertex, which sorts its cells; the ranks' rows in rank order are sorted.
+   With ndata > 0, the ndata values of each local cell (data, by cell from cStart) travel with its row (outdata).
 */
-static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt *nout, PetscInt **out)
+static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt ndata, const PetscReal data[], PetscInt *nout, PetscInt **out, PetscReal **outdata)
 {
   MPI_Comm           comm = scene->comm;
   PetscMPIInt        size, *scount, *sdispl, *rcount, *rdispl;
-  PetscInt           pStart, cStart, cEnd, vStart, vEnd, ncells = 0, *rows, *ranges, *sorted, cols = 4, nrecv = 0;
+  PetscInt           pStart, cStart, cEnd, vStart, vEnd, ncells = 0, *rows, *ranges, *sorted, nrecv = 0, *order;
+  PetscReal         *values, *received;
   const PetscScalar *ta, *xa;
   DM                 cdm;
   PetscSection       csec;
@@ -153,6 +161,7 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
   PetscCall(DMPlexGetHeightStratum(scene->dm, 0, &cStart, &cEnd));
   PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
   PetscCall(PetscMalloc1(4 * (cEnd - cStart) + 1, &rows));
+  PetscCall(PetscMalloc1(ndata * (cEnd - cStart) + 1, &values));
   PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
   PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
@@ -182,6 +191,7 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
       row[3] = t;
     }
     CanonicalTetrahedron(row);
+    for (PetscInt k = 0; k < ndata; k++) values[ndata * ncells + k] = data[ndata * (c - cStart) + k];
     ncells++;
   }
   PetscCall(VecRestoreArrayRead(scene->tags, &ta));
@@ -189,9 +199,10 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
   /* rows to the rank of their smallest vertex (rows[4 i]): sort by destination first */
   PetscCall(PetscCalloc4(size, &scount, size + 1, &sdispl, size, &rcount, size + 1, &rdispl));
   {
-    PetscInt *dest, *perm, *tmp;
+    PetscInt  *dest, *perm, *tmp;
+    PetscReal *vtmp;
 
-    PetscCall(PetscMalloc3(ncells + 1, &dest, ncells + 1, &perm, 4 * ncells + 1, &tmp));
+    PetscCall(PetscMalloc4(ncells + 1, &dest, ncells + 1, &perm, 4 * ncells + 1, &tmp, ndata * ncells + 1, &vtmp));
     for (PetscInt i = 0; i < ncells; i++) {
       PetscInt r = 0;
 
@@ -201,10 +212,13 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
       scount[r] += 4;
     }
     PetscCall(PetscSortIntWithArray(ncells, dest, perm));
-    for (PetscInt i = 0; i < ncells; i++)
+    for (PetscInt i = 0; i < ncells; i++) {
       for (PetscInt k = 0; k < 4; k++) tmp[4 * i + k] = rows[4 * perm[i] + k];
+      for (PetscInt k = 0; k < ndata; k++) vtmp[ndata * i + k] = values[ndata * perm[i] + k];
+    }
     PetscCall(PetscArraycpy(rows, tmp, 4 * ncells));
-    PetscCall(PetscFree3(dest, perm, tmp));
+    PetscCall(PetscArraycpy(values, vtmp, ndata * ncells));
+    PetscCall(PetscFree4(dest, perm, tmp, vtmp));
   }
   PetscCallMPI(MPI_Alltoall(scount, 1, MPI_INT, rcount, 1, MPI_INT, comm));
   for (PetscMPIInt r = 0; r < size; r++) {
@@ -212,14 +226,35 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
     rdispl[r + 1] = rdispl[r] + rcount[r];
   }
   nrecv = rdispl[size] / 4;
-  PetscCall(PetscMalloc1(4 * nrecv + 1, &sorted));
+  PetscCall(PetscMalloc2(4 * nrecv + 1, &sorted, ndata * nrecv + 1, &received));
   PetscCallMPI(MPI_Alltoallv(rows, scount, sdispl, MPIU_INT, sorted, rcount, rdispl, MPIU_INT, comm));
-  if (nrecv > 1) PetscCall(PetscTimSort(nrecv, sorted, 4 * sizeof(PetscInt), SSStarCompareRows, &cols));
+  if (ndata) { /* the values as the rows: counts and displacements in cells times ndata */
+    for (PetscMPIInt r = 0; r <= size; r++) {
+      if (r < size) {
+        scount[r] = scount[r] / 4 * (PetscMPIInt)ndata;
+        rcount[r] = rcount[r] / 4 * (PetscMPIInt)ndata;
+      }
+      sdispl[r] = sdispl[r] / 4 * (PetscMPIInt)ndata;
+      rdispl[r] = rdispl[r] / 4 * (PetscMPIInt)ndata;
+    }
+    PetscCallMPI(MPI_Alltoallv(values, scount, sdispl, MPIU_REAL, received, rcount, rdispl, MPIU_REAL, comm));
+  }
+  PetscCall(PetscMalloc1(nrecv + 1, &order));
+  for (PetscInt i = 0; i < nrecv; i++) order[i] = i;
+  if (nrecv > 1) PetscCall(PetscTimSort(nrecv, order, sizeof(PetscInt), CompareRowIndices, sorted));
+  PetscCall(PetscMalloc1(4 * nrecv + 1, out));
+  if (outdata) PetscCall(PetscMalloc1(ndata * nrecv + 1, outdata));
+  for (PetscInt i = 0; i < nrecv; i++) {
+    for (PetscInt k = 0; k < 4; k++) (*out)[4 * i + k] = sorted[4 * order[i] + k];
+    for (PetscInt k = 0; k < ndata && outdata; k++) (*outdata)[ndata * i + k] = received[ndata * order[i] + k];
+  }
+  PetscCall(PetscFree(order));
+  PetscCall(PetscFree2(sorted, received));
   PetscCall(PetscFree4(scount, sdispl, rcount, rdispl));
   PetscCall(PetscFree(rows));
+  PetscCall(PetscFree(values));
   PetscCall(PetscFree(ranges));
   *nout = nrecv;
-  *out  = sorted;
   PetscFunctionReturn(0);
 }
 
@@ -240,16 +275,47 @@ PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene scene, Vec u, Vec *nat)
     PetscCall(DMGetLocalVector(scene->dm, &local));
     PetscCall(VecZeroEntries(local));
     PetscCall(DMGlobalToLocal(scene->dm, u, INSERT_VALUES, local));
-    PetscCall(VertexFieldInFileOrder(scene, ghost, 3, local, sec, nat));
-    PetscCall(DMRestoreLocalVector(scene->dm, &local));
   } else {
     DM cdm;
 
     PetscCall(DMGetCoordinatesLocal(scene->dm, &local));
     PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
     PetscCall(DMGetLocalSection(cdm, &sec));
-    PetscCall(VertexFieldInFileOrder(scene, ghost, 3, local, sec, nat));
   }
+  {
+    const PetscScalar *la;
+
+    PetscCall(VecGetArrayRead(local, &la));
+    PetscCall(VertexFieldInFileOrder(scene, ghost, 3, la, sec, nat));
+    PetscCall(VecRestoreArrayRead(local, &la));
+  }
+  if (u) PetscCall(DMRestoreLocalVector(scene->dm, &local));
+  PetscCall(PetscFree(ghost));
+  PetscFunctionReturn(0);
+}
+
+/* The ndata values of every local cell (by cell from cStart) in the order of /viz/topology/cells: this rank's rows */
+PetscErrorCode SSStarCellValuesInFileOrder(SSStarScene scene, PetscInt ndata, const PetscReal data[], PetscInt *nrows, PetscReal **rows)
+{
+  PetscBool *ghost;
+  PetscInt  *cells;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
+  PetscCall(CellsInFileOrder(scene, ghost, ndata, data, nrows, &cells, rows));
+  PetscCall(PetscFree(cells));
+  PetscCall(PetscFree(ghost));
+  PetscFunctionReturn(0);
+}
+
+/* The bs values of every local vertex (by vertex from vStart) in file order: nat holds this rank's rows */
+PetscErrorCode SSStarVertexValuesInFileOrder(SSStarScene scene, PetscInt bs, const PetscScalar values[], Vec *nat)
+{
+  PetscBool *ghost;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
+  PetscCall(VertexFieldInFileOrder(scene, ghost, bs, values, NULL, nat));
   PetscCall(PetscFree(ghost));
   PetscFunctionReturn(0);
 }
@@ -267,7 +333,7 @@ PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarVertexFieldInFileOrder(scene, u, &nat));
   PetscCall(PetscStrlcat(path, "/displacement", sizeof(path)));
-  PetscCall(WriteVec(file, path, 3, nat));
+  PetscCall(SSStarWriteVec(file, path, 3, nat));
   PetscCall(VecDestroy(&nat));
   PetscFunctionReturn(0);
 }
@@ -284,12 +350,12 @@ PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
   PetscCall(SSStarH5GroupOpen(file, "/geometry", &group));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarVertexFieldInFileOrder(scene, NULL, &nat));
-  PetscCall(WriteVec(file, "/geometry/vertices", 3, nat));
+  PetscCall(SSStarWriteVec(file, "/geometry/vertices", 3, nat));
   PetscCall(VecDestroy(&nat));
 
   PetscCall(SSStarWriteDisplacement(scene, file, "", u));
 
-  PetscCall(CellsInFileOrder(scene, ghost, &ncells, &cells));
+  PetscCall(CellsInFileOrder(scene, ghost, 0, NULL, &ncells, &cells, NULL));
   PetscCall(SSStarH5GroupOpen(file, "/viz/topology", &group));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarH5WriteRows(scene->comm, file, "/viz/topology/cells", ncells, 4, NULL, cells));

@@ -85,6 +85,7 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
   PetscCall(SSStarH5AttrString(group, "mesh", scene->mesh));
   PetscCall(SSStarH5AttrInt(group, "nodes", scene->nodesGlobal));
   PetscCall(SSStarH5AttrInt(group, "cells", scene->cellsGlobal));
+  PetscCall(SSStarH5AttrInt(group, "refinements", scene->refine)); /* -dm_refine: the mesh is the file's refined this many times */
   PetscCall(SSStarH5AttrReal(group, "mesh_scale", scene->meshScale));
   if (scene->hasE) PetscCall(SSStarH5AttrReal(group, "E", scene->E));
   if (scene->hasNu) PetscCall(SSStarH5AttrReal(group, "nu", scene->nu));
@@ -114,6 +115,19 @@ PetscErrorCode SSStarWriteScene(SSStarScene scene, hid_t file, const SSStarNodeF
     PetscCall(SSStarH5GroupOpen(file, path, &sub));
     PetscCall(SSStarH5AttrReals(sub, "traction", 3, scene->tractions[t].value));
     PetscCall(HistoryAttribute(sub, "history", scene->tractions[t].history));
+    PetscCallH5(H5Gclose(sub));
+  }
+  for (PetscInt d = 0; d < scene->nDisplacements; d++) { /* "free,free,-0.01" or the knots "0:free,free,0;1:..." */
+    const SSStarPrescribed *p = &scene->displacements[d];
+    PetscInt                free[3];
+    char                    text[4096];
+
+    for (PetscInt k = 0; k < 3; k++) free[k] = (p->free >> k) & 1;
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/scene/displacement/%s", p->name));
+    PetscCall(SSStarH5GroupOpen(file, path, &sub));
+    PetscCall(SSStarPrescribedText(p, text, sizeof(text)));
+    PetscCall(SSStarH5AttrString(sub, "displacement", strncmp(text, "history ", 8) ? text : text + 8));
+    PetscCall(SSStarH5AttrInts(sub, "free", 3, free));
     PetscCallH5(H5Gclose(sub));
   }
   for (PetscInt s = 0; s < scene->nSprings; s++) {

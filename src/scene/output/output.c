@@ -1,8 +1,10 @@
 /*
-   HDF5 output of a scene's solution, the same file on any number of ranks (README "Output"):
+   HDF5 output of a scene's solution, the same file on any number of ranks (docs/guide/output.md):
 
      /geometry/vertices, /fields/displacement  every mesh vertex in the mesh file's node order (fileorder.c)
      /viz/topology/cells                       the tetrahedra by their vertices' file numbers, in a canonical order
+     /fields/strain, stress, von_mises         per tetrahedron in that order; /fields/stress_nodal per vertex (stress.c)
+     /groups/<G>/reaction                      the force of each held group (-dirichlet, -displacement_<G>) on the body
      /contact/...                              per contact node, in file order (contact.c)
      /contact_faces/...                        the contact faces' triangles and the point fields ParaView colours them by
      /scene/...                                what was simulated: mesh, material, loads, contact groups (metadata.c)
@@ -27,18 +29,34 @@ static PetscErrorCode XDMFName(const char h5[], char xmf[], size_t size)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode XDMFAttribute(FILE *fp, const char base[], const char name[], const char path[], PetscInt rows, PetscInt cols, PetscBool isInt)
+/*
+   An attribute of a grid: at its nodes or cells, a scalar (cols 0), a vector (3) or a symmetric tensor (6: our
+   columns xx, yy, zz, yz, xz, xy joined in XDMF's Tensor6 order xx, xy, xz, yy, yz, zz, so that VTK's reader, and
+   ParaView, make the full tensor of each point with its components where they belong)
+*/
+static PetscErrorCode XDMFAttribute(FILE *fp, const char base[], const char name[], const char path[], PetscInt rows, PetscInt cols, PetscBool isInt, PetscBool cell)
 {
-  char dims[64];
+  const char *center = cell ? "Cell" : "Node";
+  char        dims[64];
 
   PetscFunctionBegin;
+  if (cols == 6) {
+    const PetscInt xdmf[6] = {0, 5, 4, 1, 3, 2}; /* our column of each Tensor6 component */
+
+    PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "   <Attribute Name=\"%s\" AttributeType=\"Tensor6\" Center=\"%s\">\n    <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, $2, $3, $4, $5)\" Dimensions=\"%" PetscInt_FMT " 6\">\n", name, center, rows));
+    for (PetscInt k = 0; k < 6; k++)
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\" Type=\"HyperSlab\">\n      <DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem>\n      <DataItem Dimensions=\"%" PetscInt_FMT " 6\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n     </DataItem>\n", rows, xdmf[k], rows, rows, base, path));
+    PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "    </DataItem>\n   </Attribute>\n"));
+    PetscFunctionReturn(0);
+  }
   if (cols) PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " %" PetscInt_FMT, rows, cols));
   else PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, rows));
-  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n    <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n   </Attribute>\n", name, cols ? "Vector" : "Scalar", dims, isInt ? "Int" : "Float", isInt ? 4 : 8, base, path));
+  PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n    <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n   </Attribute>\n", name, cols ? "Vector" : "Scalar", center, dims, isInt ? "Int" : "Float", isInt ? 4 : 8, base, path));
   PetscFunctionReturn(0);
 }
 
-/* The grid "mesh" at one state: the tetrahedra with the displacement at <prefix>/fields/displacement */
+/* The grid "mesh" at one state: the tetrahedra with the fields of <prefix>/fields: the displacement and the recovered
+   stress at the nodes, the strain, stress and von Mises stress of the cells */
 static PetscErrorCode XDMFMeshGrid(SSStarScene scene, FILE *fp, const char base[], const char prefix[], const char time[])
 {
   const PetscInt N = scene->nodesGlobal, C = scene->cellsGlobal;
@@ -54,8 +72,15 @@ static PetscErrorCode XDMFMeshGrid(SSStarScene scene, FILE *fp, const char base[
                          "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n"
                          "   </Geometry>\n",
                          time, C, C, base, N, base));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/displacement", prefix));
-  PetscCall(XDMFAttribute(fp, base, "displacement", path, N, 3, PETSC_FALSE));
+  {
+    const char    *names[] = {"displacement", "stress_nodal", "strain", "stress", "von_mises"};
+    const PetscInt cols[]  = {3, 6, 6, 6, 0};
+
+    for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(names); k++) {
+      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/%s", prefix, names[k]));
+      PetscCall(XDMFAttribute(fp, base, names[k], path, k < 2 ? N : C, cols[k], PETSC_FALSE, (PetscBool)(k >= 2)));
+    }
+  }
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
   PetscFunctionReturn(0);
 }
@@ -79,7 +104,7 @@ static PetscErrorCode XDMFContactGrid(FILE *fp, const char base[], const char pr
                          time, ntriangles, ntriangles, base, q, base));
   for (size_t k = 0; k < PETSC_STATIC_ARRAY_LENGTH(names); k++) {
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/contact_faces/%s", prefix, names[k]));
-    PetscCall(XDMFAttribute(fp, base, names[k], path, q, cols[k], (PetscBool)(k == 0)));
+    PetscCall(XDMFAttribute(fp, base, names[k], path, q, cols[k], (PetscBool)(k == 0), PETSC_FALSE));
   }
   PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "  </Grid>\n"));
   PetscFunctionReturn(0);
@@ -251,6 +276,7 @@ PetscErrorCode SSStarSceneOutputStep(SSStarScene scene, SNES snes, Vec u, PetscI
   PetscCall(SSStarH5AttrReal(group, "time", scene->stepTime));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarWriteDisplacement(scene, out->file, prefix, u));
+  PetscCall(SSStarWriteStresses(scene, out->file, prefix, u));
   if (scene->nContact) {
     PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
     if (isssstar) PetscCall(SNESSSStarGetStates(snes, &states, NULL));
@@ -308,6 +334,33 @@ static PetscErrorCode WriteStepTable(SSStarScene scene, SSStarSceneOutput out)
   PetscFunctionReturn(0);
 }
 
+/* /groups/<G>/reaction of every held group: the force its prescription exerts on the body at u (3, rank 0 writes) */
+static PetscErrorCode WriteReactions(SSStarScene scene, hid_t file, SNES snes, Vec u)
+{
+  PetscInt           nheld;
+  const char *const *names;
+  PetscReal         *reaction;
+  PetscMPIInt        rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(scene->comm, &rank));
+  PetscCall(SSStarSceneGetHeldGroups(scene, &nheld, &names));
+  PetscCall(PetscMalloc1(3 * nheld + 1, &reaction));
+  PetscCall(SSStarSceneGetReactions(scene, snes, u, reaction));
+  for (PetscInt h = 0; h < nheld; h++) {
+    char  path[PETSC_MAX_PATH_LEN];
+    hid_t group;
+
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/groups/%s", names[h]));
+    PetscCall(SSStarH5GroupOpen(file, path, &group));
+    PetscCallH5(H5Gclose(group));
+    PetscCall(PetscStrlcat(path, "/reaction", sizeof(path)));
+    PetscCall(SSStarH5WriteRows(scene->comm, file, path, rank ? 0 : 3, 0, &reaction[3 * h], NULL));
+  }
+  PetscCall(PetscFree(reaction));
+  PetscFunctionReturn(0);
+}
+
 /* The top level (the state u with what the SNES did), the table of the steps, the caller's extra, into the open file */
 static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SNES snes, Vec u, PetscErrorCode (*extra)(PetscViewer, void *), void *ctx, PetscInt *nfaceVertices, PetscInt *ntriangles)
 {
@@ -319,6 +372,8 @@ static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SN
 
   PetscFunctionBegin;
   PetscCall(SSStarWriteMesh(scene, out->file, u));
+  PetscCall(SSStarWriteStresses(scene, out->file, "", u));
+  PetscCall(WriteReactions(scene, out->file, snes, u));
   PetscCall(SSStarWriteRun(scene, out->file, snes));
   {
     PetscInt *laws; /* the groups' laws, for an SNES that is no ssstar */
@@ -353,7 +408,7 @@ static PetscErrorCode WriteTopLevel(SSStarScene scene, SSStarSceneOutput out, SN
 
 /*@C
    SSStarSceneOutputEnd - completes the file opened by SSStarSceneOutputBegin(): the top-level datasets and
-   attributes of the state u (those of SSStarSceneWriteSolution(), README "Output"), the table of the steps, the
+   attributes of the state u (those of SSStarSceneWriteSolution(), docs/guide/output.md), the table of the steps, the
    caller's datasets, and the XDMF file (temporal collections of the steps when there are steps); then renames both
    files to their names
 
@@ -438,7 +493,7 @@ PetscErrorCode SSStarSceneOutputEnd(SSStarScene scene, SNES snes, Vec u, PetscEr
    (/scene: mesh, material, loads, contact groups with their laws) and, as attributes of /, the run: ssstar_version,
    petsc_version, command_line, ranks, snes_type, converged_reason, converged_reason_code, iterations, residual_norm
    (||z|| for ssstar), rtol, atol, max_it and, for ssstar, sub_reason, tolerance, scaling, reduction, state_counts,
-   state_names. README "Output" lists them all. It is SSStarSceneOutputBegin() and SSStarSceneOutputEnd() without steps.
+   state_names. docs/guide/output.md lists them all. It is SSStarSceneOutputBegin() and SSStarSceneOutputEnd() without steps.
 
    Both files are written to temporary names and renamed when complete: a failure leaves no file behind.
 

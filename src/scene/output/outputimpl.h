@@ -26,6 +26,11 @@ PETSC_INTERN int            SSStarCompareRows(const void *, const void *, void *
 PETSC_INTERN PetscErrorCode SSStarWriteMesh(SSStarScene, hid_t, Vec);
 PETSC_INTERN PetscErrorCode SSStarWriteDisplacement(SSStarScene, hid_t, const char[], Vec);
 PETSC_INTERN PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene, Vec, Vec *);
+PETSC_INTERN PetscErrorCode SSStarVertexValuesInFileOrder(SSStarScene, PetscInt, const PetscScalar[], Vec *);
+PETSC_INTERN PetscErrorCode SSStarCellValuesInFileOrder(SSStarScene, PetscInt, const PetscReal[], PetscInt *, PetscReal **);
+PETSC_INTERN PetscErrorCode SSStarWriteVec(hid_t, const char[], PetscInt, Vec);
+PETSC_INTERN PetscErrorCode SSStarWriteStresses(SSStarScene, hid_t, const char[], Vec);
+PETSC_INTERN PetscErrorCode SSStarStressFields(SSStarScene, Vec, PetscReal **, PetscScalar **);
 PETSC_INTERN PetscErrorCode SSStarFileOrder(MPI_Comm, PetscInt, const PetscInt[], PetscInt *, PetscInt **, PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], PetscInt, PetscInt, const PetscInt[], PetscInt, const PetscReal[], PetscBool);
 

@@ -45,8 +45,9 @@ static PetscInt MovingGroups(SSStarScene scene)
    Notes:
    The columns are time, iterations, reason, residual_norm, cuts, load (3), normal_force, tangential_force (3), area,
    sliding, sticking, separated, dissipation, law_residual, law_displacement_scale, law_force_scale, then motion/<G>
-   (3) for each contact group with a moving obstacle and groups/<G>/displacement (3) for each traction, spring and
-   contact group (README "Load paths").
+   (3) for each contact group with a moving obstacle, groups/<G>/displacement (3) for each traction, spring, contact
+   and prescribed-displacement surface group and groups/<G>/reaction (3) for each held group, -dirichlet or
+   -displacement_<G> (docs/guide/load-paths.md).
 
    Level: intermediate
 
@@ -54,13 +55,14 @@ static PetscInt MovingGroups(SSStarScene scene)
 @*/
 PetscErrorCode SSStarSceneGetStepColumns(SSStarScene scene, PetscInt *ncolumns, PetscInt *rowsize)
 {
-  PetscInt width = 0;
+  PetscInt width = 0, nheld;
 
   PetscFunctionBegin;
   PetscCall(SSStarSceneFollowSurfaces(scene));
+  PetscCall(SSStarSceneGetHeldGroups(scene, &nheld, NULL));
   for (PetscInt c = 0; c < NFIXED; c++) width += StepColumns[c].width;
-  if (ncolumns) *ncolumns = NFIXED + MovingGroups(scene) + scene->nSurfaces;
-  if (rowsize) *rowsize = width + 3 * (MovingGroups(scene) + scene->nSurfaces);
+  if (ncolumns) *ncolumns = NFIXED + MovingGroups(scene) + scene->nSurfaces + nheld;
+  if (rowsize) *rowsize = width + 3 * (MovingGroups(scene) + scene->nSurfaces + nheld);
   PetscFunctionReturn(0);
 }
 
@@ -76,7 +78,7 @@ PetscErrorCode SSStarSceneGetStepColumns(SSStarScene scene, PetscInt *ncolumns, 
 -  len   - the size of name
 
    Output Parameters:
-+  name    - its name: time, ..., dissipation, motion/<G>, groups/<G>/displacement
++  name    - its name: time, ..., dissipation, motion/<G>, groups/<G>/displacement, groups/<G>/reaction
 .  width   - its values per row, 1 or 3, or pass NULL
 -  integer - whether they are integers (stored as reals in a row), or pass NULL
 
@@ -100,7 +102,13 @@ PetscErrorCode SSStarSceneGetStepColumn(SSStarScene scene, PetscInt c, size_t le
     for (PetscInt m = -1; g < scene->nContact; g++)
       if (scene->contact[g].motion && ++m == c - NFIXED) break;
     PetscCall(PetscSNPrintf(name, len, "motion/%s", scene->contact[g].name));
-  } else PetscCall(PetscSNPrintf(name, len, "groups/%s/displacement", scene->surfaces[c - NFIXED - moving]));
+  } else if (c < NFIXED + moving + scene->nSurfaces) PetscCall(PetscSNPrintf(name, len, "groups/%s/displacement", scene->surfaces[c - NFIXED - moving]));
+  else {
+    const char *const *held;
+
+    PetscCall(SSStarSceneGetHeldGroups(scene, NULL, &held));
+    PetscCall(PetscSNPrintf(name, len, "groups/%s/reaction", held[c - NFIXED - moving - scene->nSurfaces]));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -127,7 +135,8 @@ PetscErrorCode SSStarSceneGetStepColumn(SSStarScene scene, PetscInt c, size_t le
    law_displacement_scale, law_force_scale the solver's (SNESSSStarGetLawResidual(), docs/derivation.md section 12);
    motion/<G> the obstacle's
    translation; groups/<G>/displacement the mean displacement of the group, weighted like a uniform traction's load
-   (so that the work of a uniform traction on G is its force times this). SSStarSceneOutputStep() writes this row.
+   (so that the work of a uniform traction on G is its force times this); groups/<G>/reaction the force the
+   prescription of a held group exerts on the body (SSStarSceneGetReactions()). SSStarSceneOutputStep() writes this row.
 
    Level: intermediate
 
@@ -182,6 +191,8 @@ PetscErrorCode SSStarSceneGetStepRow(SSStarScene scene, SNES snes, Vec u, PetscI
       for (PetscInt k = 0; k < 3; k++) row[c++] = scene->contact[g].d[k];
   PetscCall(SSStarSceneSurfaceDisplacements(scene, u, &row[c]));
   c += 3 * scene->nSurfaces;
+  PetscCall(SSStarSceneGetReactions(scene, snes, u, &row[c]));
+  c += 3 * (scene->nDirichlet + scene->nDisplacements);
   PetscCheck(c == rowsize, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the row of a step has %" PetscInt_FMT " values, not %" PetscInt_FMT, c, rowsize);
   PetscFunctionReturn(0);
 }

@@ -4,7 +4,8 @@
 */
 #include "../sceneimpl.h"
 
-/* The history of -traction_<G>, -gravity or -obstacle_<G>_motion, to be replaced; the value at its last knot, if any */
+/* The history of -traction_<G>, -gravity or -obstacle_<G>_motion, to be replaced; the value at its last knot, if any
+   (-displacement_<G>: SSStarSceneSetHistory()) */
 static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStarHistory **history, PetscReal **last)
 {
   PetscBool match;
@@ -44,20 +45,21 @@ static PetscErrorCode FindHistory(SSStarScene scene, const char option[], SSStar
         *history = &scene->contact[g].motion;
       }
     }
-  PetscCheck(*history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: not a history of the scene (-traction_<G>, -gravity, -obstacle_<G>_motion)", option);
+  PetscCheck(*history, scene->comm, PETSC_ERR_ARG_WRONG, "Option %s: not a history of the scene (-traction_<G>, -gravity, -obstacle_<G>_motion, -displacement_<G>)", option);
   PetscFunctionReturn(0);
 }
 
 /*@C
    SSStarSceneSetHistory - changes a load or an obstacle's motion of the scene: gives one of its history options a new
-   value, as the option would (README "Load paths"), between the steps of a load path
+   value, as the option would (docs/guide/load-paths.md), between the steps of a load path
 
    Collective
 
    Input Parameters:
 +  scene  - the scene, after SSStarSceneSetFromOptions()
-.  option - the option: -traction_<G> (a traction the scene has), -gravity (if the scene has gravity) or
-            -obstacle_<G>_motion (a motion the scene has)
+.  option - the option: -traction_<G> (a traction the scene has), -gravity (if the scene has gravity),
+            -obstacle_<G>_motion (a motion the scene has) or -displacement_<G> (a prescribed displacement the scene
+            has, with the same components free)
 -  value  - its new value: a constant x,y,z, or a history t:x,y,z;t:x,y,z;... (linear between the knots, constant
             outside)
 
@@ -79,6 +81,23 @@ PetscErrorCode SSStarSceneSetHistory(SSStarScene scene, const char option[], con
 
   PetscFunctionBegin;
   PetscCheck(option && value, scene->comm, PETSC_ERR_ARG_NULL, "SSStarSceneSetHistory(): give the option and its value");
+  for (PetscInt d = 0; d < scene->nDisplacements; d++) { /* a prescribed displacement: the same components free */
+    SSStarPrescribed *p = &scene->displacements[d], q = {"", NULL, 0};
+    char              name[SSSTAR_GROUP_NAME_LEN + 16];
+    PetscBool         match;
+
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-displacement_%s", p->name));
+    PetscCall(PetscStrcmp(option, name, &match));
+    if (!match) continue;
+    PetscCall(SSStarPrescribedRead(scene, option, p->name, value, &q));
+    if (q.free != p->free) {
+      PetscCall(SSStarHistoryDestroy(&q.history));
+      SETERRQ(scene->comm, PETSC_ERR_ARG_WRONG, "Option %s %s: the free components of a prescribed displacement are fixed when the scene is made (K holds them)", option, value);
+    }
+    PetscCall(SSStarHistoryDestroy(&p->history));
+    p->history = q.history;
+    PetscFunctionReturn(0);
+  }
   PetscCall(FindHistory(scene, option, &history, &last));
   PetscCall(SSStarHistoryCreateFromString(scene->comm, option, value, 3, &h));
   PetscCall(SSStarHistoryDestroy(history));

@@ -8,11 +8,13 @@
 */
 #include "../sceneimpl.h"
 
-/* Every history of the scene (tractions, gravity, motions) into list (NULL: count them) */
+/* Every history of the scene (tractions, gravity, motions, prescribed displacements) into list (NULL: count them) */
 static PetscInt Histories(SSStarScene scene, SSStarHistory list[])
 {
   PetscInt n = 0;
 
+  for (PetscInt d = 0; d < scene->nDisplacements; d++, n++)
+    if (list) list[n] = scene->displacements[d].history;
   for (PetscInt t = 0; t < scene->nTractions; t++, n++)
     if (list) list[n] = scene->tractions[t].history;
   if (scene->hasGravity) {
@@ -28,8 +30,8 @@ static PetscInt Histories(SSStarScene scene, SSStarHistory list[])
 }
 
 /*@C
-   SSStarSceneGetKnots - the times of the knots of every history of the scene (tractions, gravity, obstacle motions),
-   sorted, each once: the default steps of its load path
+   SSStarSceneGetKnots - the times of the knots of every history of the scene (tractions, gravity, obstacle motions,
+   prescribed displacements), sorted, each once: the default steps of its load path
 
    Not Collective
 
@@ -125,10 +127,15 @@ PetscErrorCode SSStarSceneAssembleLoad(SSStarScene scene, PetscReal t, Vec b)
 
    Input Parameters:
 +  scene - the scene
--  b     - a load (a global vector of the scene's DM)
+-  b     - a load (a global vector of the scene's DM); with prescribed displacements, the load the scene assembled last
+           (SSStarSceneAssembleLoad()) or a multiple of it
 
    Output Parameter:
-.  resultant - the sum over the nodes that are not held of their x, y and z forces
+.  resultant - the sum over the dofs that are not held of their x, y and z forces (tractions, gravity)
+
+   Notes:
+   With prescribed displacements (-displacement_<G>) b holds their lifting too (docs/derivation.md section 15): the
+   resultant is then that of the tractions and gravity the scene recorded when it assembled b, times b's factor.
 
    Level: intermediate
 
@@ -141,6 +148,13 @@ PetscErrorCode SSStarSceneGetLoadResultant(SSStarScene scene, Vec b, PetscReal r
 
   PetscFunctionBegin;
   resultant[0] = resultant[1] = resultant[2] = 0;
+  if (scene->nDisplacements) {
+    PetscReal alpha;
+
+    PetscCall(SSStarSceneLoadFactor(scene, b, &alpha));
+    for (PetscInt k = 0; k < 3; k++) resultant[k] = alpha * scene->loadFree[k];
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecGetLocalSize(b, &n));
   PetscCall(VecGetArrayRead(b, &a));
   for (PetscInt i = 0; i < n; i++) resultant[i % 3] += PetscRealPart(a[i]); /* every free node has its 3 dofs */
@@ -411,24 +425,47 @@ PetscErrorCode SSStarSceneGetMotion(SSStarScene scene, PetscInt g, const char *n
   PetscFunctionReturn(0);
 }
 
-/* The surface groups the output follows (scene->surfaces): the traction, spring and contact groups, each once */
+/* Whether a group of the mesh has cells (a volume group) on some rank */
+static PetscErrorCode IsVolumeGroup(SSStarScene scene, const char name[], PetscBool *volume)
+{
+  DMLabel  label;
+  PetscInt cStart, cEnd;
+
+  PetscFunctionBegin;
+  *volume = PETSC_FALSE;
+  PetscCall(DMGetLabel(scene->dm, name, &label));
+  PetscCall(DMPlexGetHeightStratum(scene->dm, 0, &cStart, &cEnd));
+  for (PetscInt c = cStart; c < cEnd && label && !*volume; c++) {
+    PetscInt value;
+
+    PetscCall(DMLabelGetValue(label, c, &value));
+    *volume = (PetscBool)(value >= 0);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, volume, 1, MPIU_BOOL, MPI_LOR, scene->comm));
+  PetscFunctionReturn(0);
+}
+
+/* The surface groups the output follows (scene->surfaces): the traction, spring, contact and prescribed-displacement
+   surface groups, each once */
 PetscErrorCode SSStarSceneFollowSurfaces(SSStarScene scene)
 {
   const SSStarGroupValues *lists[2] = {scene->tractions, scene->springs};
   const PetscInt           sizes[2] = {scene->nTractions, scene->nSprings};
-  PetscInt                 max      = scene->nTractions + scene->nSprings + scene->nContact;
+  PetscInt                 max      = scene->nTractions + scene->nSprings + scene->nContact + scene->nDisplacements;
 
   PetscFunctionBegin;
   if (scene->surfaces) PetscFunctionReturn(0);
   PetscCall(PetscCalloc3(max + 1, &scene->surfaces, max + 1, &scene->surfaceWeights, max + 1, &scene->surfaceAreas));
   for (PetscInt k = 0; k < max; k++) {
-    const char *name = k < sizes[0] ? lists[0][k].name : k < sizes[0] + sizes[1] ? lists[1][k - sizes[0]].name : scene->contact[k - sizes[0] - sizes[1]].name;
-    PetscBool   seen = PETSC_FALSE;
+    const PetscInt  nc   = sizes[0] + sizes[1] + scene->nContact;
+    const char     *name = k < sizes[0] ? lists[0][k].name : k < sizes[0] + sizes[1] ? lists[1][k - sizes[0]].name : k < nc ? scene->contact[k - sizes[0] - sizes[1]].name : scene->displacements[k - nc].name;
+    PetscBool       seen = PETSC_FALSE, volume = PETSC_FALSE;
     const PetscReal unit[3] = {1, 1, 1};
     Vec             local;
 
     for (PetscInt j = 0; j < scene->nSurfaces && !seen; j++) PetscCall(PetscStrcmp(name, scene->surfaces[j], &seen));
-    if (seen) continue;
+    if (k >= nc && !seen) PetscCall(IsVolumeGroup(scene, name, &volume));
+    if (seen || volume) continue;
     PetscCall(PetscStrallocpy(name, &scene->surfaces[scene->nSurfaces]));
     PetscCall(DMCreateGlobalVector(scene->dm, &scene->surfaceWeights[scene->nSurfaces]));
     PetscCall(DMGetLocalVector(scene->dm, &local));

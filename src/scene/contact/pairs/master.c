@@ -13,11 +13,13 @@
 */
 PetscErrorCode SSStarMasterSearchCreate(SSStarScene scene, PetscInt g, Vec u, SSStarSearch *search, PetscInt *nbodies, PetscInt **bodies)
 {
-  SSStarFaces faces;
-  DMLabel     label;
-  PetscInt    n = 0, *key, *body;
-  PetscReal  *x, *data;
-  PetscMPIInt size, mine, *counts, *displs, total = 0;
+  SSStarFaces   faces;
+  DMLabel       label;
+  PetscInt      n = 0, *key, *body;
+  PetscReal    *x, *data;
+  PetscMPIInt   size, mine, *counts, *displs, total = 0;
+  SSStarBadNode held = {-1, -1, -1, {0, 0, 0}, 0};
+  PetscBool     found;
 
   PetscFunctionBegin;
   PetscCall(SSStarFacesBegin(scene, u, &faces));
@@ -30,11 +32,35 @@ PetscErrorCode SSStarMasterSearchCreate(SSStarScene scene, PetscInt g, Vec u, SS
     PetscCall(DMLabelGetValue(label, f, &value));
     if (value < 0 || faces.leaf[f]) continue;
     PetscCall(SSStarFaceTriangle(&faces, f, &x[9 * n], dof, &key[3 * n], &vertex, &data[SSSTAR_MASTER_DATA * n], &area));
+    if (held.tag < 0) { /* a prescribed component (-displacement_<G>) on the master surface: refused below */
+      PetscInt *closure = NULL, nc;
+
+      PetscCall(DMPlexGetTransitiveClosure(scene->dm, f, PETSC_TRUE, &nc, &closure));
+      for (PetscInt k = 0; k < nc && held.tag < 0; k++) {
+        const PetscInt v = closure[2 * k] - faces.vStart;
+
+        if (v < 0 || v >= faces.vEnd - faces.vStart) continue;
+        for (PetscInt c = 0; c < 3 && held.tag < 0; c++)
+          if (SSStarHeldIdentityRow(scene, v, c)) {
+            held.tag   = (PetscInt)PetscRealPart(faces.ta[v]);
+            held.other = scene->heldBy[3 * v + c];
+          }
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(scene->dm, f, PETSC_TRUE, &nc, &closure));
+    }
     PetscCall(PetscSortInt(3, &key[3 * n]));
     for (PetscInt k = 0; k < 3; k++) data[SSSTAR_MASTER_DATA * n + 3 + k] = (PetscReal)dof[k];
     body[n++] = scene->body[vertex - faces.vStart];
   }
   PetscCall(SSStarFacesEnd(&faces));
+  PetscCall(SSStarSceneShareBadNode(scene->comm, &held, &found));
+  if (found) {
+    char option[SSSTAR_GROUP_NAME_LEN + 16];
+
+    PetscCall(PetscFree4(x, key, data, body));
+    PetscCall(SSStarHeldName(scene, held.other, option, sizeof(option)));
+    SETERRQ(scene->comm, PETSC_ERR_SUP, "Mesh node %" PetscInt_FMT " (0-based, file order) of the master surface %s of contact pair %s has a displacement prescribed by %s: a pair's master nodes may not be prescribed (prescribe a face of that body away from its master surface)", held.tag, scene->contact[g].master, scene->contact[g].name, option);
+  }
   PetscCall(SSStarSearchCreate(scene->comm, n, x, key, SSSTAR_MASTER_DATA, data, search));
   PetscCall(PetscSortRemoveDupsInt(&n, body));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));

@@ -1,5 +1,5 @@
 /*
-   Two deformable bodies (README "Two bodies"): -contact_pair_<G> H makes the contact group G (the slave surface) meet
+   Two deformable bodies (docs/guide/scenes.md, "Two bodies"): -contact_pair_<G> H makes the contact group G (the slave surface) meet
    the surface group H (the master) of another body. Node-to-surface: each slave node is projected onto the closest
    master triangle; its contact point compares the slave node with the master surface interpolated there (P1: the
    barycentric coordinates of the projection), in the frame of the master normal, with the normal distance as gap:

@@ -368,7 +368,7 @@ static PetscErrorCode BuildNodeContactOperator(MPI_Comm comm, SSStarContact *ct,
 
 /*
    The law of every node and its values (section 0 and the law's own section in docs/derivation.md): a node's own
-   value of a parameter (SNESSSStarSetNodeLawParameter(); PETSC_DEFAULT: none), else the value for every node
+   value of a parameter (SNESSSStarSetNodeLawParameter(); SSSTAR_NOT_GIVEN: none), else the value for every node
    (SNESSSStarSetLawParameter(), -snes_ssstar_<name>); a direction turned into the node's frame. Then the law checks
    and prepares them.
 */
@@ -404,7 +404,7 @@ static PetscErrorCode BuildFriction(MPI_Comm comm, SSStarContact *ct)
         const PetscScalar *a;
 
         PetscCall(VecGetArrayRead(setting->perNode, &a));
-        given = (PetscBool)(PetscRealPart(a[setting->size * j]) != (PetscReal)PETSC_DEFAULT);
+        given = (PetscBool)!PetscIsNanReal(PetscRealPart(a[setting->size * j]));
         for (PetscInt k = 0; given && k < setting->size; k++) v[k] = PetscRealPart(a[setting->size * j + k]);
         PetscCall(VecRestoreArrayRead(setting->perNode, &a));
       }

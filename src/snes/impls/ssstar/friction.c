@@ -269,7 +269,7 @@ static PetscErrorCode SNESSSStarGetFriction_SSStar(SNES snes, PetscReal *frictio
             contact nodes; NULL: back to the value of SNESSSStarSetLawParameter()
 
    Notes:
-   The SNES keeps a reference to values. An entry PETSC_DEFAULT (for a direction: its first component) gives its node
+   The SNES keeps a reference to values. An entry SSSTAR_NOT_GIVEN (NaN; for a direction: its first component) gives its node
    the value of SNESSSStarSetLawParameter() as it is at SNESSolve(): a scene hands over the values of its groups without
    fixing the solver's default. The value applies where the node's law has the parameter; it is checked at the
    set-up (a number >= 0; a direction not normal to the node's plane), naming the node, on every rank. A vector of

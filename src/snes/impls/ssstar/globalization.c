@@ -1,6 +1,6 @@
 /*
    The globalization of ssstar: the plain iteration of docs/derivation.md section 7 converges from a good starting point
-   only, and may cycle or stall far from the solution (README, "When it does not converge"). Here:
+   only, and may cycle or stall far from the solution (docs/guide/converged.md, "When it does not converge"). Here:
 
    - the merit function is ||z||, the norm of the approximation step (the natural residual: zero exactly at the
      solutions, in the units of u);
@@ -232,10 +232,11 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c) */
+  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c); a nonlinear c evaluated there */
   for (alpha = 0.5; alpha >= glob->dampingMin; alpha /= 2) {
     PetscCall(VecWAXPY(ss->ua, alpha, ss->dv, ss->u));
-    PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
+    if (ss->problem.nonlinear) PetscCall(SNESSSStarResidual(snes, ss->ua, ss->ca));
+    else PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
     PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
     if (m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm) {
       PetscCall(Accept(ss, ss->ua, ss->ca));
@@ -348,7 +349,7 @@ PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscVie
 -  -snes_ssstar_stagnation_its <20> - stagnationIts
 
    Notes:
-   Cycles and stagnation are detected in both cases; without globalization they end the solve. README, "When it does
+   Cycles and stagnation are detected in both cases; without globalization they end the solve. docs/guide/converged.md, "When it does
    not converge"; SNESSSStarGetRemedyCounts() tells what the last solve needed.
 
    Level: advanced

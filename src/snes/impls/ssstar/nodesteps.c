@@ -39,12 +39,16 @@ void SNESSSStarNodeIterate(const SSStarContact *ct, const SSStarProblem *pb, Pet
   else if (ct->gap) v[2] += ct->gap[i];
 }
 
-/* c = A u - f */
+/* c = A u - f, or from F itself for a residual treated as nonlinear (problem.c, docs/derivation.md section 17) */
 PetscErrorCode SNESSSStarResidual(SNES snes, Vec u, Vec c)
 {
   SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
 
   PetscFunctionBegin;
+  if (pb->nonlinear) {
+    PetscCall(SSStarProblemFunctionResidual(snes, u, c));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatMult(pb->A, u, c));
   PetscCall(VecAXPY(c, -1.0, pb->f));
   PetscFunctionReturn(0);
@@ -119,7 +123,7 @@ PetscErrorCode SNESSSStarApproximationStep(SNES snes, Vec u, Vec c, PetscReal *z
    (the file's reaction) lie within rho U and rho F of a pair (w*, r*) that satisfies the law exactly, and the free
    dofs are in equilibrium to rho F, with
 
-     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR |u_C|_inf)                       the step's displacements
+     U = max(|w|_inf, |u_C - u_C(start)|_inf, SSSTAR_LAW_FLOOR max(|u_C|_inf, |f|_inf / mean diag K_CC))   the step's displacements
      F = max(|r|_inf, |r - r(start)|_inf, SSSTAR_LAW_FORCE_FLOOR (max_i sum_j |A_ij| |u|_inf + |f|_inf))   and forces
 
    each at least SSSTAR_LAW_FLOOR times the largest of the solves since the set-up (a step of a load path where nothing
@@ -161,6 +165,7 @@ static PetscErrorCode LawResidual(SNES snes, Vec u, Vec c, PetscBool floors, Pet
   F = PetscMax(scales[3], scales[4]);
   if (floors) {
     U = PetscMax(PetscMax(U, SSSTAR_LAW_FLOOR * scales[2]), SSSTAR_LAW_FLOOR * ss->pathDisplacement);
+    if (pb->meanDiag > 0) U = PetscMax(U, SSSTAR_LAW_FLOOR * ss->fnorm_inf / pb->meanDiag); /* every point stuck where it was: the load's displacement scale */
     F = PetscMax(PetscMax(F, SSSTAR_LAW_FORCE_FLOOR * (pb->maxRowSum * scales[2] + ss->fnorm_inf)), SSSTAR_LAW_FLOOR * ss->pathForce);
   }
   *Uout = U;

@@ -2,15 +2,16 @@
    The problem the iteration of the SNES type "ssstar" runs on, c(u) = A u - f: the user's reduced P and f, or the
    user's K reduced to the contact dofs (a Schur complement P, src/reduction/), or K itself on the whole body (the
    reduction none). The reduction says which (SSStarReductionIsWholeBody()); the Newton step that fits A is chosen
-   here, by name.
+   here, by name. A residual that is not affine (nonlinear.c) runs on c(u) = T^T F(T u) with A its Jacobian at the
+   iterate, on the whole body or in the reduced use.
 */
 #include "ssstarimpl.h"
 
 /*
-   K from the user's Jacobian routine. Not SNESComputeJacobian(): it hands K to the SNES's KSP, which belongs to the
-   Newton system here.
+   K, the user's Jacobian at x. Not SNESComputeJacobian(): it hands K to the SNES's KSP, which belongs to the Newton
+   system here.
 */
-static PetscErrorCode ComputeK(SNES snes, Mat *K)
+PetscErrorCode SSStarProblemComputeJacobian(SNES snes, Vec x, Mat *K)
 {
   Mat   A, B;
   void *ctx;
@@ -19,9 +20,9 @@ static PetscErrorCode ComputeK(SNES snes, Mat *K)
   PetscFunctionBegin;
   PetscCall(SNESGetJacobian(snes, &A, &B, &jac, &ctx));
   if (jac) {
-    PetscCall(PetscLogEventBegin(SNES_JacobianEval, snes, snes->vec_sol, A, B));
-    PetscCallBack("SNES callback Jacobian", (*jac)(snes, snes->vec_sol, A, B, ctx));
-    PetscCall(PetscLogEventEnd(SNES_JacobianEval, snes, snes->vec_sol, A, B));
+    PetscCall(PetscLogEventBegin(SNES_JacobianEval, snes, x, A, B));
+    PetscCallBack("SNES callback Jacobian", (*jac)(snes, x, A, B, ctx));
+    PetscCall(PetscLogEventEnd(SNES_JacobianEval, snes, x, A, B));
   }
   *K = A;
   PetscFunctionReturn(0);
@@ -104,15 +105,28 @@ static PetscErrorCode ChooseNewton(SSStarProblem *pb)
   PetscFunctionReturn(0);
 }
 
-/* The reduction of K (in the points' variables) to the contact dofs, with the SNES's options prefix for its solvers */
-static PetscErrorCode CreateReduction(SNES snes, SSStarContact *ct, SSStarProblem *pb)
+/*
+   The reduction of K (in the points' variables) to the contact dofs, with the SNES's options prefix for its solvers. A
+   nonlinear residual stays on the whole body (docs/derivation.md section 17): the Schur complement of its Jacobian
+   would be computed again at every iterate.
+*/
+static PetscErrorCode CreateReduction(SNES snes, SSStarContact *ct, SSStarProblem *pb, PetscBool nonlinear)
 {
-  const char *prefix;
+  const char *prefix, *type = pb->reductionType;
 
   PetscFunctionBegin;
+  if (nonlinear) {
+    PetscBool isauto, none;
+
+    PetscCall(PetscStrcmp(type, SSSTARREDUCTIONAUTO, &isauto));
+    PetscCall(PetscStrcmp(type, SSSTARREDUCTIONNONE, &none));
+    PetscCheck(isauto || none, PetscObjectComm((PetscObject)snes), PETSC_ERR_SUP, "ssstar: -snes_ssstar_reduction %s with a residual treated as nonlinear (%s): the Schur complement of the Jacobian would be computed again at every iterate; such a residual is solved on the whole body (-snes_ssstar_reduction none or auto), or declare it affine (SNESSSStarSetAffine(), -snes_ssstar_affine)", type,
+               ct->update ? "the contact is measured at the iterates, SNESSSStarSetContactUpdate()" : "not declared affine");
+    type = SSSTARREDUCTIONNONE;
+  }
   PetscCall(SNESGetOptionsPrefix(snes, &prefix));
   PetscCall(SSStarReductionCreate(PetscObjectComm((PetscObject)snes), &pb->reduction));
-  PetscCall(SSStarReductionSetType(pb->reduction, pb->reductionType));
+  PetscCall(SSStarReductionSetType(pb->reduction, type));
   PetscCall(SSStarReductionSetOptionsPrefix(pb->reduction, prefix));
   PetscCall(SSStarReductionSetMemoryLimit(pb->reduction, pb->memoryLimit));
   PetscCall(SSStarReductionSetUp(pb->reduction, pb->Kw, ct->isC, ct->isI));
@@ -152,9 +166,11 @@ static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProble
 }
 
 /*
-   A and f for the current K, load and declaration (TakeDeclaration() first): the Jacobian is evaluated once (c is
-   affine), b = -F(0), and in the whole-body use K is reduced to the contact dofs, or kept (reduction none), again only
-   when K or the declaration changed (not for new frames and gaps of rigid obstacles alone).
+   A and f for the current K, load and declaration (TakeDeclaration() first): the Jacobian is evaluated at the SNES
+   vector, b = -F(0), and in the whole-body use K is reduced to the contact dofs, or kept (reduction none), again only
+   when K or the declaration changed (not for new frames and gaps of rigid obstacles alone). An affine residual keeps
+   this A for the whole solve; a nonlinear one (docs/derivation.md section 17) is solved on the whole body, its
+   Jacobian evaluated again at the iterates (nonlinear.c).
 */
 PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *pb)
 {
@@ -162,19 +178,23 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
   PetscObjectState state;
   Vec              zero, bC;
   PetscInt         nI = 0;
+  PetscBool        affine, nonlinear;
 
   PetscFunctionBegin;
-  PetscCall(ComputeK(snes, &K));
+  PetscCall(SSStarProblemIsAffine(snes, pb, &affine));
+  nonlinear = (PetscBool)(!affine || ct->update);
+  PetscCall(SSStarProblemComputeJacobian(snes, snes->vec_sol, &K));
+  if (!affine && snes->lagjacobian == -2) snes->lagjacobian = -1; /* computed now, never again (SNESSetLagJacobian()) */
   PetscCall(PetscObjectStateGet((PetscObject)K, &state));
   PetscCall(TakeDeclaration(snes, ct, pb, K));
-  if (K != pb->K || state != pb->Kstate || !pb->A || pb->built != ct->built) {
+  if (K != pb->K || state != pb->Kstate || !pb->A || pb->built != ct->built || nonlinear != pb->nonlinear) {
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
     PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
     PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating)); /* floating bodies (floating.c): checked before any factorization */
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     pb->wholeBody = PETSC_FALSE;
-    if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb));
+    if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb, nonlinear));
     else if (ct->dofs) { /* every dof a contact dof, in another order */
       PetscCall(MatCreateSubMatrix(pb->Kw, ct->isC, ct->isC, MAT_INITIAL_MATRIX, &pb->A));
     } else {
@@ -192,10 +212,13 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(MatCreateVecs(pb->A, &pb->f, NULL));
     pb->K      = K;
     pb->Kstate = state;
+    pb->builds++;
     pb->built  = ct->built;
     if (ct->isC) PetscCall(PetscObjectReference((PetscObject)ct->isC));
     pb->isC = ct->isC;
   }
+  pb->affine    = affine;
+  pb->nonlinear = nonlinear;
   if (!pb->b) PetscCall(VecDuplicate(snes->vec_func, &pb->b));
   PetscCall(VecDuplicate(snes->vec_sol, &zero));
   PetscCall(VecZeroEntries(zero));
@@ -253,13 +276,17 @@ PetscErrorCode SSStarProblemGetInitialGuess(SSStarContact *ct, SSStarProblem *pb
 
 /*
    The SNES vector x from the solution u and its contact force c = A u - f: in the whole-body use v = K^-1 (b + E_C c)
-   (or u itself on the whole body), in the points' variables, and x = T v
+   (or u itself on the whole body), in the points' variables, and x = T v; for a nonlinear residual T u
 */
 PetscErrorCode SSStarProblemSetSolution(SSStarContact *ct, SSStarProblem *pb, Vec u, Vec c, Vec x)
 {
   Vec v;
 
   PetscFunctionBegin;
+  if (pb->nonlinear) { /* u is where F was evaluated: no recovery, no least-norm motion (F is not K u - b) */
+    PetscCall(SSStarProblemIterateVector(ct, pb, u, x));
+    PetscFunctionReturn(0);
+  }
   if (!ct->dofs) {
     PetscCall(VecCopy(u, x));
     PetscCall(SSStarFloatingLeastNorm(&pb->floating, x));
@@ -311,8 +338,13 @@ PetscErrorCode SSStarProblemView(SSStarContact *ct, SSStarProblem *pb, PetscView
     const char *type;
 
     PetscCall(SSStarReductionGetType(pb->reduction, &type));
+    PetscBool chosen;
+    PetscReal dense, whole, holding;
+
     if (pb->wholeBody) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: solved on the whole body, P never formed (reduction %s%s)\n", type, isauto ? " (chosen by auto)" : ""));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: K reduced to the contact dofs by the %s Schur complement%s\n", type, isauto ? " (chosen by auto)" : ""));
+    PetscCall(SSStarReductionGetAutoCosts(pb->reduction, &chosen, &dense, &whole, &holding));
+    if (chosen) PetscCall(PetscViewerASCIIPrintf(viewer, "    auto's estimates (flops of a dense LU): the dense route %.3g, the whole body %.3g (K holds the body by %.2g)\n", (double)dense, (double)whole, (double)holding));
   } else if (ct->dofs) PetscCall(PetscViewerASCIIPrintf(viewer, "  whole-body problem: reduction %s (decided at the first solve)\n", pb->reductionType));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced problem: every dof is a contact dof (c = P u - f)\n"));
   PetscCall(SSStarFloatingView(&pb->floating, viewer));
@@ -333,10 +365,116 @@ PetscErrorCode SSStarProblemReset(SSStarProblem *pb)
   PetscCall(PetscFree(pb->free));
   PetscCall(ISDestroy(&pb->isC));
   PetscCall(SSStarFloatingReset(&pb->floating));
+  for (Vec *w = &pb->x; w <= &pb->xMeasured; w++) PetscCall(VecDestroy(w));
   pb->nfree     = 0;
   pb->K         = NULL;
   pb->built     = -1;
   pb->wholeBody = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   x, the SNES vector of the solver's u: T v with v = u on the whole body and in the reduced use, u at the contact
+   dofs of a problem whose every dof is a contact dof
+*/
+PetscErrorCode SSStarProblemIterateVector(SSStarContact *ct, SSStarProblem *pb, Vec u, Vec x)
+{
+  PetscFunctionBegin;
+  if (!ct->dofs) {
+    PetscCall(VecCopy(u, x));
+    PetscFunctionReturn(0);
+  }
+  if (pb->wholeBody) PetscCall(VecCopy(u, pb->v));
+  else PetscCall(VecISCopy(pb->v, ct->isC, SCATTER_FORWARD, u));
+  if (ct->T) PetscCall(MatMult(ct->T, pb->v, x));
+  else PetscCall(VecCopy(pb->v, x));
+  PetscFunctionReturn(0);
+}
+
+/* c from F(x): T^T F, at the contact dofs unless on the whole body */
+static PetscErrorCode ContactResidual(SSStarContact *ct, SSStarProblem *pb, Vec F, Vec c)
+{
+  Vec w = F, wC;
+
+  PetscFunctionBegin;
+  if (!ct->dofs) {
+    PetscCall(VecCopy(F, c));
+    PetscFunctionReturn(0);
+  }
+  if (ct->T) {
+    PetscCall(MatMultTranspose(ct->T, F, pb->v));
+    w = pb->v;
+  }
+  if (pb->wholeBody) PetscCall(VecCopy(w, c));
+  else {
+    PetscCall(VecGetSubVector(w, ct->isC, &wC));
+    PetscCall(VecCopy(wC, c));
+    PetscCall(VecRestoreSubVector(w, ct->isC, &wC));
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+   c = c(u) from F itself. A point where the program's F is not defined (SNESSetFunctionDomainError(): an inverted
+   element of a hyperelastic body) has c = Inf: the line search damps a step that leads there, as a NaN.
+*/
+PetscErrorCode SSStarProblemFunctionResidual(SNES snes, Vec u, Vec c)
+{
+  SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
+  SSStarProblem *pb = &ss->problem;
+  PetscBool      outside;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarProblemIterateVector(&ss->contact, pb, u, pb->x));
+  PetscCall(SNESComputeFunction(snes, pb->x, pb->Fx));
+  PetscCall(MPIU_Allreduce(&snes->domainerror, &outside, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)snes)));
+  snes->domainerror = PETSC_FALSE;
+  if (outside) PetscCall(VecSet(c, PETSC_INFINITY));
+  else PetscCall(ContactResidual(&ss->contact, pb, pb->Fx, c));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The Jacobian K evaluated again (a nonlinear residual at a new iterate): K in the points' variables and A follow (the
+   same matrices, new values) and the floating bodies' motions (the null space K carries now)
+*/
+PetscErrorCode SSStarProblemTakeJacobian(SNES snes, SSStarContact *ct, SSStarProblem *pb, Mat K)
+{
+  PetscFunctionBegin;
+  if (ct->T) PetscCall(MatPtAP(K, ct->T, MAT_REUSE_MATRIX, PETSC_DEFAULT, &pb->Kw));
+  if (ct->dofs && !pb->wholeBody) PetscCall(MatCreateSubMatrix(pb->Kw, ct->isC, ct->isC, MAT_REUSE_MATRIX, &pb->A));
+  PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating));
+  PetscCall(PetscObjectStateGet((PetscObject)K, &pb->Kstate));
+  PetscFunctionReturn(0);
+}
+
+/*
+   The contact declared again within a solve (a contact update at an iterate, docs/derivation.md section 17), with the
+   same points: taken as between solves (TakeDeclaration()); where the change of variables T was or is part of it, the
+   points' variables change, and K in them and A (on the whole body) are built again. rebuilt: the declaration changed;
+   variables: the points' variables did (the iterate must be expressed in them again).
+*/
+PetscErrorCode SSStarProblemTakeMeasuredContact(SNES snes, SSStarContact *ct, SSStarProblem *pb, PetscBool *rebuilt, PetscBool *variables)
+{
+  const PetscObjectState built = ct->built;
+  PetscBool              same  = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  *variables = PETSC_FALSE;
+  PetscCall(TakeDeclaration(snes, ct, pb, pb->K));
+  *rebuilt = (PetscBool)(ct->built != built);
+  if (!*rebuilt) PetscFunctionReturn(0);
+  if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
+  PetscCheck(same, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_WRONGSTATE, "ssstar: the contact update (SNESSSStarSetContactUpdate()) declared points with other dofs: it may change their normals, gaps, offsets and master dofs, not the points");
+  if (pb->built == ct->built) PetscFunctionReturn(0); /* rigid obstacles: new frames and gaps, the same problem */
+  PetscCall(MatDestroy(&pb->Kw));
+  PetscCall(SSStarContactTransformStiffness(ct, pb->K, &pb->Kw));
+  PetscCall(SSStarReductionDestroy(&pb->reduction));
+  PetscCall(MatDestroy(&pb->A));
+  PetscCall(CreateReduction(snes, ct, pb, PETSC_TRUE));
+  PetscCall(SSStarFloatingSetUp(ct, pb->K, &pb->floating));
+  pb->built  = ct->built;
+  *variables = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -372,6 +510,21 @@ static PetscErrorCode LinearProblemDestroy(void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Whether F is affine in this solve: as declared (SNESSSStarSetAffine()), else when it is SNESSSStarSetLinearProblem()'s */
+PetscErrorCode SSStarProblemIsAffine(SNES snes, SSStarProblem *pb, PetscBool *affine)
+{
+  PetscErrorCode (*function)(SNES, Vec, Vec, void *);
+
+  PetscFunctionBegin;
+  if (pb->affineSet) {
+    *affine = pb->affineDeclared;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SNESGetFunction(snes, NULL, &function, NULL));
+  *affine = (PetscBool)(function == LinearProblemFunction);
+  PetscFunctionReturn(0);
+}
+
 /*@
    SNESSSStarSetLinearProblem - sets the SNES function F(u) = K u - b and the Jacobian K of a linear elastic body (or
    c(u) = P u - f and P of a reduced contact problem, 3 dofs per contact node)
@@ -387,11 +540,14 @@ static PetscErrorCode LinearProblemDestroy(void *ctx)
    Works with any SNES type; the SNES keeps references to K and b, so a program that changes b's values between
    solves (load steps) changes the load. After SNESSolve(), SNESGetFunction() holds K u - b: at the contact nodes the
    contact forces. A whole body declares its contact nodes (SNESSSStarSetContactNodes() or
-   SNESSSStarSetContactOperator()); without a declaration every dof is a contact dof (the reduced use).
+   SNESSSStarSetContactOperator()); without a declaration every dof is a contact dof (the reduced use). This F is
+   affine (SNESSSStarGetAffine()): ssstar evaluates K once per solve and may reduce it to the contact dofs; a program's own
+   SNESSetFunction() and SNESSetJacobian() give a residual ssstar treats as nonlinear unless declared affine
+   (SNESSSStarSetAffine(); docs/guide/nonlinear-residuals.md).
 
    Level: beginner
 
-.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`, `SNESSetFunction()`, `SNESSetJacobian()`
+.seealso: `SNESSSStarSetContactNodes()`, `SNESSSStarGetReducedProblem()`, `SNESSSStarSetAffine()`, `SNESSetFunction()`, `SNESSetJacobian()`
 @*/
 PetscErrorCode SNESSSStarSetLinearProblem(SNES snes, Mat K, Vec b)
 {

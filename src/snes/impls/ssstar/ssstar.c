@@ -8,7 +8,7 @@
 #include "ssstarimpl.h"
 
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
-const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "NO_EQUILIBRIUM", "USER_TEST", "SSStarReason", "SSSTAR_REASON_", NULL};
+const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "NO_EQUILIBRIUM", "USER_TEST", "NOT_AFFINE", "SSStarReason", "SSSTAR_REASON_", NULL};
 
 /* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
 #define SSSTAR_EQUILIBRIUM_RTOL 1e-4
@@ -89,14 +89,15 @@ static PetscErrorCode CreateWorkVectors(SNES snes)
    to the contact dofs, f = -(K u0 - b)_C with u0 in equilibrium and u0_C = 0: what a reduction would give. Into
    ss->scale, ss->fnorm_inf; u and c = K u - b on return.
 */
-/* The free dofs of ss->u corrected with its contact dofs held, from c = K u - b there, to max(rtol ||r0||, atol) */
-static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol)
+/* The free dofs of ss->u corrected with its contact dofs held, from c = K u - b there, to max(rtol ||r0||, atol);
+   solved NULL: a failed linear solve is an error */
+static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol, PetscBool *solved)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
   SSStarProblem     *pb = &ss->problem;
   const PetscScalar *ca;
   PetscScalar       *za;
-  PetscBool          solved;
+  PetscBool          ok;
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(ss->c, &ca));
@@ -106,30 +107,24 @@ static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol)
   PetscCall(VecRestoreArrayWrite(ss->z, &za));
   PetscCall(VecRestoreArrayRead(ss->c, &ca));
   PetscCall(SSStarNewtonSetTolerances(ss->newton, rtol, atol));
-  PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
-  PetscCheck(solved, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
+  PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &ok));
+  if (solved) *solved = ok;
+  else PetscCheck(ok, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Equilibrate(SNES snes)
+/* ss->scale = gamma ||f||, ss->fnorm_inf = ||f||_inf with f = -c at the contact dofs */
+static PetscErrorCode SetLoadScale(SNES snes)
 {
   SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  SSStarContact     *ct = &ss->contact;
-  SSStarProblem     *pb = &ss->problem;
-  PetscReal          sums[2] = {0, 0}, unorm, floor;
+  const PetscInt    *dofs = ss->problem.layoutDofs;
+  PetscReal          sums[2] = {0, 0};
   const PetscScalar *ca;
-  Vec                uC = ss->ut;
 
   PetscFunctionBegin;
-  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
-  PetscCall(VecCopy(ss->u, uC));
-  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
-  PetscCall(VecZeroEntries(ss->u));
-  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0));
   PetscCall(VecGetArrayRead(ss->c, &ca));
-  for (PetscInt k = 0; k < 3 * ct->nnodes; k++) {
-    const PetscReal fk = -PetscRealPart(ca[pb->layoutDofs[k]]);
+  for (PetscInt k = 0; k < 3 * ss->contact.nnodes; k++) {
+    const PetscReal fk = -PetscRealPart(ca[dofs[k]]);
 
     sums[0] += fk * fk;
     sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
@@ -139,6 +134,51 @@ static PetscErrorCode Equilibrate(SNES snes)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
   ss->scale     = ss->scaling * PetscSqrtReal(sums[0]);
   ss->fnorm_inf = sums[1];
+  PetscFunctionReturn(0);
+}
+
+/*
+   A nonlinear residual (docs/derivation.md section 17): the guess, free dofs included (F is not K u - b: the top of a
+   body prescribed in the guess stays), corrected by one linearized step of the free dofs with the contact dofs held,
+   kept where it solved and F is defined there; the load's scale from the contact forces at that point
+*/
+static PetscErrorCode EquilibrateNonlinear(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscReal    cmax;
+  PetscBool    solved;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(ss->u, ss->ut));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, 0.0, &solved));
+  if (solved) PetscCall(VecNorm(ss->c, NORM_INFINITY, &cmax));
+  if (!solved || PetscIsInfOrNanReal(cmax)) {
+    PetscCall(VecCopy(ss->ut, ss->u));
+    PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  }
+  PetscCall(SetLoadScale(snes));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Equilibrate(SNES snes)
+{
+  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
+  PetscReal    unorm, floor;
+  Vec          uC = ss->ut;
+
+  PetscFunctionBegin;
+  if (ss->problem.nonlinear) {
+    PetscCall(EquilibrateNonlinear(snes));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
+  PetscCall(VecCopy(ss->u, uC));
+  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
+  PetscCall(VecZeroEntries(ss->u));
+  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
+  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0, NULL));
+  PetscCall(SetLoadScale(snes));
   if (unorm == 0) PetscFunctionReturn(0);
   /* a given u: its free dofs corrected from its own, relative to its own residual (not to the whole load's, from u0),
      down to the Newton steps' floor: a guess already in equilibrium (the step before on a load path) keeps its
@@ -149,7 +189,7 @@ static PetscErrorCode Equilibrate(SNES snes)
   PetscCall(VecCopy(uC, ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SNESSSStarLinearFloor(snes, &floor));
-  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor));
+  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -239,6 +279,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   SSStarContactLayout layout;
 
   PetscFunctionBegin;
+  PetscCall(SSStarNonlinearMeasureAtStart(snes)); /* a contact update declares the contact at the initial guess */
   PetscCall(SSStarProblemSetUp(snes, ct, pb));
   PetscCall(SSStarContactSetUpOffsets(PetscObjectComm((PetscObject)snes), ct, &ss->offsetScale));
   PetscCall(CreateWorkVectors(snes));
@@ -246,6 +287,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   PetscCall(SSStarProblemGetLayout(ct, pb, &layout));
   PetscCall(SSStarNewtonSetStiffness(ss->newton, pb->newtonType, pb->A, ss->scaling, &layout));
   PetscCall(SSStarProblemGetInitialGuess(ct, pb, snes->vec_sol, ss->u));
+  PetscCall(SSStarNonlinearBegin(snes));
   PetscCall(CheckProblem(snes));
   if (pb->wholeBody) PetscCall(Equilibrate(snes)); /* the free dofs in equilibrium with the contact dofs */
   else {
@@ -267,7 +309,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   SNES_SSStar   *ss = (SNES_SSStar *)snes->data;
   SSStarContact *ct = &ss->contact;
   SSStarProblem *pb = &ss->problem;
-  PetscReal      znorm, unorm, xnorm, dunorm = 0, z0 = 0;
+  PetscReal      znorm, unorm, xnorm, dunorm = 0, duprev = 0, z0 = 0; /* the last two Newton steps' lengths */
   PetscBool      solved;
 
   PetscFunctionBegin;
@@ -293,6 +335,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   for (PetscInt k = 0; snes->reason == SNES_CONVERGED_ITERATING; k++) {
     SSStarReason stop = SSSTAR_REASON_ITERATING;
 
+    PetscCall(SSStarNonlinearMeasureContact(snes)); /* a contact update: the contact at this iterate (nonlinear.c) */
     PetscCall(SNESSSStarApproximationStep(snes, ss->u, ss->c, &znorm));
     PetscCall(SNESSSStarLawResidual(snes, ss->u, ss->c));
     PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
@@ -323,17 +366,24 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       break;
     }
     /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
-       taken whole, until it is, or it stops halving while the states stay (its round-off floor) */
+       taken whole, until it is, or it stops halving while the states stay and the steps stop growing (its round-off
+       floor). Steps that grow while rho decreases are no floor: the creep of the iteration at a kink of the law, where
+       a slow mode's slip is set by the curvature of the sliding directions and Newton lengthens it by 3/2 per step
+       (docs/derivation.md section 19) */
     ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);
     if (ss->polishing) {
-      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0) ss->lawStalls++;
+      const PetscBool creeping = (PetscBool)(dunorm > duprev && ss->lawResidual < ss->lawBest);
+
+      if (ss->lawResidual > 0.5 * ss->lawBest && ss->glob.changed == 0 && !creeping) ss->lawStalls++;
       ss->lawBest = PetscMin(ss->lawBest, ss->lawResidual);
+      PetscCall(PetscInfo(snes, "Polishing at iteration %" PetscInt_FMT ": law residual %g, steps %g after %g%s, %" PetscInt_FMT " stalls\n", k, (double)ss->lawResidual, (double)dunorm, (double)duprev, creeping ? " (creeping)" : "", ss->lawStalls));
       if (ss->lawStalls > SSSTAR_LAW_MAX_STALLS) {
         ss->reason   = SSSTAR_REASON_LAW_STALLED;
         snes->reason = SNES_DIVERGED_LOCAL_MIN;
         break;
       }
     }
+    PetscCall(SSStarNonlinearJacobian(snes, k)); /* a nonlinear residual: its Jacobian at this iterate (-snes_lag_jacobian) */
     if (ss->method == SSSTAR_METHOD_FIXEDPOINT) { /* u <- u + R^T z (section 1) */
       PetscCall(SNESSSStarSetLinearTolerances(snes, znorm, PetscMin(ss->etaMax, znorm / z0)));
       PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &solved));
@@ -377,6 +427,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
         stop = SSSTAR_REASON_SINGULAR_NEWTON;
       } else {
         PetscCall(SNESSSStarExtendFreeStep(snes)); /* floating bodies: free motions to the first contact (balance.c) */
+        duprev = dunorm;
         PetscCall(SNESSSStarContactNorm(snes, ss->dv, &dunorm));
         PetscCall(SSStarGlobalizationStep(snes, k, znorm, ss->polishing, &stop));
       }
@@ -403,6 +454,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
   PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
   PetscCall(SSStarProblemSetSolution(ct, pb, ss->u, ss->c, snes->vec_sol));
   PetscCall(SNESComputeFunction(snes, snes->vec_sol, snes->vec_func));
+  PetscCall(SSStarNonlinearCheckAffine(snes)); /* an affine residual: F there against the model (nonlinear.c) */
   PetscFunctionReturn(0);
 }
 
@@ -537,7 +589,7 @@ static PetscErrorCode SNESSSStarGetMethod_SSStar(SNES snes, SSStarMethod *method
 .  reason - the sub-reason (SSStarReason; SSStarReasons[] names it)
 
    Notes:
-   -snes_converged_reason prints it on the line "ssstar: ..."; README "When it does not converge" maps each onto the
+   -snes_converged_reason prints it on the line "ssstar: ..."; docs/guide/converged.md ("When it does not converge") maps each onto the
    SNESConvergedReason.
 
    Level: beginner
@@ -611,6 +663,7 @@ static PetscErrorCode SNESSSStarComposeFunctions(SNES snes, PetscBool on)
   PetscCall(SNESSSStarComposeNodeSteps(snes, on));
   PetscCall(SNESSSStarComposeGlobalization(snes, on));
   PetscCall(SNESSSStarComposeFloating(snes, on));
+  PetscCall(SNESSSStarComposeNonlinear(snes, on));
   PetscFunctionReturn(0);
 }
 
@@ -662,6 +715,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
    Options Database Keys:
 +  -snes_ssstar_friction_law <coulomb> - none, tresca or coulomb
 .  -snes_ssstar_friction <0.3> - Coulomb friction coefficient
+.  -snes_ssstar_affine <auto> - true: F(u) = K u - b, the Jacobian once per solve; false: F evaluated at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body; auto: true for SNESSSStarSetLinearProblem()'s F, false for a program's own
 .  -snes_ssstar_reduction <auto> - whole-body use: K reduced to the contact dofs (direct, mumps, explicit), none (the Newton step on the whole body, P never formed) or auto (direct on small problems, none on large ones)
 .  -snes_ssstar_memory_limit <0> - GB per rank the reduction may plan for (0: MemAvailable of the node per rank)
 .  -snes_ssstar_scaling <0> - scaling gamma of the approximation step (0: 1/mean(diag K_CC), the contact block of K)
@@ -676,7 +730,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 .  -snes_ssstar_lu_reuse <0> - dense P: solve a Newton step by GMRES on the last LU while at most this fraction of the nodes changed their known rows since it (0: only when none changed; negative: a fresh LU at every step); -snes_ssstar_newton_ksp_* set that GMRES
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
 .  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||); once a remedy acted, and for a step whose full step fails, the floor (a tenth of the stopping threshold)
-.  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; -ksp_rtol fixes the tolerance)
+.  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG; a multigrid CG finds indefinite: that step and the later ones by GMRES; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar()) and the law residual of the iterate as written is within its tolerance
 .  -snes_ssstar_law_rtol <0> - that tolerance (0: max(rtol, 1e-8); docs/derivation.md section 12)
 -  -snes_atol <1e-50> - or when ||z|| <= atol

@@ -85,6 +85,7 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *)
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetStiffness(SSStarNewton, const char[], Mat, PetscReal, const SSStarContactLayout *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonUpdateStiffness(SSStarNewton, const char[], Mat, const SSStarContactLayout *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetScaling(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetTolerances(SSStarNewton, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSolve(SSStarNewton, const PetscReal[], const PetscReal[], Vec, Vec, PetscBool *);
@@ -110,7 +111,7 @@ typedef struct {
   PetscInt  size;    /* values per node: 1, or 3 for a direction                   */
   PetscBool set;     /* value is the default of the nodes without their own         */
   PetscReal value[3];
-  Vec       perNode; /* size entries per contact node (PETSC_DEFAULT: the default), or NULL */
+  Vec       perNode; /* size entries per contact node (SSSTAR_NOT_GIVEN: the default), or NULL */
 } SSStarLawSetting;
 
 typedef struct {
@@ -126,6 +127,8 @@ typedef struct {
   PetscInt          nsettings; /* the law parameters declared                                          */
   SSStarLawSetting *settings;
   PetscObjectState  declared;  /* bumped by every setter: the per-node data are rebuilt when it moved  */
+  PetscErrorCode  (*update)(SNES, Vec, void *); /* SNESSSStarSetContactUpdate(): declares the contact measured at an iterate, or NULL */
+  void             *updateCtx;
 
   /* derived, in the solver's node order (nodes sorted by their first dof) */
   PetscObjectState built;       /* value of declared the per-node data were built for                  */
@@ -180,7 +183,9 @@ PETSC_INTERN PetscErrorCode SSStarContactToPointVariables(SSStarContact *, Vec, 
      whole body, a Schur reduction of K:  A = P = K_CC - K_CI K_II^-1 K_IC, load f, u = u_C
      whole body, reduction none:          A = K, load b, u = the whole displacement (P never formed)
 
-   It is kept while K and the declaration are unchanged.
+   It is kept while K and the declaration are unchanged. A residual treated as nonlinear (nonlinear.c, docs/derivation.md
+   section 17) has c(u) = T^T F(T u) from F itself and A = T^T J T with J evaluated again at the iterates: on the whole
+   body (reduction none) or in the reduced use, never through a Schur reduction.
 */
 typedef struct {
   /* settings */
@@ -202,6 +207,17 @@ typedef struct {
   PetscInt        *layoutDofs;      /* 3 per node: its dofs' local offsets in A's vectors                   */
   PetscInt         nfree, *free;    /* the other local offsets of A's vectors (free dofs; none when reduced) */
   SSStarFloating   floating;        /* K's null space: the bodies held by contact alone                      */
+
+  /* the residual (nonlinear.c, docs/derivation.md section 17) */
+  PetscBool        affineSet, affineDeclared; /* SNESSSStarSetAffine() (unset: affine iff F is SNESSSStarSetLinearProblem()'s) */
+  PetscBool        affine;          /* this solve's F is affine: its Jacobian is evaluated once                */
+  PetscBool        nonlinear;       /* this solve iterates on F itself: not affine, or the contact measured at the iterates */
+  Vec              x, Fx, v;        /* an iterate as the SNES vector, F there, and T^T F (work)              */
+  Vec              xJ, xMeasured;   /* where the Jacobian was evaluated last, where the contact was measured last */
+  PetscInt         jacobians;       /* Jacobian evaluations of this solve (the set-up's included)            */
+  PetscInt         measures;        /* contact updates of this solve                                         */
+  PetscReal        affineMismatch;  /* an affine residual at the solution: max |F - the model's c| / its force scale */
+  PetscInt         builds;          /* times A was built (K reduced, or taken whole): the progress line's    */
 } SSStarProblem;
 
 PETSC_INTERN PetscErrorCode SSStarProblemSetUp(SNES, SSStarContact *, SSStarProblem *);
@@ -212,10 +228,30 @@ PETSC_INTERN PetscErrorCode SSStarProblemSetReductionType(SSStarProblem *, const
 PETSC_INTERN PetscErrorCode SSStarProblemGetReductionType(SSStarProblem *, const char *[]);
 PETSC_INTERN PetscErrorCode SSStarProblemView(SSStarContact *, SSStarProblem *, PetscViewer);
 PETSC_INTERN PetscErrorCode SSStarProblemReset(SSStarProblem *);
+PETSC_INTERN PetscErrorCode SSStarProblemIterateVector(SSStarContact *, SSStarProblem *, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemFunctionResidual(SNES, Vec, Vec);
+PETSC_INTERN PetscErrorCode SSStarProblemComputeJacobian(SNES, Vec, Mat *);
+PETSC_INTERN PetscErrorCode SSStarProblemTakeJacobian(SNES, SSStarContact *, SSStarProblem *, Mat);
+PETSC_INTERN PetscErrorCode SSStarProblemTakeMeasuredContact(SNES, SSStarContact *, SSStarProblem *, PetscBool *, PetscBool *);
+PETSC_INTERN PetscErrorCode SSStarProblemIsAffine(SNES, SSStarProblem *, PetscBool *);
+
+/*
+   The residual treated as nonlinear (nonlinear.c, docs/derivation.md section 17): c(u) from F itself (problem.c's
+   SSStarProblemFunctionResidual()), the Jacobian evaluated again at the iterates (-snes_lag_jacobian), the contact
+   measured again at them (SNESSSStarSetContactUpdate), and a residual declared affine checked at the solution
+*/
+PETSC_INTERN PetscErrorCode SSStarNonlinearMeasureAtStart(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearBegin(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearMeasureContact(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearJacobian(SNES, PetscInt);
+PETSC_INTERN PetscErrorCode SSStarNonlinearCheckAffine(SNES);
+PETSC_INTERN PetscErrorCode SSStarNonlinearView(SNES, PetscViewer);
+PETSC_INTERN PetscErrorCode SSStarNonlinearFormatCounts(SNES, char[], size_t);
+PETSC_INTERN PetscErrorCode SNESSSStarComposeNonlinear(SNES, PetscBool);
 
 /*
    The globalization (globalization.c): damped steps on the merit function ||z||, detection of cycles and
-   stagnation, and the remedies of SSStarRemedy. README, "When it does not converge".
+   stagnation, and the remedies of SSStarRemedy. docs/guide/converged.md, "When it does not converge".
 */
 typedef enum {
   SSSTAR_DETECTED_NONE,
@@ -292,7 +328,8 @@ typedef struct {
 
   /* -snes_ssstar_monitor_progress: when the solve started, and the time, Krylov iterations, LUs (multigrids) at the last iterate */
   PetscLogDouble tStart, tLast;
-  PetscInt       krylovLast, factorizationsLast;
+  PetscInt       krylovLast, factorizationsLast, jacobiansLast;
+  PetscInt       buildsShown; /* the problem's builds the progress lines have reported */
 } SNES_SSStar;
 
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */

@@ -90,6 +90,31 @@ static PetscErrorCode SetReductionFromOptions(SNES snes, PetscOptionItems *Petsc
   PetscFunctionReturn(0);
 }
 
+/*
+   -snes_ssstar_affine: true or false (as a PETSc bool: 1, 0, yes, no; alone: true) declares F, auto (the default) leaves
+   it to F (SNESSSStarSetLinearProblem()'s is affine, a program's own is not), which is not known when the options are
+   read
+*/
+static PetscErrorCode SetAffineFromOptions(SNES snes, PetscOptionItems *PetscOptionsObject)
+{
+  SSStarProblem *pb = &((SNES_SSStar *)snes->data)->problem;
+  char           value[16];
+  PetscBool      set, isauto, affine = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrncpy(value, pb->affineSet ? (pb->affineDeclared ? "true" : "false") : "auto", sizeof(value)));
+  PetscCall(PetscOptionsString("-snes_ssstar_affine", "Whether F is affine, K u - b: true (the Jacobian once per solve, the Schur reduction may run), false (F at the iterates, the Jacobian as -snes_lag_jacobian says, on the whole body) or auto: true for SNESSSStarSetLinearProblem()'s F, false for a program's own", "SNESSSStarSetAffine", value, value, sizeof(value), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscStrcasecmp(value, "auto", &isauto));
+  if (isauto) {
+    pb->affineSet = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  if (value[0]) PetscCall(PetscOptionsStringToBool(value, &affine));
+  PetscCall(SNESSSStarSetAffine(snes, affine));
+  PetscFunctionReturn(0);
+}
+
 /* -help: the options of the Newton step's GMRES (-snes_ssstar_newton_ksp_*), which the set-up creates */
 static PetscErrorCode HelpNewtonKSP(SNES snes)
 {
@@ -119,6 +144,7 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
   PetscOptionsHeadBegin(PetscOptionsObject, "SNES ssstar options (semismooth* Newton for contact with friction)");
   PetscCall(SetLawsFromOptions(snes, PetscOptionsObject));
   PetscCall(SetReductionFromOptions(snes, PetscOptionsObject));
+  PetscCall(SetAffineFromOptions(snes, PetscOptionsObject));
   PetscCall(PetscOptionsReal("-snes_ssstar_memory_limit", "Memory (GB per rank) the reduction of K may plan for (0: MemAvailable per rank)", "SNESSSStarSetMemoryLimit", ss->problem.memoryLimit, &value, &set));
   if (set) PetscCall(SNESSSStarSetMemoryLimit(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_scaling", "Scaling gamma of the approximation step (0: 1/mean diag P)", "SNESSSStarSetScaling", ss->scaling_user, &value, &set));
@@ -180,6 +206,7 @@ PetscErrorCode SNESView_SSStar(SNES snes, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   PetscCall(SSStarProblemView(&ss->contact, &ss->problem, viewer));
+  PetscCall(SSStarNonlinearView(snes, viewer));
   PetscCall(SSStarContactView(&ss->contact, viewer));
   if (ss->method != SSSTAR_METHOD_NEWTON) PetscCall(PetscViewerASCIIPrintf(viewer, "  method: %s (u <- u + z, no Newton step)\n", SSStarMethods[ss->method]));
   if (ss->scaling_user > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  approximation-step scaling gamma = %g\n", (double)ss->scaling_user));
@@ -217,6 +244,12 @@ PetscErrorCode SNESSSStarConvergedReasonView(SNES snes, void *ctx)
   if (!flg) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s, ||z|| = %g, law residual %g (tolerance %g)\n", SSStarReasons[ss->reason], (double)snes->norm, (double)ss->lawResidual, (double)SNESSSStarLawTolerance(snes)));
+  {
+    char counts[256];
+
+    PetscCall(SSStarNonlinearFormatCounts(snes, counts, sizeof(counts)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  ssstar: %s\n", counts));
+  }
   if (ss->reason == SSSTAR_REASON_NO_EQUILIBRIUM) {
     const SSStarFloating *fb = &ss->problem.floating;
 
@@ -259,15 +292,21 @@ PetscErrorCode SNESSSStarMonitorStates(SNES snes, PetscInt its, PetscReal znorm,
   PetscCall(SNESSSStarFormatStateCounts(ss->counts, counts, sizeof(counts)));
   PetscCall(SSStarNewtonGetCounts(ss->newton, &nlu, &nreused, &nkrylov));
   PetscCall(SSStarGlobalizationFormatEvents(&ss->glob, events, sizeof(events)));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its)%s\n", its, counts, nlu, nreused, nkrylov, events));
+  if (ss->problem.nonlinear) PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its), %" PetscInt_FMT " Jacobians%s\n", its, counts, nlu, nreused, nkrylov, ss->problem.jacobians, events));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar states %s; Newton steps so far: %" PetscInt_FMT " LU, %" PetscInt_FMT " on an old LU (%" PetscInt_FMT " Krylov its)%s\n", its, counts, nlu, nreused, nkrylov, events));
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
   PetscFunctionReturn(0);
 }
 
 
-/* "K reduced to the contact dofs by the direct Schur complement (chosen by auto), 3168 x 3168" or "the whole body, ..." */
-static PetscErrorCode FormatProblem(SNES snes, char buf[], size_t len)
+/*
+   What the set-up of this solve did: "K reduced to 3168 contact dofs by the direct Schur complement (chosen by auto)"
+   or "the whole body, 12675 dofs, P never formed (reduction none, chosen by auto)" when it built the problem; when it
+   kept the last solve's (a load path's next step: only the load changed), "K's reduction to 3168 contact dofs kept, the
+   load reduced" or "the whole body's K kept, the free dofs in equilibrium with the new load"
+*/
+static PetscErrorCode FormatProblem(SNES snes, PetscBool built, char buf[], size_t len)
 {
   SNES_SSStar *ss = (SNES_SSStar *)snes->data;
   PetscInt     n;
@@ -279,6 +318,8 @@ static PetscErrorCode FormatProblem(SNES snes, char buf[], size_t len)
   PetscCall(SSStarProblemGetReductionType(&ss->problem, &type));
   PetscCall(PetscStrcmp(ss->problem.reductionType, SSSTARREDUCTIONAUTO, &isauto));
   if (!ss->contact.dofs) PetscCall(PetscSNPrintf(buf, len, "the reduced problem, %" PetscInt_FMT " contact dofs", n));
+  else if (!built && ss->problem.wholeBody) PetscCall(PetscSNPrintf(buf, len, "the whole body's K (%" PetscInt_FMT " dofs) kept from the last solve, the free dofs in equilibrium with the new load", n));
+  else if (!built) PetscCall(PetscSNPrintf(buf, len, "K's reduction to %" PetscInt_FMT " contact dofs (%s) kept from the last solve, the new load reduced", n, type));
   else if (ss->problem.wholeBody) PetscCall(PetscSNPrintf(buf, len, "the whole body, %" PetscInt_FMT " dofs, P never formed (reduction %s%s)", n, type, isauto ? ", chosen by auto" : ""));
   else PetscCall(PetscSNPrintf(buf, len, "K reduced to %" PetscInt_FMT " contact dofs by the %s Schur complement%s", n, type, isauto ? " (chosen by auto)" : ""));
   PetscFunctionReturn(0);
@@ -324,14 +365,15 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   if (its == 0) {
-    PetscCall(FormatProblem(snes, problem, sizeof(problem)));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  set-up: %s, %.3f s, %s\n", problem, now - ss->tStart, memory));
+    PetscCall(FormatProblem(snes, (PetscBool)(ss->problem.builds != ss->buildsShown), problem, sizeof(problem)));
+    ss->buildsShown = ss->problem.builds;
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  set-up: %s%s, %.3f s, %s\n", problem, ss->problem.nonlinear ? (ss->problem.affine ? ", the contact measured at the iterates" : ", a nonlinear residual") : "", now - ss->tStart, memory));
     PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e\n", its, (double)znorm));
   } else {
     PetscInt changed = PetscMax(ss->glob.changed, 0);
 
-    PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e, %" PetscInt_FMT " node%s changed state; step %.3f s, %" PetscInt_FMT " Krylov its%s, %s\n", its, (double)znorm, changed, changed == 1 ? "" : "s", now - ss->tLast, krylov - ss->krylovLast,
-                                     factorizations > ss->factorizationsLast ? (ss->problem.wholeBody ? ", new multigrid" : ", new LU") : "", memory));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e, %" PetscInt_FMT " node%s changed state; step %.3f s, %" PetscInt_FMT " Krylov its%s%s, %s\n", its, (double)znorm, changed, changed == 1 ? "" : "s", now - ss->tLast, krylov - ss->krylovLast,
+                                     ss->problem.jacobians > ss->jacobiansLast ? ", new Jacobian" : "", factorizations > ss->factorizationsLast ? (ss->problem.wholeBody ? ", new multigrid" : ", new LU") : "", memory));
   }
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
@@ -339,6 +381,7 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
   ss->tLast              = now;
   ss->krylovLast         = krylov;
   ss->factorizationsLast = factorizations;
+  ss->jacobiansLast      = ss->problem.jacobians;
   PetscFunctionReturn(0);
 }
 

@@ -75,7 +75,7 @@ static PetscErrorCode ListParameters(void)
    solver, SNESSSStarSetLawParameter()). A law of ssstar is one file in src/snes/impls/ssstar/laws/ plus its
    registration in lawregall.c (its declaration and one line in SSStarLawRegisterAll()); the solver's and the scenes'
    options (-snes_ssstar_<parameter>, -friction_law_<G>, -<parameter>_<G>), their checks, -help, the views, the output
-   (/contact/friction_law, /contact/<parameter>) and the Python module follow from the table (README "Adding a friction
+   (/contact/friction_law, /contact/<parameter>) and the Python module follow from the table (docs/guide/own-program.md, "Adding a friction
    law").
 
    Level: advanced

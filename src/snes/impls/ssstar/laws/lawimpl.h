@@ -15,7 +15,7 @@
    bound does not depend on r_n) has a tangential state of its own on separated nodes (LS).
 
    A new law is a file here whose SSStarLawCreate_<Name>() fills a _n_SSStarLaw and its registration in lawregall.c;
-   the options, checks, views and output of the solver and the scenes read the table (README "Adding a friction law").
+   the options, checks, views and output of the solver and the scenes read the table (docs/guide/own-program.md, "Adding a friction law").
 */
 #include <ssstar.h>
 

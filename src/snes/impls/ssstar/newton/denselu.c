@@ -1,7 +1,7 @@
 /*
    The LU engine of the dense Newton step: a dense matrix distributed by rows is gathered on rank 0 and factored by
    LAPACK there (with a condition estimate), while the other ranks sleep so that rank 0's OpenBLAS may use their cores.
-   README, "The Newton step", says why not ScaLAPACK: the dense route runs where this LU takes milliseconds.
+   docs/guide/large-problems.md, "Several machines", says why not ScaLAPACK: the dense route runs where this LU takes milliseconds.
 */
 #if !defined(_GNU_SOURCE)
   #define _GNU_SOURCE /* sched_getaffinity */

@@ -132,6 +132,28 @@ PetscErrorCode SSStarNewtonSetStiffness(SSStarNewton nt, const char type[], Mat 
   PetscFunctionReturn(0);
 }
 
+/*
+   A with new values (a nonlinear residual's Jacobian at a new iterate) or the contact nodes in new frames (the contact
+   measured again), within a solve: what was built for them is built again, the counts of the solve go on
+*/
+PetscErrorCode SSStarNewtonUpdateStiffness(SSStarNewton nt, const char type[], Mat A, const SSStarContactLayout *layout)
+{
+  const PetscInt counts[6] = {nt->nSteps, nt->nFactor, nt->nReused, nt->nKrylov, nt->nFallback, nt->nRefined};
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectReference((PetscObject)A)); /* A may be the one the reset drops */
+  PetscCall(SSStarNewtonReset(nt));
+  PetscCall(SSStarNewtonSetStiffness(nt, type, A, nt->gamma, layout));
+  PetscCall(MatDestroy(&A));
+  nt->nSteps    = counts[0];
+  nt->nFactor   = counts[1];
+  nt->nReused   = counts[2];
+  nt->nKrylov   = counts[3];
+  nt->nFallback = counts[4];
+  nt->nRefined  = counts[5];
+  PetscFunctionReturn(0);
+}
+
 /* A new gamma for the same A (the globalization's rescaling): the factorizations of the old one do not apply */
 PetscErrorCode SSStarNewtonSetScaling(SSStarNewton nt, PetscReal gamma)
 {

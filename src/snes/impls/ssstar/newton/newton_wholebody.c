@@ -51,6 +51,7 @@ typedef struct {
   Mat              shell;       /* floating bodies: M + the proximal term on the step's free motions             */
   unsigned char   *touched;     /* per local node: a free motion of the step moves it                            */
   PetscInt         pcFree;      /* free motions when the multigrid was built                                     */
+  PetscInt         indefinite;  /* steps CG stopped on with DIVERGED_INDEFINITE_PC since the set-up: GMRES since  */
 } Newton_WholeBody;
 
 /* dv = Q du: each contact node's 3 entries of a vector of K turned into its frame (R NULL: nothing to do) */
@@ -257,7 +258,8 @@ static PetscErrorCode SSStarNewtonSetUp_WholeBody(SSStarNewton nt)
       nw->Sknown[9 * i + k] = 0;
       nw->Tknown[9 * i + k] = (PetscReal)(k % 4 == 0);
     }
-  nw->pcBuilt = PETSC_FALSE;
+  nw->pcBuilt    = PETSC_FALSE;
+  nw->indefinite = 0;
 
   /* the SNES's KSP: GMRES or CG with GAMG unless the options name others (they are read again for the new types) */
   PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_type", &nw->userKSPType));
@@ -490,6 +492,31 @@ static PetscErrorCode KrylovSolve(SSStarNewton nt, PetscBool nonzero, Vec du, KS
   PetscFunctionReturn(0);
 }
 
+/*
+   CG stopped with DIVERGED_INDEFINITE_PC: the multigrid of a Newton matrix that is positive definite is not always so
+   (GAMG's smoothers on the frictionless stack of floating bodies on 4 ranks: the residual grew after 8 iterations). CG
+   needs a definite preconditioner, GMRES does not: the step is solved again by GMRES (right preconditioned, the
+   residual unpreconditioned as before) on the same multigrid, and every later step with this stiffness too
+*/
+static PetscErrorCode IndefiniteFallback(SSStarNewton nt, Vec du, KSPConvergedReason *reason, PetscInt *its)
+{
+  Newton_WholeBody *nw  = (Newton_WholeBody *)nt->data;
+  KSP               ksp = nt->snes->ksp;
+  PetscInt          cgIts = *its;
+
+  PetscFunctionBegin;
+  nw->indefinite++;
+  PetscCall(KSPSetType(ksp, KSPGMRES));
+  PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+  PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+  if (!nw->userRestart) PetscCall(KSPGMRESSetRestart(ksp, SSSTAR_GMRES_RESTART));
+  PetscCall(KSPSetReusePreconditioner(ksp, PETSC_TRUE)); /* the multigrid CG was given, for the matrix formed again */
+  PetscCall(SSStarWholeBodyMatrixForm(nw->wm, nw->S, nw->T, 1 / nt->gamma, nw->nknown, nw->known, NULL, NULL, &nw->M));
+  PetscCall(KrylovSolve(nt, PETSC_FALSE, du, reason, its));
+  PetscCall(PetscInfo(nt->snes, "CG stopped with DIVERGED_INDEFINITE_PC after %" PetscInt_FMT " iterations: the multigrid is indefinite; the step solved again by GMRES on it: %s after %" PetscInt_FMT " iterations (GMRES from now on)\n", cgIts, KSPConvergedReasons[*reason], *its));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SSStarNewtonSolve_WholeBody(SSStarNewton nt, const PetscReal S[], const PetscReal T[], Vec y, Vec du, PetscBool *solved)
 {
   Newton_WholeBody       *nw  = (Newton_WholeBody *)nt->data;
@@ -505,6 +532,7 @@ static PetscErrorCode SSStarNewtonSolve_WholeBody(SSStarNewton nt, const PetscRe
   PetscCall(AssembleNewtonMatrix(nt, S, T, y, &M, &symmetric));
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonAssemble, nt->snes, 0, 0, 0));
   if (!nw->userKSPType) { /* the residual unpreconditioned, in the units of the tolerances */
+    symmetric = (PetscBool)(symmetric && !nw->indefinite); /* CG found a multigrid indefinite: GMRES since */
     PetscCall(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES));
     PetscCall(KSPSetPCSide(ksp, symmetric ? PC_LEFT : PC_RIGHT));
     PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
@@ -514,6 +542,7 @@ static PetscErrorCode SSStarNewtonSolve_WholeBody(SSStarNewton nt, const PetscRe
   PetscCall(ChoosePreconditioner(nt, &reuse));
   PetscCall(SetUpPreconditioner(nt, M, reuse));
   PetscCall(KrylovSolve(nt, PETSC_FALSE, du, &reason, &its));
+  if (reason == KSP_DIVERGED_INDEFINITE_PC && !nw->userKSPType) PetscCall(IndefiniteFallback(nt, du, &reason, &its));
   /* an iteration limit that still reduced the residual tenfold is an inexact step; a breakdown is a failure */
   PetscCall(KSPGetResidualNorm(ksp, &rnorm));
   PetscCall(VecNorm(nw->rhs, NORM_2, &bnorm));
@@ -580,6 +609,7 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
   if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's defaults:%s%s%s\n", nw->plain ? " plain aggregation (-pc_gamg_agg_nsmooths 1: smoothed);" : "", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
+  if (nw->indefinite) PetscCall(PetscViewerASCIIPrintf(viewer, "    CG stopped on an indefinite multigrid (DIVERGED_INDEFINITE_PC) in %" PetscInt_FMT " step%s since the set-up: solved again by GMRES on it, which needs no definite preconditioner, and every later step by GMRES\n", nw->indefinite, nw->indefinite > 1 ? "s" : ""));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));
   PetscFunctionReturn(0);
 }

@@ -45,6 +45,7 @@ typedef struct {
   PetscInt         nnodesGlobal;
   PetscBool        userKSPType, userTolerances, userRestart;
   PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid defaults in effect (the options did not choose) */
+  PetscBool        plainAggregation; /* the multigrid aggregates plainly: ssstar's default, or the options' choice  */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
   Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
@@ -166,41 +167,45 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
    Plain aggregation (-pc_gamg_agg_nsmooths 0) unless the options name the smoothing steps: its interpolation has a
    sixth of the smoothed one's entries, and the set-up a third of its peak (bench/memory.py: prism level 24 on 2 ranks,
    the set-up 0.57 kB per dof instead of 1.86) for a tenth of its flops; the Krylov iterations it adds are won back by
-   the W-cycle (CycleDefaults)
+   the W-cycle (CycleDefaults). Smoothed aggregation (-pc_gamg_agg_nsmooths 1) keeps GAMG's own V-cycles and products:
+   its P^T A P all at once costs 3.4 times the whole run at level 24 (docs/guide/scale.md)
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
   Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   PetscBool         isgamg, set;
 
+  PetscInt          nsmooths = 1;
+
   PetscFunctionBegin;
-  nw->plain = PETSC_FALSE;
+  nw->plain = nw->plainAggregation = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
-  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &set));
-  if (!isgamg || set) PetscFunctionReturn(0);
+  if (!isgamg) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsGetInt(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
+  nw->plainAggregation = (PetscBool)(!set || nsmooths == 0);
+  if (set) PetscFunctionReturn(0);
   PetscCall(PCGAMGSetNSmooths(pc, 0));
   nw->plain = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
 /*
-   GAMG's Galerkin products P^T A P all at once (-matptap_via allatonce) unless the options choose: PETSc's default for
-   several ranks keeps A P, rows of A by the columns of P, through the set-up and for the next one (bench/memory.py:
-   level 16 on 2 ranks, 59 MB per rank where the all-at-once product holds 11). MatPtAP() reads the option from the
-   default database, for any product of the program: it is there only while the multigrid is set up. One rank's
-   products (SeqAIJ) hold no A P and have no such algorithm.
+   With plain aggregation, GAMG's Galerkin products P^T A P all at once (-matptap_via allatonce) unless the options
+   choose: PETSc's default for several ranks keeps A P, rows of A by the columns of P, through the set-up and for the
+   next one (bench/memory.py: level 16 on 2 ranks, 59 MB per rank where the all-at-once product holds 11). MatPtAP()
+   reads the option from the default database, for any product of the program: it is there only while the multigrid is
+   set up. One rank's products (SeqAIJ) hold no A P and have no such algorithm.
 */
-static PetscErrorCode GalerkinProductBegin(PC pc, PetscBool *set)
+static PetscErrorCode GalerkinProductBegin(PC pc, PetscBool plain, PetscBool *set)
 {
-  PetscBool   isgamg, given;
+  PetscBool   given;
   PetscMPIInt size;
 
   PetscFunctionBegin;
   *set = PETSC_FALSE;
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-matptap_via", &given));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
-  if (!isgamg || given || size == 1) PetscFunctionReturn(0);
+  if (!plain || given || size == 1) PetscFunctionReturn(0);
   PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", "allatonce"));
   *set = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -214,22 +219,21 @@ static PetscErrorCode GalerkinProductEnd(PetscBool set)
 }
 
 /*
-   A W-cycle on the SSSTAR_W_LEVELS finest levels of GAMG's hierarchy (each visits the next coarser level twice), a
-   V-cycle below, unless the options name the cycle (-pc_mg_cycle_type): plain aggregation's piecewise rigid
-   interpolation needs the second coarse correction (prism level 16, 2 ranks: 86 Krylov iterations on the finest mesh
-   with V-cycles, 59 with these, 57 for smoothed aggregation with V-cycles, in fewer flops than either); on the coarser
-   levels it adds messages, not iterations (59 with W-cycles on all six levels)
+   With plain aggregation, a W-cycle on the SSSTAR_W_LEVELS finest levels of GAMG's hierarchy (each visits the next
+   coarser level twice), a V-cycle below, unless the options name the cycle (-pc_mg_cycle_type): plain aggregation's
+   piecewise rigid interpolation needs the second coarse correction (prism level 16, 2 ranks: 86 Krylov iterations on
+   the finest mesh with V-cycles, 55 with these, 57 for smoothed aggregation with V-cycles, in fewer flops than either);
+   on the coarser levels it adds messages, not iterations (59 with W-cycles on all six levels)
 */
-static PetscErrorCode CycleDefaults(PC pc, PetscBool *wCycle)
+static PetscErrorCode CycleDefaults(PC pc, PetscBool plain, PetscBool *wCycle)
 {
-  PetscBool isgamg, set;
+  PetscBool set;
   PetscInt  nlevels;
 
   PetscFunctionBegin;
   *wCycle = PETSC_FALSE;
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_mg_cycle_type", &set));
-  if (!isgamg || set) PetscFunctionReturn(0);
+  if (!plain || set) PetscFunctionReturn(0);
   PetscCall(PCMGGetLevels(pc, &nlevels));
   for (PetscInt l = 1; l < nlevels; l++) PetscCall(PCMGSetCycleTypeOnLevel(pc, l, l >= nlevels - SSSTAR_W_LEVELS ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
   *wCycle = PETSC_TRUE;
@@ -454,11 +458,11 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   }
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
-  PetscCall(GalerkinProductBegin(pc, &allAtOnce));
+  PetscCall(GalerkinProductBegin(pc, nw->plainAggregation, &allAtOnce));
   PetscCall(KSPSetUp(ksp));
   PetscCall(GalerkinProductEnd(allAtOnce));
   if (!reuse) { /* the levels of a new hierarchy */
-    PetscCall(CycleDefaults(pc, &nw->wCycle));
+    PetscCall(CycleDefaults(pc, nw->plainAggregation, &nw->wCycle));
     nw->allAtOnce = allAtOnce;
   }
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));

@@ -166,7 +166,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
   PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));
-  PetscCall(SSStarAggregationPlain(&plain)); /* the multigrid's aggregation, for the estimate */
+  if (!scene->refine) PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, 0, &peak, NULL, &plain)); /* the multigrid's aggregation */
   PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
@@ -197,7 +197,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarSceneCheckPartlyHeld(scene));
   /* the estimates before the work, now that the contact nodes are known: the whole body's and the dense route's */
   peak = SSStarPeakFrom(size, scene->nodesGlobal, base, plain);
-  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? "" : " (smoothed aggregation)", scene->nGlobal ? " on the whole body" : ""));
+  PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? " (plain aggregation)" : "", scene->nGlobal ? " on the whole body" : ""));
   if (scene->nGlobal) {
     char dense[64];
 

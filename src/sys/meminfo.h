@@ -10,7 +10,7 @@ PETSC_INTERN PetscErrorCode SSStarMemAvailable(PetscLogDouble *);
    What a whole-body run adds per dof of a rank (bench/memory.py, the prism; one rank, several: PCGAMG's parallel
    Galerkin products keep A P, rows of K by columns of the interpolation, which one rank does not): the mesh, the
    contact nodes, the assembly, the nested start's coarser solves and the output (BODY), and the multigrid's set-up
-   with the Krylov steps (SOLVE), with smoothed aggregation or plain (ssstar's default: on several ranks with the
+   with the Krylov steps (SOLVE), with smoothed aggregation or plain (-pc_gamg_agg_nsmooths 0: on several ranks with the
    products P^T A P all at once, which keep no A P; prism levels 16 and 24 on 2 ranks: 0.328 and 0.890 GB per rank,
    89 and 104 bytes per dof beyond BODY)
 */

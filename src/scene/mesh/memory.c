@@ -11,19 +11,6 @@ PetscLogDouble SSStarPeakFrom(PetscMPIInt size, PetscReal nodes, PetscLogDouble 
   return base + (SSSTAR_BODY_BYTES(size) + SSSTAR_SOLVE_BYTES(size, plain)) * 3 * nodes / size;
 }
 
-/* The aggregation the whole body's multigrid will take: plain (ssstar's default) unless the options database names
-   smoothing steps (-pc_gamg_agg_nsmooths, unprefixed as the prism's and the scenes' SNES have it) */
-PetscErrorCode SSStarAggregationPlain(PetscBool *plain)
-{
-  PetscInt  nsmooths = 0;
-  PetscBool set;
-
-  PetscFunctionBegin;
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
-  *plain = (PetscBool)(!set || nsmooths == 0);
-  PetscFunctionReturn(0);
-}
-
 /* The same on the dense route, with contactNodes contact nodes: the mesh to the output, MUMPS's factors of K with the
    Schur block, P and the Newton step's dense matrices (sys/meminfo.h) */
 PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt size, PetscReal nodes, PetscReal contactNodes, PetscLogDouble base)
@@ -92,8 +79,8 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
 .  dense - bytes at the peak on the largest rank, on the dense route (MUMPS's factors of K with the Schur block of the
            3 contactNodes contact dofs, P and the Newton step's dense matrices: 5 matrices of P's size on one rank,
            the factorization's about N^(4/3)), or pass NULL
--  plain - PETSC_TRUE when the estimate is of the multigrid's plain aggregation (ssstar's default), PETSC_FALSE of the
-           smoothed one (-pc_gamg_agg_nsmooths 1 in the options database), or pass NULL
+-  plain - PETSC_TRUE when the multigrid will aggregate plainly because the smoothed aggregation's set-up would not fit
+           (the solver's choice, made again when it sets up), or pass NULL
 
    Notes:
    Measured per dof with bench/memory.py on the prism, one rank and several (docs/guide/large-problems.md, "Where the
@@ -108,13 +95,13 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
 PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscReal contactNodes, PetscLogDouble *peak, PetscLogDouble *dense, PetscBool *plain)
 {
   PetscLogDouble extra, now;
-  PetscBool      fits, plainAgg;
+  PetscBool      fits;
   PetscMPIInt    size;
 
   PetscFunctionBegin;
-  PetscCall(SSStarAggregationPlain(&plainAgg));
-  PetscCall(Estimate(comm, nodes, plainAgg, peak, &extra, &fits));
-  if (plain) *plain = plainAgg;
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, peak, &extra, &fits));
+  if (plain) *plain = (PetscBool)!fits;
+  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, peak, &extra, &fits));
   if (dense) {
     PetscCallMPI(MPI_Comm_size(comm, &size));
     PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
@@ -138,8 +125,8 @@ PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscReal co
 
    Notes:
    The estimate (SSStarEstimateMemory()) is the whole run's peak on the whole body: the mesh, the assembly and the
-   solve (the path auto takes for all but small problems), with the multigrid's plain aggregation (ssstar's default;
-   smoothed where the options database asks for it: -pc_gamg_agg_nsmooths). The limit is MemAvailable of /proc/meminfo (summed over the machines of comm;
+   solve (the path auto takes for all but small problems), with smoothed aggregation where it fits and plain
+   aggregation where only that does. The limit is MemAvailable of /proc/meminfo (summed over the machines of comm;
    what the ranks add must fit) or -snes_ssstar_memory_limit <GB per rank> (the peak of each rank must fit). The dense
    route's factors of K and its dense P are checked again by the reduction.
 
@@ -152,16 +139,16 @@ PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what
   PetscReal      limit, perRank;
   PetscLogDouble peak, extra;
   PetscMPIInt    size;
-  PetscBool      fits, plain;
+  PetscBool      fits;
   char           source[160];
 
   PetscFunctionBegin;
-  PetscCall(SSStarAggregationPlain(&plain));
-  PetscCall(Estimate(comm, nodes, plain, &peak, &extra, &fits));
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, &peak, &extra, &fits));
+  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, &peak, &extra, &fits));
   if (fits) PetscFunctionReturn(0);
   PetscCall(MemoryLimit(comm, &limit, &perRank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   if (perRank > 0) PetscCall(PetscSNPrintf(source, sizeof(source), "more than the %.3g GB of -snes_ssstar_memory_limit (per rank)", (double)perRank));
   else PetscCall(PetscSNPrintf(source, sizeof(source), "and the %d rank%s would add %.3g GB, more than the %.3g GB available on this machine (MemAvailable)", size, size > 1 ? "s" : "", (double)(extra / 1e9), (double)(limit / 1e9)));
-  SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need an estimated %.3g GB per rank at the peak of the run (mesh, assembly and the solve on the whole body, with the multigrid's %s aggregation), %s; refused before the work", what, (double)nodes, (double)(peak / 1e9), plain ? "plain" : "smoothed", source);
+  SETERRQ(comm, PETSC_ERR_MEM, "%s: %.4g nodes need an estimated %.3g GB per rank at the peak of the run (mesh, assembly and the solve on the whole body, with the multigrid's plain aggregation), %s; refused before the work", what, (double)nodes, (double)(peak / 1e9), source);
 }

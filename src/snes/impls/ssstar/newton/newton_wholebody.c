@@ -22,6 +22,7 @@
    has one outlier eigenvalue per free motion, which the Krylov iteration removes in about as many iterations.
 */
 #include "newtonimpl.h"
+#include "../../../../sys/meminfo.h"
 
 /* GMRES's restart when ssstar chooses GMRES: restarts stall it on the hard steps, and its basis is affordable */
 #define SSSTAR_GMRES_RESTART 100
@@ -44,8 +45,8 @@ typedef struct {
   PetscBool        refinable;   /* the KSP holds the last step's solution (SSStarNewtonRefine)                   */
   PetscInt         nnodesGlobal;
   PetscBool        userKSPType, userTolerances, userRestart;
-  PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid defaults in effect (the options did not choose) */
-  PetscBool        plainAggregation; /* the multigrid aggregates plainly: ssstar's default, or the options' choice  */
+  PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid choices in effect (the options did not choose) */
+  PetscBool        plainAggregation; /* the multigrid aggregates plainly: ssstar's choice or the options'         */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
   Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
@@ -164,28 +165,37 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 }
 
 /*
-   Plain aggregation (-pc_gamg_agg_nsmooths 0) unless the options name the smoothing steps: its interpolation has a
-   sixth of the smoothed one's entries, and the set-up a third of its peak (bench/memory.py: prism level 24 on 2 ranks,
-   the set-up 0.57 kB per dof instead of 1.86) for a tenth of its flops; the Krylov iterations it adds are won back by
-   the W-cycle (CycleDefaults). Smoothed aggregation (-pc_gamg_agg_nsmooths 1) keeps GAMG's own V-cycles and products:
-   its P^T A P all at once costs 3.4 times the whole run at level 24 (docs/guide/scale.md)
+   Smoothed aggregation (GAMG's default: fewer Krylov iterations on soft, nearly floating bodies) unless its set-up does
+   not fit the memory the SNES may plan for (-snes_ssstar_memory_limit, else MemAvailable) and the options do not name
+   the smoothing steps: then plain aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a sixth of the
+   entries, with W-cycles and the products all at once (CycleDefaults, GalerkinProductBegin): prism level 24 on 2 ranks,
+   the peak 0.890 GB per rank instead of 1.56, as many Krylov iterations (docs/guide/scale.md). Not the default where the
+   smoothed set-up fits: on the incline (a soft spring) from a nested start it took 8 Newton steps instead of 6
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
   Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
-  PetscBool         isgamg, set;
-
-  PetscInt          nsmooths = 1;
+  SNES_SSStar      *ss = (SNES_SSStar *)nt->snes->data;
+  PetscBool         isgamg, set, fits;
+  PetscInt          m, nsmooths = 1;
+  PetscMPIInt       size;
+  PetscLogDouble    now = 0;
 
   PetscFunctionBegin;
   nw->plain = nw->plainAggregation = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   if (!isgamg) PetscFunctionReturn(0);
   PetscCall(PetscOptionsGetInt(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
-  nw->plainAggregation = (PetscBool)(!set || nsmooths == 0);
+  nw->plainAggregation = (PetscBool)(set && nsmooths == 0);
   if (set) PetscFunctionReturn(0);
+  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
+  /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
+  if (ss->problem.memoryLimit > 0) PetscCall(PetscMemoryGetCurrentUsage(&now));
+  PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
+  if (fits) PetscFunctionReturn(0);
   PetscCall(PCGAMGSetNSmooths(pc, 0));
-  nw->plain = PETSC_TRUE;
+  nw->plain = nw->plainAggregation = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -611,7 +621,7 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
   PetscCall(SSStarWholeBodyMatrixInPlace(nw->wm, &inPlace));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nw->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
-  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's defaults:%s%s%s\n", nw->plain ? " plain aggregation (-pc_gamg_agg_nsmooths 1: smoothed);" : "", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
+  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", nw->plain ? " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);" : "", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
   if (nw->indefinite) PetscCall(PetscViewerASCIIPrintf(viewer, "    CG stopped on an indefinite multigrid (DIVERGED_INDEFINITE_PC) in %" PetscInt_FMT " step%s since the set-up: solved again by GMRES on it, which needs no definite preconditioner, and every later step by GMRES\n", nw->indefinite, nw->indefinite > 1 ? "s" : ""));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));

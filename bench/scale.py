@@ -42,11 +42,12 @@ SOLVE_TARGET, SETUP_TARGET, KB_TARGET, GETFEM_TARGET = 2.0, 1.2, 2.5, 25.0
 # and 3.8 kB per dof at the peak): the yardstick runs only where this fits MemAvailable
 YARDSTICK_KB_PER_DOF = 4.5
 
-ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
+ROW = re.compile(r"^\s*(\d+)(?:r\d+)?\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) its (\d+)")
 YPEAK = re.compile(r"^peak ([\d.]+) GB per rank", re.M)
 KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations")
 ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank")
+MESH = re.compile(r"^mesh: file (\S+?), \d+ nodes", re.M)
 DOFS = re.compile(r"^assembly: K of (\d+) dofs", re.M)
 # the progress lines' seconds: "<phase>: ..., <s> s, <GB> GB per rank"; a Newton step's "step <s> s"
 PHASE = re.compile(r"^\s*(mesh|contact|assembly|nested|set-up|output): .*?([\d.]+) s, [\d.]+ GB per rank", re.M)
@@ -122,10 +123,10 @@ def prism(level, ranks, refined, timeout, keep=False):
         why = "timeout" if rc is None else "killed (out of memory?)" if rc < 0 or rc == 137 else "exit status %d" % rc
         last = [line for line in out.strip().splitlines() if "ERROR" in line or "refused" in line or "Unknown" in line]
         return {"note": "failed (%s)%s" % (why, ": " + last[0][:200] if last else "")}
-    k, e, d = KRYLOV.search(out), ESTIMATE.search(out), DOFS.search(out)
+    k, e, d, mesh = KRYLOV.search(out), ESTIMATE.search(out), DOFS.search(out), MESH.search(out)
     r = {"whole": whole, "solve": float(m.group(7)) + float(m.group(5)), "iters": int(m.group(8)), "states": m.group(10), "reason": m.group(11),
          "peak_gb": float(m.group(12)), "krylov": int(k.group(2)) if k else 0, "estimate_gb": float(e.group(1)) if e else math.nan,
-         "dofs": int(d.group(1)) if d else dofs_of(level, refined), "nodes": int(m.group(3))}
+         "dofs": int(d.group(1)) if d else dofs_of(level, refined), "nodes": int(m.group(3)), "mesh": mesh.group(1) if mesh else None}
     for p in PHASES:
         r[p] = 0.0
     for name, s in PHASE.findall(out):
@@ -200,10 +201,12 @@ def compare_getfem(level, ranks, repeat, timeout):
         import getfem as _  # noqa: F401 (Debian's python3-getfem)
     except ImportError:
         return {"level": level, "note": "not measured: GetFEM is not installed (Debian's python3-getfem; configure.py installs it as root)"}
-    prism(level, ranks, False, timeout)  # meshes the level and writes its cache (not timed)
+    first = prism(level, ranks, False, timeout)  # meshes the level and writes its cache (not timed)
+    if "note" in first:
+        return {"level": level, "note": "ssstar " + first["note"]}
     runs, gs = [], []
     for _ in range(repeat):
-        gs.append(getfem(level))
+        gs.append(getfem(first["mesh"]))
         r = prism(level, ranks, False, timeout, keep=True)
         if "note" in r:
             return {"level": level, "note": "ssstar " + r["note"]}

@@ -126,7 +126,7 @@ def prism(level, ranks, refined, timeout, keep=False):
     k, e, d, mesh = KRYLOV.search(out), ESTIMATE.search(out), DOFS.search(out), MESH.search(out)
     r = {"whole": whole, "solve": float(m.group(7)) + float(m.group(5)), "iters": int(m.group(8)), "states": m.group(10), "reason": m.group(11),
          "peak_gb": float(m.group(12)), "krylov": int(k.group(2)) if k else 0, "estimate_gb": float(e.group(1)) if e else math.nan,
-         "dofs": int(d.group(1)) if d else dofs_of(level, refined), "nodes": int(m.group(3)), "mesh": mesh.group(1) if mesh else None}
+         "dofs": int(d.group(1)) if d else dofs_of(level, refined), "nodes": int(m.group(3)), "mesh_file": mesh.group(1) if mesh else None}
     for p in PHASES:
         r[p] = 0.0
     for name, s in PHASE.findall(out):
@@ -206,7 +206,7 @@ def compare_getfem(level, ranks, repeat, timeout):
         return {"level": level, "note": "ssstar " + first["note"]}
     runs, gs = [], []
     for _ in range(repeat):
-        gs.append(getfem(first["mesh"]))
+        gs.append(getfem(first["mesh_file"]))
         r = prism(level, ranks, False, timeout, keep=True)
         if "note" in r:
             return {"level": level, "note": "ssstar " + r["note"]}

@@ -17,6 +17,7 @@ import traceback
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 TIMINGS = os.path.join(HERE, "output", "timings.json")  # the last run's seconds per test: the longest start first
+SHIPPED_TIMINGS = os.path.join(HERE, "timings.json")  # a fresh clone's: a whole run's, measured here on a quiet machine
 TEST_TIMEOUT = 1800  # seconds: a test that runs longer hangs
 
 
@@ -72,10 +73,12 @@ def main():
         print("%d tests" % len(chosen))
         return
     os.makedirs(OUT, exist_ok=True)
-    try:
-        previous = json.load(open(TIMINGS))
-    except (OSError, ValueError):
-        previous = {}
+    previous = {}
+    for name in (SHIPPED_TIMINGS, TIMINGS):
+        try:
+            previous.update(json.load(open(name)))
+        except (OSError, ValueError):
+            pass
     order = sorted(chosen, key=lambda t: -previous.get(t[0], 1e9))  # the longest (or unknown) first: no long tail
     print("%d tests, %d at a time%s" % (len(order), args.j, " (with the slow ones of make test-full)" if args.full else ""), flush=True)
     start = time.time()

@@ -26,7 +26,7 @@ def chosen(args, program=CONTACT, ranks=1):
       "Newton step) takes the whole body without even analysing K for MUMPS; the prism at level 4 (432 contact dofs) the "
       "dense route; Hertz's half ball at level 2 (27 045 dofs, above the former limit, but a small cap on a body held by a "
       "soft spring, where the whole body's Krylov solves crawl) the dense route; the prism at level 10 the whole body; "
-      "-snes_view prints auto's two estimates, the dense one MUMPS's flops plus 10 LUs of (2/3)(3p)^3")
+      "-snes_view prints auto's two estimates, the dense one MUMPS's flops plus 10 LUs of (2/3)(3p)^3", full=True)
 def auto_chooses_by_cost():
     route, out = chosen(["-options_file", os.path.join(SCENES, "press.opts"), "-steps", "0,1"])
     expect(route == "none" and "the dense LUs alone cost more" in out and MUMPS.search(out) is None, "the slab: not the whole body before any analysis", out)
@@ -47,7 +47,7 @@ def auto_chooses_by_cost():
 @test("the memory estimate before the work counts the route: on the contact line the whole body's peak and the dense "
       "route's (MUMPS's factors of K with the Schur block, P and the Newton step's dense matrices); the prism at level 8 "
       "on the dense route peaks within 20 % of the dense estimate (measured +2 %), on the whole body within 20 % of the "
-      "whole body's")
+      "whole body's", full=True)
 def memory_estimate_both_routes():
     for route, group in (("direct", 2), ("none", 1)):
         out, s = prism(8, extra=["-snes_ssstar_reduction", route])

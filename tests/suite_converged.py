@@ -59,7 +59,7 @@ def converged_drag_closed_form():
         expect(law_distance(h5("drag_%s_%d.h5" % (red, ranks))) <= 1e-7, "%s %d: the law" % (red, ranks))
 
 
-@test("no false converged on a load path at any -snes_rtol from 1e-3 to 1e-12 (the plane dragging the block forward and back, both paths): every run either ends converged with the law on every step to max(rtol, 1e-8) (check_solution, ten times that) and the answer within 10 max(rtol, 1e-8) of the exact discrete solution (the dense route at 1e-13) at every step, the motion felt (the forward step's friction force phi N to that tolerance; at 1e-4 it was accepted in 0 iterations with no force), or exits with status 2 saying why")
+@test("no false converged on a load path at any -snes_rtol from 1e-3 to 1e-12 (the plane dragging the block forward and back, both paths): every run either ends converged with the law on every step to max(rtol, 1e-8) (check_solution, ten times that) and the answer within 10 max(rtol, 1e-8) of the exact discrete solution (the dense route at 1e-13) at every step, the motion felt (the forward step's friction force phi N to that tolerance; at 1e-4 it was accepted in 0 iterations with no force), or exits with status 2 saying why", full=True)
 def converged_rtol_sweep():
     args = robust.dragged(0.002, 0.0015)
     run(mpiexec(1, CONTACT, *args, "-snes_ssstar_reduction", "direct", "-snes_rtol", "1e-13", "-o", h5("sweep_reference.h5")))
@@ -77,7 +77,7 @@ def converged_rtol_sweep():
             expect(abs(tx - 0.5 * N) <= tol * 0.5, "%s at rtol %s: the plane's motion not felt (friction force %.6g, phi N %.6g)" % (red, rtol, tx, 0.5 * N), out)
 
 
-@test("a stiff block (E = 2e8, loads of order 1, E/k = 2e5) pressed, sheared both ways past sliding and released to zero load in 20 steps: every step converges at the defaults, its file satisfies the law at every step (check_solution --steps; it missed it by 1.3e-2 of max|r|: a pull, |r_t| > phi r_n) and lies within 1e-6 of the exact discrete solution at every step (measured 6e-9), direct and none, 1 and 2 ranks")
+@test("a stiff block (E = 2e8, loads of order 1, E/k = 2e5) pressed, sheared both ways past sliding and released to zero load in 20 steps: every step converges at the defaults, its file satisfies the law at every step (check_solution --steps; it missed it by 1.3e-2 of max|r|: a pull, |r_t| > phi r_n) and lies within 1e-6 of the exact discrete solution at every step (measured 6e-9), direct and none, 1 and 2 ranks", full=True)
 def converged_stiff_block():
     name = "stiff block, loads of order 1: press, shear both ways past sliding, release to zero, 20 steps"
     for ranks in (1, 2):
@@ -87,7 +87,7 @@ def converged_stiff_block():
             expect(robust.passed(r), "%s, %d ranks: %s" % (red, ranks, robust.cell(r)))
 
 
-@test("the block load path of the README and docs/guide/load-paths.md (the block on a spring, E = 2e8, pressed, sheared to 1.5 phi P both ways, released) at the defaults: the file passes check_solution on every step (it failed at 2.3e-5 and 7.4e-5), both paths within 1e-6 of the exact discrete solution at every step, 1 and 2 ranks; the same for the ball pressed into a block held by a spring with E/k = 2e8 and sheared obliquely (6e-7 dense, 6e-6 whole body before) on 2 and 3 ranks")
+@test("the block load path of the README and docs/guide/load-paths.md (the block on a spring, E = 2e8, pressed, sheared to 1.5 phi P both ways, released) at the defaults: the file passes check_solution on every step (it failed at 2.3e-5 and 7.4e-5), both paths within 1e-6 of the exact discrete solution at every step, 1 and 2 ranks; the same for the ball pressed into a block held by a spring with E/k = 2e8 and sheared obliquely (6e-7 dense, 6e-6 whole body before) on 2 and 3 ranks", full=True)
 def converged_readme_block_and_ball():
     name = "block on a spring: press, shear 1.5 phi P, release, reverse, release (the README's)"
     for ranks in (1, 2):
@@ -160,7 +160,7 @@ def law_of_runs(runs, skip=()):
         expect(law_distance(path) <= 1e-7, "%s: %s: the law" % (page, " ".join(argv)), out)
 
 
-@test("every scene of scenes/ at its level and the default settings (the scenes of docs/guide/scenes.md) writes a file that passes tests/check_solution.py law FILE --steps (the law as written on every step, tolerance 1e-7)")
+@test("every scene of scenes/ at its level and the default settings (the scenes of docs/guide/scenes.md) writes a file that passes tests/check_solution.py law FILE --steps (the law as written on every step, tolerance 1e-7)", full=True)
 def converged_every_scene():
     law_of_runs(scene_runs())
 

@@ -136,7 +136,7 @@ def mirror_msh22(half, full, plane_group):
         fp.write("$EndElements\n")
 
 
-@test("a plane of symmetry through contact nodes (docs/derivation.md section 15): half a block (meshes/halfblock.geo, level 1) held in x on its face x = 0 (-displacement_sym 0,free,free), its lid clamped and moved down by 0.01, on a base with Coulomb friction phi = 0.3, and the full block (the half mirrored about x = 0, exact mirror images): the contact nodes on the plane stay contact nodes, their u_x and contact force's x are 0 (1e-12), and the half's displacements, contact forces and reactions are the full block's halves to 2e-6 (harness.AGREE; the reactions and forces twice the half's); the law holds on both; direct on 1 rank, none on 2")
+@test("a plane of symmetry through contact nodes (docs/derivation.md section 15): half a block (meshes/halfblock.geo, level 1) held in x on its face x = 0 (-displacement_sym 0,free,free), its lid clamped and moved down by 0.01, on a base with Coulomb friction phi = 0.3, and the full block (the half mirrored about x = 0, exact mirror images): the contact nodes on the plane stay contact nodes, their u_x and contact force's x are 0 (1e-12), and the half's displacements, contact forces and reactions are the full block's halves to 2e-6 (harness.AGREE; the reactions and forces twice the half's); the law holds on both; direct on 1 rank, none on 2", full=True)
 def displacement_symmetry_plane():
     half, full = os.path.join(OUT, "halfblock_L1.msh"), os.path.join(OUT, "fullblock_L1.msh")
     run(["gmsh", "-3", "-setnumber", "L", "1", "-format", "msh22", os.path.join(ROOT, "meshes", "halfblock.geo"), "-o", half])

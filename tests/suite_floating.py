@@ -96,7 +96,7 @@ def floating_path_stops():
         expect(NOEQ.search(out) is not None, "%s %d: no line naming the body" % (red, ranks), out)
 
 
-@test("a ball squeezed between two rigid plates, held by them alone (scenes/squeeze.opts, level 1: R = 10, the upper plate moved down by 0.2, frictionless): the two contact forces equal to 1e-8 relative (the ball's equilibrium), each contact's radius and peak pressure within 3 % of Hertz's for its force (measured +1.1 %, +2.3 % below, +0.7 %, +2.6 % above); direct and none, 1 and 2 ranks agree to 1e-7")
+@test("a ball squeezed between two rigid plates, held by them alone (scenes/squeeze.opts, level 1: R = 10, the upper plate moved down by 0.2, frictionless): the two contact forces equal to 1e-8 relative (the ball's equilibrium), each contact's radius and peak pressure within 3 % of Hertz's for its force (measured +1.1 %, +2.3 % below, +0.7 %, +2.6 % above); direct and none, 1 and 2 ranks agree to 1e-7", full=True)
 def floating_squeeze():
     import scene_answers
     ref = None

@@ -68,7 +68,7 @@ def hard_friction():
 
 
 @test("frictionless contact (phi = 0) converges in at most 6 iterations on levels 3, 5 and 7 on the dense route, with r_t = 0; "
-      "at level 8 auto's whole body (inexact steps) in at most 7")
+      "at level 8 auto's whole body (inexact steps) in at most 7", full=True)
 def hard_frictionless():
     for level, route, most in [(level, "direct", 6) for level in (3, 5, 7)] + [(8, "auto", 7)]:
         tag = "frictionless_L%d_%s" % (level, route)
@@ -101,13 +101,13 @@ def hard_weak_contact():
                 expect(s["states"] == "0/0/%d/0/0/0" % s["contact"], "%s: states %s, not all M2" % (tag, s["states"]), out)
 
 
-@test("a near-grazing load (top 0,0,-0.01, right -200,30,0; level 4) converges without cycling, with a superlinear last step and the Coulomb law")
+@test("a near-grazing load (top 0,0,-0.01, right -200,30,0; level 4) converges without cycling, with a superlinear last step and the Coulomb law", full=True)
 def hard_grazing():
     s, out, _ = converged("grazing", 4, ["-traction_top", "0,0,-0.01", "-traction_right", "-200,30,0"])
     superlinear_end("grazing", out)
 
 
-@test("near incompressibility (nu = 0.45, 0.499; levels 4, 6) converges; the cycle of the plain iteration at level 4, nu = 0.49, is detected (reason CYCLE) and the globalization breaks it with a damped step")
+@test("near incompressibility (nu = 0.45, 0.499; levels 4, 6) converges; the cycle of the plain iteration at level 4, nu = 0.49, is detected (reason CYCLE) and the globalization breaks it with a damped step", full=True)
 def hard_incompressible():
     for level in (4, 6):
         for nu in ("0.45", "0.499"):
@@ -120,7 +120,7 @@ def hard_incompressible():
     expect(s["reason"] == "CONVERGED_FNORM_RELATIVE" and remedies(out)["damped"] >= 1 and "damped step alpha = 0.5" in out, "no damped step shown and counted", out)
 
 
-@test("units and scale: MPa/mm, Pa/m (E = 2.1e11) and loads x 1e-6 and x 1e6 give the same iterations (+-1), states and solution (1e-9 relative after the change of units; level 4)")
+@test("units and scale: MPa/mm, Pa/m (E = 2.1e11) and loads x 1e-6 and x 1e6 give the same iterations (+-1), states and solution (1e-9 relative after the change of units; level 4)", full=True)
 def hard_units():
     loads = lambda s: ["-traction_top", "0,0,%g" % (-500 * s), "-traction_right", "%g,%g,%g" % (-200 * s, 30 * s, 200 * s)]
     variants = {"MPa_mm": ([], 1), "Pa_m": (["-mesh_scale", "1e-3", "-E", "2.1e11"] + loads(1e6), 1e-3),
@@ -137,7 +137,7 @@ def hard_units():
         expect(error <= 1e-9, "%s: contact displacement %.1e relative from MPa/mm" % (name, error))
 
 
-@test("starting points (level 4): zero, the linear-elastic solution and a random point 100x the solution converge 1e-8 near a tight reference; the plain iteration from the far ones stops with an honest reason (CYCLE or STAGNATION) and a finite output file")
+@test("starting points (level 4): zero, the linear-elastic solution and a random point 100x the solution converge 1e-8 near a tight reference; the plain iteration from the far ones stops with an honest reason (CYCLE or STAGNATION) and a finite output file", full=True)
 def hard_starting_points():
     import numpy as np
     converged("start_zero", 4, [])
@@ -173,7 +173,7 @@ def states_per_iteration(out):
     return re.findall(r"SSStar states (.*)", out)
 
 
-@test("determinism: 1, 2 and 3 ranks give the same iterates (|z| to 1e-8 relative above round-off, the same states and remedies at every iteration; default scene level 5, tangential load phi = 0.6 level 4 with damped steps), and a rerun on one rank writes a bitwise-equal HDF5 file")
+@test("determinism: 1, 2 and 3 ranks give the same iterates (|z| to 1e-8 relative above round-off, the same states and remedies at every iteration; default scene level 5, tangential load phi = 0.6 level 4 with damped steps), and a rerun on one rank writes a bitwise-equal HDF5 file", full=True)
 def hard_determinism():
     import h5py
     import numpy as np
@@ -234,7 +234,7 @@ def hard_bad_input():
         expect(message in out, "%s %s: not refused by name" % option, out)
 
 
-@test("valgrind (memcheck, level 3, one rank): no invalid access and nothing definitely lost outside Open MPI's and PETSc's start-up (tests/valgrind.supp) [slow]")
+@test("valgrind (memcheck, level 3, one rank): no invalid access and nothing definitely lost outside Open MPI's and PETSc's start-up (tests/valgrind.supp) [slow]", full=True)
 def hard_valgrind():
     prism(3)  # the mesh exists before valgrind runs
     out = run(["valgrind", "--leak-check=full", "--errors-for-leak-kinds=definite", "--num-callers=40",

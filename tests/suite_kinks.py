@@ -72,7 +72,7 @@ def kinks_stiff_blocks_full():
     members([ISSUE, "onset of sliding back, stiff (E/k = 1e7), 20 steps"], (1, 2))
 
 
-@test("members of the degenerate family at the defaults, both paths, 1 rank: the block touching its plane with no normal load and sheared (soft), a ball pressed into a held block and lifted back to exactly touching: converged, the law in the file at every step, within 1e-6 of the exact discrete solution (the exactly touching nodes' reactions compared at the law's force scale); the static exact onset of a stiff block (E/k = 1e7): converged and lawful")
+@test("members of the degenerate family at the defaults, both paths, 1 rank: the block touching its plane with no normal load and sheared (soft), a ball pressed into a held block and lifted back to exactly touching: converged, the law in the file at every step, within 1e-6 of the exact discrete solution (the exactly touching nodes' reactions compared at the law's force scale); the static exact onset of a stiff block (E/k = 1e7): converged and lawful", full=True)
 def kinks_family():
     members(["touching, static: zero gap, no normal load, sheared by 0.1, soft",
              "release on a path: a ball pressed 0.02 into a held block and lifted back to exactly touching, 4 steps"], (1,))

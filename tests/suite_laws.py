@@ -68,7 +68,7 @@ def corrupted(source, name, change):
     return os.path.join(OUT, name + ".h5")
 
 
-@test("tests/check_solution.py knows the orthotropic law (the ellipse |M^-1/2 r_t| <= r_n, sliding by maximum dissipation) from the file's /contact/friction_law names and parameters: the orthotropic scene's results pass; a copy with friction_2 = 0.3 (the block pushed across by 7 then exceeds its ellipse), one with the friction direction turned to y (pushed along x: the sliding force is the wrong one), and one whose law the check does not know fail")
+@test("tests/check_solution.py knows the orthotropic law (the ellipse |M^-1/2 r_t| <= r_n, sliding by maximum dissipation) from the file's /contact/friction_law names and parameters: the orthotropic scene's results pass; a copy with friction_2 = 0.3 (the block pushed across by 7 then exceeds its ellipse), one with the friction direction turned to y (pushed along x: the sliding force is the wrong one), and one whose law the check does not know fail", full=True)
 def laws_check_solution_orthotropic():
     along, across = "ortho_scene_4_0_-10_direct_1", "ortho_scene_0_7_-10_direct_1"
     for name in (along, across):

@@ -94,7 +94,7 @@ def loadpath_block_on_spring():
         expect(abs(D[at[3]] - 5 * 2.5e-3) <= 1e-3 * 0.0125 and abs(D[at[5]] - D[at[3]] - 5 * 5e-3) <= 1e-3 * 0.025, "%s %d: dissipation %s" % (red, ranks, D[[at[3], at[5]]]))
 
 
-@test("displacement-controlled sliding (docs/derivation.md (11.3)): a rigid plane (-obstacle_bottom_motion) pushed 0.001 into a block held at its top, then moved 0.02 along x in 10 steps: once every node slides the tangential force on the block is phi times the normal force to 1e-6 (measured 8e-16 direct, 2e-11 none), along the motion; moved back by 1e-4 every node sticks but those at the rim (measured: 1 of 80 slides), the force drops below phi N (to 0.896 phi N); the Coulomb law holds at every node for the slip increment of the last step (tests/check_solution.py, 1e-8); direct and none, 1 and 2 ranks agree to 2e-6 (harness.AGREE)")
+@test("displacement-controlled sliding (docs/derivation.md (11.3)): a rigid plane (-obstacle_bottom_motion) pushed 0.001 into a block held at its top, then moved 0.02 along x in 10 steps: once every node slides the tangential force on the block is phi times the normal force to 1e-6 (measured 8e-16 direct, 2e-11 none), along the motion; moved back by 1e-4 every node sticks but those at the rim (measured: 1 of 80 slides), the force drops below phi N (to 0.896 phi N); the Coulomb law holds at every node for the slip increment of the last step (tests/check_solution.py, 1e-8); direct and none, 1 and 2 ranks agree to 2e-6 (harness.AGREE)", full=True)
 def loadpath_displacement_sliding():
     ref = None
     for red, ranks in PATHS:
@@ -120,7 +120,7 @@ def loadpath_displacement_sliding():
 MINDLIN_TOL = 0.25
 
 
-@test("Cattaneo-Mindlin loading and Mindlin-Deresiewicz unloading (docs/derivation.md (11.4)-(11.11), scenes/mindlin.opts at level 1, two bodies of one material): P, then Q: 0 -> -Q* -> Q* -> -Q* at Q* = 0.5 phi P, 10 steps per branch: the energy dissipated per cycle by trapezoids of the (Q, delta) loop and the loop's opening at Q = 0 agree with the closed forms (11.9), (11.11) within 25 % (measured +15 %, level 2 in bench/loadpath.py), the node-wise dissipation (10.9) over the cycle with the loop's area within 3 % (measured 1 %), the loop closes (delta at the cycle's end equals its start to 1e-3); 1 and 2 ranks agree to 1e-7 (the whole body, and level 2: bench/loadpath.py)")
+@test("Cattaneo-Mindlin loading and Mindlin-Deresiewicz unloading (docs/derivation.md (11.4)-(11.11), scenes/mindlin.opts at level 1, two bodies of one material): P, then Q: 0 -> -Q* -> Q* -> -Q* at Q* = 0.5 phi P, 10 steps per branch: the energy dissipated per cycle by trapezoids of the (Q, delta) loop and the loop's opening at Q = 0 agree with the closed forms (11.9), (11.11) within 25 % (measured +15 %, level 2 in bench/loadpath.py), the node-wise dissipation (10.9) over the cycle with the loop's area within 3 % (measured 1 %), the loop closes (delta at the cycle's end equals its start to 1e-3); 1 and 2 ranks agree to 1e-7 (the whole body, and level 2: bench/loadpath.py)", full=True)
 def loadpath_mindlin():
     ref = None
     for red, ranks in (("direct", 1), ("direct", 2)):

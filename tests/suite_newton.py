@@ -17,7 +17,7 @@ def step_counts(out):
 @test("the reuse of the LU does not change the outer iteration: prism levels 4 and 7 (1 rank) and 5 (2 ranks) give the same |z| at every "
       "iterate (1e-6 relative while above 1e-10) and the same states with a fresh LU at every step (-snes_ssstar_lu_reuse -1), "
       "the default (reuse when no node changed rows) and reuse at every step (1); -snes_view counts LU + reused steps = iterations, "
-      "the 1/cond estimate is in (0, 1], and the state monitor shows the counts")
+      "the 1/cond estimate is in (0, 1], and the state monitor shows the counts", full=True)
 def newton_lu_reuse_keeps_iterations():
     for level, ranks in ((4, 1), (7, 1), (5, 2)):
         results = {}

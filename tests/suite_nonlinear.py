@@ -73,7 +73,7 @@ def nonlinear_block_plane():
 @test("the issue's reproduction: the prism's K and b (examples/prism -level 2 -save_whole) with F = K u + kappa u^3 - b, kappa such that the affine "
       "model's solution is off equilibrium by 0.5 max|b| at the free dofs: undeclared, it converges to F = 0 at the free dofs and the Coulomb law "
       "to 1e-7 (observed order > 1.5); declared affine (-affine), the check at the solution ends it NOT_AFFINE (DIVERGED_LOCAL_MIN, exit status 2) "
-      "instead of a false CONVERGED; 1 and 2 ranks")
+      "instead of a false CONVERGED; 1 and 2 ranks", full=True)
 def nonlinear_cubic_prism():
     data = os.path.join(OUT, "prism2_whole.bin")
     run([PRISM, "-level", "2", "-save_whole", data, "-ssstar_progress", "0"])
@@ -91,7 +91,7 @@ def nonlinear_cubic_prism():
 @test("the contact measured at every iterate (SNESSSStarSetContactUpdate) for a curved obstacle: the neo-Hookean block pressed frictionlessly onto a "
       "ball of radius 2 ends at the exact contact point (the ball's exact gap and normal at the solution: the law to 1e-7), the update called once per "
       "iterate (and at the start); linear convergence (the curvature's term is not in the Newton matrix), superlinear (order > 1.5) when the "
-      "program's Jacobian adds it, and with Coulomb friction it converges too; 1 and 2 ranks")
+      "program's Jacobian adds it, and with Coulomb friction it converges too; 1 and 2 ranks", full=True)
 def nonlinear_ball_update():
     for ranks in (1, 2):
         out, r = nonlinear(ranks, "-obstacle", "ball", "-snes_ssstar_friction", "0")
@@ -125,7 +125,7 @@ def nonlinear_lag_jacobian():
 
 @test("the affine route keeps its speed and results: examples/prism (SNESSSStarSetLinearProblem, declared affine) takes exactly the iterations it took "
       "before section 17 (levels 2 and 4, direct and none), says so in -snes_view and the reason line; the same prism declared nonlinear "
-      "(-snes_ssstar_affine false: the whole body, F at every iterate) gives the same solution to 2e-6 (harness.AGREE)")
+      "(-snes_ssstar_affine false: the whole body, F at every iterate) gives the same solution to 2e-6 (harness.AGREE)", full=True)
 def affine_prism_unchanged():
     for (level, reduction), its in sorted(AFFINE_ITERATIONS.items()):
         h5 = "affine_L%d_%s.h5" % (level, reduction)

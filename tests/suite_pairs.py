@@ -129,7 +129,7 @@ def pairs_refused():
             expect(message in out, "%s (%d ranks): not refused with '%s'" % (what, ranks, message), out)
 
 
-@test("Hertz between two elastic bodies (scenes/hertz2.opts, level 1: a half ball R = 10 on a block of the same material, frictionless, E* = E / (2 (1 - nu^2))): the fitted contact radius and peak pressure within 3 % of Hertz's (measured node-to-surface +1.8 %, +1.8 % on both paths; dual mortar +1.2 %, +1.5 %; level 2 node-to-surface +0.8 %, +0.3 %)")
+@test("Hertz between two elastic bodies (scenes/hertz2.opts, level 1: a half ball R = 10 on a block of the same material, frictionless, E* = E / (2 (1 - nu^2))): the fitted contact radius and peak pressure within 3 % of Hertz's (measured node-to-surface +1.8 %, +1.8 % on both paths; dual mortar +1.2 %, +1.5 %; level 2 node-to-surface +0.8 %, +0.3 %)", full=True)
 def pairs_hertz():
     import scene_answers
     for extra, ranks, h5 in ((["-snes_ssstar_reduction", "direct"], 1, "pairs_hertz2_direct.h5"),
@@ -151,7 +151,7 @@ def stick_radius(h5):
     return Q / (0.3 * P), a, a * (1 - Q / (0.3 * P)) ** (1 / 3), r[np.isin(s, (3, 4))].max()
 
 
-@test("Cattaneo-Mindlin (scenes/mindlin.opts, level 1: the half ball on the block, phi = 0.3, P then Q at the contact's height): for Q/(phi P) = 0.25, 0.5, 0.75 the outermost sticking node lies within 0.1 (half the mesh size at the pole) of c = a (1 - Q/(phi P))^(1/3) (measured node-to-surface -0.007 at 0.25, -0.083 at 0.5; dual mortar -0.001 at 0.5, -0.061 at 0.75); the whole body on 2 ranks gives the same states")
+@test("Cattaneo-Mindlin (scenes/mindlin.opts, level 1: the half ball on the block, phi = 0.3, P then Q at the contact's height): for Q/(phi P) = 0.25, 0.5, 0.75 the outermost sticking node lies within 0.1 (half the mesh size at the pole) of c = a (1 - Q/(phi P))^(1/3) (measured node-to-surface -0.007 at 0.25, -0.083 at 0.5; dual mortar -0.001 at 0.5, -0.061 at 0.75); the whole body on 2 ranks gives the same states", full=True)
 def pairs_cattaneo_mindlin():
     for q, ratio, method in (("5.89", 0.25, "node_to_surface"), ("11.78", 0.5, "node_to_surface"), ("11.78", 0.5, "dual_mortar"), ("17.67", 0.75, "dual_mortar")):
         if True:

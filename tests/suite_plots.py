@@ -167,7 +167,7 @@ def check_history(plot, d, h5):
       "the indentation (m - u).n, the ball's 0.02 less the slab's mean sag, 0.019-0.02 at every step of the drag, not the 2 of its travel), the "
       "unstructured slab pressed from above (the face 4.2 x 4.2 drawn in x, y to scale), the Python loop of examples/scene.py "
       "onset (its traction group top, never 'None'), a pair (the slider), the incline's tilted plane, the Hertz ball's "
-      "curved cap, a refined mesh (shear, -dm_refine 1)")
+      "curved cap, a refined mesh (shear, -dm_refine 1)", full=True)
 def plots_tell_the_truth():
     plot = plot_module()
     files = {"drag": scene_file("drag"), "press": scene_file("press"), "onset": python_file(), "slider": scene_file("slider"),

@@ -42,7 +42,7 @@ def prism_level(level):
 
 for _L in sorted(REFERENCE_ITERATIONS):
     test("prism level %d converges from u = 0 (relative rule, rtol 1e-10) to |z| <= 1e-12 in %d +- 1 iterations on the dense route (+- 2 on the whole body, auto's choice from level 8) without any remedy of the globalization, with the reference node counts%s; above 50 000 dofs auto starts from the coarser level's solution and takes fewer"
-         % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""))(
+         % (_L, REFERENCE_ITERATIONS[_L], " and states " + REFERENCE_STATES[_L] if _L in REFERENCE_STATES else ""), full=_L > 5)(
         (lambda L: (lambda: prism_level(L)))(_L))
     TESTS[-1] = ("prism_level_%d" % _L,) + TESTS[-1][1:]
 
@@ -65,7 +65,7 @@ def prism_friction_option():
     run(CHECK + ["coulomb", os.path.join(OUT, "friction05_L3.h5")])
 
 
-@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 2e-6 relative (harness.AGREE)")
+@test("1 rank and 2 ranks give the same iterates (|z| to 1e-8 relative while above 1e-10) and the same solution (level 5, contact face and whole mesh) to 2e-6 relative (harness.AGREE)", full=True)
 def prism_ranks_agree():
     out1, s1 = prism(5, 1, h5="ranks1_L5.h5")
     out2, s2 = prism(5, 2, h5="ranks2_L5.h5")
@@ -77,7 +77,7 @@ def prism_ranks_agree():
     run(CHECK + ["compare", os.path.join(OUT, "ranks1_L5.h5"), os.path.join(OUT, "ranks2_L5.h5"), "--tol", str(AGREE)])
 
 
-@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 2e-6 (harness.AGREE), on 1 and 2 ranks")
+@test("the two Schur paths (MUMPS's own, MatSchurComplement explicit) give the same solution, on the contact face and on the whole mesh (recovery), to 2e-6 (harness.AGREE), on 1 and 2 ranks", full=True)
 def prism_schur_paths_agree():
     prism(4, 1, extra=["-snes_ssstar_reduction", "mumps"], h5="mumps_L4.h5")
     prism(4, 1, extra=["-snes_ssstar_reduction", "explicit"], h5="explicit_L4.h5")

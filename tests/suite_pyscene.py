@@ -98,7 +98,7 @@ def sweep_csv(path):
     return rows[:, 0], rows[:, 2]
 
 
-@test("the parameter sweep from Python (examples/scene.py sweep: a scene per Q/(phi P), press, shear, release): each residual slip (the mean x slip of the contact face after the release) equals examples/contact's for the same path on as many ranks (2: the whole body) to 1e-12 of the largest, on 1 rank, 2 ranks and 2 ranks with --split (each rank its own scenes on PETSC_COMM_SELF, gathered by mpi4py: examples/contact on 1 rank); it follows (11.2) max(0, Q - phi P)/k within 1e-6 (2e-4 of the largest: the block's compliance) and is below 1e-8 under phi P; the picture is written")
+@test("the parameter sweep from Python (examples/scene.py sweep: a scene per Q/(phi P), press, shear, release): each residual slip (the mean x slip of the contact face after the release) equals examples/contact's for the same path on as many ranks (2: the whole body) to 1e-12 of the largest, on 1 rank, 2 ranks and 2 ranks with --split (each rank its own scenes on PETSC_COMM_SELF, gathered by mpi4py: examples/contact on 1 rank); it follows (11.2) max(0, Q - phi P)/k within 1e-6 (2e-4 of the largest: the block's compliance) and is below 1e-8 under phi P; the picture is written", full=True)
 def pyscene_sweep():
     ratios = [0.5, 1.25, 2.0]
     reference = {}
@@ -125,7 +125,7 @@ def pyscene_sweep():
     expect(np.abs(slips - closed).max() <= 1e-6 and abs(slips[0]) < 1e-8, "against (11.2): %s, %s" % (slips, closed))
 
 
-@test("scenes of docs/guide/scenes.md from Python (examples/scene.py run scenes/X.opts -o: ssstar.Scene from the options file, solve(), o=...) write the files of examples/contact -options_file scenes/X.opts -o: shear (a stick-slip front; and with -nested_levels 1, started from the coarser mesh's solution: the same iterations), gap (-load_steps 10: /load_steps too), incline (gravity, a tilted plane) and slider (two bodies, a contact pair), every dataset within 1e-12; the incline's tangential/normal force is tan 20 degrees (docs/guide/scenes.md)")
+@test("scenes of docs/guide/scenes.md from Python (examples/scene.py run scenes/X.opts -o: ssstar.Scene from the options file, solve(), o=...) write the files of examples/contact -options_file scenes/X.opts -o: shear (a stick-slip front; and with -nested_levels 1, started from the coarser mesh's solution: the same iterations), gap (-load_steps 10: /load_steps too), incline (gravity, a tilted plane) and slider (two bodies, a contact pair), every dataset within 1e-12; the incline's tangential/normal force is tan 20 degrees (docs/guide/scenes.md)", full=True)
 def pyscene_table_scenes():
     for name, extra in (("shear", []), ("shear", ["-nested_levels", "1"]), ("gap", []), ("incline", []), ("slider", [])):
         tag = name + "".join(extra).replace("-", "_")
@@ -208,7 +208,7 @@ def onset_code():
     return [line.split("#")[0].strip() for line in body[first:last + 1] if line.strip() and not line.strip().startswith(("if out", "scene.write"))]
 
 
-@test("a load path decided by a Python loop (examples/scene.py onset, the example of docs/guide/python.md: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike, and passes every step); docs/guide/python.md holds the loop's code")
+@test("a load path decided by a Python loop (examples/scene.py onset, the example of docs/guide/python.md: the shear raised step by step, a tentative step (step(t, accept=False)) that makes more than 8 nodes begin to slide refused and halved, accept() otherwise, set() the next load): no accepted step starts more than 8 nodes sliding, no node sticks at its end, below phi P = 5; on 1 and 2 ranks (2: the whole body), examples/contact replaying the path it chose (-traction_top t:t,0,-10;... -steps t0,t1,...) writes the same file to 1e-12 (check_solution.py judges both alike, and passes every step); docs/guide/python.md holds the loop's code", full=True)
 def pyscene_user_loop():
     for ranks in (1, 2):
         py_h5, c_h5 = out("pyscene_onset_py_np%d.h5" % ranks), out("pyscene_onset_c_np%d.h5" % ranks)

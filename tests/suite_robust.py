@@ -29,17 +29,17 @@ def members_pass(names, ranks):
                 expect(robust.passed(res), "%s, %s, %d ranks: %s" % (name, path, r, robust.cell(res)))
 
 
-@test("issue 18's scene, a rigid cylinder with its axis turned 30 degrees on a block held by a soft spring, sheared along x at 0.22 of the load either way: at the defaults both paths converge, satisfy the law and lie within 1e-6 of the exact discrete solution on 1, 2 and 3 ranks (3 ranks: a rank owns no dof; it stopped with MPI_ERR_TRUNCATE, and the reversed shear stagnated on 1 and 2 ranks)")
+@test("issue 18's scene, a rigid cylinder with its axis turned 30 degrees on a block held by a soft spring, sheared along x at 0.22 of the load either way: at the defaults both paths converge, satisfy the law and lie within 1e-6 of the exact discrete solution on 1, 2 and 3 ranks (3 ranks: a rank owns no dof; it stopped with MPI_ERR_TRUNCATE, and the reversed shear stagnated on 1 and 2 ranks)", full=True)
 def robust_issue_scene():
     members_pass(["roller 30°, shear 0.22", "roller 30°, shear -0.22"], (1, 2, 3))
 
 
-@test("the dense route on 4 ranks, where the unknown dofs of the dense Newton matrix move between ranks from one step to the next, completes (it hung in MatCreateDense), and both paths lie within 1e-6 of the exact discrete solution there")
+@test("the dense route on 4 ranks, where the unknown dofs of the dense Newton matrix move between ranks from one step to the next, completes (it hung in MatCreateDense), and both paths lie within 1e-6 of the exact discrete solution there", full=True)
 def robust_dense_four_ranks():
     members_pass(["roller 60°, shear 0.4"], (4,))
 
 
-@test("the robustness family at the defaults on 1-4 ranks (soft springs k = 1e-3 and 1e-1 against E = 2.1e5, friction 0.1 (the block slides) and 2, rigid balls, two-body pairs with shear): both paths converge, satisfy the law and lie within 1e-6 of the exact discrete solution")
+@test("the robustness family at the defaults on 1-4 ranks (soft springs k = 1e-3 and 1e-1 against E = 2.1e5, friction 0.1 (the block slides) and 2, rigid balls, two-body pairs with shear): both paths converge, satisfy the law and lie within 1e-6 of the exact discrete solution", full=True)
 def robust_family():
     for name, ranks in (("roller 30°, k = 1e-3", 2), ("roller 30°, k = 1e-1", 1), ("roller 30°, phi = 0.1 (slides)", 3), ("roller 30°, phi = 2", 4),
                         ("ball, phi = 2, shear 0.3 diagonal", 4), ("ball, k = 1e-3, phi = 0.5", 2), ("slider (pair), phi = 0.9 (sticks)", 3),

@@ -15,7 +15,7 @@ def error_text(out):
     return " ".join(re.findall(r"(?:PETSC ERROR|^\S+(?:, rank \d+)?): ((?:K is|The |Out of|MUMPS|-schur).*)", out, re.M))
 
 
-@test("on a hand-assembled K (contact dofs in no particular order), direct, mumps and explicit give the same P, f and recovered u to 1e-10, and u solves the interior equations to 1e-12, on 1, 2 and 3 ranks")
+@test("on a hand-assembled K (contact dofs in no particular order), direct, mumps and explicit give the same P, f and recovered u to 1e-10, and u solves the interior equations to 1e-12, on 1, 2 and 3 ranks", full=True)
 def schur_paths_agree_lattice():
     for ranks in (1, 2, 3):
         out = run(mpiexec(ranks, TEST_REDUCTION, "-n", "7"))
@@ -86,7 +86,7 @@ def schur_reserved_icntl():
     expect("-schur_direct_mumps_icntl_19: ICNTL(19) is set by the direct reduction itself" in out, "the option is not named", out)
 
 
-@test("a memory limit between MUMPS's out-of-core and in-core estimates puts the factors out of core (on disk), with the same solution as in core to 1e-10 (examples/generic, 25 x 25 x 13 nodes: in core 223 MB, out of core 100 MB, with the dense contact matrices 84 MB; limit 0.25 GB)")
+@test("a memory limit between MUMPS's out-of-core and in-core estimates puts the factors out of core (on disk), with the same solution as in core to 1e-10 (examples/generic, 25 x 25 x 13 nodes: in core 223 MB, out of core 100 MB, with the dense contact matrices 84 MB; limit 0.25 GB)", full=True)
 def schur_out_of_core():
     import h5py
     import numpy as np

@@ -103,7 +103,7 @@ def same_on_ranks(name, args, expect_rc=0):
 @test("a mesh obstacle (a ball of radius 10 as 12000 triangles, the ball scene, level 1): every node's gap is its "
       "distance to the closest of all triangles found by brute force (NumPy) to 1e-12, its normal (x - q)/|x - q| "
       "to 1e-9 off the surface; the gaps and normals on 2, 3 and 4 ranks (the triangles spread over the ranks, no rank "
-      "holding all) are those of 1 rank to 1e-14")
+      "holding all) are those of 1 rank to 1e-14", full=True)
 def search_mesh_obstacle():
     msh = sphere_msh()
     c = same_on_ranks("mesh_ball", scene("ball") + ["-obstacle_top", "mesh:" + msh])
@@ -164,7 +164,7 @@ PAIR_CASES = [
       "nodes beyond the cap's rim): every slave node's gap and normal equal those of a brute-force search over all "
       "master triangles (NumPy: the least sorted node indices among the triangles within the contact tolerance of the "
       "closest; triangles tied at a shared vertex or edge give the same gap, normal and weights) to 1e-12, and on 2, 3 "
-      "and 4 ranks those of 1 rank to 1e-14")
+      "and 4 ranks those of 1 rank to 1e-14", full=True)
 def search_pairs_node_to_surface():
     for name, args, master, rc in PAIR_CASES:
         c = same_on_ranks(name, args, expect_rc=rc)

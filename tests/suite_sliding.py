@@ -39,7 +39,7 @@ def sliding_derivation():
     expect(out.count("PASS") == 3 and "FAIL" not in out, "tests/sliding_check.py", out)
 
 
-@test("a rigid ball (R = 1) pressed 0.02 into a slab and dragged by two radii (scenes/drag.opts, large sliding): every touching node slides in every drag step, the normal force stays that of the indentation within 5 % (the mesh's resolution at level 1: measured 3.6 % spread) and repeats with the mesh (positions 0.5 apart to 0.5 %), the tangential force is phi N within 1 % (measured 0.9975: the tilted normals under the ball), the contact patch follows the ball (its centroid less the ball's translation stays within 0.01), the law holds at every step of the file (check_solution.py --steps); the dense route on 1 rank and the whole body on 2 give the same forces to 2e-6 (harness.AGREE; measured 4e-9); -sliding small refuses the drag at its first step")
+@test("a rigid ball (R = 1) pressed 0.02 into a slab and dragged by two radii (scenes/drag.opts, large sliding): every touching node slides in every drag step, the normal force stays that of the indentation within 5 % (the mesh's resolution at level 1: measured 3.6 % spread) and repeats with the mesh (positions 0.5 apart to 0.5 %), the tangential force is phi N within 1 % (measured 0.9975: the tilted normals under the ball), the contact patch follows the ball (its centroid less the ball's translation stays within 0.01), the law holds at every step of the file (check_solution.py --steps); the dense route on 1 rank and the whole body on 2 give the same forces to 2e-6 (harness.AGREE; measured 4e-9); -sliding small refuses the drag at its first step", full=True)
 def sliding_ball_drag():
     forces = []
     for red, ranks in RUNS:
@@ -62,7 +62,7 @@ def sliding_ball_drag():
     expect(re.search(r"Step 6 \(t = 1\.125\): the obstacle of -obstacle_top .* first-order gap", out), "-sliding small: the drag is not refused at its first step", out)
 
 
-@test("a rigid cylinder (R = 1, along y) pressed 0.01 into the slab and slid across its axis by 2 (large sliding): every touching node slides, the tangential force is phi N within 1 % (measured 0.9988-0.9993: the normals tilted across the contact line), the normal force repeats with the mesh (positions 0.5 apart to 0.5 %) and stays within 10 % of its mean (a line contact three nodes wide at level 1); the dense route (1 rank) and the whole body (2 ranks) agree to 2e-6 (harness.AGREE), the law holds at every step of the file")
+@test("a rigid cylinder (R = 1, along y) pressed 0.01 into the slab and slid across its axis by 2 (large sliding): every touching node slides, the tangential force is phi N within 1 % (measured 0.9988-0.9993: the normals tilted across the contact line), the normal force repeats with the mesh (positions 0.5 apart to 0.5 %) and stays within 10 % of its mean (a line contact three nodes wide at level 1); the dense route (1 rank) and the whole body (2 ranks) agree to 2e-6 (harness.AGREE), the law holds at every step of the file", full=True)
 def sliding_cylinder():
     args = ["-obstacle_top", "cylinder:0.5,0,1,0,1,0,1", "-obstacle_top_motion", "0:0,0,0;1:0,0,-0.01;3:2,0,-0.01", "-steps", "24"]
     forces = []
@@ -80,7 +80,7 @@ def sliding_cylinder():
     expect(diff <= AGREE, "the dense route and the whole body on 2 ranks differ by %.1e in the forces" % diff)
 
 
-@test("a flat rigid punch (meshes/punch.msh, a closed box of 0.4 x 0.4 searched at the current positions) pressed 0.002 into the slab and dragged off its end (scenes/punch.opts): the contact area follows the overlap of the punch and the slab within the mesh's resolution (the nodes along the overlap's rim count with their whole tributary area: h times half its perimeter plus h^2, h = 0.1) and shrinks, as the punch's rear edge reaches the slab's end, to the nodes of the end row under it; while it slides with contact the tangential force is phi N to 1e-3; both paths, 1 and 2 ranks, the law at every step of the file")
+@test("a flat rigid punch (meshes/punch.msh, a closed box of 0.4 x 0.4 searched at the current positions) pressed 0.002 into the slab and dragged off its end (scenes/punch.opts): the contact area follows the overlap of the punch and the slab within the mesh's resolution (the nodes along the overlap's rim count with their whole tributary area: h times half its perimeter plus h^2, h = 0.1) and shrinks, as the punch's rear edge reaches the slab's end, to the nodes of the end row under it; while it slides with contact the tangential force is phi N to 1e-3; both paths, 1 and 2 ranks, the law at every step of the file", full=True)
 def sliding_punch():
     for red, ranks in RUNS:
         _, path = sliding_run("punch.opts", "sliding_punch_%s_%d.h5" % (red, ranks), red, ranks)
@@ -101,7 +101,7 @@ def sliding_punch():
         law(path)
 
 
-@test("a flat block slid across a long one by twice its own length (scenes/track.opts, large sliding between two bodies: the master faces of every slave node found at the current configuration at every step): while it slides the tangential force is phi N to 1e-4, the contact area constant to 0.5 % (one rim node), the slide (q - phi p)/k = 1 to 1e-3, and every touching slave node ends on master faces outside the block's initial footprint; node-to-surface and dual mortar, the dense route on 1 rank and the whole body on 2 ranks (masters on other ranks reported by -info), and node-to-surface's dense route on 3 ranks (MUMPS's workspace estimated short where the block reaches new master faces: factored again with a larger ICNTL(14)), agreeing to 2e-6 (harness.AGREE; measured 1e-10; 1-4 ranks in bench/robust.py's sliding family); the law holds at every step of the file")
+@test("a flat block slid across a long one by twice its own length (scenes/track.opts, large sliding between two bodies: the master faces of every slave node found at the current configuration at every step): while it slides the tangential force is phi N to 1e-4, the contact area constant to 0.5 % (one rim node), the slide (q - phi p)/k = 1 to 1e-3, and every touching slave node ends on master faces outside the block's initial footprint; node-to-surface and dual mortar, the dense route on 1 rank and the whole body on 2 ranks (masters on other ranks reported by -info), and node-to-surface's dense route on 3 ranks (MUMPS's workspace estimated short where the block reaches new master faces: factored again with a larger ICNTL(14)), agreeing to 2e-6 (harness.AGREE; measured 1e-10; 1-4 ranks in bench/robust.py's sliding family); the law holds at every step of the file", full=True)
 def sliding_block_track():
     results = []
     for method, red, ranks in (("node_to_surface", "direct", 1), ("node_to_surface", "none", 2), ("node_to_surface", "direct", 3), ("dual_mortar", "direct", 1), ("dual_mortar", "none", 2)):

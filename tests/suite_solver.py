@@ -47,7 +47,7 @@ def dll_append_dense():
         plain_contact(ranks, 0.3, "-dense")
 
 
-@test("a singular Newton matrix ends the solve with DIVERGED_LINEAR_SOLVE (sub-reason SINGULAR_NEWTON_MATRIX), not a crash: sparse and dense, 1 and 2 ranks")
+@test("a singular Newton matrix ends the solve with DIVERGED_LINEAR_SOLVE (sub-reason SINGULAR_NEWTON_MATRIX), not a crash: sparse and dense, 1 and 2 ranks", full=True)
 def singular_newton_matrix():
     for ranks in (1, 2):
         for dense in ("0", "1"):

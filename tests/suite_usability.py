@@ -48,7 +48,7 @@ def mesh_cache():
 
 @test("the set-up line of a solve says what its set-up did, and only then: on the gap's ten load steps (one K) the "
       "first says K was reduced (the dense route) or taken whole (reduction none), the nine others that it was kept and "
-      "only the load changed")
+      "only the load changed", full=True)
 def setup_line_says_what_was_done():
     for route, built, kept in (("direct", r"set-up: K reduced to \d+ contact dofs by the direct Schur complement, ",
                                 r"set-up: K's reduction to \d+ contact dofs \(direct\) kept from the last solve, the new load reduced, "),

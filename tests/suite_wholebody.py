@@ -38,7 +38,7 @@ def same_answer(name, runner, args, tol=AGREE, ranks=1, iterations=1):
     return dense, full
 
 
-@test("prism levels 3, 4, 5 and 7: the whole-body path gives the dense route's solution (contact face, reactions, whole field) to 1e-8, the same states, the iterations within one; -snes_view names the path, the KSP and PC, and the linear iterations per Newton step")
+@test("prism levels 3, 4, 5 and 7: the whole-body path gives the dense route's solution (contact face, reactions, whole field) to 1e-8, the same states, the iterations within one; -snes_view names the path, the KSP and PC, and the linear iterations per Newton step", full=True)
 def wholebody_prism_same_answer():
     for level in (3, 4, 5, 7):
         _, full = same_answer("wholebody_prism_L%d" % level, prism_run, ["-level", str(level), "-snes_view"])
@@ -47,7 +47,7 @@ def wholebody_prism_same_answer():
         expect(re.search(pattern, full) is not None, "-snes_view lacks /%s/" % pattern, full)
 
 
-@test("1, 2, 3, 4 and 8 ranks (oversubscribed) give the same solution to 1e-8 and the same states on both paths (prism level 5), the iterations within one; nothing of the whole-body path needs the problem on one rank")
+@test("1, 2, 3, 4 and 8 ranks (oversubscribed) give the same solution to 1e-8 and the same states on both paths (prism level 5), the iterations within one; nothing of the whole-body path needs the problem on one rank", full=True)
 def wholebody_ranks_agree():
     for path in ("none", "direct"):
         outs = []
@@ -103,7 +103,7 @@ def wholebody_scenes_same_answer():
     same_answer("wholebody_gap", scene_run, ["-options_file", os.path.join(ROOT, "scenes", "gap.opts")], iterations=10)
 
 
-@test("hard cases on the whole body: friction phi = 5, nu = 0.49 (the globalization's damped step acts there too; the plain iteration stops at a detected cycle or at a solution of the law), a random start 100x the solution: the dense route's solution to 1e-8; the fixed-point baseline (-snes_ssstar_method fixedpoint, interior in equilibrium at every step) converges to the Newton solution")
+@test("hard cases on the whole body: friction phi = 5, nu = 0.49 (the globalization's damped step acts there too; the plain iteration stops at a detected cycle or at a solution of the law), a random start 100x the solution: the dense route's solution to 1e-8; the fixed-point baseline (-snes_ssstar_method fixedpoint, interior in equilibrium at every step) converges to the Newton solution", full=True)
 def wholebody_hard_cases():
     _, phi5 = same_answer("wholebody_phi5", prism_run, ["-level", "4", "-snes_ssstar_friction", "5", "-snes_ssstar_monitor_states"])
     dense, full = same_answer("wholebody_nu049", prism_run, ["-level", "4", "-nu", "0.49", "-snes_ssstar_monitor_states"], iterations=2)

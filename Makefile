@@ -121,10 +121,11 @@ bench: all
 	$(PYTHON) bench/newton.py
 	$(PYTHON) bench/schur.py
 
-# levels 8, 16, 24, 32, 40, 48 on the whole body, 1 and 2 ranks (medians of 3 up to level 24, one run from 32; level 48
-# as level 24 refined once in parallel), with the AMG yardstick of each level in the same run: about 40 minutes
+# the scale table (docs/guide/scale.md): levels 16, 24, 32, 40, 48 on the whole body on 2 ranks, medians of 3, each
+# beside the AMG yardstick of the same run, level 48 also as level 24 refined once in parallel, level 10 against GetFEM
+# (bench/output/scale.md): about an hour and a half on a quiet machine
 bench-large: all
-	$(PYTHON) bench/table2.py --large --refine-from 48
+	$(PYTHON) bench/table2.py --large
 
 # the contact search on large inputs (a ball of 59 356 triangles on a 250 000-node block; a 310 000-dof pair): its
 # share of the whole run, 2 ranks, the whole body (bench/output/search.csv)

@@ -26,6 +26,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "bench", "output")
 E, NU, PHI = 2.1e5, 0.3, 0.3
 TOP, RIGHT = (0.0, 0.0, -500.0), (-200.0, 30.0, 200.0)
+MESH = re.compile(r"^mesh: file (\S+?), \d+ nodes", re.M)
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 
 
@@ -40,15 +41,16 @@ def ssstar(level, ranks):
         sys.exit("ssstar failed:\n" + p.stdout[-2000:])
     with h5py.File(h5, "r") as f:
         force = f["contact/reaction"][:].sum(axis=0)
-    return {"whole": whole, "iters": int(m.group(8)), "states": m.group(10), "force": force}
+    return {"whole": whole, "iters": int(m.group(8)), "states": m.group(10), "force": force, "mesh": MESH.search(p.stdout).group(1)}
 
 
-def getfem(level):
-    """GetFEM's solve of the prism on the mesh of ssstar's cache: (seconds of mesh and model, of the solve), Newton
-    iterations, the total contact force and the counts separated/sliding/sticking"""
+def getfem(mesh):
+    """GetFEM's solve of the prism on the mesh of ssstar's cache (the gmsh file ssstar's run names on its mesh line;
+    its .h5 beside it): (seconds of mesh and model, of the solve), Newton iterations, the total contact force and the
+    counts separated/sliding/sticking"""
     import getfem as gf
     t0 = time.perf_counter()
-    with h5py.File(os.path.join(ROOT, "meshes", "prism_L%d.msh.h5" % level), "r") as f:
+    with h5py.File(mesh + ".h5", "r") as f:
         x, cells = f["vertices"][:], f["cells"][:]
     m = gf.Mesh("empty", 3)
     m.add_convex(gf.GeoTrans("GT_PK(3,1)"), np.ascontiguousarray(x[cells].transpose(2, 1, 0)))
@@ -95,12 +97,12 @@ def main():
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
     os.makedirs(OUT, exist_ok=True)
-    ssstar(args.level, args.ranks)  # meshes the level and writes its cache (not timed)
+    mesh = ssstar(args.level, args.ranks)["mesh"]  # meshes the level and writes its cache (not timed)
     rows = []
     print("level %d; ssstar: examples/prism on %d ranks (whole run); GetFEM 5.4: one process, MUMPS, Alart-Curnier" % (args.level, args.ranks))
     print("repeat  getfem: model   solve   whole  its  normal force  states (sep/slide/stick) | ssstar: whole  its  normal force  states | getfem/ssstar")
     for rep in range(args.repeat):
-        g = getfem(args.level)
+        g = getfem(mesh)
         s = ssstar(args.level, args.ranks)
         ratio = g["whole"] / s["whole"]
         rows.append({"level": args.level, "ranks": args.ranks, "repeat": rep, "getfem_model": g["model"], "getfem_solve": g["solve"], "getfem_whole": g["whole"],

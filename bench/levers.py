@@ -117,6 +117,19 @@ SETS["nested"] = [
     ("plain aggregation", "-pc_gamg_agg_nsmooths 0"),
     ("one multigrid", "-snes_ssstar_pc_reuse 1"),
 ]
+# the sixth round (issue 34, docs/guide/scale.md): ssstar's multigrid defaults (plain aggregation, W-cycles on the two
+# finest levels, the Galerkin products all at once) one by one against the former ones (smoothed aggregation, V-cycles,
+# PETSc's scalable P^T A P), and the inexact Newton forcing on top of them
+SETS["scale"] = [
+    ("default", ""),
+    ("former: smoothed, V, scalable PtAP", "-pc_gamg_agg_nsmooths 1 -pc_mg_cycle_type v -matptap_via scalable"),
+    ("smoothed aggregation", "-pc_gamg_agg_nsmooths 1"),
+    ("V-cycles", "-pc_mg_cycle_type v"),
+    ("scalable PtAP", "-matptap_via scalable"),
+    ("eta_max 0.3", "-snes_ssstar_ksp_rtol_max 0.3"),
+    ("eta_max 0.03", "-snes_ssstar_ksp_rtol_max 0.03"),
+    ("no nesting", "-nested_levels 0"),
+]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
 KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \(\S+ per solve\), (\d+) preconditioner set-ups")

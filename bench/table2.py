@@ -3,13 +3,10 @@
 
   bench/table2.py [--levels 4,6,8,10,12,14,16] [--ranks 1,2] [--repeat 3] [--once-from L] [--paths direct,none]
                   [--yardsticks cholesky,amg] [--cholesky-max-level 14]
-  bench/table2.py --large          # levels 8, 16, 24, 32, 40, 48 on the whole body, 1 and 2 ranks (make bench-large):
-                                   # medians of 3 runs up to level 24, one run from 32 (their time); per run also the
-                                   # solve in AMG yardsticks, the set-up's share, the Krylov iterations, the bytes per dof
-                                   # against the estimate (table2_large_targets.png); --levels and --ranks still apply
-  bench/table2.py --large --levels 16,24,32,40,48 --ranks 2 --refine-from 48
-                                   # level 48 made in parallel: level 24's gmsh mesh refined once (-dm_refine 1), for the
-                                   # run and its yardstick; no process holds level 48's mesh
+  bench/table2.py --large [--levels 16,24,32,40,48] [--ranks 2] [--repeat 3] [--refine-also 48] [--getfem-level 10]
+                                   # the scale table of docs/guide/scale.md (make bench-large; bench/scale.py): the whole
+                                   # body at levels 16-48 on 2 ranks beside the AMG yardstick of the same run, level 48
+                                   # also as level 24 refined once in parallel, level 10 against GetFEM
 
 Per level, ranks and path (direct: the dense route, P formed by MUMPS and the Newton steps by LU; none: the whole
 body, P never formed, Krylov + multigrid): the phases of the summary row (assembly = mesh to K, schur = the
@@ -19,7 +16,7 @@ Newton iterations and the linear (Krylov) iterations per Newton step, and the pe
 the whole K, and one CG + GAMG solve of K (set-up + solve, rtol 1e-8), with the ratios whole / yardstick that divide
 out the machine; the seed's published figures (MATLAB) and seed / ours; and, per ranks, the crossover: the first
 level where the whole body is faster than the dense route (what -snes_ssstar_reduction auto follows). Writes
-bench/output/table2.csv (or table2_large.csv) and table2.png (time against contact nodes)."""
+bench/output/table2.csv and table2.png (time against contact nodes)."""
 import argparse
 import csv
 import math
@@ -108,22 +105,27 @@ def yardstick(level, ranks, which, refine_from=10**6):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--levels", default=None, help="default 4,6,8,10,12,14,16 (--large: 8,16,24,32,40,48)")
+    parser.add_argument("--levels", default=None, help="default 4,6,8,10,12,14,16 (--large: 16,24,32,40,48)")
     parser.add_argument("--ranks", default=None, help="default 1,2")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--paths", default="direct,none")
     parser.add_argument("--yardsticks", default="cholesky,amg", help="the yardsticks to measure (empty: none)")
     parser.add_argument("--cholesky-max-level", type=int, default=14, help="no Cholesky yardstick above this level (its time and memory)")
     parser.add_argument("--once-from", type=int, default=10**6, help="levels from this one run once (their time)")
-    parser.add_argument("--large", action="store_true", help="levels 8-48 on the whole body, 1 and 2 ranks, one run from level 32 (make bench-large)")
+    parser.add_argument("--large", action="store_true", help="the scale table (bench/scale.py): levels 16-48 on the whole body on 2 ranks (make bench-large)")
     parser.add_argument("--refine-from", type=int, default=10**6, help="even levels from this one: level L/2's mesh refined once in parallel (-dm_refine 1)")
+    parser.add_argument("--refine-also", default="48", help="--large: these levels also as level L/2 refined once in parallel (empty: none)")
+    parser.add_argument("--getfem-level", type=int, default=10, help="--large: this level against GetFEM in the same run (0: none)")
+    parser.add_argument("--timeout", type=float, default=7200, help="--large: seconds a run may take before it is killed")
     args = parser.parse_args()
-    if args.large:
-        args.levels, args.paths, args.yardsticks, args.once_from = args.levels or "8,16,24,32,40,48", "none", "amg", 32
-    args.levels, args.ranks = args.levels or "4,6,8,10,12,14,16", args.ranks or "1,2"
-    os.makedirs(OUT, exist_ok=True)
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
         os.environ.setdefault(k, v)
+    if args.large:
+        import scale
+        scale.main(args)
+        return
+    args.levels, args.ranks = args.levels or "4,6,8,10,12,14,16", args.ranks or "1,2"
+    os.makedirs(OUT, exist_ok=True)
     paths = args.paths.split(",")
     sticks = [s for s in args.yardsticks.split(",") if s]
     rows = []
@@ -172,16 +174,12 @@ def main():
                     row["krylov_per_step"], row["peak_gb"], row["cholesky"], row["amg"], row["whole_per_cholesky"],
                     row["whole_per_amg"], row["states"], row["reason"]), flush=True)
                 rows.append(row)
-                if args.large:
-                    print("      solve %.2f s = %.2f AMG yardsticks; nested start %.2f s, set-up %.2f s (%.0f %% of the solve; %.2f yardstick set-ups of %.2f s), %d Krylov iterations; peak %.3f GB per rank = %.2f kB per dof, estimated %.3f (%+.0f %%)" % (
-                        row["solve"] + row["schur"], row["solve_per_amg"], row["nested"], row["setup"], 100 * row["setup_share"], row["setup"] / row["amg_setup"], row["amg_setup"], row["krylov"], row["peak_gb"],
-                        row["bytes_per_dof"] / 1e3, row["estimate_gb"], 100 * (row["estimate_gb"] / row["peak_gb"] - 1)), flush=True)
     if "direct" in paths and "none" in paths:
         for ranks in sorted({r["ranks"] for r in rows}):
             whole = {(r["level"], r["path"]): r["whole"] for r in rows if r["ranks"] == ranks}
             faster = [lv for lv in sorted({lv for lv, _ in whole}) if (lv, "none") in whole and (lv, "direct") in whole and whole[(lv, "none")] < whole[(lv, "direct")]]
             print("crossover, %d rank%s: the whole body is faster from level %s" % (ranks, "s" if ranks > 1 else "", faster[0] if faster else "- (not in these levels)"))
-    name = "table2_large" if args.large else "table2"
+    name = "table2"
     with open(os.path.join(OUT, name + ".csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["level", "ranks", "path", "nodes", "dofs", "contact", "assembly", "schur", "solve", "whole", "iters",
                                           "krylov_per_step", "krylov", "nested", "setup", "setup_share", "peak_gb", "bytes_per_dof", "estimate_gb",
@@ -217,36 +215,6 @@ def plot(rows, name):
     ax.legend(fontsize=7, ncol=2, loc="upper left")
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, name + ".png"), dpi=120)
-    if name == "table2_large":
-        plot_large(rows)
-
-
-def plot_large(rows):
-    """table2_large_targets.png: the solve in AMG yardsticks, the bytes per dof (measured and estimated), the Newton steps
-    and Krylov iterations, against the level, per ranks"""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
-    for ranks, style in ((1, "-o"), (2, "--s")):
-        rs = sorted((r for r in rows if r["ranks"] == ranks and r["path"] == "none"), key=lambda r: r["level"])
-        if not rs:
-            continue
-        lv = [r["level"] for r in rs]
-        axes[0].plot(lv, [r["solve_per_amg"] for r in rs], style, label="%d rank%s" % (ranks, "s" if ranks > 1 else ""))
-        axes[1].plot(lv, [r["bytes_per_dof"] / 1e3 for r in rs], style, label="peak, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
-        axes[1].plot(lv, [r["estimate_gb"] * 1e9 * ranks / r["dofs"] / 1e3 for r in rs], style, alpha=0.4, label="estimate, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
-        axes[2].plot(lv, [r["iters"] for r in rs], style, label="Newton steps, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
-        axes[2].plot(lv, [r["krylov_per_step"] for r in rs], style, alpha=0.5, label="Krylov per step, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
-    for ax, title, target in ((axes[0], "the solve / one AMG solve of K", 2.0), (axes[1], "peak memory, kB per dof (ranks together)", 2.5), (axes[2], "iterations", None)):
-        if target:
-            ax.axhline(target, color="black", lw=0.8, ls=":", label="target")
-        ax.set_xlabel("level")
-        ax.set_title(title, fontsize=9)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "table2_large_targets.png"), dpi=110)
 
 
 if __name__ == "__main__":

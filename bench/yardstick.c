@@ -4,7 +4,8 @@ algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes; rtol
   -level <6>                  mesh level of the scene (run with -options_file scenes/prism.opts)\n\
   -yardstick <cholesky,amg>   which of them\n\
 Prints: cholesky level <L> ranks <R> dofs <N> time <s> flops <MUMPS RINFOG(3)>\n\
-        amg level <L> ranks <R> dofs <N> setup <s> solve <s> its <n>\n";
+        amg level <L> ranks <R> dofs <N> setup <s> solve <s> its <n>\n\
+        peak <GB> GB per rank (the largest rank's VmHWM: mesh, K and the yardsticks)\n";
 
 #include <ssstar.h>
 #include <ssstarscene.h>
@@ -84,6 +85,7 @@ int main(int argc, char **argv)
   SSStarScene scene;
   PetscInt    level = 6, n = 2;
   char       *which[2] = {NULL, NULL};
+  PetscBool   given;
   Vec         b;
   Mat         K;
 
@@ -96,15 +98,24 @@ int main(int argc, char **argv)
   PetscCall(SSStarSceneSetUp(scene));
   PetscCall(SSStarSceneAssemble(scene, &K, &b));
   PetscCall(MatSetOption(K, MAT_SPD, PETSC_TRUE));
-  for (PetscInt k = 0; k < (which[0] ? n : 2); k++) {
-    PetscBool cholesky, amg;
+  given = (PetscBool)(which[0] != NULL); /* before the loop frees the names */
+  if (!given) n = 2;
+  for (PetscInt k = 0; k < n; k++) {
+    const char *name = given ? which[k] : (k ? "amg" : "cholesky");
+    PetscBool   cholesky, amg;
 
-    PetscCall(PetscStrcmp(which[0] ? which[k] : (k ? "amg" : "cholesky"), "cholesky", &cholesky));
-    PetscCall(PetscStrcmp(which[0] ? which[k] : (k ? "amg" : "cholesky"), "amg", &amg));
-    PetscCheck(cholesky || amg, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-yardstick %s: not cholesky or amg", which[k]);
+    PetscCall(PetscStrcmp(name, "cholesky", &cholesky));
+    PetscCall(PetscStrcmp(name, "amg", &amg));
+    PetscCheck(cholesky || amg, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-yardstick %s: not cholesky or amg", name);
     if (cholesky) PetscCall(Cholesky(K, level));
     else PetscCall(AMG(K, b, level));
     PetscCall(PetscFree(which[k]));
+  }
+  {
+    PetscLogDouble peak;
+
+    PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "peak %.3f GB per rank\n", peak / 1e9));
   }
   PetscCall(MatDestroy(&K));
   PetscCall(VecDestroy(&b));

@@ -28,6 +28,8 @@
 #define SSSTAR_GMRES_RESTART 100
 /* GAMG's smoothers unless the options name others: one sweep of SOR per level and direction (bench/levers.py) */
 #define SSSTAR_SMOOTHER_OPTIONS 4
+/* the multigrid's levels that cycle twice through the next coarser one (CycleDefaults) */
+#define SSSTAR_W_LEVELS 2
 /* floating bodies: the preconditioner's shift on the free motions' unknown contact dofs, in units of 1/gamma */
 #define SSSTAR_FREE_SHIFT (1e-2 * SSSTAR_FREE_STIFFNESS)
 
@@ -43,7 +45,8 @@ typedef struct {
   PetscBool        refinable;   /* the KSP holds the last step's solution (SSStarNewtonRefine)                   */
   PetscInt         nnodesGlobal;
   PetscBool        userKSPType, userTolerances, userRestart;
-  PetscBool        plain;       /* the multigrid aggregates plainly: the smoothed one's set-up did not fit the memory */
+  PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid choices in effect (the options did not choose) */
+  PetscBool        plainAggregation; /* the multigrid aggregates plainly: ssstar's choice or the options'         */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
   Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
@@ -162,25 +165,29 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 }
 
 /*
-   Smoothed aggregation (GAMG's default: fewer Krylov iterations) unless its set-up does not fit the memory the SNES may
-   plan for (-snes_ssstar_memory_limit, else MemAvailable) and the options do not name the smoothing steps: then plain
-   aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a sixth of the entries (measured at prism level 12 on
-   2 ranks: the set-up 0.6 kB per dof instead of 1.8, the peak 28 % lower, 58 % more Krylov iterations)
+   Smoothed aggregation (GAMG's default: fewer Krylov iterations on soft, nearly floating bodies) unless its set-up does
+   not fit the memory the SNES may plan for (-snes_ssstar_memory_limit, else MemAvailable) and the options do not name
+   the smoothing steps: then plain aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a sixth of the
+   entries, with W-cycles and the products all at once (CycleDefaults, GalerkinProductBegin): prism level 24 on 2 ranks,
+   the peak 0.890 GB per rank instead of 1.56, as many Krylov iterations (docs/guide/scale.md). Not the default where the
+   smoothed set-up fits: on the incline (a soft spring) from a nested start it took 8 Newton steps instead of 6
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
   Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
-  SNES_SSStar *ss = (SNES_SSStar *)nt->snes->data;
-  PetscBool      isgamg, set, fits;
-  PetscInt       m;
-  PetscMPIInt    size;
-  PetscLogDouble now = 0;
+  SNES_SSStar      *ss = (SNES_SSStar *)nt->snes->data;
+  PetscBool         isgamg, set, fits;
+  PetscInt          m, nsmooths = 1;
+  PetscMPIInt       size;
+  PetscLogDouble    now = 0;
 
   PetscFunctionBegin;
-  nw->plain = PETSC_FALSE;
+  nw->plain = nw->plainAggregation = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
-  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &set));
-  if (!isgamg || set) PetscFunctionReturn(0);
+  if (!isgamg) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsGetInt(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
+  nw->plainAggregation = (PetscBool)(set && nsmooths == 0);
+  if (set) PetscFunctionReturn(0);
   PetscCall(MatGetLocalSize(nt->A, &m, NULL));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
   /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
@@ -188,7 +195,58 @@ static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
   PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
   if (fits) PetscFunctionReturn(0);
   PetscCall(PCGAMGSetNSmooths(pc, 0));
-  nw->plain = PETSC_TRUE;
+  nw->plain = nw->plainAggregation = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/*
+   With plain aggregation, GAMG's Galerkin products P^T A P all at once (-matptap_via allatonce) unless the options
+   choose: PETSc's default for several ranks keeps A P, rows of A by the columns of P, through the set-up and for the
+   next one (bench/memory.py: level 16 on 2 ranks, 59 MB per rank where the all-at-once product holds 11). MatPtAP()
+   reads the option from the default database, for any product of the program: it is there only while the multigrid is
+   set up. One rank's products (SeqAIJ) hold no A P and have no such algorithm.
+*/
+static PetscErrorCode GalerkinProductBegin(PC pc, PetscBool plain, PetscBool *set)
+{
+  PetscBool   given;
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  *set = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-matptap_via", &given));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
+  if (!plain || given || size == 1) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", "allatonce"));
+  *set = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GalerkinProductEnd(PetscBool set)
+{
+  PetscFunctionBegin;
+  if (set) PetscCall(PetscOptionsClearValue(NULL, "-matptap_via"));
+  PetscFunctionReturn(0);
+}
+
+/*
+   With plain aggregation, a W-cycle on the SSSTAR_W_LEVELS finest levels of GAMG's hierarchy (each visits the next
+   coarser level twice), a V-cycle below, unless the options name the cycle (-pc_mg_cycle_type): plain aggregation's
+   piecewise rigid interpolation needs the second coarse correction (prism level 16, 2 ranks: 86 Krylov iterations on
+   the finest mesh with V-cycles, 55 with these, 57 for smoothed aggregation with V-cycles, in fewer flops than either);
+   on the coarser levels it adds messages, not iterations (59 with W-cycles on all six levels)
+*/
+static PetscErrorCode CycleDefaults(PC pc, PetscBool plain, PetscBool *wCycle)
+{
+  PetscBool set;
+  PetscInt  nlevels;
+
+  PetscFunctionBegin;
+  *wCycle = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_mg_cycle_type", &set));
+  if (!plain || set) PetscFunctionReturn(0);
+  PetscCall(PCMGGetLevels(pc, &nlevels));
+  for (PetscInt l = 1; l < nlevels; l++) PetscCall(PCMGSetCycleTypeOnLevel(pc, l, l >= nlevels - SSSTAR_W_LEVELS ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
+  *wCycle = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -396,6 +454,8 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   KSP          ksp = nt->snes->ksp;
   MatNullSpace own = NULL;
   Mat          op;
+  PC           pc;
+  PetscBool    allAtOnce;
 
   PetscFunctionBegin;
   PetscCall(KSPSetReusePreconditioner(ksp, reuse));
@@ -406,8 +466,15 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
     PetscCall(PetscObjectReference((PetscObject)own));
     PetscCall(MatSetNearNullSpace(M, nw->nearNull));
   }
+  PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  PetscCall(GalerkinProductBegin(pc, nw->plainAggregation, &allAtOnce));
   PetscCall(KSPSetUp(ksp));
+  PetscCall(GalerkinProductEnd(allAtOnce));
+  if (!reuse) { /* the levels of a new hierarchy */
+    PetscCall(CycleDefaults(pc, nw->plainAggregation, &nw->wCycle));
+    nw->allAtOnce = allAtOnce;
+  }
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
   if (nw->nearNull) {
     PetscCall(MatSetNearNullSpace(M, own));
@@ -554,7 +621,7 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
   PetscCall(SSStarWholeBodyMatrixInPlace(nw->wm, &inPlace));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nw->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
-  if (nw->plain) PetscCall(PetscViewerASCIIPrintf(viewer, "    plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable)\n"));
+  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", nw->plain ? " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);" : "", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
   if (nw->indefinite) PetscCall(PetscViewerASCIIPrintf(viewer, "    CG stopped on an indefinite multigrid (DIVERGED_INDEFINITE_PC) in %" PetscInt_FMT " step%s since the set-up: solved again by GMRES on it, which needs no definite preconditioner, and every later step by GMRES\n", nw->indefinite, nw->indefinite > 1 ? "s" : ""));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));

@@ -205,7 +205,7 @@ def belt(paths, damped):
     expect(abs(spring[-1] / 5 - 1) < 1e-3, "mass-damped: the spring force %.6f, not phi N = 5" % spring[-1])
 
 
-@test("a block on a spring dragged by a moving belt (scenes/belt.opts: the plane z = 0 at V = 0.01 along x, P = 10, phi = 0.5, k = 1000, m = 0.5): it rides the belt until the spring holds phi N = 5, then slides for good: T = phi N to 1e-4 at every step after t = 0.6, no node sticks; undamped (Rayleigh 1e-3 K against the block's own ringing) the spring force oscillates about phi N (its mean over the last second within 1 %; measured 0.08 %) with the amplitude k V / omega = 0.22 at most (measured 0.14; pure Coulomb friction, phi_s = phi_k: no stick-slip, the relative velocity only touches zero) (make test-full: with mass damping, 20 M, it settles to the steady sliding state, the spring force phi N within 1e-3); the belt's work is friction + damping + kinetic + spring energy (energy_error within 1e-5 of the work); the dense route on 1 rank and the whole body on 2 agree to 2e-6")
+@test("a block on a spring dragged by a moving belt (scenes/belt.opts: the plane z = 0 at V = 0.01 along x, P = 10, phi = 0.5, k = 1000, m = 0.5): it rides the belt until the spring holds phi N = 5, then slides for good: T = phi N to 1e-4 at every step after t = 0.6, no node sticks; undamped (Rayleigh 1e-3 K against the block's own ringing) the spring force oscillates about phi N (its mean over the last second within 1 %; measured 0.08 %) with the amplitude k V / omega = 0.22 at most (measured 0.14; pure Coulomb friction, phi_s = phi_k: no stick-slip, the relative velocity only touches zero) (make test-full: with mass damping, 20 M, it settles to the steady sliding state, the spring force phi N within 1e-3); the belt's work is friction + damping + kinetic + spring energy (energy_error within 1e-5 of the work); the dense route on 1 rank and the whole body on 2 agree to 2e-6", full=True)
 def dynamics_belt():
     belt(QUICK, False)
 
@@ -243,7 +243,7 @@ def ball(paths):
         expect(diff <= AGREE, "the paths differ by %.1e in the force" % diff)
 
 
-@test("a ball dropped on a plane (the half ball of scenes/hertz.opts, R = 10, E = 1e4, nu = 0.3, rho = 1, v0 = 0.3, frictionless, 24 steps): the contact lasts Hertz's impact time t_c = 2.87 (m^2 / (R E*^2 v0))^(1/5) = 1.18 within 10 % (measured -1.6 %), the peak force Hertz's (4/3) E* R^(1/2) delta^(3/2) within 10 % (measured +7 %: the half ball is not rigid, its cap meshed 5 elements across the contact), it rebounds at 0.95-1.0 v0 (the impulse of the plane over m v0; measured 0.992), and what it lost is the scheme's stated impact dissipation (energy_error + impact_dissipation = 0 to 1e-9, energy never gained); the dense route on 1 rank (make test-full: the whole body on 1 and 2 ranks and the dense route on 2, agreeing to 2e-6)")
+@test("a ball dropped on a plane (the half ball of scenes/hertz.opts, R = 10, E = 1e4, nu = 0.3, rho = 1, v0 = 0.3, frictionless, 24 steps): the contact lasts Hertz's impact time t_c = 2.87 (m^2 / (R E*^2 v0))^(1/5) = 1.18 within 10 % (measured -1.6 %), the peak force Hertz's (4/3) E* R^(1/2) delta^(3/2) within 10 % (measured +7 %: the half ball is not rigid, its cap meshed 5 elements across the contact), it rebounds at 0.95-1.0 v0 (the impulse of the plane over m v0; measured 0.992), and what it lost is the scheme's stated impact dissipation (energy_error + impact_dissipation = 0 to 1e-9, energy never gained); the dense route on 1 rank (make test-full: the whole body on 1 and 2 ranks and the dense route on 2, agreeing to 2e-6)", full=True)
 def dynamics_ball():
     ball([("direct", 1)])
 
@@ -253,7 +253,7 @@ def dynamics_ball_other_paths():
     ball(OTHERS + [("none", 2)])
 
 
-@test("the quasi-static limit: the block on a spring pressed (P = 10), sheared beyond phi P (Q = 7.5) and released over 3 T with -dynamics (rho = 1, damping 20 M + 1e-3 K, 300 steps) follows the load path without -dynamics to the inertia's order: the largest difference of its top's u_x is below 10 % of the path's largest u_x at T = 1 and falls with T (T = 4: by more than 2.5 times; measured 7.6 % and 2.2 %), at the end within 2 % (T = 1) and 0.1 % (T = 4) of (Q - phi P)/k")
+@test("the quasi-static limit: the block on a spring pressed (P = 10), sheared beyond phi P (Q = 7.5) and released over 3 T with -dynamics (rho = 1, damping 20 M + 1e-3 K, 300 steps) follows the load path without -dynamics to the inertia's order: the largest difference of its top's u_x is below 10 % of the path's largest u_x at T = 1 and falls with T (T = 4: by more than 2.5 times; measured 7.6 % and 2.2 %), at the end within 2 % (T = 1) and 0.1 % (T = 4) of (Q - phi P)/k", full=True)
 def dynamics_quasistatic():
     diffs = []
     for T in (1, 4):

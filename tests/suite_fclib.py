@@ -162,7 +162,7 @@ def fclib_rigid_refused():
 
 
 @test("a W whose symmetric part is not positive definite, a missing file, a file that is not HDF5, an HDF5 file that is "
-      "not an FCLib problem (a prism -o output), no file argument and -o naming the problem file are refused clearly")
+      "not an FCLib problem (a prism -o output), no file argument and -o naming the problem file are refused clearly", full=True)
 def fclib_bad_inputs():
     W = np.eye(3)
     W[1, 2], W[2, 1] = 2.0, -2.0  # nonsingular, symmetric part indefinite

@@ -85,7 +85,7 @@ def floating_slope_slides():
             expect(abs(float(n.group(5)) / expected - 1) <= 1e-3, "%s %d: unbalanced part %s, not sin(alpha - arctan phi) = %.4g" % (red, ranks, n.group(5), expected), out)
 
 
-@test("a load path that loses its equilibrium stops at that step and says so (scenes/slope.opts at level 2, phi = 0.5: pushed downhill by 0, 400, 800 Pa on its top, the friction holds up to 627 Pa): steps 1 and 2 converge, step 3 ends with 'no equilibrium' without halving, exit status 2, the file's failed_step 2 and failed_time 2; direct and none, 1 and 2 ranks")
+@test("a load path that loses its equilibrium stops at that step and says so (scenes/slope.opts at level 2, phi = 0.5: pushed downhill by 0, 400, 800 Pa on its top, the friction holds up to 627 Pa): steps 1 and 2 converge, step 3 ends with 'no equilibrium' without halving, exit status 2, the file's failed_step 2 and failed_time 2; direct and none, 1 and 2 ranks", full=True)
 def floating_path_stops():
     push = ";".join("%d:%g,0,%g" % (t, p * DOWNHILL[0], p * DOWNHILL[2]) for t, p in ((0, 0), (1, 400), (2, 800)))
     for red, ranks in PATHS:
@@ -156,7 +156,7 @@ def without_spring(name):
     return [w for line in lines if not line[0].startswith("-spring") for w in line]
 
 
-@test("orthotropic friction on a body held by contact alone (scenes/orthotropic.opts without its spring: phi_1 = 0.3 along x, phi_2 = 0.6 across, pressed by 10): the balance uses the law's elliptic cone, not a circle: pushed along x by 4 (> 3) no equilibrium, direction +x; across by 4 (< 6) it holds and converges; across by 7 (> 6) no equilibrium, direction +y; direct and none")
+@test("orthotropic friction on a body held by contact alone (scenes/orthotropic.opts without its spring: phi_1 = 0.3 along x, phi_2 = 0.6 across, pressed by 10): the balance uses the law's elliptic cone, not a circle: pushed along x by 4 (> 3) no equilibrium, direction +x; across by 4 (< 6) it holds and converges; across by 7 (> 6) no equilibrium, direction +y; direct and none", full=True)
 def floating_orthotropic():
     base = without_spring("orthotropic")
     for red in ("direct", "none"):
@@ -174,7 +174,7 @@ SLIDER = ["-geo", "meshes/slider.geo", "-level", "1", "-E", "1", "-nu", "0.3", "
           "-contact_pair_slider_bottom", "base_top", "-friction_slider_bottom", "0.5"]
 
 
-@test("a push beyond phi N on a body held by nothing else (the slider of scenes/slider.opts without its spring, on the held base: push 0.008 > 0.5 x 0.01): no equilibrium, exit status 2 before any iteration, the line naming the body \"slider\" and its direction +x (to 1e-2); direct and none, 1 and 2 ranks")
+@test("a push beyond phi N on a body held by nothing else (the slider of scenes/slider.opts without its spring, on the held base: push 0.008 > 0.5 x 0.01): no equilibrium, exit status 2 before any iteration, the line naming the body \"slider\" and its direction +x (to 1e-2); direct and none, 1 and 2 ranks", full=True)
 def floating_push():
     for red, ranks in PATHS:
         out, m, f = contact(SLIDER + ["-dirichlet", "bottom", "-snes_ssstar_reduction", red], "floating_push_%s_%d.h5" % (red, ranks), ranks, expect_rc=NOT_CONVERGED)

@@ -83,7 +83,7 @@ def superlinear_end(tag, out):
     expect("cycle detected" not in out, "%s: a cycle" % tag, out)
 
 
-@test("weak contact: nu = 0 and a load that only slides the body give the uniaxial solution u_x = -p x/E, u_y = u_z = 0 and no contact force (levels 3, 5), every node M2 (weak contact) with tau = 1e-8, no cycle, a superlinear last step")
+@test("weak contact: nu = 0 and a load that only slides the body give the uniaxial solution u_x = -p x/E, u_y = u_z = 0 and no contact force (levels 3, 5), every node M2 (weak contact) with tau = 1e-8, no cycle, a superlinear last step", full=True)
 def hard_weak_contact():
     for level in (3, 5):
         for tau in ("1e-13", "1e-8"):
@@ -213,7 +213,7 @@ def hard_remedies():
         expect(violation is not None and violation.group(1) not in ("nan", "inf", "-nan"), "%d ranks: the returned iterate is not finite" % ranks, out)
 
 
-@test("bad input is refused with an error naming it: NaN or Inf in the load, the stiffness or the initial guess (sparse and dense P, 1 and 2 ranks); -snes_rtol nan; unknown or bad values of -snes_ssstar_* options")
+@test("bad input is refused with an error naming it: NaN or Inf in the load, the stiffness or the initial guess (sparse and dense P, 1 and 2 ranks); -snes_rtol nan; unknown or bad values of -snes_ssstar_* options", full=True)
 def hard_bad_input():
     messages = {"load": "the reduced load f is NaN or Inf at contact dof 11 (node 3",
                 "stiffness": "the reduced stiffness P has NaN or Inf entries in row 11 (node 3",

@@ -133,7 +133,9 @@ def compile_synopses(synopses, name):
     for k, (function, header, signature) in enumerate(synopses):
         lines.append("%s = %s;" % (signature.replace(" %s(" % function, " (*manual_%d)(" % k, 1), function))
     open(source, "w").write("\n".join(lines) + "\n")
-    flags = shlex.split(run(["make", "-s", "print-cflags"]).strip())
+    # a make of its own: under make test the jobserver's flags in the environment would add make's own messages
+    env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL")}
+    flags = shlex.split(subprocess.run(["make", "-s", "--no-print-directory", "print-cflags"], cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True, check=True).stdout.strip())
     p = subprocess.run(flags + ["-Werror", "-c", source, "-o", os.path.join(OUT, name + ".o")], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     return p.returncode == 0, p.stdout
 

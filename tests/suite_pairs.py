@@ -121,7 +121,7 @@ REFUSED = [
 ]
 
 
-@test("bad pairs refused naming the option (groups of one body, a master that is a volume or unknown or held fixed, a slave not in -contact, no master, an obstacle too); the check that gathers over the ranks on 1 and 2 ranks (bodies nothing holds: suite_floating.py)")
+@test("bad pairs refused naming the option (groups of one body, a master that is a volume or unknown or held fixed, a slave not in -contact, no master, an obstacle too); the check that gathers over the ranks on 1 and 2 ranks (bodies nothing holds: suite_floating.py)", full=True)
 def pairs_refused():
     for what, extra, message in REFUSED:
         for ranks in ((1, 2) if what == "same body" else (1,)):

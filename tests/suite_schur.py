@@ -62,7 +62,7 @@ def schur_memory_refusal():
         expect(path != "direct" or "MUMPS analysis" in out, "direct: refused before its analysis", out)
 
 
-@test("a K with a part held nowhere (a floating lattice; a node without stiffness) is refused as singular, with the words of the singular-K message, by every path, on 1 and 2 ranks")
+@test("a K with a part held nowhere (a floating lattice; a node without stiffness) is refused as singular, with the words of the singular-K message, by every path, on 1 and 2 ranks", full=True)
 def schur_singular_k():
     for floating in ("2", "1"):
         for path in ("direct", "mumps", "explicit"):

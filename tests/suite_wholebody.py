@@ -89,7 +89,7 @@ def wholebody_newton_matrix_storage():
                 expect(d <= 1e-8, "%s, %d ranks: %s differs by %.1e relative" % (mtype, ranks, name, d))
 
 
-@test("every friction law and the scenes on the whole body: frictionless (hertz level 1), Tresca (prism level 3), Coulomb sticking and sliding on a tilted plane with gravity and a soft spring (incline), a stick-slip front (shear), 10 load steps with gaps (gap): the dense route's solution to 1e-8 with the same states")
+@test("every friction law and the scenes on the whole body: frictionless (hertz level 1), Tresca (prism level 3), Coulomb sticking and sliding on a tilted plane with gravity and a soft spring (incline), a stick-slip front (shear), 10 load steps with gaps (gap): the dense route's solution to 1e-8 with the same states", full=True)
 def wholebody_scenes_same_answer():
     # the half ball hangs on a soft spring (k = 1 against E = 2.1e5): as on the incline, the error is about 1e4 ||z|| and
     # the last linear solve decides it within the stopping rule, so both paths stop at a tighter ||z||

@@ -27,6 +27,12 @@ def closed_form(f, model, strains, what, out, tol=1e-8):
         expect(abs(top - P33) <= tol * abs(P33) and abs(normal + P33) <= tol * abs(P33), "%s, %g %%: the top's reaction %g and the contact's normal force %g, not the closed form %.10g" % (what, 100 * delta, top, normal, P33), out)
 
 
+@test("docs/derivation.md section 18a holds (tests/finite_strain_check.py, numpy): a P1 cell's tangent along an infinitesimal rotation w = Omega x of its current configuration is -f . (Omega^2 x), f its internal force (central differences, both hyperelastic models, unstressed, compressed and sheared cells), zero unstressed and negative for the rotation of a compressed cell about a transverse axis; Saint Venant-Kirchhoff's uniaxial force has its maximum at lambda_3 = 1/sqrt(3)")
+def finite_strain_derivation():
+    out = run([PYTHON, os.path.join(ROOT, "tests", "finite_strain_check.py")])
+    expect("all checks passed" in out and "FAIL" not in out, "tests/finite_strain_check.py", out)
+
+
 @test("a neo-Hookean body on 3 and 4 ranks: the unit cube on the frictionless plane compressed by 10 %, 30 %, 50 % (its top's z prescribed, the planes of symmetry held; ssstar on the whole body) gives the top's reaction and the contact's normal force of the closed form of uniaxial stress to 1e-8 at every step on 3 and 4 ranks, and check_solution.py law --steps accepts the files")
 def finite_strain_ranks():
     for ranks in (3, 4):

@@ -94,3 +94,21 @@ def finite_strain_pair():
     normal = f["contact/reaction"][:, 2].sum()
     expect(abs(abs(normal) - 0.5) <= 0.01 * 0.5, "the normal force %g is not the load 0.5 to 1 %%" % normal, out)
     law(h5)
+
+
+@test("hyperelastic bodies on 3 and 4 ranks agree with one rank: the neo-Hookean cube pressed 20 % onto the plane with phi = 0.3 and dragged sideways by 0.2 and 0.5 (the contact measured at the iterates, incremental friction) gives every step's displacement and contact of the one-rank run to 2e-6 (check_solution.py compare --steps) and the law; a rotation of 90 degrees prescribed on the top of the cube standing on the frictionless plane (Saint Venant-Kirchhoff) leaves every cell unstressed to 1e-6 E on 3 and 4 ranks", full=True)
+def finite_strain_ranks_full():
+    drag = CUBE + ["-level", "1", "-material_model", "neo_hookean", "-contact", "bottom", "-friction_bottom", "0.3", "-displacement_top", "0:0,0,0;1:0,0,-0.2;2:0.2,0,-0.2;3:0.5,0,-0.2"]
+    contact(drag, "finite_strain_drag_1.h5")
+    rotated = CUBE + ["-level", "1", "-material_model", "saint_venant_kirchhoff", "-contact", "bottom", "-friction_law_bottom", "none", "-rotation_center_top", "0.5,0.5,1",
+                      "-rotation_top", "0:0,0,0;1:0,0,30;2:0,0,60;3:0,0,90"]
+    for ranks in (3, 4):
+        h5 = "finite_strain_drag_%d.h5" % ranks
+        contact(drag, h5, ranks)
+        law(h5)
+        run(CHECK + ["compare", os.path.join(OUT, "finite_strain_drag_1.h5"), os.path.join(OUT, h5), "--steps", "--tol", str(AGREE)])
+        h5 = "finite_strain_rotated_%d.h5" % ranks
+        out, f = contact(rotated, h5, ranks)
+        stress = max(np.abs(f["steps/%s/fields/stress" % k][:]).max() for k in f["steps"] if k.isdigit())
+        expect(stress <= 1e-6 * 1000, "%d ranks: the rotated body is stressed (%g)" % (ranks, stress), out)
+        law(h5)

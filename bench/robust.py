@@ -28,13 +28,20 @@ route, -snes_ssstar_reduction direct, and the whole body, none) on 1 to 4 ranks 
           (energy_error <= 1e-9 of the energy) and its error to the exact solution is measured on the displacement
           and velocity fields and the normal force of every step, each relative to its path's largest (a reaction
           after a release is the inertial terms' round-off, not a scale of its own)
+  finite_strain: hyperelastic bodies (issue 33, docs/guide/large-deformation.md): the unit cube compressed on the
+          frictionless plane (10, 30, 50 %, both models; in one step and on a path), a block pushed into a rigid ball (the
+          first step deep, and on a path with phi = 0.3), a cube pressed and dragged with phi = 0.3 by three times its
+          width, a pair under a dead pressure of 0.5 E, rotations of 90 degrees (free, and standing on the plane). Their
+          residual is nonlinear: the dense route must be refused by name; the whole body is checked against its own run
+          on one rank at -snes_rtol 1e-13 and, where there is one, the closed form (the top's reaction of uniaxial stress,
+          docs/derivation.md (18.6), or no stress after a rotation) to 1e-6
 
 Prints a markdown table (and bench/output/robust.csv): per member and ranks, each path's iterations (Krylov iterations
 of the whole body), reason, law (check_solution's largest distance to the law over the steps) and error (to the exact
 solution), then "N members x ranks: converged C of R runs, the law holds in L, within 1e-6 of the exact solution E";
 the exit status is 0 when every run passes.
 
-  bench/robust.py [--family static|paths|sliding|floating|degenerate|dynamics|all] [--ranks 1,2,3,4] [--only SUBSTRING]
+  bench/robust.py [--family static|paths|sliding|floating|degenerate|dynamics|finite_strain|all] [--ranks 1,2,3,4] [--only SUBSTRING]
 
 tests/suite_robust.py runs members of the first two families (FAMILY, PATHS below) as tests, tests/suite_sliding.py
 the known answers of the third, tests/suite_floating.py the floating family's cases (FLOATING).

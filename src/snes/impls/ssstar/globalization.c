@@ -198,7 +198,8 @@ static PetscErrorCode TryFullStep(SNES snes, PetscReal *mfull)
 /*
    The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization,
    or whole (a polishing step: ||z|| is at its threshold, where its decrease says nothing),
-   the full step, unless ||z|| is NaN or Inf there (then reason NAN and u stays the last finite iterate). With it:
+   the full step, unless ||z|| is NaN or Inf there (F not defined: then halved until it is, else reason NAN and u stays
+   the last finite iterate). With it:
    the full step if it decreases ||z|| enough, else the first damped one that does, else a remedy: the full step
    anyway (odd failures) or a doubled gamma without a step (even failures). reason is set when nothing can be done.
 */
@@ -224,21 +225,21 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     if (refined) PetscCall(TryFullStep(snes, &mfull));
   }
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
-  if (!glob->on || whole || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm) {
-    if (finite) {
-      PetscCall(Accept(ss, ss->ut, ss->ct));
-      glob->alpha = 1;
-    } else *reason = SSSTAR_REASON_NAN;
+  if (finite && (!glob->on || whole || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm)) {
+    PetscCall(Accept(ss, ss->ut, ss->ct));
+    glob->alpha = 1;
     PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c); a nonlinear c evaluated there */
+  /* damped: u + alpha dv, and P (u + alpha dv) - f = c + alpha (ct - c); a nonlinear c evaluated there. A full step
+     where ||z|| is not finite (F not defined there: SNESSetFunctionDomainError(), an inverted cell of a hyperelastic
+     body) is halved until it is, as PETSc's line searches do, also without globalization or when polishing */
   for (alpha = 0.5; alpha >= glob->dampingMin; alpha /= 2) {
     PetscCall(VecWAXPY(ss->ua, alpha, ss->dv, ss->u));
     if (ss->problem.nonlinear) PetscCall(SNESSSStarResidual(snes, ss->ua, ss->ca));
     else PetscCall(VecAXPBYPCZ(ss->ca, 1 - alpha, alpha, 0.0, ss->c, ss->ct));
     PetscCall(SNESSSStarApproximationStep(snes, ss->ua, ss->ca, &m));
-    if (m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm) {
+    if (!PetscIsInfOrNanReal(m) && (!glob->on || whole || m <= (1 - SSSTAR_SIGMA * alpha + eta) * znorm)) {
       PetscCall(Accept(ss, ss->ua, ss->ca));
       glob->alpha = alpha;
       PetscCall(SSStarGlobalizationRecord(glob, SSSTAR_REMEDY_DAMPED));
@@ -247,6 +248,10 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     }
   }
   PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));
+  if (!glob->on || whole) { /* no damped step where ||z|| is finite */
+    *reason = SSSTAR_REASON_NAN;
+    PetscFunctionReturn(0);
+  }
   /* no damping decreases ||z||: u is near a local minimum (or a kink) of ||z|| that is not a solution */
   glob->lsFailures++;
   full = (PetscBool)(finite && (glob->lsFailures % 2 == 1 || !CanRescale(ss)));

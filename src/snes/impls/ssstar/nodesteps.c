@@ -297,7 +297,8 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
   if (!solved) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(ss->ut, 1.0, ss->dv, ss->u));
   PetscCall(SNESSSStarResidual(snes, ss->ut, ss->ct));
-  PetscCall(LawResidual(snes, ss->ut, ss->ct, PETSC_FALSE, &after, &U, &F));
+  PetscCall(VecNorm(ss->ct, NORM_INFINITY, &after)); /* a trial where F is not defined (c = Inf: an inverted cell) is not taken */
+  if (!PetscIsInfOrNanReal(after)) PetscCall(LawResidual(snes, ss->ut, ss->ct, PETSC_FALSE, &after, &U, &F));
   *taken = (PetscBool)(after < before);
   if (*taken) {
     PetscCall(VecCopy(ss->ut, ss->u));

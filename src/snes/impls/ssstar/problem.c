@@ -416,7 +416,8 @@ static PetscErrorCode ContactResidual(SSStarContact *ct, SSStarProblem *pb, Vec 
 
 /*
    c = c(u) from F itself. A point where the program's F is not defined (SNESSetFunctionDomainError(): an inverted
-   element of a hyperelastic body) has c = Inf: the line search damps a step that leads there, as a NaN.
+   element of a hyperelastic body) has c = Inf: the line search halves a step that leads there until F is defined,
+   as PETSc's line searches do with a domain error.
 */
 PetscErrorCode SSStarProblemFunctionResidual(SNES snes, Vec u, Vec c)
 {
@@ -429,7 +430,7 @@ PetscErrorCode SSStarProblemFunctionResidual(SNES snes, Vec u, Vec c)
   PetscCall(SNESComputeFunction(snes, pb->x, pb->Fx));
   PetscCall(MPIU_Allreduce(&snes->domainerror, &outside, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)snes)));
   snes->domainerror = PETSC_FALSE;
-  if (outside) PetscCall(VecSet(c, PETSC_INFINITY));
+  if (outside) PetscCall(VecSet(c, (PetscReal)INFINITY)); /* not PETSC_INFINITY: PETSC_MAX_REAL/4 is a finite number */
   else PetscCall(ContactResidual(&ss->contact, pb, pb->Fx, c));
   PetscFunctionReturn(0);
 }

@@ -517,13 +517,16 @@ static PetscErrorCode KrylovSolve(SSStarNewton nt, PetscBool nonzero, Vec du, KS
    CG stopped with DIVERGED_INDEFINITE_PC: the multigrid of a Newton matrix that is positive definite is not always so
    (GAMG's smoothers on the frictionless stack of floating bodies on 4 ranks: the residual grew after 8 iterations). CG
    needs a definite preconditioner, GMRES does not: the step is solved again by GMRES (right preconditioned, the
-   residual unpreconditioned as before) on the same multigrid, and every later step with this stiffness too
+   residual unpreconditioned as before) on the same multigrid, and every later step with this stiffness too. The same
+   for DIVERGED_INDEFINITE_MAT: the Newton matrix itself is indefinite (the tangent of a Saint Venant-Kirchhoff body
+   compressed past its limit point, docs/derivation.md section 18), which CG cannot solve and GMRES can
 */
 static PetscErrorCode IndefiniteFallback(SSStarNewton nt, Vec du, KSPConvergedReason *reason, PetscInt *its)
 {
   Newton_WholeBody *nw  = (Newton_WholeBody *)nt->data;
   KSP               ksp = nt->snes->ksp;
   PetscInt          cgIts = *its;
+  KSPConvergedReason cgReason = *reason;
 
   PetscFunctionBegin;
   nw->indefinite++;
@@ -534,7 +537,7 @@ static PetscErrorCode IndefiniteFallback(SSStarNewton nt, Vec du, KSPConvergedRe
   PetscCall(KSPSetReusePreconditioner(ksp, PETSC_TRUE)); /* the multigrid CG was given, for the matrix formed again */
   PetscCall(SSStarWholeBodyMatrixForm(nw->wm, nw->S, nw->T, 1 / nt->gamma, nw->nknown, nw->known, NULL, NULL, &nw->M));
   PetscCall(KrylovSolve(nt, PETSC_FALSE, du, reason, its));
-  PetscCall(PetscInfo(nt->snes, "CG stopped with DIVERGED_INDEFINITE_PC after %" PetscInt_FMT " iterations: the multigrid is indefinite; the step solved again by GMRES on it: %s after %" PetscInt_FMT " iterations (GMRES from now on)\n", cgIts, KSPConvergedReasons[*reason], *its));
+  PetscCall(PetscInfo(nt->snes, "CG stopped with %s after %" PetscInt_FMT " iterations: the multigrid or the matrix is indefinite; the step solved again by GMRES on it: %s after %" PetscInt_FMT " iterations (GMRES from now on)\n", KSPConvergedReasons[cgReason], cgIts, KSPConvergedReasons[*reason], *its));
   PetscFunctionReturn(0);
 }
 
@@ -563,7 +566,7 @@ static PetscErrorCode SSStarNewtonSolve_WholeBody(SSStarNewton nt, const PetscRe
   PetscCall(ChoosePreconditioner(nt, &reuse));
   PetscCall(SetUpPreconditioner(nt, M, reuse));
   PetscCall(KrylovSolve(nt, PETSC_FALSE, du, &reason, &its));
-  if (reason == KSP_DIVERGED_INDEFINITE_PC && !nw->userKSPType) PetscCall(IndefiniteFallback(nt, du, &reason, &its));
+  if ((reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT) && !nw->userKSPType) PetscCall(IndefiniteFallback(nt, du, &reason, &its));
   /* an iteration limit that still reduced the residual tenfold is an inexact step; a breakdown is a failure */
   PetscCall(KSPGetResidualNorm(ksp, &rnorm));
   PetscCall(VecNorm(nw->rhs, NORM_2, &bnorm));

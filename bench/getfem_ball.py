@@ -17,7 +17,8 @@ Prints per step and code the normal force (the sum of the contact forces), the c
 from the axis, in the current configuration, of a contact node carrying a normal force above 1e-6 of the largest
 node's), the Newton iterations, and per repeat the whole runs' times (ssstar: the process, mesh cache to the file
 written; GetFEM: the mesh read from ssstar's cache, the model built, every step solved) and their ratio; medians over
-the repeats. Writes bench/output/getfem_ball.csv (per phi and step), bench/output/getfem_ball_times.csv (per repeat)
+the repeats, beside the AMG yardstick of the same repeat (bench/yardstick -yardstick amg: one AMG solve of the linear
+K on the mesh). Writes bench/output/getfem_ball.csv (per phi and step), bench/output/getfem_ball_times.csv (per repeat)
 and bench/output/getfem_ball.png (both codes' curves, both phi, and Hertz's small-indentation curve
 F = 4/3 E/(1 - nu^2) R^(1/2) delta^(3/2)). --reference FILE writes GetFEM's curves alone into FILE (the known answer
 tests/suite_hyperelastic.py holds ssstar to), the command in its first line."""
@@ -70,6 +71,13 @@ def ssstar(level, steps, phi):
             rows.append((float(force.sum()), radius(position, force), iterations[k]))
     deltas = [0.3 * R * k / steps for k in range(1, steps + 1)]
     return [(d,) + r for d, r in zip(deltas, rows)], whole, mesh_file(output)
+
+
+def yardstick(level):
+    """the AMG yardstick of the same run: seconds of one AMG solve (set-up and solve) of the linear K on the scene's mesh"""
+    output, _ = timed([os.path.join(ROOT, "bench", "yardstick"), "-options_file", SCENE, "-level", str(level), "-yardstick", "amg"])
+    m = re.search(r"^amg .* setup (\S+) solve (\S+) its", output, re.M)
+    return float(m.group(1)) + float(m.group(2))
 
 
 def getfem(mesh, steps, phi):
@@ -169,19 +177,20 @@ def main():
             w.writerow(["phi", "delta", "force", "radius", "iterations"])
             for phi in phis:
                 for d, force, rad, its in getfem(mesh, args.steps, phi)[0]:
-                    w.writerow([phi, "%.6g" % d, "%.10g" % force, "%.6g" % rad, its])
+                    w.writerow([phi, "%.6g" % d, "%.10g" % force, "%.10g" % rad, its])
         return
     rows, times = [], []
     print("level %d, %d steps to delta = 0.3 R; ssstar: examples/contact, one rank, the whole run; GetFEM 5.4: one process, MUMPS, Alart-Curnier" % (args.level, args.steps))
     for phi in phis:
         first, _, mesh = ssstar(args.level, args.steps, phi)  # meshes the level and writes its cache (not timed)
         for rep in range(args.repeat):
+            y = yardstick(args.level)
             g, tg = getfem(mesh, args.steps, phi)
             s, ts = ssstar(args.level, args.steps, phi)
-            times.append({"phi": phi, "repeat": rep, "getfem_whole": tg, "ssstar_whole": ts, "ratio": tg / ts, "getfem_iterations": sum(r[3] for r in g),
+            times.append({"phi": phi, "repeat": rep, "yardstick_amg": y, "getfem_whole": tg, "ssstar_whole": ts, "ratio": tg / ts, "getfem_iterations": sum(r[3] for r in g),
                           "ssstar_iterations": sum(r[3] for r in s)})
-            print("phi %g repeat %d: GetFEM %.2f s (%d Newton iterations), ssstar %.2f s (%d iterations), GetFEM / ssstar %.2f" % (
-                phi, rep, tg, times[-1]["getfem_iterations"], ts, times[-1]["ssstar_iterations"], tg / ts), flush=True)
+            print("phi %g repeat %d: yardstick (AMG) %.3f s; GetFEM %.2f s (%d Newton iterations), ssstar %.2f s (%d iterations), GetFEM / ssstar %.2f" % (
+                phi, rep, y, tg, times[-1]["getfem_iterations"], ts, times[-1]["ssstar_iterations"], tg / ts), flush=True)
         print("  delta/R   ssstar force   GetFEM force  rel. diff   Hertz force  radius ssstar  GetFEM  its ssstar GetFEM")
         for a, b in zip(s, g):
             rows.append({"phi": phi, "delta": a[0], "ssstar_force": a[1], "getfem_force": b[1], "rel_diff": (a[1] - b[1]) / b[1], "hertz_force": float(hertz(a[0])),
@@ -190,8 +199,8 @@ def main():
             print("  %7.3f %14.6g %14.6g %10.2e %13.6g %14.4f %7.4f %7d %6d" % (a[0] / R, r["ssstar_force"], r["getfem_force"], r["rel_diff"], r["hertz_force"], r["ssstar_radius"],
                                                                                r["getfem_radius"], a[3], b[3]))
         sel = [t for t in times if t["phi"] == phi]
-        print("  medians of %d: GetFEM %.2f s, ssstar %.2f s, GetFEM / ssstar %.2f (the ratio of the same repeats)" % (
-            len(sel), statistics.median(t["getfem_whole"] for t in sel), statistics.median(t["ssstar_whole"] for t in sel), statistics.median(t["ratio"] for t in sel)))
+        print("  medians of %d: yardstick %.3f s, GetFEM %.2f s, ssstar %.2f s, GetFEM / ssstar %.2f (the ratio of the same repeats)" % (
+            len(sel), statistics.median(t["yardstick_amg"] for t in sel), statistics.median(t["getfem_whole"] for t in sel), statistics.median(t["ssstar_whole"] for t in sel), statistics.median(t["ratio"] for t in sel)))
     for name, table in (("getfem_ball.csv", rows), ("getfem_ball_times.csv", times)):
         with open(os.path.join(OUT, name), "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(table[0]))

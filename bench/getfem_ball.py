@@ -144,26 +144,32 @@ def getfem(mesh, steps, phi):
 
 
 def plot(rows, path):
+    """the force and the contact radius against the indentation: both codes, both phi, Hertz's small-indentation curves
+    (F above, a = sqrt(R delta))"""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.4))
     d = np.linspace(0, 0.3 * R, 100)
-    ax.plot(d / R, hertz(d) / (E * R * R), "k:", label="Hertz (small strain)")
+    ax.plot(d / R, hertz(d) / (E * R * R), "k:", label="Hertz (small strain, half space)")
+    bx.plot(d / R, np.sqrt(R * d) / R, "k:", label="Hertz: a = sqrt(R delta)")
     for phi, color in ((0.0, "C0"), (0.3, "C3")):
-        sel = [r for r in rows if r["phi"] == phi]
+        sel = [r for r in rows if float(r["phi"]) == phi]
         if not sel:
             continue
-        dd = np.array([0] + [r["delta"] for r in sel]) / R
-        ax.plot(dd, np.array([0] + [r["getfem_force"] for r in sel]) / (E * R * R), "-", color=color, lw=3, alpha=0.4, label="GetFEM 5.4, phi = %g" % phi)
-        ax.plot(dd, np.array([0] + [r["ssstar_force"] for r in sel]) / (E * R * R), "o", color=color, ms=4, label="ssstar, phi = %g" % phi)
-    ax.set_xlabel("indentation delta / R")
+        dd = np.array([0] + [float(r["delta"]) for r in sel]) / R
+        for axis, key, scale in ((ax, "force", E * R * R), (bx, "radius", R)):
+            axis.plot(dd, np.array([0] + [float(r["getfem_" + key]) for r in sel]) / scale, "-", color=color, lw=3, alpha=0.4, label="GetFEM 5.4, phi = %g" % phi)
+            axis.plot(dd, np.array([0] + [float(r["ssstar_" + key]) for r in sel]) / scale, "o", color=color, ms=4, label="ssstar, phi = %g" % phi)
     ax.set_ylabel("normal force / (E R^2)")
-    ax.set_title("neo-Hookean half ball on a rigid plane (meshes/hemisphere.geo)")
-    ax.legend()
-    ax.grid(alpha=0.3)
+    bx.set_ylabel("contact radius / R (outermost loaded node, current)")
+    for axis in (ax, bx):
+        axis.set_xlabel("indentation delta / R")
+        axis.legend(fontsize=8)
+        axis.grid(alpha=0.3)
+    fig.suptitle("neo-Hookean half ball pressed on a rigid plane (scenes/hemisphere.opts)")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
 
 
 def main():

@@ -45,7 +45,7 @@ else
   SAY = @echo
 endif
 
-.PHONY: all run test test-full docs bench bench-large bench-loadpath bench-robust bench-search bench-scenes scenes accuracy accuracy-quick install print-cflags clean distclean
+.PHONY: all run test test-full docs bench bench-large bench-getfem-ball bench-loadpath bench-robust bench-search bench-scenes scenes accuracy accuracy-quick install print-cflags clean distclean
 all: $(LIB) $(EXAMPLES) $(TESTS) $(BENCHES)
 
 config/ssstar.mk: configure.py
@@ -126,6 +126,12 @@ bench: all
 # (bench/output/scale.md): about an hour and a half on a quiet machine
 bench-large: all
 	$(PYTHON) bench/table2.py --large
+
+# the neo-Hookean half ball pressed to 0.3 R against GetFEM 5.4 on the same mesh, frictionless and phi = 0.3, medians of
+# 3 beside the AMG yardstick (bench/output/getfem_ball.csv, _times.csv, .png; docs/guide/large-deformation.md): about
+# 10 minutes on a loaded 2-core machine; Debian's python3-getfem
+bench-getfem-ball: all
+	/usr/bin/python3 bench/getfem_ball.py --level 1 --repeat 3
 
 # the contact search on large inputs (a ball of 59 356 triangles on a 250 000-node block; a 310 000-dof pair): its
 # share of the whole run, 2 ranks, the whole body (bench/output/search.csv)

@@ -15,33 +15,29 @@ import csv
 import os
 import re
 import statistics
-import subprocess
-import sys
 import time
 
 import h5py
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-OUT = os.path.join(ROOT, "bench", "output")
+from getfem_common import OUT, ROOT, environment, mesh_file, timed
+from getfem_common import mesh as cached_mesh
+
 E, NU, PHI = 2.1e5, 0.3, 0.3
 TOP, RIGHT = (0.0, 0.0, -500.0), (-200.0, 30.0, 200.0)
-MESH = re.compile(r"^mesh: file (\S+?), \d+ nodes", re.M)
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 
 
 def ssstar(level, ranks):
     h5 = os.path.join(OUT, "getfem_ssstar_L%d.h5" % level)
     cmd = ["mpiexec", "--oversubscribe", "-n", str(ranks), os.path.join(ROOT, "examples", "prism"), "-level", str(level), "-summary_header", "0", "-o", h5]
-    t0 = time.perf_counter()
-    p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    whole = time.perf_counter() - t0
-    m = ROW.search(p.stdout)
-    if p.returncode or not m:
-        sys.exit("ssstar failed:\n" + p.stdout[-2000:])
+    output, whole = timed(cmd)
+    m = ROW.search(output)
+    if not m:
+        raise SystemExit("ssstar printed no summary row:\n" + output[-2000:])
     with h5py.File(h5, "r") as f:
         force = f["contact/reaction"][:].sum(axis=0)
-    return {"whole": whole, "iters": int(m.group(8)), "states": m.group(10), "force": force, "mesh": MESH.search(p.stdout).group(1)}
+    return {"whole": whole, "iters": int(m.group(8)), "states": m.group(10), "force": force, "mesh": mesh_file(output)}
 
 
 def getfem(mesh):
@@ -50,10 +46,7 @@ def getfem(mesh):
     counts separated/sliding/sticking"""
     import getfem as gf
     t0 = time.perf_counter()
-    with h5py.File(mesh + ".h5", "r") as f:
-        x, cells = f["vertices"][:], f["cells"][:]
-    m = gf.Mesh("empty", 3)
-    m.add_convex(gf.GeoTrans("GT_PK(3,1)"), np.ascontiguousarray(x[cells].transpose(2, 1, 0)))
+    m, _ = cached_mesh(mesh)
     regions = {"contact": 1, "top": 2, "dirichlet": 3, "right": 4}
     for name, direction in (("contact", [0, 0, -1]), ("top", [0, 0, 1]), ("dirichlet", [-1, 0, 0]), ("right", [1, 0, 0])):
         m.set_region(regions[name], m.outer_faces_with_direction(direction, 0.01))
@@ -94,9 +87,7 @@ def main():
     parser.add_argument("--ranks", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
-    for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
-        os.environ.setdefault(k, v)
-    os.makedirs(OUT, exist_ok=True)
+    environment()
     mesh = ssstar(args.level, args.ranks)["mesh"]  # meshes the level and writes its cache (not timed)
     rows = []
     print("level %d; ssstar: examples/prism on %d ranks (whole run); GetFEM 5.4: one process, MUMPS, Alart-Curnier" % (args.level, args.ranks))

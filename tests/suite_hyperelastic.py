@@ -271,3 +271,46 @@ def hyperelastic_python():
             expect(np.abs(a - b).max() <= AGREE * max(np.abs(a).max(), 1e-300), "%s, step %s: the Python scene's displacement is not examples/contact's" % (name, k))
         if "contact" in g:
             run(CHECK + ["compare", os.path.join(OUT, c), h5, "--steps", "--tol", str(AGREE)])
+
+
+GETFEM_BALL = os.path.join(ROOT, "tests", "data", "getfem_ball_L1.csv")
+
+
+def getfem_ball(phi, ranks):
+    """scenes/hemisphere.opts at level 1 (the neo-Hookean half ball, its top moved down to 0.3 R in 6 steps) with the
+    friction phi, against GetFEM 5.4's curve of the same scene on the same mesh (tests/data/getfem_ball_L1.csv, written by
+    bench/getfem_ball.py --reference: its command in the file's first line)"""
+    rows = [line.split(",") for line in open(GETFEM_BALL) if not line.startswith(("#", "phi"))]
+    known = {round(float(r[1]), 9): (float(r[2]), float(r[3])) for r in rows if float(r[0]) == phi}
+    expect(len(known) == 6, "%s: no GetFEM curve of phi = %g" % (GETFEM_BALL, phi))
+    h5 = "hyperelastic_getfem_ball_%g_%d.h5" % (phi, ranks)
+    out, f = contact(["-options_file", os.path.join(ROOT, "scenes", "hemisphere.opts"), "-level", "1", "-friction_sphere", "%g" % phi], h5, ranks)
+    what = "phi %g, %d ranks" % (phi, ranks)
+    x, c = f["geometry/vertices"][:], f["contact/coordinates"][:]
+    nodes = np.argmin(((c[:, None, :] - x[None, :, :]) ** 2).sum(axis=-1), axis=1)
+    for k in range(1, 7):
+        delta = round(0.5 * k, 9)
+        force = f["steps/%d/contact/reaction" % k][:]
+        normal = force[:, 2].sum()
+        getfem_force, getfem_radius = known[delta]
+        expect(abs(normal - getfem_force) <= AGREE * getfem_force, "%s, delta %g: the normal force %.10g, GetFEM's %.10g (%.1e apart)" % (what, delta, normal, getfem_force, abs(normal / getfem_force - 1)), out)
+        carrying = force[:, 2] > 1e-6 * force[:, 2].max()
+        position = f["steps/%d/fields/position" % k][:][nodes]
+        radius = np.hypot(position[carrying, 0], position[carrying, 1]).max()
+        expect(abs(radius - getfem_radius) <= 1e-5 * getfem_radius, "%s, delta %g: the contact radius %.6g, GetFEM's %.6g" % (what, delta, radius, getfem_radius), out)
+        expect(np.abs(f["steps/groups/top/reaction"][k] + force.sum(axis=0)).max() <= 1e-8 * normal, "%s, delta %g: the top's reaction does not balance the contact forces" % (what, delta), out)
+    law(h5)
+
+
+BALL_GETFEM = "the neo-Hookean half ball of scenes/hemisphere.opts (meshes/hemisphere.geo level 1, R = 10, E = 1000, nu = 0.3, the whole sphere in contact with the rigid plane) pressed by its top to delta = 0.3 R in 6 steps gives at every step the normal force of GetFEM 5.4 on the same mesh (its finite-strain brick with the same W, its nodal contact brick with the plane: the same discrete problem; tests/data/getfem_ball_L1.csv, measured at most 7e-10 apart) to 2e-6 relative, the same contact radius (the outermost node carrying a normal force, current configuration) to 1e-5, the top's reaction balancing the contact forces; check_solution.py law --steps accepts the file"
+
+
+@test(BALL_GETFEM + "; Coulomb friction phi = 0.3 on the path (incremental), 1 rank")
+def hyperelastic_getfem_ball():
+    getfem_ball(0.3, 1)
+
+
+@test(BALL_GETFEM + "; frictionless on 1 rank and phi = 0.3 on 2 ranks", full=True)
+def hyperelastic_getfem_ball_full():
+    getfem_ball(0.0, 1)
+    getfem_ball(0.3, 2)

@@ -300,6 +300,38 @@ def hyperelastic_floating_small_strain():
         law(h5)
 
 
+def squeezed_ball(ranks, motion, model, h5):
+    """scenes/squeeze.opts (the ball held by the two plates alone) with Coulomb phi = 0.3 on both caps, the top plate
+    moved down by motion: the two plates' contact forces (they are the only loads: their sum vanishes)"""
+    args = ["-options_file", os.path.join(ROOT, "scenes", "squeeze.opts"), "-material_model", model, "-friction_law_bottom_cap", "coulomb", "-friction_law_top_cap", "coulomb",
+            "-snes_ssstar_friction", "0.3", "-obstacle_top_cap_motion", "0:0,0,0;1:0,0,%.17g" % -motion]
+    out, f = contact(args, h5, ranks)
+    names = f["contact/group"].attrs["names"]
+    names = [n.split("->")[0] for n in (names.decode() if isinstance(names, bytes) else str(names)).split(",")]
+    r, g = f["contact/reaction"][:], f["contact/group"][:]
+    bottom, top = r[g == names.index("bottom_cap")].sum(0), r[g == names.index("top_cap")].sum(0)
+    expect(bottom[2] > 0 and np.abs(bottom + top).max() <= 1e-8 * bottom[2], "%s %g on %d ranks: the plates' forces %s and %s do not balance" % (model, motion, ranks, bottom, top), out)
+    expect("CONVERGED" in out, "%s %g on %d ranks: not converged" % (model, motion, ranks), out)
+    law(h5)
+    return bottom[2]
+
+
+SQUEEZE = "the neo-Hookean ball of scenes/squeeze.opts held by the two plates alone (a floating body, docs/derivation.md 18b), with Coulomb phi = 0.3 on both caps, the top plate moved down by 0.2: converges, the plates' contact forces balance (their sum 0 to 1e-8 of the normal force), check_solution.py law --steps accepts the file"
+
+
+@test(SQUEEZE + "; 1 rank")
+def hyperelastic_floating_squeeze():
+    squeezed_ball(1, 0.2, "neo_hookean", "hyperelastic_squeeze_1.h5")
+
+
+@test(SQUEEZE + "; 2 ranks; and at loads x 1e-3 (the plate moved by 2e-4) the normal force equals the linear model's to 1e-2 relative (the strain's order, about 1e-3 at the contact) (slow)", full=True)
+def hyperelastic_floating_squeeze_parallel():
+    squeezed_ball(2, 0.2, "neo_hookean", "hyperelastic_squeeze_2.h5")
+    small = squeezed_ball(1, 2e-4, "neo_hookean", "hyperelastic_squeeze_small.h5")
+    linear = squeezed_ball(1, 2e-4, "linear", "hyperelastic_squeeze_linear.h5")
+    expect(abs(small - linear) <= 1e-2 * linear, "the normal force at 2e-4: neo_hookean %.6g, linear %.6g" % (small, linear))
+
+
 @test("the Python module solves a hyperelastic scene as examples/contact does: ssstar.Scene(material_model=\"neo_hookean\") of the cube compressed on the frictionless plane by 10 % and 30 % (ssstar, nonlinear residual) and of the cube held on its planes of symmetry (Newton's method, no contact): the top's reactions are the closed form P_33 A to 1e-8, the displacements of every step agree with examples/contact's to 2e-6 (and the contact's: check_solution.py compare) and pass check_solution.py law --steps")
 def hyperelastic_python():
     history = "0:free,free,0;1:free,free,-0.1;2:free,free,-0.3"

@@ -70,6 +70,47 @@ def hertz(name, E=2.1e5, nu=0.3, R=10.0, group=None):
             "nodes_in_contact": int(t.sum())}
 
 
+def hertz_on_axis(z, nu):
+    """Hertz's stresses on the axis under a sphere, in p0 (Johnson, Contact Mechanics, (3.45)): the von Mises stress
+    |sigma_r - sigma_z| at the depth z in a"""
+    sz = -1 / (1 + z ** 2)
+    sr = -(1 + nu) * (1 - z * np.arctan(1 / z)) + 0.5 / (1 + z ** 2)
+    return np.abs(sr - sz)
+
+
+def von_mises(name, E=2.1e5, nu=0.3, R=10.0):
+    """Hertz's subsurface maximum: the largest von Mises stress of the cells under the contact (centroid within a of
+    the axis, depth below 2 a) in p0 and its depth in a, against Hertz's on-axis maximum (0.620 p0 at 0.481 a for
+    nu = 0.3), a and p0 Hertz's for the measured normal force"""
+    f = h5py.File(name, "r")
+    F = f["contact/reaction"][:, 2].sum()
+    a = (3 * F * R / (4 * E / (1 - nu ** 2))) ** (1 / 3)
+    p0 = 3 * F / (2 * np.pi * a ** 2)
+    x, cells, vm = f["geometry/vertices"][:], f["viz/topology/cells"][:], f["fields/von_mises"][:]
+    centre = x[cells].mean(axis=1)
+    under = (np.hypot(centre[:, 0], centre[:, 1]) < a) & (centre[:, 2] < 2 * a)
+    j = np.argmax(vm[under])
+    z = np.linspace(0.01, 3, 30000)
+    theory = hertz_on_axis(z, nu)
+    value, depth = vm[under][j] / p0, centre[under][j, 2] / a
+    return {"vm_max": value, "vm_depth": depth, "vm_hertz": theory.max(), "depth_hertz": z[theory.argmax()],
+            "vm_error": value / theory.max() - 1, "vm_depth_error": depth / z[theory.argmax()] - 1}
+
+
+def stick_radius(name, phi, E, nu=0.3, R=10.0):
+    """Cattaneo-Mindlin (two bodies of one material, P then Q < phi P): Q/(phi P), Hertz's a, the stick radius
+    c = a (1 - Q/(phi P))^(1/3), the outermost sticking node's radius and the innermost sliding node's (in contact)"""
+    d = contact(name)
+    force = d["reaction"].sum(axis=0)
+    P, Q = force[2], np.hypot(force[0], force[1])
+    a = (3 * P * R / (4 * E / (2 * (1 - nu ** 2)))) ** (1 / 3)
+    r = np.hypot(d["coordinates"][:, 0], d["coordinates"][:, 1])
+    stick, slide = r[np.isin(d["state"], (3, 4))], r[np.isin(d["state"], (1, 2))]
+    outer = stick.max() if len(stick) else 0.0
+    inner = slide[slide > outer].min() if (slide > outer).any() else a
+    return {"ratio": Q / (phi * P), "a": a, "c": a * (1 - Q / (phi * P)) ** (1 / 3), "stick_outer": outer, "slide_inner": inner}
+
+
 def line(name, E=2.1e5, nu=0.3, R=10.0):
     d = contact(name)
     x, y = d["coordinates"][:, 0], d["coordinates"][:, 1]

@@ -371,6 +371,10 @@ def main():
         levels = sorted(res["level_data"])
         if args.extend:  # parts added to the study after the run: measured now, dated apart
             now = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+            journal = accuracy_mesh.JOURNAL["file"] = os.path.join(work, "extend_runs.json")
+            if os.path.exists(journal):  # an --extend that failed: its finished runs are kept
+                with open(journal) as f:
+                    accuracy_mesh.JOURNAL["runs"] = json.load(f)
             if "big_sticks" not in res:
                 measure_big(args, work, res)
                 res["big_date"], res["big_command"] = now, args.command
@@ -699,7 +703,7 @@ start `auto`'s):
 **Hertz's subsurface von Mises maximum** (the same runs; `/fields/von_mises` of each file, P1 tetrahedra: one
 stress per cell): the largest von Mises stress of the cells under the contact (centroid within a of the axis, above
 the depth 2 a) in Hertz's p0 against 0.620 p0, and its depth in a against 0.481 a (ν = 0.3), with a and p0 Hertz's
-for the measured force (`tests/scene_answers.py von_mises`). A cell's constant stress averages the peak over the
+for the measured force (`tests/scene_answers.py von-mises hertz.h5`). A cell's constant stress averages the peak over the
 cell, and the cell nearest the peak decides the depth, so both errors fall with the cells' size.
 
 {vm}
@@ -727,11 +731,13 @@ slides, so the contact's tangential force is phi times its normal force, whateve
 {slider_rule}
 
 ## The mesh axis: the Cattaneo–Mindlin stick radius
-`examples/contact -options_file scenes/mindlin.opts -level L -snes_rtol t` on {big_ranks} ranks: the half ball pressed by
+`examples/contact -options_file scenes/mindlin.opts -level L -snes_rtol t -snes_ssstar_reduction direct -o mindlin.h5` on
+{big_ranks} ranks (the dense route: `auto` takes the whole body from level 2, whose inexact Newton steps diverged
+there at rtol 1e-2 in a first run): the half ball pressed by
 P on a block of the same material, then sheared by Q = 0.5 φP (φ = 0.3; elastically similar bodies, so the normal
 load makes no tangential traction and one solve is P then Q). Cattaneo and Mindlin: the contact sticks inside
 c = a (1 − Q/(φP))^(1/3) and slips in the annulus c < r < a. Measured c: the midpoint between the outermost sticking
-node and the innermost sliding one (`tests/scene_answers.py stick_radius`); c_error = c / c_CM − 1 with Hertz's a for
+node and the innermost sliding one (`tests/scene_answers.py stick-radius mindlin.h5`); c_error = c / c_CM − 1 with Hertz's a for
 the measured P; "bracket" is the radial gap between those two nodes over c (they need not lie on one ray: on an
 unstructured mesh the gap can be much smaller than the mesh size, so a small error at one level is partly luck; read
 the trend over the levels).

@@ -15,6 +15,14 @@
       force per unit length F' = (sum of r_n over the nodes of the section) / (layer thickness): b = sqrt(4 F' R /
       (pi E*)), p0 = 2 F' / (pi b). Measured: p^2 = p0^2 (1 - x^2/b^2) fitted to the section's nodes in contact
       with |x| < 0.8 b, and the bracket
+  scene_answers.py von-mises FILE.h5 [--E 2.1e5 --nu 0.3 --R 10]
+      Hertz's subsurface von Mises maximum (the hertz scene, /fields/von_mises): the largest cell value under the
+      contact (centroid within a of the axis, above the depth 2 a) in p0 and its depth in a, against Hertz's on-axis
+      maximum (0.620 p0 at 0.481 a for nu = 0.3), a and p0 Hertz's for the measured normal force
+  scene_answers.py stick-radius FILE.h5 [--E 2.1e5 --nu 0.3 --R 10 --phi 0.3]
+      Cattaneo-Mindlin (the mindlin scene: two bodies of one material, P then Q < phi P): Q/(phi P), Hertz's a
+      (1/E* = 2 (1 - nu^2)/E), c = a (1 - Q/(phi P))^(1/3), the outermost sticking node's radius and the innermost
+      sliding node's
   scene_answers.py friction FILE.h5
       the contact force of the plane(s): normal N, tangential |F_t|, their ratio, and the states
   scene_answers.py slide FILE.h5 tx,ty,tz
@@ -196,6 +204,13 @@ def main():
     li.add_argument("--E", type=float, default=2.1e5)
     li.add_argument("--nu", type=float, default=0.3)
     li.add_argument("--R", type=float, default=10.0)
+    for name in ("von-mises", "stick-radius"):
+        v = sub.add_parser(name)
+        v.add_argument("file")
+        v.add_argument("--E", type=float, default=2.1e5)
+        v.add_argument("--nu", type=float, default=0.3)
+        v.add_argument("--R", type=float, default=10.0)
+        v.add_argument("--phi", type=float, default=0.3)
     fr = sub.add_parser("friction")
     fr.add_argument("file")
     sl = sub.add_parser("slide")
@@ -212,6 +227,10 @@ def main():
         result = hertz(args.file, args.E, args.nu, args.R, args.group)
     elif args.cmd == "line":
         result = line(args.file, args.E, args.nu, args.R)
+    elif args.cmd == "von-mises":
+        result = von_mises(args.file, args.E, args.nu, args.R)
+    elif args.cmd == "stick-radius":
+        result = stick_radius(args.file, args.phi, args.E, args.nu, args.R)
     elif args.cmd == "friction":
         result = friction(args.file)
     elif args.cmd == "slide":

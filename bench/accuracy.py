@@ -625,6 +625,7 @@ median **{big_yardstick:.3f} s**. The column "yardsticks" is time / the yardstic
 - the prism at level {claim_level}, rtol {claim_eps:.0e}: the solver error max|u - u_ref| / max|u_ref| is
   **{claim_dense:.1e}** on the dense route and **{claim_whole:.1e}** on the whole body;
 - the hertz scene at level {claim_hertz_level}, rtol {claim_hertz_eps:.0e}: the peak pressure is **{claim_hertz:+.2%}** off Hertz's p0.
+It also checks that every rule below ("for X % take ...") is the one `docs/accuracy/claims.json` holds.
 
 ## The set-up
 The seed's prism at each level, solved from u = 0 with the stopping tolerance `-snes_rtol` in {tols} on {ranks} rank(s);

@@ -377,7 +377,7 @@ def main():
                     accuracy_mesh.JOURNAL["runs"] = json.load(f)
             if "big_sticks" not in res:
                 measure_big(args, work, res)
-                res["big_date"], res["big_command"] = now, args.command
+                res["big_date"], res["big_command"], res["slider_date"] = now, args.command, now
             have = {(r["level"], r["eps"]) for r in res["hertz"]}
             for level in numbers(args.hertz_levels):
                 missing = [eps for eps in numbers(args.hertz_tols, float) if (level, eps) not in have]

@@ -162,6 +162,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetMethod(SNES, SSStarMethod *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetPCReuse(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetPlainAggregationDofs(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPRtolMax(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLawTolerance(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetLawResidual(SNES, PetscReal *, PetscReal *, PetscReal *, PetscReal *);

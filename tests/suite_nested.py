@@ -110,15 +110,32 @@ def refine_scenes():
 
 
 ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank( \(plain aggregation\))?")
+PLAIN_BY_MEMORY = "plain aggregation: the set-up of the smoothed one would not fit"
+PLAIN_BY_SIZE = "plain aggregation: K has at least -snes_ssstar_plain_aggregation_dofs dofs"
+
+
+@test("the whole body's multigrid aggregates plainly (W-cycles, products all at once) from -snes_ssstar_plain_aggregation_dofs dofs of K (default 200000) and smoothly below, as -snes_view and the contact line's estimate say; both give the same answer (prism level 4, 4 131 dofs, 2 ranks, with the size lowered to 2000); -pc_gamg_agg_nsmooths 1 overrides the size")
+def plain_aggregation_by_size():
+    files = []
+    for extra, plain in ((["-snes_ssstar_plain_aggregation_dofs", "2000"], True), ([], False), (["-snes_ssstar_plain_aggregation_dofs", "2000", "-pc_gamg_agg_nsmooths", "1"], False)):
+        name = "plain_by_size_%d.h5" % len(files)
+        out, s = prism_run(["-level", "4", "-snes_ssstar_reduction", "none", "-snes_view"] + extra, name, 2)
+        m = ESTIMATE.search(out)
+        expect(s["reason"] == "CONVERGED_FNORM_RELATIVE", "%s: %s" % (extra, s["reason"]), out)
+        expect(m is not None and bool(m.group(2)) == plain and (PLAIN_BY_SIZE in out) == plain and PLAIN_BY_MEMORY not in out, "%s: the estimate or -snes_view does not say %s aggregation" % (extra, "plain" if plain else "smoothed"), out)
+        files.append(os.path.join(OUT, name))
+    for other in files[1:]:
+        run(CHECK + ["compare", files[0], other])
 
 
 @test("the memory estimate printed before the work (the contact line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work", full=True)
 def memory_estimate():
-    for ranks, extra, plain in ((1, [], False), (2, [], False), (2, ["-snes_ssstar_memory_limit", "0.25"], True)):
-        out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_plain" if plain else ""), ranks)
+    for ranks, extra, why in ((1, [], None), (2, [], None), (2, ["-snes_ssstar_memory_limit", "0.25"], PLAIN_BY_MEMORY), (2, ["-snes_ssstar_plain_aggregation_dofs", "50000"], PLAIN_BY_SIZE)):
+        plain = why is not None
+        out, s = prism_run(["-level", "12", "-snes_view"] + extra, "memory_L12_%d%s.h5" % (ranks, "_".join([""] + extra[1:])), ranks)
         m = ESTIMATE.search(out)
         expect(m is not None and bool(m.group(2)) == plain, "%d ranks %s: no estimate, or not the %s aggregation" % (ranks, extra, "plain" if plain else "smoothed"), out)
-        expect(("plain aggregation: the set-up of the smoothed one would not fit" in out) == plain, "%d ranks %s: the solver's aggregation is not the estimate's" % (ranks, extra), out)
+        expect(all((w in out) == (w == why) for w in (PLAIN_BY_MEMORY, PLAIN_BY_SIZE)), "%d ranks %s: the solver's aggregation is not the estimate's" % (ranks, extra), out)
         estimate = float(m.group(1))
         expect(abs(estimate / s["peak_gb"] - 1) <= 0.2, "%d ranks %s: estimated %.3f GB per rank, measured %.3f" % (ranks, extra, estimate, s["peak_gb"]), out)
     out = run(mpiexec(2, PRISM, "-level", "12", "-snes_ssstar_memory_limit", "0.15"), expect_rc=-1)

@@ -80,7 +80,7 @@ def options_table_fresh():
     rows = set(re.findall(r"^\| `(-[\w<>]+)[^`]*` \|", table, re.M))
     sources = glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)
     library = {o for o in options_in(sources) if o.startswith("-snes_ssstar")}
-    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "scene", "**", "*.c"), recursive=True), LITERAL) if not o.startswith("-dm_") or o == "-dm_refine"}
+    scene = {o for o in options_in(glob.glob(os.path.join(ROOT, "src", "scene", "**", "*.c"), recursive=True), LITERAL) if not o.startswith(("-dm_", "-pc_", "-ksp_")) or o == "-dm_refine"}  # PETSc's own are PETSc's to document
     examples = set()
     for source in glob.glob(os.path.join(ROOT, "examples", "*.c")):
         examples |= {o for o in options_in([source], LITERAL) if not o.startswith(("-snes_type", "-pc_", "-ksp_", "-da_"))}

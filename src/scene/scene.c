@@ -203,6 +203,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarSceneBuildContactOperator(scene, NULL));
   PetscCall(SSStarSceneCheckPartlyHeld(scene));
   /* the estimates before the work, now that the contact nodes are known: the whole body's and the dense route's */
+  if (scene->refine) PetscCall(SSStarPlainAggregationBySize(3.0 * scene->nodesGlobal, &plain));
   peak = SSStarPeakFrom(size, scene->nodesGlobal, base, plain);
   PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? " (plain aggregation)" : "", scene->nGlobal ? " on the whole body" : ""));
   if (scene->nGlobal) {

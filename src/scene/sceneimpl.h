@@ -256,6 +256,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
 PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
 PETSC_INTERN PetscLogDouble SSStarPeakFrom(PetscMPIInt, PetscReal, PetscLogDouble, PetscBool);
+PETSC_INTERN PetscErrorCode SSStarPlainAggregationBySize(PetscReal, PetscBool *);
 PETSC_INTERN PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt, PetscReal, PetscReal, PetscLogDouble);
 PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);
 PETSC_INTERN PetscInt       SSStarSliceStart(PetscMPIInt, PetscInt, PetscMPIInt);

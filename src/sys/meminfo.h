@@ -14,6 +14,13 @@ PETSC_INTERN PetscErrorCode SSStarMemAvailable(PetscLogDouble *);
    products P^T A P all at once, which keep no A P; prism levels 16 and 24 on 2 ranks: 0.328 and 0.890 GB per rank,
    89 and 104 bytes per dof beyond BODY)
 */
+/*
+   From this many dofs the whole body's multigrid aggregates plainly by default (-snes_ssstar_plain_aggregation_dofs):
+   prism level 16 (209 088 dofs) on 2 ranks, 1.03x the smoothed default's whole run for 0.68x its peak; level 24,
+   0.82x its CPU time for 0.58x its peak (docs/guide/scale.md). Below it the smoothed aggregation's fewer Krylov
+   iterations pay and its memory does not matter.
+*/
+#define SSSTAR_PLAIN_AGGREGATION_DOFS 200000
 #define SSSTAR_BODY_BYTES(size)         ((size) == 1 ? 1900.0 : 2200.0)
 #define SSSTAR_SOLVE_BYTES(size, plain) ((plain) ? ((size) == 1 ? 410.0 : 100.0) : ((size) == 1 ? 620.0 : 1960.0))
 /*

@@ -18,6 +18,24 @@ PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt size, PetscReal nodes, PetscReal 
   return base + SSSTAR_BODY_BYTES(size) * 3 * nodes / size + SSSTAR_DENSE_BYTES(size, 3 * nodes, 3 * contactNodes);
 }
 
+/* Whether the whole body's multigrid will aggregate plainly by the size of K, dofs (-snes_ssstar_plain_aggregation_dofs,
+   SNESSSStarSetPlainAggregationDofs()), unless -pc_gamg_agg_nsmooths chooses */
+PetscErrorCode SSStarPlainAggregationBySize(PetscReal dofs, PetscBool *plain)
+{
+  PetscInt  from = SSSTAR_PLAIN_AGGREGATION_DOFS, nsmooths = 1;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
+  if (set) {
+    *plain = (PetscBool)(nsmooths == 0);
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-snes_ssstar_plain_aggregation_dofs", &from, NULL));
+  *plain = (PetscBool)(from >= 0 && dofs >= from);
+  PetscFunctionReturn(0);
+}
+
 /* The memory the ranks of comm can use: -snes_ssstar_memory_limit (GB per rank) times the ranks, or MemAvailable
    summed over the machines */
 static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *perRank)
@@ -79,8 +97,9 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
 .  dense - bytes at the peak on the largest rank, on the dense route (MUMPS's factors of K with the Schur block of the
            3 contactNodes contact dofs, P and the Newton step's dense matrices: 5 matrices of P's size on one rank,
            the factorization's about N^(4/3)), or pass NULL
--  plain - PETSC_TRUE when the multigrid will aggregate plainly because the smoothed aggregation's set-up would not fit
-           (the solver's choice, made again when it sets up), or pass NULL
+-  plain - PETSC_TRUE when the multigrid will aggregate plainly: K has at least -snes_ssstar_plain_aggregation_dofs dofs,
+           or the smoothed aggregation's set-up would not fit (the solver's choice, made again when it sets up), or
+           pass NULL
 
    Notes:
    Measured per dof with bench/memory.py on the prism, one rank and several (docs/guide/large-problems.md, "Where the
@@ -95,13 +114,14 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
 PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscReal contactNodes, PetscLogDouble *peak, PetscLogDouble *dense, PetscBool *plain)
 {
   PetscLogDouble extra, now;
-  PetscBool      fits;
+  PetscBool      fits, bySize;
   PetscMPIInt    size;
 
   PetscFunctionBegin;
-  PetscCall(Estimate(comm, nodes, PETSC_FALSE, peak, &extra, &fits));
-  if (plain) *plain = (PetscBool)!fits;
-  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, peak, &extra, &fits));
+  PetscCall(SSStarPlainAggregationBySize(3 * nodes, &bySize));
+  PetscCall(Estimate(comm, nodes, bySize, peak, &extra, &fits));
+  if (plain) *plain = (PetscBool)(bySize || !fits);
+  if (!fits && !bySize) PetscCall(Estimate(comm, nodes, PETSC_TRUE, peak, &extra, &fits));
   if (dense) {
     PetscCallMPI(MPI_Comm_size(comm, &size));
     PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
@@ -139,12 +159,13 @@ PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what
   PetscReal      limit, perRank;
   PetscLogDouble peak, extra;
   PetscMPIInt    size;
-  PetscBool      fits;
+  PetscBool      fits, bySize;
   char           source[160];
 
   PetscFunctionBegin;
-  PetscCall(Estimate(comm, nodes, PETSC_FALSE, &peak, &extra, &fits));
-  if (!fits) PetscCall(Estimate(comm, nodes, PETSC_TRUE, &peak, &extra, &fits));
+  PetscCall(SSStarPlainAggregationBySize(3 * nodes, &bySize));
+  PetscCall(Estimate(comm, nodes, bySize, &peak, &extra, &fits));
+  if (!fits && !bySize) PetscCall(Estimate(comm, nodes, PETSC_TRUE, &peak, &extra, &fits));
   if (fits) PetscFunctionReturn(0);
   PetscCall(MemoryLimit(comm, &limit, &perRank));
   PetscCallMPI(MPI_Comm_size(comm, &size));

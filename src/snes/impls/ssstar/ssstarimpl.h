@@ -82,6 +82,8 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonSetReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetReuse(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetPlainAggregationDofs(SSStarNewton, PetscInt);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetPlainAggregationDofs(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetStiffness(SSStarNewton, const char[], Mat, PetscReal, const SSStarContactLayout *);

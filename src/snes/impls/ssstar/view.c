@@ -159,6 +159,13 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
   PetscCall(SSStarNewtonGetPCReuse(ss->newton, &value));
   PetscCall(PetscOptionsReal("-snes_ssstar_pc_reuse", "Whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows since it (negative: a new one every step)", "SNESSSStarSetPCReuse", value, &value, &set));
   if (set) PetscCall(SNESSSStarSetPCReuse(snes, value));
+  {
+    PetscInt dofs;
+
+    PetscCall(SSStarNewtonGetPlainAggregationDofs(ss->newton, &dofs));
+    PetscCall(PetscOptionsInt("-snes_ssstar_plain_aggregation_dofs", "Whole body: the multigrid aggregates plainly (W-cycles, products all at once: the memory lever) from this many dofs of K (0: always; negative: only where smoothed does not fit)", "SNESSSStarSetPlainAggregationDofs", dofs, &dofs, &set));
+    if (set) PetscCall(SNESSSStarSetPlainAggregationDofs(snes, dofs));
+  }
   PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_law_rtol", "The tolerance of the law residual of a converged iterate as written (docs/derivation.md section 12); 0: max(-snes_rtol, 1e-8)", "SNESSSStarSetLawTolerance", ss->lawRtol, &value, &set));

@@ -4,6 +4,7 @@
    newtonregall.c).
 */
 #include "newtonimpl.h"
+#include "../../../../sys/meminfo.h"
 
 PetscFunctionList SSStarNewtonList = NULL;
 
@@ -23,6 +24,7 @@ PetscErrorCode SSStarNewtonCreate(SNES snes, SSStarNewton *newton)
   (*newton)->reuse     = 0;
   (*newton)->luThreads = 1;
   (*newton)->pcReuse   = SSSTAR_PC_REUSE_DEFAULT;
+  (*newton)->plainDofs = SSSTAR_PLAIN_AGGREGATION_DOFS;
   (*newton)->rcond     = -1;
   (*newton)->rtol      = 1e-10;
   PetscFunctionReturn(0);
@@ -53,6 +55,20 @@ PetscErrorCode SSStarNewtonGetPCReuse(SSStarNewton nt, PetscReal *fraction)
 {
   PetscFunctionBegin;
   *fraction = nt->pcReuse;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonSetPlainAggregationDofs(SSStarNewton nt, PetscInt dofs)
+{
+  PetscFunctionBegin;
+  nt->plainDofs = dofs;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonGetPlainAggregationDofs(SSStarNewton nt, PetscInt *dofs)
+{
+  PetscFunctionBegin;
+  *dofs = nt->plainDofs;
   PetscFunctionReturn(0);
 }
 
@@ -415,6 +431,41 @@ static PetscErrorCode SNESSSStarSetPCReuse_SSStar(SNES snes, PetscReal fraction)
 }
 
 /*@
+   SNESSSStarSetPlainAggregationDofs - whole body (reduction none): the multigrid (PCGAMG) of the Newton steps
+   aggregates plainly, with W-cycles on the two finest levels and the Galerkin products all at once (the memory lever,
+   docs/guide/scale.md), on problems of at least this many dofs of K; smoothed aggregation below, unless its set-up
+   would not fit the memory. -pc_gamg_agg_nsmooths chooses for every size.
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  dofs - the size from which the aggregation is plain (default 200000; 0: always; negative: only where the smoothed
+          one would not fit the memory)
+
+   Options Database Key:
+.  -snes_ssstar_plain_aggregation_dofs <dofs> - the size
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetPCReuse()`, `SNESSSStarSetMemoryLimit()`
+@*/
+PetscErrorCode SNESSSStarSetPlainAggregationDofs(SNES snes, PetscInt dofs)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetPlainAggregationDofs_C", (SNES, PetscInt), (snes, dofs));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetPlainAggregationDofs_SSStar(SNES snes, PetscInt dofs)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonSetPlainAggregationDofs(((SNES_SSStar *)snes->data)->newton, dofs));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve() were solved
 
    Not Collective
@@ -482,6 +533,7 @@ static const SSStarComposed Composed[] = {
     {"SNESSSStarSetLUReuse_C", (PetscVoidFunction)SNESSSStarSetLUReuse_SSStar},
     {"SNESSSStarSetLUThreads_C", (PetscVoidFunction)SNESSSStarSetLUThreads_SSStar},
     {"SNESSSStarSetPCReuse_C", (PetscVoidFunction)SNESSSStarSetPCReuse_SSStar},
+    {"SNESSSStarSetPlainAggregationDofs_C", (PetscVoidFunction)SNESSSStarSetPlainAggregationDofs_SSStar},
     {"SNESSSStarGetNewtonStepCounts_C", (PetscVoidFunction)SNESSSStarGetNewtonStepCounts_SSStar},
     {"SNESSSStarGetConditionEstimate_C", (PetscVoidFunction)SNESSSStarGetConditionEstimate_SSStar},
 };

@@ -47,6 +47,7 @@ typedef struct {
   PetscBool        userKSPType, userTolerances, userRestart;
   PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid choices in effect (the options did not choose) */
   PetscBool        plainAggregation; /* the multigrid aggregates plainly: ssstar's choice or the options'         */
+  PetscBool        plainBySize;      /* ssstar's choice of plain aggregation was by K's size, not by the memory     */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
   Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
@@ -165,29 +166,35 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
 }
 
 /*
-   Smoothed aggregation (GAMG's default: fewer Krylov iterations on soft, nearly floating bodies) unless its set-up does
-   not fit the memory the SNES may plan for (-snes_ssstar_memory_limit, else MemAvailable) and the options do not name
-   the smoothing steps: then plain aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a sixth of the
-   entries, with W-cycles and the products all at once (CycleDefaults, GalerkinProductBegin): prism level 24 on 2 ranks,
-   the peak 0.890 GB per rank instead of 1.56, as many Krylov iterations (docs/guide/scale.md). Not the default where the
-   smoothed set-up fits: on the incline (a soft spring) from a nested start it took 8 Newton steps instead of 6
+   Unless the options name the smoothing steps: plain aggregation (-pc_gamg_agg_nsmooths 0), whose interpolation has a
+   sixth of the entries, with W-cycles and the products all at once (CycleDefaults, GalerkinProductBegin), on K of at
+   least -snes_ssstar_plain_aggregation_dofs dofs or where the smoothed set-up would not fit the memory the SNES may plan
+   for (-snes_ssstar_memory_limit, else MemAvailable): prism level 24 on 2 ranks, the peak 0.890 GB per rank instead of
+   1.56, as many Krylov iterations (docs/guide/scale.md). Smoothed aggregation (GAMG's default) below that size: fewer
+   Krylov iterations on small and soft bodies, where its memory does not matter
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
   Newton_WholeBody *nw = (Newton_WholeBody *)nt->data;
   SNES_SSStar      *ss = (SNES_SSStar *)nt->snes->data;
   PetscBool         isgamg, set, fits;
-  PetscInt          m, nsmooths = 1;
+  PetscInt          m, M, nsmooths = 1;
   PetscMPIInt       size;
   PetscLogDouble    now = 0;
 
   PetscFunctionBegin;
-  nw->plain = nw->plainAggregation = PETSC_FALSE;
+  nw->plain = nw->plainAggregation = nw->plainBySize = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   if (!isgamg) PetscFunctionReturn(0);
   PetscCall(PetscOptionsGetInt(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
   nw->plainAggregation = (PetscBool)(set && nsmooths == 0);
   if (set) PetscFunctionReturn(0);
+  PetscCall(MatGetSize(nt->A, &M, NULL));
+  if (nt->plainDofs >= 0 && M >= nt->plainDofs) {
+    PetscCall(PCGAMGSetNSmooths(pc, 0));
+    nw->plain = nw->plainAggregation = nw->plainBySize = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatGetLocalSize(nt->A, &m, NULL));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
   /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
@@ -621,7 +628,7 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
   PetscCall(SSStarWholeBodyMatrixInPlace(nw->wm, &inPlace));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nw->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
-  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", nw->plain ? " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);" : "", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
+  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", !nw->plain ? "" : nw->plainBySize ? " plain aggregation: K has at least -snes_ssstar_plain_aggregation_dofs dofs;" : " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
   if (nw->indefinite) PetscCall(PetscViewerASCIIPrintf(viewer, "    CG stopped on an indefinite multigrid (DIVERGED_INDEFINITE_PC) in %" PetscInt_FMT " step%s since the set-up: solved again by GMRES on it, which needs no definite preconditioner, and every later step by GMRES\n", nw->indefinite, nw->indefinite > 1 ? "s" : ""));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));

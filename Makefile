@@ -138,8 +138,10 @@ bench-getfem-ball: all
 bench-search: all
 	$(PYTHON) bench/search.py
 
-# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv, *.json and *.png (both paths, the Hertz mesh axis;
-# about 20 minutes on a loaded 2-core machine); accuracy-quick: the small version into bench/output/accuracy_quick (1-2 minutes)
+# the work-precision study: docs/accuracy.md, docs/accuracy/*.csv, *.json and *.png (both paths on 1 rank to level 10 and
+# on 2 ranks at levels 12 and 16 against level 24; Hertz, its von Mises maximum, Cattaneo-Mindlin, the slider, the load
+# path; about an hour on a loaded 2-core machine); accuracy-quick: the small version into bench/output/accuracy_quick
+# (under a minute on a quiet machine)
 accuracy: all
 	$(PYTHON) bench/accuracy.py
 

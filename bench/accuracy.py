@@ -1,9 +1,12 @@
 #!/usr/bin/python3
 """What accuracy costs in time: the work-precision study of ssstar (make accuracy, make accuracy-quick).
 
-  bench/accuracy.py [--quick] [--levels 4,6,8,10] [--finest 14] [--tols 1e-2,...,1e-12] [--repeat 3]
+  bench/accuracy.py [--quick] [--levels 4,6,8,10] [--finest 24] [--tols 1e-2,...,1e-12] [--repeat 3]
                     [--baseline-levels 4,6] [--whole-levels 4,6,8,10] [--krylov-rtols 1e-3] [--krylov-levels 8]
-                    [--hertz-levels 1,2,3] [--hertz-tols 1e-1,...,1e-8] [--loadpath-steps 5,...] [--ranks 1] [--out docs/accuracy]
+                    [--hertz-levels 1,2,3] [--hertz-tols 1e-1,...,1e-8] [--ranks 1]
+                    [--big-levels 12,16] [--big-tols 1e-2,1e-4,1e-8] [--big-ranks 2] [--mindlin-levels 1,2] [--mindlin-tols ...]
+                    [--slider-levels 1,2,3] [--slider-tols ...] [--loadpath-steps 5,...] [--out docs/accuracy]
+                    [--report-only [--extend]]
 
 Both paths of the solver on the seed's prism, per level L and stopping tolerance t (-snes_rtol):
 - the dense route (-snes_ssstar_reduction direct): examples/prism writes the reduced problem (P, f, coordinates) once
@@ -12,13 +15,18 @@ Both paths of the solver on the seed's prism, per level L and stopping tolerance
 - the whole body (-snes_ssstar_reduction none -nested_levels 0, P never formed, Krylov + multigrid): one run of
   examples/prism per tolerance, its contact solution against the same reference; --krylov-rtols adds runs with
   other loosest Krylov tolerances of the Newton steps (-snes_ssstar_ksp_rtol_max) on --krylov-levels.
-The discretization error: each level's reference against the finest level's (the whole body at rtol 1e-12).
-The mesh axis: the hertz scene at --hertz-levels and --hertz-tols, whole runs, the contact radius and peak pressure
-against Hertz's formulas (bench/accuracy_mesh.py). The AMG yardstick (bench/yardstick -yardstick amg, the prism at
+On --big-ranks ranks, beside an AMG yardstick on as many: both paths at --big-levels and --big-tols (the dense route's
+worker under mpiexec, one run each), the finest level --finest on the whole body at rtol 1e-10 (the reference of the
+discretization error: each level's reference against it), Cattaneo-Mindlin's stick radius (scenes/mindlin.opts at
+--mindlin-levels, --mindlin-tols), the slider's T = phi N and the load path.
+The mesh axis: the hertz scene at --hertz-levels and --hertz-tols, whole runs, the contact radius, peak pressure and
+the subsurface von Mises maximum against Hertz's formulas (bench/accuracy_mesh.py); the rules "for X % take level L,
+rtol t: s seconds on N ranks" from the data, into the doc and claims.json. The AMG yardstick (bench/yardstick -yardstick amg, the prism at
 --yardstick-level) is measured at the start, the middle and the end of the run; the median is beside every time.
 The load path: the block on a spring at --loadpath-steps (bench/accuracy_mesh.py).
-Writes OUT/sweep.csv, discretization.csv, hertz.csv, loadpath.csv, claims.json, *.png and the doc, each with the machine, the date
-and the command. --quick: levels 4 and 6 (finest 8), rtol 1e-3 and 1e-6, hertz level 1, 6 steps: 1-2 minutes, into
+Writes OUT/sweep.csv, discretization.csv, hertz.csv, mindlin.csv, slider.csv, loadpath.csv, claims.json, *.png and the doc, each with the machine, the date
+and the command. --quick: levels 4 and 6 (the whole body at 6; finest 8), rtol 1e-3 and 1e-6, hertz level 1, 6 steps, one
+yardstick (at level 6): under a minute on a quiet machine, into
 bench/output/accuracy_quick (tests/suite_accuracy.py re-measures the doc's claims with it)."""
 import argparse
 import csv
@@ -43,13 +51,16 @@ ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\
 STATE_TOL = 1e-8  # a node carries force if r_n > STATE_TOL max r_n; it slips if |u_t| > STATE_TOL max|u| (reference scales)
 COLUMNS = ["level", "path", "method", "ksp_rtol_max", "eps", "iterations", "time_s", "setup_s", "err_u", "err_r", "normal_force_err",
            "contact_nodes_diff", "state_diff", "converged", "znorm_final", "coulomb_residual"]
-FULL = {"levels": "4,6,8,10", "finest": 14, "tols": "1e-2,1e-3,1e-4,1e-6,1e-8,1e-10,1e-12", "repeat": 3, "baseline_levels": "4,6",
+FULL = {"levels": "4,6,8,10", "finest": 24, "tols": "1e-2,1e-3,1e-4,1e-6,1e-8,1e-10,1e-12", "repeat": 3, "baseline_levels": "4,6",
         "whole_levels": "4,6,8,10", "krylov_rtols": "1e-3", "krylov_levels": "8", "hertz_levels": "1,2,3", "hertz_tols": "1e-1,1e-2,1e-3,1e-5,1e-8",
-        "loadpath_steps": "5,6,11,25,26,51", "slider_levels": "1,2", "slider_tols": "1e-2,1e-4,1e-8", "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
+        "loadpath_steps": "5,6,11,25,26,51,101,201", "slider_levels": "1,2,3", "slider_tols": "1e-2,1e-4,1e-8", "big_levels": "12,16", "big_tols": "1e-2,1e-4,1e-8",
+        "mindlin_levels": "1,2", "mindlin_tols": "1e-2,1e-4,1e-8", "big_ranks": 2, "yardstick_level": 8, "out": os.path.join(ROOT, "docs", "accuracy"),
         "doc": os.path.join(ROOT, "docs", "accuracy.md")}
-QUICK = {"levels": "4,6", "finest": 8, "tols": "1e-3,1e-6", "repeat": 1, "baseline_levels": "4", "whole_levels": "4,6",
-         "krylov_rtols": "", "krylov_levels": "", "hertz_levels": "1", "hertz_tols": "1e-8", "loadpath_steps": "6", "slider_levels": "", "slider_tols": "", "yardstick_level": 6,
+QUICK = {"levels": "4,6", "finest": 8, "tols": "1e-3,1e-6", "repeat": 1, "baseline_levels": "4", "whole_levels": "6",
+         "krylov_rtols": "", "krylov_levels": "", "hertz_levels": "1", "hertz_tols": "1e-8", "loadpath_steps": "6", "slider_levels": "", "slider_tols": "", "big_levels": "",
+         "big_tols": "", "mindlin_levels": "", "mindlin_tols": "", "big_ranks": 1, "yardstick_level": 6,
          "out": os.path.join(ROOT, "bench", "output", "accuracy_quick"), "doc": os.path.join(ROOT, "bench", "output", "accuracy_quick", "accuracy.md")}
+FINEST_RTOL = 1e-10  # the finest level's whole-body run: the reference of the discretization error
 CLAIM_LEVEL, CLAIM_EPS, CLAIM_HERTZ = 6, 1e-6, 1  # the claims a test re-measures: err_u at level 6, rtol 1e-6; Hertz at level 1
 
 
@@ -59,9 +70,10 @@ def parse():
     for key, value in FULL.items():
         p.add_argument("--" + key.replace("_", "-"), type=type(value), default=None, help="full: %s; quick: %s" % (value, QUICK[key]))
     p.add_argument("--baseline-repeat", type=int, default=1, help="runs per tolerance of the baseline")
-    p.add_argument("--ranks", type=int, default=1, help="MPI ranks of the whole-body and hertz runs")
+    p.add_argument("--ranks", type=int, default=1, help="MPI ranks of the prism at --levels (both paths) and of the hertz runs")
     p.add_argument("--report-only", action="store_true", help="the doc, the files and the pictures again from the last run's results.json")
-    p.add_argument("--extend", action="store_true", help="with --report-only: measure the parts the last run's results.json lacks (the slider, hertz levels)")
+    p.add_argument("--extend", action="store_true", help="with --report-only: measure the parts the last run's results.json lacks (the runs on "
+                   "--big-ranks: big levels, the finest, Cattaneo-Mindlin, the slider, the load path; hertz levels; the von Mises maximum of its files)")
     args = p.parse_args()
     for key, value in (QUICK if args.quick else FULL).items():
         if getattr(args, key) is None:
@@ -78,15 +90,15 @@ def run(cmd):
     return accuracy_mesh.timed(cmd)[0]
 
 
-def save_level(level, work):
+def save_level(level, work, ranks=1):
     """examples/prism at the level, saving the reduced problem; returns the file and the fixed costs"""
     binary = os.path.join(work, "prism_L%d.bin" % level)
-    m = ROW.search(run([PRISM, "-level", str(level), "-save_reduced", binary, "-snes_rtol", "1e-14"]))
+    m = ROW.search(run(accuracy_mesh.mpiexec(ranks) + [PRISM, "-level", str(level), "-save_reduced", binary, "-snes_rtol", "1e-14"]))
     return binary, {"nodes": int(m.group(3)), "contact": int(m.group(6)), "assembly": float(m.group(4)), "schur": float(m.group(5))}
 
 
-def solve_level(binary, methods, tols, repeat, baseline_repeat=1):
-    cmd = [sys.executable, os.path.join(ROOT, "bench", "accuracy_worker.py"), binary, "--methods", methods, "--tols", tols, "--repeat", str(repeat),
+def solve_level(binary, methods, tols, repeat, baseline_repeat=1, ranks=1):
+    cmd = accuracy_mesh.mpiexec(ranks) + [sys.executable, os.path.join(ROOT, "bench", "accuracy_worker.py"), binary, "--methods", methods, "--tols", tols, "--repeat", str(repeat),
            "--baseline-repeat", str(baseline_repeat)]
     run(cmd)
     with open(binary + ".json") as f:
@@ -214,11 +226,12 @@ def plots(out, rows, disc, level_data, args):
     for (level, path, method, krylov), group in _groups(rows).items():
         if krylov not in ("", FULL_KRYLOV):
             continue
-        ax.loglog([g["time_s"] / args.yardstick for g in group], [max(g["err_u"], 1e-17) for g in group], styles[(path, method)],
+        ax.loglog([g["yardsticks"] for g in group], [max(g["err_u"], 1e-17) for g in group], styles[(path, method)],
                   color=colors[level], label="L%d %s %s" % (level, {"direct": "dense", "none": "whole body"}[path], method))
     for d in disc:
         ax.axhline(d["err_u"], color=colors[d["level"]], lw=0.8, ls=":")
-    ax.set_xlabel("solve time in AMG yardsticks (1 = %.3f s; the iterations only, fixed costs apart)" % args.yardstick)
+    ax.set_xlabel("solve time in AMG yardsticks of as many ranks (1 = %.3f s on %d, %.3f s on %d; the iterations only, fixed costs apart)"
+                  % (args.yardstick, args.ranks, args.big_yardstick, args.big_ranks))
     ax.set_ylabel("max |u - u_ref| / max |u_ref| (contact displacement)")
     ax.set_title("Solver error against time, both paths; dotted: discretization error of the level")
     ax.legend(fontsize=6, ncol=3)
@@ -275,45 +288,71 @@ def table(rows, columns, formats):
     return "\n".join(out)
 
 
+def stick(args, ranks):
+    return sum(yardstick(args.yardstick_level, ranks, "amg"))
+
+
+def dense_row(level, r, ref, ranks):
+    return dict(level=level, ranks=ranks, path="direct", method=r["method"], ksp_rtol_max="", eps=r["eps"], iterations=r["iterations"], time_s=r["time"],
+                setup_s=0.0, converged=int(r["reason"] > 0), znorm_final=r["history"][-1], **metrics(r, ref))
+
+
+def whole_row(level, eps, krylov, ranks, work, costs, data):
+    w = whole_body(level, eps, ranks, work, data["coordinates"], ["-snes_ssstar_ksp_rtol_max", krylov])
+    costs["whole_assembly"] = w["assembly"]
+    costs.setdefault("setup", []).append(w["setup"])
+    return dict(level=level, ranks=ranks, path="none", method="ssstar", ksp_rtol_max=krylov, eps=eps, iterations=w["iterations"], time_s=w["time"],
+                setup_s=w["setup"], converged=w["converged"], znorm_final=float("nan"), **metrics(w, data["reference"]))
+
+
 def measure(args, levels, work):
     """every run of the study; the results as one dictionary (saved as WORK/results.json for --report-only)"""
-    sticks = [sum(yardstick(args.yardstick_level, args.ranks, "amg"))]
+    sticks = [stick(args, args.ranks)]
     costs, level_data = {}, {}
     for level in levels:
         binary, costs[level] = save_level(level, work)
         methods = "ssstar,fixedpoint" if level in numbers(args.baseline_levels) else "ssstar"
         level_data[level] = solve_level(binary, methods, args.tols, args.repeat, args.baseline_repeat)
         print("dense route, level %d done" % level, flush=True)
-    sticks.append(sum(yardstick(args.yardstick_level, args.ranks, "amg")))
-    rows = []
-    for level, data in sorted(level_data.items()):
-        ref = data["reference"]
-        for r in data["runs"]:
-            rows.append(dict(level=level, path="direct", method=r["method"], ksp_rtol_max="", eps=r["eps"], iterations=r["iterations"], time_s=r["time"],
-                             setup_s=0.0, converged=int(r["reason"] > 0), znorm_final=r["history"][-1], **metrics(r, ref)))
+    sticks += [] if args.quick else [stick(args, args.ranks)]  # the quick study: once
+    rows = [dense_row(level, r, data["reference"], args.ranks) for level, data in sorted(level_data.items()) for r in data["runs"]]
     variants = [(level, FULL_KRYLOV) for level in numbers(args.whole_levels)] + \
                [(level, k) for level in numbers(args.krylov_levels) for k in args.krylov_rtols.split(",") if k]
     for level, krylov in variants:
-        for eps in numbers(args.tols, float):
-            w = whole_body(level, eps, args.ranks, work, level_data[level]["coordinates"], ["-snes_ssstar_ksp_rtol_max", krylov])
-            costs[level]["whole_assembly"] = w["assembly"]
-            costs[level].setdefault("setup", []).append(w["setup"])
-            rows.append(dict(level=level, path="none", method="ssstar", ksp_rtol_max=krylov, eps=eps, iterations=w["iterations"], time_s=w["time"],
-                             setup_s=w["setup"], converged=w["converged"], znorm_final=float("nan"), **metrics(w, level_data[level]["reference"])))
+        rows += [whole_row(level, eps, krylov, args.ranks, work, costs[level], level_data[level]) for eps in numbers(args.tols, float)]
         print("whole body, level %d, ksp_rtol_max %s done" % (level, krylov), flush=True)
-    finest = whole_body(args.finest, 1e-12, args.ranks, work)
-    finest = {"coordinates": finest["coordinates"], "reference": finest}
     hertz = accuracy_mesh.hertz_sweep(numbers(args.hertz_levels), numbers(args.hertz_tols, float), args.ranks, work, lambda s: print(s, flush=True))
-    loadpath = [accuracy_mesh.loadpath_run(n, work) for n in numbers(args.loadpath_steps)]
-    print("load paths done", flush=True)
-    slider = sliders(args, work)
-    sticks.append(sum(yardstick(args.yardstick_level, args.ranks, "amg")))
-    return {"costs": costs, "level_data": level_data, "rows": rows, "finest": finest, "hertz": hertz, "loadpath": loadpath, "slider": slider,
-            "sticks": sticks, "date": args.date, "machine": args.machine, "command": args.command}
+    sticks += [] if args.quick else [stick(args, args.ranks)]  # the quick study: once
+    res = {"costs": costs, "level_data": level_data, "rows": rows, "hertz": hertz, "sticks": sticks, "date": args.date, "machine": args.machine,
+           "command": args.command}
+    measure_big(args, work, res)
+    return res
 
 
-def sliders(args, work):
-    return [accuracy_mesh.slider_run(level, eps, work) for level in numbers(args.slider_levels) for eps in numbers(args.slider_tols, float)]
+def measure_big(args, work, res):
+    """the runs on --big-ranks, beside their own yardstick on as many ranks (start, middle, end; the first part's when
+    the ranks are the same): the prism at --big-levels on both paths, the finest level (the reference of the
+    discretization error), Cattaneo-Mindlin, the slider and the load path"""
+    same = args.big_ranks == args.ranks and "sticks" in res
+    sticks = [] if same else [stick(args, args.big_ranks)]
+    for level in numbers(args.big_levels):
+        binary, res["costs"][level] = save_level(level, work, args.big_ranks)
+        data = res["level_data"][level] = solve_level(binary, "ssstar", args.big_tols, 1, ranks=args.big_ranks)
+        res["rows"] += [dense_row(level, r, data["reference"], args.big_ranks) for r in data["runs"]]
+        res["rows"] += [whole_row(level, eps, FULL_KRYLOV, args.big_ranks, work, res["costs"][level], data) for eps in numbers(args.big_tols, float)]
+        print("level %d on %d ranks, both paths done" % (level, args.big_ranks), flush=True)
+    finest = whole_body(args.finest, FINEST_RTOL, args.big_ranks, work)
+    res["finest"], res["finest_level"] = {"coordinates": finest["coordinates"], "reference": finest, "time": finest["time"]}, args.finest
+    print("finest level %d done" % args.finest, flush=True)
+    sticks += [] if same else [stick(args, args.big_ranks)]
+    res["mindlin"] = [accuracy_mesh.mindlin_run(level, eps, args.big_ranks, work) for level in numbers(args.mindlin_levels)
+                      for eps in numbers(args.mindlin_tols, float)]
+    res["slider"] = [accuracy_mesh.slider_run(level, eps, work, args.big_ranks) for level in numbers(args.slider_levels)
+                     for eps in numbers(args.slider_tols, float)]
+    res["loadpath"] = [accuracy_mesh.loadpath_run(n, work, args.big_ranks) for n in numbers(args.loadpath_steps)]
+    print("Cattaneo-Mindlin, the slider and the load paths done", flush=True)
+    res["big_sticks"] = res["sticks"] if same else sticks + [stick(args, args.big_ranks)]
+    res["big_ranks"] = args.big_ranks
 
 
 def main():
@@ -332,14 +371,22 @@ def main():
         levels = sorted(res["level_data"])
         if args.extend:  # parts added to the study after the run: measured now, dated apart
             now = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
-            if "slider" not in res:
-                res["slider"], res["slider_date"] = sliders(args, work), now
+            journal = accuracy_mesh.JOURNAL["file"] = os.path.join(work, "extend_runs.json")
+            if os.path.exists(journal):  # an --extend that failed: its finished runs are kept
+                with open(journal) as f:
+                    accuracy_mesh.JOURNAL["runs"] = json.load(f)
+            if "big_sticks" not in res:
+                measure_big(args, work, res)
+                res["big_date"], res["big_command"], res["slider_date"] = now, args.command, now
             have = {(r["level"], r["eps"]) for r in res["hertz"]}
             for level in numbers(args.hertz_levels):
                 missing = [eps for eps in numbers(args.hertz_tols, float) if (level, eps) not in have]
                 if missing:
                     res["hertz"] += accuracy_mesh.hertz_sweep([level], missing, args.ranks, work, lambda s: print(s, flush=True))
                     res.setdefault("hertz_dates", {})[str(level)] = now
+            for r in res["hertz"]:  # the von Mises maximum from the files of runs made before it was measured
+                if "vm_error" not in r:
+                    r.update(accuracy_mesh.von_mises(os.path.join(work, "hertz_L%d_%g.h5" % (r["level"], r["eps"]))))
             with open(saved, "w") as f:
                 json.dump(res, f)
     else:
@@ -347,36 +394,75 @@ def main():
         res = measure(args, levels, work)
         with open(saved, "w") as f:
             json.dump(res, f)
+    report(args, res, levels)
+
+
+def report(args, res, levels):
+    """the CSVs, claims.json, the pictures and the doc from the results of a run"""
     args.date, args.machine, args.command = res["date"], res["machine"], res["command"]
     costs, level_data, rows, finest, hertz, loadpath, sticks = (res[k] for k in ("costs", "level_data", "rows", "finest", "hertz", "loadpath", "sticks"))
+    args.finest, args.big_ranks = res.get("finest_level", args.finest), res.get("big_ranks", args.ranks)
+    args.finest_time = finest.get("time", finest["reference"]["time"])
     args.yardstick, args.sticks = statistics.median(sticks), sticks
+    args.big_sticks = res.get("big_sticks", sticks)
+    args.big_yardstick = statistics.median(args.big_sticks)
+    args.big_when = "" if "big_date" not in res else " by `%s` on %s" % (res["big_command"], res["big_date"])
+    per_ranks = {args.ranks: args.yardstick, args.big_ranks: args.big_yardstick}
     for r in rows:
-        r["yardsticks"] = r["time_s"] / args.yardstick
-    for r in hertz:
-        r["yardsticks"] = r["whole_s"] / args.yardstick
-
+        r.setdefault("ranks", args.ranks)
+        r["yardsticks"] = r["time_s"] / per_ranks[r["ranks"]]
+    for r in hertz + res.get("mindlin", []) + res.get("slider", []) + loadpath:
+        r.setdefault("ranks", args.ranks)
+        r["yardsticks"] = r["whole_s"] / per_ranks[r["ranks"]]
     provenance = "# %s; %s; %s; AMG yardstick %.3f s (prism level %d, %d rank(s))" % (args.command, args.date, args.machine, args.yardstick,
                                                                                         args.yardstick_level, args.ranks)
-    write_csv(os.path.join(args.out, "sweep.csv"), provenance, COLUMNS + ["yardsticks"], rows)
+    if args.big_ranks != args.ranks or "big_date" in res:
+        provenance += "; the runs on %d ranks%s: AMG yardstick %.3f s (prism level %d, %d ranks)" % (
+            args.big_ranks, args.big_when.replace("`", ""), args.big_yardstick, args.yardstick_level, args.big_ranks)
+    write_csv(os.path.join(args.out, "sweep.csv"), provenance, COLUMNS + ["ranks", "yardsticks"], rows)
     disc = discretization(level_data, finest)
     write_csv(os.path.join(args.out, "discretization.csv"), provenance, list(disc[0]), disc)
     write_csv(os.path.join(args.out, "hertz.csv"), provenance, accuracy_mesh.HERTZ_COLUMNS + ["yardsticks"], hertz)
     plots(args.out, rows, disc, level_data, args)
+    footer = "%s; %s; %s" % (args.command, args.date, args.machine)
     accuracy_mesh.plot_work_precision(os.path.join(args.out, "hertz_work_precision.png"), hertz,
                                       [("p0_error", "peak pressure error p0/p0_Hertz - 1"), ("a_error", "contact radius error a/a_Hertz - 1")],
-                                      "Hertz (scenes/hertz.opts): error against the whole run's time, %d rank(s)" % args.ranks, args.yardstick,
-                                      "%s; %s; %s" % (args.command, args.date, args.machine))
-    write_csv(os.path.join(args.out, "loadpath.csv"), provenance, accuracy_mesh.LOADPATH_COLUMNS, loadpath)
+                                      "Hertz (scenes/hertz.opts): error against the whole run's time, %d rank(s)" % args.ranks, args.yardstick, footer)
+    accuracy_mesh.plot_work_precision(os.path.join(args.out, "von_mises_work_precision.png"), hertz,
+                                      [("vm_error", "von Mises maximum error vm/(0.620 p0) - 1"), ("vm_depth_error", "its depth error z/(0.481 a) - 1")],
+                                      "Hertz's subsurface von Mises maximum: error against the whole run's time, %d rank(s)" % args.ranks, args.yardstick, footer)
+    mindlin = res.get("mindlin", [])
+    if mindlin:
+        write_csv(os.path.join(args.out, "mindlin.csv"), provenance, accuracy_mesh.MINDLIN_COLUMNS + ["yardsticks"], mindlin)
+        accuracy_mesh.plot_work_precision(os.path.join(args.out, "mindlin_work_precision.png"), mindlin, [("c_error", "stick radius error c/c_CM - 1")],
+                                          "Cattaneo-Mindlin (scenes/mindlin.opts, Q = 0.5 phi P): error against the whole run's time, %d ranks" % args.big_ranks,
+                                          args.big_yardstick, footer)
+    write_csv(os.path.join(args.out, "loadpath.csv"), provenance, accuracy_mesh.LOADPATH_COLUMNS + ["yardsticks"], loadpath)
     slider = res.get("slider", [])
     if slider:
         write_csv(os.path.join(args.out, "slider.csv"), provenance + (" (the slider measured %s)" % res["slider_date"] if "slider_date" in res else ""),
-                  accuracy_mesh.SLIDER_COLUMNS, slider)
-    accuracy_mesh.plot_loadpath(os.path.join(args.out, "loadpath_steps.png"), loadpath, "%s; %s; %s" % (args.command, args.date, args.machine))
-    claims = measure_claims(rows, hertz)
+                  accuracy_mesh.SLIDER_COLUMNS + ["yardsticks"], slider)
+    accuracy_mesh.plot_loadpath(os.path.join(args.out, "loadpath_steps.png"), loadpath, footer)
+    claims, rules = measure_claims(rows, hertz), all_rules(args, hertz, mindlin, slider, loadpath)
     with open(os.path.join(args.out, "claims.json"), "w") as f:
-        json.dump(dict(claims, command=args.command, date=args.date, machine=args.machine), f, indent=1)
+        json.dump(dict(claims, rules=[x for _, found in rules.values() for x in found], command=args.command, date=args.date, machine=args.machine),
+                  f, indent=1)
     args.hertz_dates = res.get("hertz_dates", {})
-    write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, res.get("slider_date", args.date))
+    write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, res.get("slider_date", args.date), mindlin,
+              {k: text for k, (text, _) in rules.items()})
+
+
+def all_rules(args, hertz, mindlin, slider, loadpath):
+    """the rules of the doc ("for X % on A take level L, rtol t: s seconds on N ranks (y yardsticks)"), as text and as data"""
+    rule = accuracy_mesh.rule_lines
+    off = [dict(r, level=r["steps"], eps=1.0) for r in loadpath if not r["at_knots"]]
+    return {"hertz_p0": rule(hertz, "p0_error", "the peak pressure", (0.05, 0.02, 0.01, 0.005), args.ranks),
+            "hertz_a": rule(hertz, "a_error", "the contact radius", (0.05, 0.02, 0.01, 0.005), args.ranks),
+            "von_mises": rule(hertz, "vm_error", "the von Mises maximum", (0.1, 0.05, 0.02, 0.01), args.ranks),
+            "mindlin": rule(mindlin, "c_error", "the stick radius", (0.2, 0.1, 0.05), args.big_ranks),
+            "slider": rule(slider, "ratio_error", "T = phi N", (1e-2, 1e-3, 1e-4), args.big_ranks),
+            "loadpath": rule(off, "error", "the end of the path (steps off its knots)", (0.2, 0.1, 0.05, 0.02, 0.01), args.big_ranks,
+                             "%(steps)d equal steps (rtol 1e-10, the default)")}
 
 
 def write_csv(path, provenance, columns, rows):
@@ -396,7 +482,7 @@ def measure_claims(rows, hertz):
             "hertz_level": CLAIM_HERTZ, "hertz_eps": tight["eps"], "hertz_p0_error": tight["p0_error"], "hertz_a_error": tight["a_error"]}
 
 
-def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, slider_date):
+def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, claims, slider, slider_date, mindlin, rules):
     refs = [{"level": l, "iterations": level_data[l]["reference"]["iterations"], "znorm": level_data[l]["reference"]["history"][-1],
              "law": coulomb_residual(*arrays(level_data[l]["reference"])), "order": observed_order(level_data[l]["reference"]["history"]),
              "second": second_method(level_data[l]), "assembly": costs[l]["assembly"], "schur": costs[l]["schur"], "contact": costs[l]["contact"],
@@ -406,47 +492,45 @@ def write_doc(args, levels, costs, level_data, rows, disc, hertz, loadpath, clai
     krylov = [r for r in rows if r["path"] == "none" and r["ksp_rtol_max"] != FULL_KRYLOV]
     base = [r for r in rows if r["method"] != "ssstar"]
     nan = lambda f: (lambda v: f % v if v == v else "—")
-    sweep_columns = ["level", "eps", "iterations", "time_s", "yardsticks", "err_u", "err_r", "normal_force_err", "state_diff"]
-    sweep_formats = ["%d", "%.0e", "%d", "%.4f", "%.3f", "%.1e", "%.1e", "%.1e", "%d"]
+    sweep_columns = ["level", "ranks", "eps", "iterations", "time_s", "yardsticks", "err_u", "err_r", "normal_force_err", "state_diff"]
+    sweep_formats = ["%d", "%d", "%.0e", "%d", "%.4f", "%.3f", "%.1e", "%.1e", "%.1e", "%d"]
     floors = {key: accuracy_mesh.tolerance_floor(hertz, key) for key in ("p0_error", "a_error")}
     text = TEMPLATE.format(
         date=args.date, machine=args.machine, command=args.command, tols=args.tols, repeat=args.repeat, ranks=args.ranks, finest=args.finest,
         baseline_levels=args.baseline_levels, state_tol=STATE_TOL, yardstick=args.yardstick, yardstick_level=args.yardstick_level,
-        sticks=", ".join("%.3f" % s for s in args.sticks), default_krylov=FULL_KRYLOV,
+        sticks=", ".join("%.3f" % s for s in args.sticks), default_krylov=FULL_KRYLOV, big_tols=args.big_tols, finest_rtol=FINEST_RTOL,
+        finest_time=args.finest_time,
         refs=table(refs, ["level", "contact", "assembly", "schur", "setup", "iterations", "znorm", "law", "second", "order"],
                    ["%d", "%d", "%.2f", "%.2f", nan("%.2f"), "%d", "%.1e", "%.1e", nan("%.1e"), "%.2f"]),
         dense=table(dense, sweep_columns, sweep_formats), whole=table(whole, sweep_columns, sweep_formats),
         krylov=("Whole body with `-snes_ssstar_ksp_rtol_max` other than %s (levels %s):\n\n%s" % (FULL_KRYLOV, args.krylov_levels,
-                table(krylov, ["level", "ksp_rtol_max"] + sweep_columns[1:], ["%d", "%s"] + sweep_formats[1:]))) if krylov else "",
+                table(krylov, ["level", "ksp_rtol_max"] + sweep_columns[2:], ["%d", "%s"] + sweep_formats[2:]))) if krylov else "",
         base=table(base, ["level", "eps", "iterations", "time_s", "converged", "err_u", "err_r", "state_diff"],
                    ["%d", "%.0e", "%d", "%.4f", "%d", "%.1e", "%.1e", "%d"]) if base else "(not run)",
         disc=table(disc, ["level", "err_u", "normal_force_err", "contact_area_err", "stick_area_err"], ["%d", "%.1e", "%.1e", "%.1e", "%.1e"]),
         advice=advice(dense, disc, "the dense route") + "\n" + advice(whole, disc, "the whole body") + baseline_advice(dense, base),
         hertz=table(hertz, ["level", "eps", "route", "contact", "iterations", "assembly_s", "schur_s", "solve_s", "whole_s", "yardsticks",
-                            "force", "a_error", "p0_error", "bracket_error"],
-                    ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.2f", "%.2f", "%.1f", "%.0f", "%.0f", "%+.4f", "%+.4f", "%+.4f"]),
-        hertz_rule=hertz_rule(hertz, args), floors=floor_text(floors),
+                            "force", "a_error", "p0_error", "bracket_error", "vm_error", "vm_depth_error"],
+                    ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.2f", "%.2f", "%.1f", "%.0f", "%.0f", "%+.4f", "%+.4f", "%+.4f", "%+.4f", "%+.3f"]),
+        hertz_rule=rules["hertz_p0"] + "\n" + rules["hertz_a"], floors=floor_text(floors), vm_rule=rules["von_mises"],
+        vm=table(hertz, ["level", "eps", "whole_s", "yardsticks", "vm_max", "vm_error", "vm_depth", "vm_depth_error"],
+                 ["%d", "%.0e", "%.1f", "%.0f", "%.4f", "%+.4f", "%.3f", "%+.3f"]),
+        mindlin=table(mindlin, ["level", "eps", "route", "contact", "iterations", "solve_s", "whole_s", "yardsticks", "ratio", "c", "stick_outer",
+                                "slide_inner", "c_error", "bracket"],
+                      ["%d", "%.0e", "%s", "%d", "%d", "%.2f", "%.1f", "%.1f", "%.3f", "%.3f", "%.3f", "%.3f", "%+.3f", "%.3f"]) if mindlin else "(not run)",
+        mindlin_rule=rules["mindlin"], slider_rule=rules["slider"], loadpath_rule=rules["loadpath"], big_ranks=args.big_ranks,
+        big_yardstick=args.big_yardstick, big_sticks=", ".join("%.3f" % s for s in args.big_sticks), big_when=args.big_when,
+        big_levels=", ".join(str(l) for l in sorted({r["level"] for r in rows if r["ranks"] == args.big_ranks and args.big_ranks != args.ranks})) or "none",
         hertz_dates="".join(" Level %s was measured on %s (`--report-only --extend`), after the rest of the run." % item for item in sorted(args.hertz_dates.items())),
-        loadpath_order=loadpath_order(loadpath, args.yardstick), slider_date=slider_date,
-        slider=table(slider, accuracy_mesh.SLIDER_COLUMNS, ["%d", "%.0e", "%d", "%d", "%.2f", "%.1f", "%+.1e", "%.1e", "%d", "%d"]) if slider else "(not run)",
+        loadpath_order=loadpath_order(loadpath, args.big_yardstick), slider_date=slider_date,
+        slider=table(slider, accuracy_mesh.SLIDER_COLUMNS + ["yardsticks"], ["%d", "%.0e", "%d", "%d", "%d", "%.2f", "%.1f", "%+.1e", "%.1e", "%d", "%d", "%.1f"])
+        if slider else "(not run)",
         slider_text=slider_text(slider),
-        loadpath=table(loadpath, accuracy_mesh.LOADPATH_COLUMNS, ["%d", "%d", "%.6f", "%.1e", "%d", "%.3f", "%.2f", "%.4f"]),
+        loadpath=table(loadpath, accuracy_mesh.LOADPATH_COLUMNS + ["yardsticks"], ["%d", "%d", "%d", "%.6f", "%.1e", "%d", "%.3f", "%.2f", "%.4f", "%.1f"]),
         claim_dense=claims["err_u_dense"], claim_whole=claims["err_u_whole"], claim_level=CLAIM_LEVEL, claim_eps=CLAIM_EPS,
         claim_hertz=claims["hertz_p0_error"], claim_hertz_level=CLAIM_HERTZ, claim_hertz_eps=claims["hertz_eps"])
     with open(args.doc, "w") as f:
         f.write(text)
-
-
-def hertz_rule(hertz, args):
-    lines = []
-    for key, name in (("p0_error", "the peak pressure"), ("a_error", "the contact radius")):
-        for target, r in accuracy_mesh.rule(hertz, key, (0.05, 0.02, 0.01, 0.005)):
-            if r:
-                lines.append("- for %g %% on %s take level %d, rtol %.0e: %.1f s on %d rank(s) (%.0f yardsticks; measured %+.2f %%)"
-                             % (100 * target, name, r["level"], r["eps"], r["whole_s"], args.ranks, r["yardsticks"], 100 * r[key]))
-            else:
-                lines.append("- %g %% on %s: not reached up to level %d" % (100 * target, name, max(h["level"] for h in hertz)))
-    return "\n".join(lines)
 
 
 def loadpath_order(loadpath, yardstick):
@@ -529,20 +613,23 @@ TEMPLATE = """# What accuracy costs in time
 
 Generated by `{command}` (`make accuracy`; `make accuracy-quick` is the small version a test runs) on {date},
 {machine}. Every number below comes from that run: `docs/accuracy/sweep.csv` (one row per solve, both paths),
-`discretization.csv`, `hertz.csv`, `slider.csv`, `loadpath.csv`, `claims.json` and the pictures beside them, each stamped with the command, the
-date and the machine. Times are on a shared 2-core machine (2–3x swings): read them beside the **AMG yardstick of the
-same run**, one CG + GAMG solve of the prism's K at level {yardstick_level} on {ranks} rank(s) (`bench/yardstick -yardstick amg`),
-measured at the start, the middle and the end: {sticks} s, median **{yardstick:.3f} s**; the column "yardsticks" is
-time / yardstick.
+`discretization.csv`, `hertz.csv`, `mindlin.csv`, `slider.csv`, `loadpath.csv`, `claims.json` and the pictures beside them, each
+stamped with the command, the date and the machine. Times are on a shared 2-core machine (2–3x swings): read them beside the
+**AMG yardstick of the same run on as many ranks**, one CG + GAMG solve of the prism's K at level {yardstick_level}
+(`bench/yardstick -yardstick amg`), measured at the start, the middle and the end of the runs it stands beside: on
+{ranks} rank(s) {sticks} s, median **{yardstick:.3f} s**; on {big_ranks} ranks (the runs on {big_ranks} ranks{big_when}) {big_sticks} s,
+median **{big_yardstick:.3f} s**. The column "yardsticks" is time / the yardstick of the row's number of ranks.
 
 ## What is re-measured by a test
 `tests/suite_accuracy.py` runs `make accuracy-quick` and re-measures these two claims (no timings in pass/fail):
 - the prism at level {claim_level}, rtol {claim_eps:.0e}: the solver error max|u - u_ref| / max|u_ref| is
   **{claim_dense:.1e}** on the dense route and **{claim_whole:.1e}** on the whole body;
 - the hertz scene at level {claim_hertz_level}, rtol {claim_hertz_eps:.0e}: the peak pressure is **{claim_hertz:+.2%}** off Hertz's p0.
+It also checks that every rule below ("for X % take ...") is the one `docs/accuracy/claims.json` holds.
 
 ## The set-up
-The seed's prism at each level, solved from u = 0 with the stopping tolerance `-snes_rtol` in {tols}:
+The seed's prism at each level, solved from u = 0 with the stopping tolerance `-snes_rtol` in {tols} on {ranks} rank(s);
+levels {big_levels} on {big_ranks} ranks with `-snes_rtol` in {big_tols}, one run each (column "ranks"):
 - **the dense route** (`-snes_ssstar_reduction direct`): `examples/prism -level L -save_reduced` reduces K to the
   contact dofs once (the fixed cost "schur"), then `bench/accuracy_worker.py` solves the reduced problem per
   tolerance (time: SNESSolve, median of {repeat});
@@ -584,9 +671,11 @@ schur (the dense route's reduction), setup (the whole body's, inside SNESSolve).
 {base}
 
 ## Discretization error beside solver error
-Each level's reference against the finest level's (level {finest}, the whole body at rtol 1e-12): the displacement at
-the level's nodes (the finest solution interpolated bilinearly on its contact face), the total normal force, and the
-areas in contact and sticking.
+Each level's reference against a finer one than any level measured: **level {finest}, the whole body at rtol
+{finest_rtol:.0e} on {big_ranks} ranks** (its solve {finest_time:.0f} s): the displacement at the level's nodes (the level-{finest}
+solution interpolated bilinearly on its contact face), the total normal force, and the areas in contact and sticking.
+The reference's own discretization error is not in these numbers: with err_u falling about as h (see the table), a
+level-{finest} reference understates the error of level L by about L/{finest} of it.
 
 {disc}
 
@@ -612,6 +701,19 @@ at every finer level and tighter tolerance measured; the whole run's time, this 
 start `auto`'s):
 {hertz_rule}
 
+**Hertz's subsurface von Mises maximum** (the same runs; `/fields/von_mises` of each file, P1 tetrahedra: one
+stress per cell): the largest von Mises stress of the cells under the contact (centroid within a of the axis, above
+the depth 2 a) in Hertz's p0 against 0.620 p0, and its depth in a against 0.481 a (ν = 0.3), with a and p0 Hertz's
+for the measured force (`tests/scene_answers.py von-mises hertz.h5`). A cell's constant stress averages the peak over the
+cell, and the cell nearest the peak decides the depth, so both errors fall with the cells' size.
+
+{vm}
+
+![von Mises: error against time](accuracy/von_mises_work_precision.png)
+
+**The rule** (as above):
+{vm_rule}
+
 **Where the tolerance stops mattering** (the loosest rtol from which on the answer moves by less than a tenth of its
 error; tighter buys nothing there, the mesh dominates):
 {floors}
@@ -620,18 +722,40 @@ error; tighter buys nothing there, the mesh dominates):
 The slider of `scenes/slider.opts` (`examples/contact -options_file scenes/slider.opts -level L -snes_rtol t`; measured
 {slider_date}): a block pushed along x beyond phi N on a block, phi = 0.5, node-to-surface; every touching node
 slides, so the contact's tangential force is phi times its normal force, whatever the mesh. ratio_error = |T| / (phi N) - 1
-(as `tests/suite_pairs.py` measures it), the whole run on one rank, beside the AMG yardstick above.
+(as `tests/suite_pairs.py` measures it), the whole run on {big_ranks} ranks beside the yardstick on as many.
 
 {slider}
 
 {slider_text}
+
+**The rule** (as for Hertz; the whole run on {big_ranks} ranks):
+{slider_rule}
+
+## The mesh axis: the Cattaneo–Mindlin stick radius
+`examples/contact -options_file scenes/mindlin.opts -level L -snes_rtol t -snes_ssstar_reduction direct -o mindlin.h5` on
+{big_ranks} ranks (the dense route: `auto` takes the whole body from level 2, whose inexact Newton steps diverged
+there at rtol 1e-2 in a first run): the half ball pressed by
+P on a block of the same material, then sheared by Q = 0.5 φP (φ = 0.3; elastically similar bodies, so the normal
+load makes no tangential traction and one solve is P then Q). Cattaneo and Mindlin: the contact sticks inside
+c = a (1 − Q/(φP))^(1/3) and slips in the annulus c < r < a. Measured c: the midpoint between the outermost sticking
+node and the innermost sliding one (`tests/scene_answers.py stick-radius mindlin.h5`); c_error = c / c_CM − 1 with Hertz's a for
+the measured P; "bracket" is the radial gap between those two nodes over c (they need not lie on one ray: on an
+unstructured mesh the gap can be much smaller than the mesh size, so a small error at one level is partly luck; read
+the trend over the levels).
+
+{mindlin}
+
+![Cattaneo-Mindlin: error against time](accuracy/mindlin_work_precision.png)
+
+**The rule** (as for Hertz; the whole run on {big_ranks} ranks):
+{mindlin_rule}
 
 ## Load paths: the error of a path's end against the steps
 The block on a spring of `tests/suite_loadpath.py` (docs/derivation.md (11.1)-(11.2)): a nearly rigid block pressed by
 P = 10, held sideways by a spring k = 1000, sheared by Q = 7.5 > phi P = 5, released, sheared back, released (knots of
 the load at t = 1, ..., 5); its closed form ends at u_x = -(Q - phi P)/k = -2.5e-3. `examples/contact` with the
 options of `BLOCK` in `bench/accuracy_mesh.py` and `-steps N` (equal steps on [0, 5]); the error of u_x at the end,
-relative to 2.5e-3, the time of all steps (solve) and per step, the dense route on one rank. The incremental law is
+relative to 2.5e-3, the time of all steps (solve) and per step, the whole run on {big_ranks} ranks (yardsticks: the whole run). The incremental law is
 exact on a path that is proportional between two steps: with steps on the knots the end is exact up to the block's
 compliance; with steps off them the extreme load is missed by up to a step, an error of first order in the step.
 
@@ -640,6 +764,10 @@ compliance; with steps off them the extreme load is missed by up to a step, an e
 {loadpath_order}
 
 ![load path: error against steps](accuracy/loadpath_steps.png)
+
+**The rule** (the fewest equal steps off the knots whose error is within the target and stays within it with more
+steps; a path whose steps land on its knots is exact up to the body's compliance at any number of steps):
+{loadpath_rule}
 
 ## Reading the stopping rule
 - ssstar stops when ||z|| <= rtol max(||u||, ||gamma f||); z is the approximation step, a displacement (gamma =

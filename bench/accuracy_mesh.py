@@ -3,6 +3,7 @@ mesh levels L and stopping tolerances t, each a whole run of examples/contact; t
 measured by tests/scene_answers.py against Hertz's closed forms for the force the plane carries, against the whole
 run's seconds. Also the prism's contact solution read from an examples/prism -o file, in the order of the reduced
 problem (bench/accuracy_worker.py), for the whole-body path."""
+import json
 import os
 import re
 import subprocess
@@ -18,7 +19,8 @@ import scene_answers  # noqa: E402 (the project's measurement of Hertz's answers
 SUMMARY = re.compile(r"^summary: nodes (\d+) contact (\d+) assembly ([\d.]+) s schur ([\d.]+) s solve ([\d.]+) s iterations (\d+) .* (\S+) peak", re.M)
 ROUTE = re.compile(r"set-up: (the whole body|K reduced)")
 HERTZ_COLUMNS = ["level", "eps", "ranks", "route", "nodes", "contact", "iterations", "assembly_s", "schur_s", "solve_s", "whole_s", "force",
-                 "a_error", "p0_error", "bracket_error", "reason"]
+                 "a_error", "p0_error", "bracket_error", "vm_error", "vm_depth_error", "reason"]
+VON_MISES = ("vm_max", "vm_depth", "vm_error", "vm_depth_error")
 
 
 def environment():
@@ -29,12 +31,24 @@ def mpiexec(ranks):
     return ["mpiexec", "--oversubscribe", "-n", str(ranks)] if ranks > 1 else []
 
 
+JOURNAL = {}  # {"file": path}: the runs of an --extend measurement, kept as they end so that a failed one resumes
+
+
 def timed(cmd):
-    """runs cmd, returns (stdout, wall seconds); exits with the output on failure"""
+    """runs cmd, returns (stdout, wall seconds); exits with the output on failure; with a journal, a run it holds is
+    not run again (its output and seconds come from the journal)"""
+    key, runs = " ".join(cmd), JOURNAL.get("runs", {})
+    if key in runs:
+        return tuple(runs[key])
     t0 = time.perf_counter()
     p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=environment())
     if p.returncode:
-        sys.exit("failed: %s\n%s" % (" ".join(cmd), p.stdout[-3000:]))
+        sys.exit("failed: %s\n%s" % (key, p.stdout[-3000:]))
+    if "file" in JOURNAL:
+        runs[key] = (p.stdout, time.perf_counter() - t0)
+        JOURNAL["runs"] = runs
+        with open(JOURNAL["file"], "w") as f:
+            json.dump(runs, f)
     return p.stdout, time.perf_counter() - t0
 
 
@@ -48,7 +62,14 @@ def hertz_run(level, eps, ranks, work):
     return {"level": level, "eps": eps, "ranks": ranks, "route": "none" if route and route.group(1) == "the whole body" else "direct",
             "nodes": int(m.group(1)), "contact": int(m.group(2)), "iterations": int(m.group(6)), "assembly_s": float(m.group(3)),
             "schur_s": float(m.group(4)), "solve_s": float(m.group(5)), "whole_s": whole, "force": h["force"], "a_error": h["a_error"],
-            "p0_error": h["p0_error"], "bracket_error": 0.5 * (h["a_inside"] + h["a_outside"]) / h["a_hertz"] - 1, "reason": m.group(7)}
+            "p0_error": h["p0_error"], "bracket_error": 0.5 * (h["a_inside"] + h["a_outside"]) / h["a_hertz"] - 1, "reason": m.group(7),
+            **von_mises(h5)}
+
+
+def von_mises(h5):
+    """Hertz's subsurface von Mises maximum of a hertz run's file (tests/scene_answers.py): its value and depth errors"""
+    v = scene_answers.von_mises(h5)
+    return {k: v[k] for k in VON_MISES}
 
 
 def hertz_sweep(levels, tols, ranks, work, progress=print):
@@ -85,6 +106,26 @@ def tolerance_floor(rows, key):
     return out
 
 
+MINDLIN_COLUMNS = ["level", "eps", "ranks", "route", "contact", "iterations", "solve_s", "whole_s", "ratio", "c", "stick_outer", "slide_inner",
+                   "c_error", "bracket"]
+
+
+def mindlin_run(level, eps, ranks, work):
+    """Cattaneo-Mindlin (scenes/mindlin.opts: the half ball pressed by P on a block of the same material, then sheared by
+    Q = 0.5 phi P): the stick radius, the midpoint between the outermost sticking node and the innermost sliding one,
+    against c = a (1 - Q/(phi P))^(1/3) with Hertz's a for the measured P (c_error = c_measured / c - 1; bracket: the
+    radial gap between the two nodes over c)"""
+    h5 = os.path.join(work, "mindlin_L%d_%g.h5" % (level, eps))
+    out, whole = timed(mpiexec(ranks) + [os.path.join(ROOT, "examples", "contact"), "-options_file", os.path.join(ROOT, "scenes", "mindlin.opts"),
+                                         "-level", str(level), "-snes_rtol", "%g" % eps, "-snes_ssstar_reduction", "direct", "-o", h5])
+    m, route = SUMMARY.search(out), ROUTE.search(out)
+    c = scene_answers.stick_radius(h5, 0.3, 2.1e5)
+    return {"level": level, "eps": eps, "ranks": ranks, "route": "none" if route and route.group(1) == "the whole body" else "direct",
+            "contact": int(m.group(2)), "iterations": int(m.group(6)), "solve_s": float(m.group(5)), "whole_s": whole, "ratio": c["ratio"], "c": c["c"],
+            "stick_outer": c["stick_outer"], "slide_inner": c["slide_inner"], "c_error": 0.5 * (c["stick_outer"] + c["slide_inner"]) / c["c"] - 1,
+            "bracket": (c["slide_inner"] - c["stick_outer"]) / c["c"]}
+
+
 def rule(rows, key, targets):
     """per target error: the coarsest level and at it the loosest tolerance whose |error| is within it, and stays
     within it at every finer level and tighter tolerance measured (no lucky coarse run), or None; the cheapest in
@@ -92,6 +133,22 @@ def rule(rows, key, targets):
     ordered = sorted(rows, key=lambda r: (r["level"], -r["eps"]))
     holds = lambda r, t: all(abs(q[key]) <= t for q in rows if q["level"] >= r["level"] and q["eps"] <= r["eps"])
     return [(t, next((r for r in ordered if holds(r, t)), None)) for t in targets]
+
+
+def rule_lines(rows, key, name, targets, ranks, what="level %(level)d, rtol %(eps).0e"):
+    """the rule as sentences: "for X % on NAME take level L, rtol t: s seconds on N rank(s) (y yardsticks)", and the
+    same as dictionaries for claims.json"""
+    lines, found = [], []
+    for target, r in rule(rows, key, targets):
+        if r:
+            lines.append("- for %g %% on %s take %s: %.1f s on %d rank(s) (%.1f yardsticks; measured %+.2g %%)"
+                         % (100 * target, name, what % r, r["whole_s"], ranks, r["yardsticks"], 100 * r[key]))
+            found.append({"answer": name, "target": target, "reached": True, "level": None if "steps" in r else r["level"], "steps": r.get("steps"), "eps": r["eps"],
+                          "seconds": r["whole_s"], "ranks": ranks, "yardsticks": r["yardsticks"], "error": r[key]})
+        else:
+            lines.append("- %g %% on %s: not reached in the runs measured" % (100 * target, name))
+            found.append({"answer": name, "target": target, "reached": False})
+    return "\n".join(lines), found
 
 
 def plot_work_precision(path, rows, keys, title, yardstick, footer):
@@ -125,18 +182,18 @@ def plot_work_precision(path, rows, keys, title, yardstick, footer):
 BLOCK = ["-geo", "meshes/block.geo", "-level", "2", "-E", "2e8", "-nu", "0.3", "-spring_top", "1000", "-contact", "bottom",
          "-friction_bottom", "0.5", "-traction_top", "0:0,0,0;1:0,0,-10;2:7.5,0,-10;3:0,0,-10;4:-7.5,0,-10;5:0,0,-10"]
 BLOCK_END = -2.5e-3
-LOADPATH_COLUMNS = ["steps", "at_knots", "end_ux", "error", "iterations", "solve_s", "whole_s", "per_step_s"]
+LOADPATH_COLUMNS = ["steps", "ranks", "at_knots", "end_ux", "error", "iterations", "solve_s", "whole_s", "per_step_s"]
 
 
-def loadpath_run(steps, work):
+def loadpath_run(steps, work, ranks=1):
     """the block on a spring in equal steps on t in [0, 5]: the error of its end against the path's closed form"""
     import h5py
     h5 = os.path.join(work, "block_%d.h5" % steps)
-    out, whole = timed([os.path.join(ROOT, "examples", "contact")] + BLOCK + ["-steps", str(steps), "-o", h5])
+    out, whole = timed(mpiexec(ranks) + [os.path.join(ROOT, "examples", "contact")] + BLOCK + ["-steps", str(steps), "-o", h5])
     m = SUMMARY.search(out)
     with h5py.File(h5, "r") as f:
         end = float(f["steps/groups/top/displacement"][-1, 0])
-    return {"steps": steps, "at_knots": int(steps % 5 == 0), "end_ux": end, "error": abs(end - BLOCK_END) / abs(BLOCK_END),
+    return {"steps": steps, "ranks": ranks, "at_knots": int(steps % 5 == 0), "end_ux": end, "error": abs(end - BLOCK_END) / abs(BLOCK_END),
             "iterations": int(m.group(6)), "solve_s": float(m.group(5)), "whole_s": whole, "per_step_s": float(m.group(5)) / steps}
 
 
@@ -166,16 +223,16 @@ def plot_loadpath(path, rows, footer):
     plt.close(fig)
 
 
-SLIDER_COLUMNS = ["level", "eps", "contact", "iterations", "solve_s", "whole_s", "ratio_error", "cone_error", "sliding", "sticking"]
+SLIDER_COLUMNS = ["level", "eps", "ranks", "contact", "iterations", "solve_s", "whole_s", "ratio_error", "cone_error", "sliding", "sticking"]
 
 
-def slider_run(level, eps, work):
+def slider_run(level, eps, work, ranks=1):
     """the slider of scenes/slider.opts (a block pushed along x beyond phi N on a block, phi = 0.5): the contact's
     tangential force against phi times its normal force, |T| / (phi N) - 1, as tests/suite_pairs.py measures it, and
     the sliding nodes' largest distance from their cones, max | |r_t| / (phi r_n) - 1 |"""
     import h5py
     h5 = os.path.join(work, "slider_L%d_%g.h5" % (level, eps))
-    out, whole = timed([os.path.join(ROOT, "examples", "contact"), "-options_file", os.path.join(ROOT, "scenes", "slider.opts"), "-level", str(level),
+    out, whole = timed(mpiexec(ranks) + [os.path.join(ROOT, "examples", "contact"), "-options_file", os.path.join(ROOT, "scenes", "slider.opts"), "-level", str(level),
                         "-snes_rtol", "%g" % eps, "-o", h5])
     m = SUMMARY.search(out)
     with h5py.File(h5, "r") as f:
@@ -184,6 +241,6 @@ def slider_run(level, eps, work):
     rn = (r * n).sum(axis=1)
     rt = r - rn[:, None] * n
     sliding = np.isin(s, (1, 2))
-    return {"cone_error": np.abs(np.linalg.norm(rt[sliding], axis=1) / (phi * rn[sliding]) - 1).max(), "level": level, "eps": eps, "contact": int(m.group(2)), "iterations": int(m.group(6)), "solve_s": float(m.group(5)), "whole_s": whole,
+    return {"cone_error": np.abs(np.linalg.norm(rt[sliding], axis=1) / (phi * rn[sliding]) - 1).max(), "level": level, "eps": eps, "ranks": ranks, "contact": int(m.group(2)), "iterations": int(m.group(6)), "solve_s": float(m.group(5)), "whole_s": whole,
             "ratio_error": np.linalg.norm(rt.sum(axis=0)) / (phi * rn.sum()) - 1, "sliding": int(np.isin(s, (1, 2)).sum()),
             "sticking": int(np.isin(s, (3, 4, 5)).sum())}

@@ -2,9 +2,10 @@
 """One level of the work-precision study (bench/accuracy.py runs it): loads the reduced prism problem that
 `examples/prism -save_reduced FILE` wrote (P, f, u_C, coordinates), solves it with ssstar (loaded by -dll_append)
 for every method and tolerance, and writes FILE.json: per run the time of SNESSolve (median of --repeat), the
-iterations, the ||z_k|| history and the contact solution u and reaction r = P u - f.
+iterations, the ||z_k|| history and the contact solution u and reaction r = P u - f. Under mpiexec P is
+distributed over the ranks (the dense route on N ranks); the first rank gathers the solutions and writes the file.
 
-  bench/accuracy_worker.py FILE --methods ssstar,fixedpoint --tols 1e-2,...,1e-12 --reference-rtol 1e-14 [--repeat 3]
+  [mpiexec -n N] bench/accuracy_worker.py FILE --methods ssstar,fixedpoint --tols 1e-2,...,1e-12 --reference-rtol 1e-14 [--repeat 3]
 """
 import argparse
 import json
@@ -12,6 +13,7 @@ import os
 import sys
 import time
 
+import numpy as np
 import petsc4py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -36,12 +38,33 @@ def main():
     petsc4py.init([sys.argv[0], "-dll_append", os.path.join(ROOT, "lib", "libssstar.so")])
     from petsc4py import PETSc
 
+    comm = PETSc.COMM_WORLD
+    dofs = int(np.fromfile(args.file, dtype=">i4", count=2)[1])  # the header of P: class id, rows, ...
+    nodes, size, rank = dofs // 3, comm.getSize(), comm.getRank()
+    local = 3 * (nodes // size + (rank < nodes % size))  # whole nodes per rank (a node's 3 dofs on one rank)
     viewer = PETSc.Viewer().createBinary(args.file, "r")
     P = PETSc.Mat().create()
+    P.setSizes(((local, dofs), (local, dofs)))
     P.setType(PETSc.Mat.Type.DENSE)
     P.load(viewer)
-    f, _, xyz = PETSc.Vec().load(viewer), PETSc.Vec().load(viewer), PETSc.Vec().load(viewer)
+    vecs = []
+    for _ in range(3):
+        v = PETSc.Vec().create()
+        v.setSizes((local, dofs))
+        v.setType(PETSc.Vec.Type.STANDARD)
+        v.load(viewer)
+        vecs.append(v)
+    f, _, xyz = vecs
     opts = PETSc.Options()
+
+    def gathered(v):
+        """the whole vector on the first rank (as a list; empty elsewhere)"""
+        scatter, whole = PETSc.Scatter.toZero(v)
+        scatter.scatter(v, whole, PETSc.InsertMode.INSERT_VALUES, PETSc.ScatterMode.FORWARD)
+        out = whole.getArray().tolist()
+        scatter.destroy()
+        whole.destroy()
+        return out
 
     def residual(snes, u, r):
         P.mult(u, r)
@@ -61,6 +84,7 @@ def main():
             opts.delValue(key)
         u = f.duplicate()
         u.zeroEntries()
+        PETSc.COMM_WORLD.barrier()
         t0 = time.perf_counter()
         snes.solve(None, u)
         elapsed = time.perf_counter() - t0
@@ -68,11 +92,11 @@ def main():
         residual(snes, u, r)
         history = [float(z) for z in snes.getConvergenceHistory()[0]]
         out = {"iterations": snes.getIterationNumber(), "reason": int(snes.getConvergedReason()), "time": elapsed,
-               "history": history, "u": u.getArray().tolist(), "r": r.getArray().tolist()}
+               "history": history, "u": gathered(u), "r": gathered(r)}
         snes.destroy()
         return out
 
-    result = {"coordinates": xyz.getArray().tolist(), "runs": []}
+    result = {"coordinates": gathered(xyz), "runs": []}
     reference = solve("ssstar", args.reference_rtol)
     reference["method"], reference["eps"] = "ssstar", args.reference_rtol
     result["reference"] = reference
@@ -83,8 +107,9 @@ def main():
             run["time"] = sorted(r["time"] for r in runs)[len(runs) // 2]
             run["method"], run["eps"] = method, eps
             result["runs"].append(run)
-    with open(args.file + ".json", "w") as out:
-        json.dump(result, out)
+    if PETSc.COMM_WORLD.getRank() == 0:
+        with open(args.file + ".json", "w") as out:
+            json.dump(result, out)
 
 
 if __name__ == "__main__":

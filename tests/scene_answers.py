@@ -15,6 +15,14 @@
       force per unit length F' = (sum of r_n over the nodes of the section) / (layer thickness): b = sqrt(4 F' R /
       (pi E*)), p0 = 2 F' / (pi b). Measured: p^2 = p0^2 (1 - x^2/b^2) fitted to the section's nodes in contact
       with |x| < 0.8 b, and the bracket
+  scene_answers.py von-mises FILE.h5 [--E 2.1e5 --nu 0.3 --R 10]
+      Hertz's subsurface von Mises maximum (the hertz scene, /fields/von_mises): the largest cell value under the
+      contact (centroid within a of the axis, above the depth 2 a) in p0 and its depth in a, against Hertz's on-axis
+      maximum (0.620 p0 at 0.481 a for nu = 0.3), a and p0 Hertz's for the measured normal force
+  scene_answers.py stick-radius FILE.h5 [--E 2.1e5 --nu 0.3 --R 10 --phi 0.3]
+      Cattaneo-Mindlin (the mindlin scene: two bodies of one material, P then Q < phi P): Q/(phi P), Hertz's a
+      (1/E* = 2 (1 - nu^2)/E), c = a (1 - Q/(phi P))^(1/3), the outermost sticking node's radius and the innermost
+      sliding node's
   scene_answers.py friction FILE.h5
       the contact force of the plane(s): normal N, tangential |F_t|, their ratio, and the states
   scene_answers.py slide FILE.h5 tx,ty,tz
@@ -68,6 +76,47 @@ def hertz(name, E=2.1e5, nu=0.3, R=10.0, group=None):
     return {"force": F, "a_hertz": a, "p0_hertz": p0, "a_fit": a_fit, "p0_fit": p0_fit,
             "a_error": a_fit / a - 1, "p0_error": p0_fit / p0 - 1, "a_inside": inside, "a_outside": outside,
             "nodes_in_contact": int(t.sum())}
+
+
+def hertz_on_axis(z, nu):
+    """Hertz's stresses on the axis under a sphere, in p0 (Johnson, Contact Mechanics, (3.45)): the von Mises stress
+    |sigma_r - sigma_z| at the depth z in a"""
+    sz = -1 / (1 + z ** 2)
+    sr = -(1 + nu) * (1 - z * np.arctan(1 / z)) + 0.5 / (1 + z ** 2)
+    return np.abs(sr - sz)
+
+
+def von_mises(name, E=2.1e5, nu=0.3, R=10.0):
+    """Hertz's subsurface maximum: the largest von Mises stress of the cells under the contact (centroid within a of
+    the axis, depth below 2 a) in p0 and its depth in a, against Hertz's on-axis maximum (0.620 p0 at 0.481 a for
+    nu = 0.3), a and p0 Hertz's for the measured normal force"""
+    f = h5py.File(name, "r")
+    F = f["contact/reaction"][:, 2].sum()
+    a = (3 * F * R / (4 * E / (1 - nu ** 2))) ** (1 / 3)
+    p0 = 3 * F / (2 * np.pi * a ** 2)
+    x, cells, vm = f["geometry/vertices"][:], f["viz/topology/cells"][:], f["fields/von_mises"][:]
+    centre = x[cells].mean(axis=1)
+    under = (np.hypot(centre[:, 0], centre[:, 1]) < a) & (centre[:, 2] < 2 * a)
+    j = np.argmax(vm[under])
+    z = np.linspace(0.01, 3, 30000)
+    theory = hertz_on_axis(z, nu)
+    value, depth = vm[under][j] / p0, centre[under][j, 2] / a
+    return {"vm_max": value, "vm_depth": depth, "vm_hertz": theory.max(), "depth_hertz": z[theory.argmax()],
+            "vm_error": value / theory.max() - 1, "vm_depth_error": depth / z[theory.argmax()] - 1}
+
+
+def stick_radius(name, phi, E, nu=0.3, R=10.0):
+    """Cattaneo-Mindlin (two bodies of one material, P then Q < phi P): Q/(phi P), Hertz's a, the stick radius
+    c = a (1 - Q/(phi P))^(1/3), the outermost sticking node's radius and the innermost sliding node's (in contact)"""
+    d = contact(name)
+    force = d["reaction"].sum(axis=0)
+    P, Q = force[2], np.hypot(force[0], force[1])
+    a = (3 * P * R / (4 * E / (2 * (1 - nu ** 2)))) ** (1 / 3)
+    r = np.hypot(d["coordinates"][:, 0], d["coordinates"][:, 1])
+    stick, slide = r[np.isin(d["state"], (3, 4))], r[np.isin(d["state"], (1, 2))]
+    outer = stick.max() if len(stick) else 0.0
+    inner = slide[slide > outer].min() if (slide > outer).any() else a
+    return {"ratio": Q / (phi * P), "a": a, "c": a * (1 - Q / (phi * P)) ** (1 / 3), "stick_outer": outer, "slide_inner": inner}
 
 
 def line(name, E=2.1e5, nu=0.3, R=10.0):
@@ -155,6 +204,13 @@ def main():
     li.add_argument("--E", type=float, default=2.1e5)
     li.add_argument("--nu", type=float, default=0.3)
     li.add_argument("--R", type=float, default=10.0)
+    for name in ("von-mises", "stick-radius"):
+        v = sub.add_parser(name)
+        v.add_argument("file")
+        v.add_argument("--E", type=float, default=2.1e5)
+        v.add_argument("--nu", type=float, default=0.3)
+        v.add_argument("--R", type=float, default=10.0)
+        v.add_argument("--phi", type=float, default=0.3)
     fr = sub.add_parser("friction")
     fr.add_argument("file")
     sl = sub.add_parser("slide")
@@ -171,6 +227,10 @@ def main():
         result = hertz(args.file, args.E, args.nu, args.R, args.group)
     elif args.cmd == "line":
         result = line(args.file, args.E, args.nu, args.R)
+    elif args.cmd == "von-mises":
+        result = von_mises(args.file, args.E, args.nu, args.R)
+    elif args.cmd == "stick-radius":
+        result = stick_radius(args.file, args.phi, args.E, args.nu, args.R)
     elif args.cmd == "friction":
         result = friction(args.file)
     elif args.cmd == "slide":

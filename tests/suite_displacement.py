@@ -10,6 +10,7 @@ import subprocess
 
 import h5py
 import numpy as np
+import scene_answers
 
 from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 
@@ -219,14 +220,6 @@ def displacement_xdmf():
         expect(got.shape == mean.shape and np.allclose(got, mean, rtol=1e-12, atol=1e-12 * max(1, np.abs(mean).max())), "step %d: the XDMF's point array stress_nodal has the means %s, the file %s" % (k, got, mean))
 
 
-def hertz_on_axis(z, nu):
-    """Hertz's stresses on the axis under a sphere, in p0 (Johnson, Contact Mechanics, (3.45)): the von Mises stress
-    |sigma_r - sigma_z| at the depth z in a"""
-    sz = -1 / (1 + z ** 2)
-    sr = -(1 + nu) * (1 - z * np.arctan(1 / z)) + 0.5 / (1 + z ** 2)
-    return np.abs(sr - sz)
-
-
 @test("Hertz's subsurface stress (scenes/hertz.opts at level 1, nu = 0.3, mesh size h = 0.2 near the pole): the largest von Mises stress of the cells on the axis (centroid within h/2) is 0.62 p0 at the depth 0.48 a, within what cells of size h resolve: the value within 0.62 p0 - min(vm(0.48 a - h), vm(0.48 a + h)) = 0.056 p0 and the depth within h, with a and p0 Hertz's for the measured normal force; the law holds")
 def displacement_hertz_stress():
     out, f = contact(["-options_file", os.path.join(ROOT, "scenes", "hertz.opts"), "-level", "1"], "displacement_hertz_L1.h5")
@@ -236,10 +229,10 @@ def displacement_hertz_stress():
     a = (3 * F * R / (4 * E / (1 - nu ** 2))) ** (1 / 3)
     p0 = 3 * F / (2 * np.pi * a ** 2)
     zz = np.linspace(0.01, 3, 30000)
-    theory = hertz_on_axis(zz, nu)
+    theory = scene_answers.hertz_on_axis(zz, nu)
     zmax, vmax = zz[theory.argmax()], theory.max()
     expect(abs(vmax - 0.62) < 0.005 and abs(zmax - 0.48) < 0.005, "Hertz's on-axis maximum %.4f p0 at %.4f a, not 0.62 at 0.48" % (vmax, zmax))
-    tol = vmax - min(hertz_on_axis(np.array([zmax - h / a, zmax + h / a]), nu))
+    tol = vmax - min(scene_answers.hertz_on_axis(np.array([zmax - h / a, zmax + h / a]), nu))
     x, cells, vm = f["geometry/vertices"][:], f["viz/topology/cells"][:], f["fields/von_mises"][:]
     centre = x[cells].mean(axis=1)
     axis = (np.hypot(centre[:, 0], centre[:, 1]) < h / 2) & (centre[:, 2] < 2 * a)

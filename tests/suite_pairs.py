@@ -6,6 +6,7 @@ import re
 
 import h5py
 import numpy as np
+import scene_answers
 
 from harness import *  # noqa: F401,F403 (run, expect, mpiexec, test, paths)
 
@@ -131,7 +132,6 @@ def pairs_refused():
 
 @test("Hertz between two elastic bodies (scenes/hertz2.opts, level 1: a half ball R = 10 on a block of the same material, frictionless, E* = E / (2 (1 - nu^2))): the fitted contact radius and peak pressure within 3 % of Hertz's (measured node-to-surface +1.8 %, +1.8 % on both paths; dual mortar +1.2 %, +1.5 %; level 2 node-to-surface +0.8 %, +0.3 %)", full=True)
 def pairs_hertz():
-    import scene_answers
     for extra, ranks, h5 in ((["-snes_ssstar_reduction", "direct"], 1, "pairs_hertz2_direct.h5"),
                              (["-snes_ssstar_reduction", "none"], 2, "pairs_hertz2_none.h5"),
                              (["-pair_discretization", "dual_mortar"], 1, "pairs_hertz2_mortar.h5")):
@@ -141,23 +141,14 @@ def pairs_hertz():
         expect(abs(h["force"] / 31415.9 - 1) <= 0.02, "%s: contact force %g, not the load" % (" ".join(extra), h["force"]), out)
 
 
-def stick_radius(h5):
-    """(Q/(phi P), Hertz's a, Cattaneo-Mindlin's c, the outermost sticking node's radius) of a solution file"""
-    c = h5py.File(h5, "r")["contact"]
-    force, x, s = c["reaction"][:].sum(0), c["coordinates"][:], c["state"][:]
-    P, Q = force[2], np.hypot(force[0], force[1])
-    a = (3 * P * 10 / (4 * 1.05e5 / (1 - 0.3 ** 2))) ** (1 / 3)
-    r = np.hypot(x[:, 0], x[:, 1])
-    return Q / (0.3 * P), a, a * (1 - Q / (0.3 * P)) ** (1 / 3), r[np.isin(s, (3, 4))].max()
-
-
 @test("Cattaneo-Mindlin (scenes/mindlin.opts, level 1: the half ball on the block, phi = 0.3, P then Q at the contact's height): for Q/(phi P) = 0.25, 0.5, 0.75 the outermost sticking node lies within 0.1 (half the mesh size at the pole) of c = a (1 - Q/(phi P))^(1/3) (measured node-to-surface -0.007 at 0.25, -0.083 at 0.5; dual mortar -0.001 at 0.5, -0.061 at 0.75); the whole body on 2 ranks gives the same states", full=True)
 def pairs_cattaneo_mindlin():
     for q, ratio, method in (("5.89", 0.25, "node_to_surface"), ("11.78", 0.5, "node_to_surface"), ("11.78", 0.5, "dual_mortar"), ("17.67", 0.75, "dual_mortar")):
         if True:
             h5 = "pairs_mindlin_%s_%s.h5" % (q, method)
             out, states, c = contact(scene("mindlin") + ["-traction_block_top", "-%s,0,0" % q, "-pair_discretization", method], h5)
-            qp, a, cm, stick = stick_radius(os.path.join(OUT, h5))
+            m = scene_answers.stick_radius(os.path.join(OUT, h5), 0.3, 2.1e5)
+            qp, cm, stick = m["ratio"], m["c"], m["stick_outer"]
             expect(abs(qp - ratio) <= 0.005, "%s %s: Q/(phi P) = %.4f, not %g" % (q, method, qp, ratio), out)
             expect(abs(stick - cm) <= 0.1, "%s %s: outermost sticking node at r = %.3f, Cattaneo-Mindlin c = %.3f" % (q, method, stick, cm), out)
     out, states2, c = contact(scene("mindlin") + ["-snes_ssstar_reduction", "none"], "pairs_mindlin_none_2.h5", 2)

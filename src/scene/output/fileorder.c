@@ -239,6 +239,8 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
     }
     PetscCallMPI(MPI_Alltoallv(values, scount, sdispl, MPIU_REAL, received, rcount, rdispl, MPIU_REAL, comm));
   }
+  PetscCall(PetscFree(rows)); /* sent: not held beside the output's copy */
+  PetscCall(PetscFree(values));
   PetscCall(PetscMalloc1(nrecv + 1, &order));
   for (PetscInt i = 0; i < nrecv; i++) order[i] = i;
   if (nrecv > 1) PetscCall(PetscTimSort(nrecv, order, sizeof(PetscInt), CompareRowIndices, sorted));
@@ -251,8 +253,6 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
   PetscCall(PetscFree(order));
   PetscCall(PetscFree2(sorted, received));
   PetscCall(PetscFree4(scount, sdispl, rcount, rdispl));
-  PetscCall(PetscFree(rows));
-  PetscCall(PetscFree(values));
   PetscCall(PetscFree(ranges));
   *nout = nrecv;
   PetscFunctionReturn(0);

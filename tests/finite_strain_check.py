@@ -3,7 +3,8 @@
 infinitesimal rotation of its current configuration, (18.9): w^T K w = -f . (Omega^2 x) for w = Omega x, with f the
 cell's internal force and x its current vertices; it is negative for a compressed cell (the geometric stiffness of a
 compressive stress) and zero for an unstressed one; and Saint Venant-Kirchhoff's uniaxial force has its maximum at
-lambda_3 = 1/sqrt(3), past which d P_33 / d lambda_3 < 0 (an indefinite tangent, (18.4)).
+lambda_3 = 1/sqrt(3), past which d P_33 / d lambda_3 < 0 (an indefinite tangent, (18.4)). Section 18b, (18.10): the
+tangent at a stressed state annuls the translations and maps the rotation Omega (x - c) to Omega f, for any centre c.
 
 Prints PASS/FAIL per check; exit status 1 on a failure."""
 import sys
@@ -74,6 +75,22 @@ for model in ("neo_hookean", "saint_venant_kirchhoff"):
     Ox = np.array([[0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])
     w = x @ Ox.T
     check("18.9 %s compressed 30 %% along z: negative stiffness along the rotation about x" % model, w.ravel() @ tangent(model, u) @ w.ravel() < 0)
+
+# (18.10), section 18b: the tangent at any state annuls the translations and maps the rotation w = Omega x of the
+# current configuration to Omega f (the internal force turned): the motions a floating body's Newton step regularizes
+for model in ("neo_hookean", "saint_venant_kirchhoff"):
+    u = X @ (I3 + 0.2 * rng.standard_normal((3, 3)) - I3).T
+    x = X + u
+    f, K = force(model, u), tangent(model, u)
+    scale = MU * V * np.abs(x).max()
+    for k in range(3):
+        t = np.zeros((4, 3))
+        t[:, k] = 1
+        check("18.10 %s: K t = 0 for the translation along axis %d" % (model, k), np.abs(K @ t.ravel()).max() <= 1e-6 * MU * V)
+    for c in (x.mean(axis=0), np.array([3.0, -2.0, 5.0])):
+        w = (x - c) @ Om.T
+        check("18.10 %s: K (Omega (x - c)) = Omega f about any centre c" % model, np.abs(K @ w.ravel() - (f @ Om.T).ravel()).max() <= 1e-6 * scale,
+              "(|Omega f| %.3g)" % np.abs(f @ Om.T).max())
 
 # Saint Venant-Kirchhoff's uniaxial force P_33 = lambda_3 E E_33 (18.6): its maximum at lambda_3 = 1/sqrt(3)
 l3 = np.linspace(0.3, 0.99, 6901)

@@ -304,7 +304,7 @@ PETSC_INTERN PetscErrorCode SSStarHeldLocalValues(SSStarScene, const PetscReal[]
 PETSC_INTERN PetscErrorCode SSStarHeldLift(SSStarScene, const SSStarCells *, Vec, Vec);
 PETSC_INTERN PetscErrorCode SSStarHeldDiagonal(SSStarScene, Vec, Vec, PetscBool);
 PETSC_INTERN PetscErrorCode SSStarSceneCheckPartlyHeld(SSStarScene);
-PETSC_INTERN PetscErrorCode SSStarSetRigidBodyModes(SSStarScene, Mat);
+PETSC_INTERN PetscErrorCode SSStarSetRigidBodyModes(SSStarScene, Vec, Mat);
 PETSC_INTERN PetscErrorCode SSStarSceneLoadFactor(SSStarScene, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SSStarAssembleElasticity(SSStarScene, PetscReal, Mat *, Vec *);
 PETSC_INTERN PetscErrorCode SSStarVertexBlocks(DM, PetscInt, PetscInt, PetscInt **);

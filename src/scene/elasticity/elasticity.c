@@ -431,7 +431,7 @@ PetscErrorCode SSStarAssembleElasticity(SSStarScene scene, PetscReal t, Mat *K, 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(SSSTAR_Assembly, dm, 0, 0, 0));
   PetscCall(AssembleStiffness(scene, K));
-  PetscCall(SSStarSetRigidBodyModes(scene, *K));
+  PetscCall(SSStarSetRigidBodyModes(scene, NULL, *K));
   if (scene->nDisplacements) { /* the load of a prescribed component: diag(K) g */
     PetscCall(VecDestroy(&scene->diagK));
     PetscCall(MatCreateVecs(*K, &scene->diagK, NULL));

@@ -37,13 +37,12 @@ static PetscInt FloatingOf(SSStarScene scene, PetscInt v)
    per body) and each body's centre and size: the null space of the Gram matrix of the six motions at its prescribed
    components (LAPACK's syev, eigenvalues below 1e-10 of the largest)
 */
-static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscReal size[], PetscInt count[], PetscReal **coef)
+static PetscErrorCode KeptMotions(SSStarScene scene, Vec coordinates, PetscReal centre[], PetscReal size[], PetscInt count[], PetscReal **coef)
 {
   const PetscInt     nf = scene->nFloating;
   PetscSection       gsec, csec;
   PetscInt           vStart, vEnd, total = 0;
   PetscReal         *sums, *bounds, *gram;
-  Vec                coordinates;
   const PetscScalar *xa;
   DM                 cdm;
 
@@ -54,7 +53,6 @@ static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscRe
   PetscCall(DMGetGlobalSection(scene->dm, &gsec));
   PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
-  PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
   PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
   PetscCall(VecGetArrayRead(coordinates, &xa));
   for (PetscInt pass = 0; pass < 2; pass++) { /* the bodies' centres and sizes, then their Gram matrices */
@@ -115,9 +113,50 @@ static PetscErrorCode KeptMotions(SSStarScene scene, PetscReal centre[], PetscRe
   PetscFunctionReturn(0);
 }
 
+/* The local coordinates of the configuration X + u (u a global vector; NULL: the reference X), a new vector */
+static PetscErrorCode CurrentCoordinates(SSStarScene scene, Vec u, Vec *x)
+{
+  DM                 dm = scene->dm, cdm;
+  PetscSection       sec, csec;
+  Vec                uloc, X;
+  PetscInt           vStart, vEnd;
+  const PetscScalar *ua;
+  PetscScalar       *xa;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetCoordinatesLocal(dm, &X));
+  PetscCall(VecDuplicate(X, x));
+  PetscCall(VecCopy(X, *x));
+  if (!u) PetscFunctionReturn(0);
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetLocalSection(dm, &sec));
+  PetscCall(DMGetLocalVector(dm, &uloc));
+  PetscCall(VecZeroEntries(uloc));
+  PetscCall(DMGlobalToLocal(dm, u, INSERT_VALUES, uloc));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(uloc, &ua));
+  PetscCall(VecGetArray(*x, &xa));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off, coff, dof;
+
+    PetscCall(PetscSectionGetDof(sec, v, &dof));
+    if (dof != 3) continue;
+    PetscCall(PetscSectionGetOffset(sec, v, &off));
+    PetscCall(PetscSectionGetOffset(csec, v, &coff));
+    for (PetscInt k = 0; k < 3; k++) xa[coff + k] += ua[off + k];
+  }
+  PetscCall(VecRestoreArray(*x, &xa));
+  PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscCall(DMRestoreLocalVector(dm, &uloc));
+  PetscFunctionReturn(0);
+}
+
 /* SSStarSetRigidBodyModes - K's near-null space (the six rigid motions of the mesh) and null space (the motions the
-   floating bodies keep); a scene without contact whose bodies keep some is refused, naming the body */
-PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Mat K)
+   floating bodies keep) at the configuration X + u (u NULL: the reference; a hyperelastic body's tangent J(u) gets its
+   current configuration's, docs/derivation.md section 18b); a scene without contact whose bodies keep some is refused,
+   naming the body */
+PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Vec u, Mat K)
 {
   DM                 dm = scene->dm, cdm;
   PetscSection       sec, csec;
@@ -130,7 +169,8 @@ PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Mat K)
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc4(3 * scene->nFloating + 1, &centre, scene->nFloating + 1, &size, scene->nFloating + 1, &count, scene->nFloating + 1, &first));
-  PetscCall(KeptMotions(scene, centre, size, count, &coef));
+  PetscCall(CurrentCoordinates(scene, u, &cloc));
+  PetscCall(KeptMotions(scene, cloc, centre, size, count, &coef));
   for (PetscInt f = 0; f < scene->nFloating; f++) {
     first[f] = nmodes;
     nmodes += count[f];
@@ -141,7 +181,6 @@ PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Mat K)
   PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
   PetscCall(DMGetLocalSection(dm, &sec));
-  PetscCall(DMGetCoordinatesLocal(dm, &cloc));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMGetLocalVector(dm, &xloc));
   PetscCall(VecGetArrayRead(cloc, &ca));
@@ -181,10 +220,8 @@ PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Mat K)
     } else modes[mode] = x;
   }
   PetscCall(VecRestoreArrayRead(cloc, &ca));
+  PetscCall(VecDestroy(&cloc));
   PetscCall(DMRestoreLocalVector(dm, &xloc));
-  /* a hyperelastic body's tangent at a loaded state has its translations in its null space but not its rotations (the
-     derivative of R f(u) is W f(u)): the floating machinery of docs/derivation.md section 14 does not apply to it */
-  PetscCheck(scene->affine || !nmodes, scene->comm, PETSC_ERR_SUP, "A hyperelastic body (-material_model) held by contact alone: %" PetscInt_FMT " of its rigid motions are free, and its tangent's null space changes with its load; hold it by -spring_<G>, -dirichlet or -displacement_<G> (docs/guide/large-deformation.md), or give it -material_model linear", nmodes);
   if (nmodes) {
     for (PetscInt f = 0; f < scene->nFloating; f++) /* Gram-Schmidt, twice, body by body */
       for (PetscInt k = first[f]; k < first[f] + count[f]; k++)

@@ -49,6 +49,7 @@ static PetscErrorCode HyperelasticJacobian(SNES snes, Vec u, Mat J, Mat Jpre, vo
   PetscFunctionBegin;
   PetscCall(SSStarAssembleTangent(scene, u, Jpre, &ok));
   if (!ok) PetscCall(SNESSetJacobianDomainError(snes));
+  if (scene->nFloating) PetscCall(SSStarSetRigidBodyModes(scene, u, Jpre)); /* the current configuration's motions (18b) */
   if (J != Jpre) { /* a matrix-free J (-snes_mf_operator) */
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));

@@ -160,7 +160,7 @@ static PetscErrorCode TakeDeclaration(SNES snes, SSStarContact *ct, SSStarProble
   if (pb->isC && ct->isC) PetscCall(ISEqual(pb->isC, ct->isC, &same));
   if (same && !ct->T && pb->Kw == K) { /* the problem stands; the floating bodies' motions at the points change frames */
     pb->built = ct->built;
-    if (pb->floating.m) PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating));
+    if (pb->floating.m) PetscCall(SSStarFloatingSetUp(ct, K, pb->nonlinear, &pb->floating));
   }
   PetscFunctionReturn(0);
 }
@@ -191,7 +191,7 @@ PetscErrorCode SSStarProblemSetUp(SNES snes, SSStarContact *ct, SSStarProblem *p
     PetscCall(SSStarProblemReset(pb));
     PetscCall(SSStarContactTransformStiffness(ct, K, &pb->Kw));
     PetscCall(ContactRowStatistics(ct, pb, pb->Kw));
-    PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating)); /* floating bodies (floating.c): checked before any factorization */
+    PetscCall(SSStarFloatingSetUp(ct, K, nonlinear, &pb->floating)); /* floating bodies (floating.c): checked before any factorization */
     if (ct->isI) PetscCall(ISGetSize(ct->isI, &nI));
     pb->wholeBody = PETSC_FALSE;
     if (ct->dofs && nI > 0) PetscCall(CreateReduction(snes, ct, pb, nonlinear));
@@ -444,7 +444,7 @@ PetscErrorCode SSStarProblemTakeJacobian(SNES snes, SSStarContact *ct, SSStarPro
   PetscFunctionBegin;
   if (ct->T) PetscCall(MatPtAP(K, ct->T, MAT_REUSE_MATRIX, PETSC_DEFAULT, &pb->Kw));
   if (ct->dofs && !pb->wholeBody) PetscCall(MatCreateSubMatrix(pb->Kw, ct->isC, ct->isC, MAT_REUSE_MATRIX, &pb->A));
-  PetscCall(SSStarFloatingSetUp(ct, K, &pb->floating));
+  PetscCall(SSStarFloatingSetUp(ct, K, pb->nonlinear, &pb->floating));
   PetscCall(PetscObjectStateGet((PetscObject)K, &pb->Kstate));
   PetscFunctionReturn(0);
 }
@@ -473,7 +473,7 @@ PetscErrorCode SSStarProblemTakeMeasuredContact(SNES snes, SSStarContact *ct, SS
   PetscCall(SSStarReductionDestroy(&pb->reduction));
   PetscCall(MatDestroy(&pb->A));
   PetscCall(CreateReduction(snes, ct, pb, PETSC_TRUE));
-  PetscCall(SSStarFloatingSetUp(ct, pb->K, &pb->floating));
+  PetscCall(SSStarFloatingSetUp(ct, pb->K, pb->nonlinear, &pb->floating));
   pb->built  = ct->built;
   *variables = PETSC_TRUE;
   PetscFunctionReturn(0);

@@ -353,7 +353,7 @@ PETSC_INTERN void           SNESSSStarNodeIterate(const SSStarContact *, const S
 PETSC_INTERN SSStarFriction SNESSSStarScaledFriction(SNES_SSStar *, PetscInt, PetscReal);
 
 /* floating/: floating.c, balance.c: bodies held by contact alone (K's null space; docs/derivation.md section 14) */
-PETSC_INTERN PetscErrorCode SSStarFloatingSetUp(SSStarContact *, Mat, SSStarFloating *);
+PETSC_INTERN PetscErrorCode SSStarFloatingSetUp(SSStarContact *, Mat, PetscBool, SSStarFloating *);
 PETSC_INTERN PetscErrorCode SSStarFloatingFreeMotions(SSStarFloating *, const unsigned char[], const PetscReal[]);
 PETSC_INTERN PetscErrorCode SSStarFloatingLeastNorm(SSStarFloating *, Vec);
 PETSC_INTERN PetscErrorCode SSStarFloatingView(SSStarFloating *, PetscViewer);

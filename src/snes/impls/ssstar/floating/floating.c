@@ -228,11 +228,13 @@ static PetscErrorCode FixedMotions(SSStarContact *ct, SSStarFloating *fb)
 
 /*
    K's null space as declared (MatSetNullSpace(K, ...)), for the contact of ct (set up): the motions orthonormalized,
-   checked (K rho = 0 to round-off; every motion moved by some contact point: a body nothing holds is refused before
-   any factorization), their values at the contact points, the bodies, the motions no contact resists. Nothing when K
-   has no null space.
+   checked (K rho = 0 to round-off for an affine residual; every motion moved by some contact point: a body nothing
+   holds is refused before any factorization), their values at the contact points, the bodies, the motions no contact
+   resists. Nothing when K has no null space. A nonlinear residual's J(u) at a stressed state does not annul the
+   rotations of the current configuration (J(u) (Omega x) = Omega f(u), docs/derivation.md (18.10)): there the motions
+   only regularize the Newton step (18b) and are not checked against J.
 */
-PetscErrorCode SSStarFloatingSetUp(SSStarContact *ct, Mat K, SSStarFloating *fb)
+PetscErrorCode SSStarFloatingSetUp(SSStarContact *ct, Mat K, PetscBool nonlinear, SSStarFloating *fb)
 {
   MPI_Comm     comm = PetscObjectComm((PetscObject)K);
   MatNullSpace nsp;
@@ -256,10 +258,11 @@ PetscErrorCode SSStarFloatingSetUp(SSStarContact *ct, Mat K, SSStarFloating *fb)
     PetscCall(VecCopy(vecs[k], fb->modes[k]));
   }
   PetscCall(Orthonormalize(m, fb->modes));
-  /* K rho = 0: a null space that is not K's would make every answer below wrong */
+  /* K rho = 0: a null space that is not K's would make every answer below wrong (the reduction's P, the least-norm
+     solution); a nonlinear residual uses neither */
   PetscCall(MatNorm(K, NORM_INFINITY, &Knorm));
   PetscCall(VecDuplicate(fb->modes[0], &Kr));
-  for (PetscInt k = 0; k < m; k++) {
+  for (PetscInt k = 0; k < m && !nonlinear; k++) {
     PetscReal rnorm, vnorm;
 
     PetscCall(MatMult(K, fb->modes[k], Kr));

@@ -444,7 +444,7 @@ static PetscErrorCode SNESSSStarSetPCReuse_SSStar(SNES snes, PetscReal fraction)
           one would not fit the memory)
 
    Options Database Key:
-.  -snes_ssstar_plain_aggregation_dofs <dofs> - the size
+.  -snes_ssstar_plain_aggregation_dofs <200000> - the size
 
    Level: advanced
 

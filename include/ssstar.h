@@ -164,6 +164,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetPCReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetPlainAggregationDofs(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPRtolMax(SNES, PetscReal);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPFloor(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLawTolerance(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetLawResidual(SNES, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetNewtonStepCounts(SNES, PetscInt *, PetscInt *, PetscInt *);

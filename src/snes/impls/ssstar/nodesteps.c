@@ -742,9 +742,9 @@ static PetscErrorCode SNESSSStarSetKSPRtolMax_SSStar(SNES snes, PetscReal rtol)
 .  -snes_ssstar_ksp_floor <fraction> - the fraction
 
    Notes:
-   Lower values solve the last step further than the stopping rule asks (0.1 was the default before, 6 more Krylov
-   iterations at level 24 of examples/prism); where the step leaves ||z|| or the law residual above its threshold,
-   one more Newton step follows.
+   Lower values solve the last step further than the stopping rule asks (0.1, a tenth as for the other steps: 3 more
+   Krylov iterations at level 16 of examples/prism, the same Newton steps); where the step leaves ||z|| or the law
+   residual above its threshold, one more Newton step follows.
 
    Level: advanced
 

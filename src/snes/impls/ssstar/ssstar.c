@@ -352,6 +352,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     xnorm         = PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale);
     ss->tolerance = PetscMax(snes->abstol, snes->rtol * xnorm);
     PetscUseTypeMethod(snes, converged, k, xnorm, dunorm, znorm, &snes->reason, snes->cnvP);
+    PetscCall(PetscInfo(snes, "Iteration %" PetscInt_FMT ": ||z|| %g, threshold %g, law residual %g (tolerance %g)\n", k, (double)znorm, (double)ss->tolerance, (double)ss->lawResidual, (double)SNESSSStarLawTolerance(snes)));
     if (snes->reason) {
       ss->reason = SubReason(snes);
       if (snes->reason > 0) {

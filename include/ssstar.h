@@ -175,6 +175,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetUnbalancedMotion(SNES, Vec *, PetscInt *, PetscReal[3], PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);
+PETSC_EXTERN PetscErrorCode SNESSSStarReleaseWork(SNES);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorStates(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorProgress(SNES, PetscInt, PetscReal, PetscViewerAndFormat *);
 PETSC_EXTERN PetscErrorCode SNESSSStarMonitorProgressAdd(SNES);

@@ -29,7 +29,7 @@ TESTS    := tests/test_kernels tests/test_newton tests/test_plain_contact tests/
 BENCHES  := bench/yardstick bench/newton_step bench/dense_lu bench/refine_petsc
 # MUMPS_LIB, MUMPS_INCLUDE: PETSc's own (petscvariables), so the direct reduction calls the MUMPS PETSc links
 CFLAGS_SSSTAR := $(PCC_FLAGS) -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CC_INCLUDES) $(MUMPS_INCLUDE) \
-                 -DSSSTAR_MESH_DIR=\"$(abspath meshes)\"
+                 -DSSSTAR_MESH_DIR=\"$(abspath meshes)\" -DSSSTAR_GMSH_SONAME=\"$(GMSH_SONAME)\"
 LINK_SSSTAR   := -Llib -l$(LIBNAME) -Wl,-rpath,$(abspath lib) $(PETSC_LIB)
 # mpiexec as root (CI, containers) needs these; harmless otherwise
 export OMPI_ALLOW_RUN_AS_ROOT=1
@@ -59,7 +59,7 @@ build/%.o: src/%.c $(wildcard include/*.h src/*/*.h src/*/*/*.h src/*/*/*/*.h sr
 $(LIB): $(LIB_OBJ)
 	@mkdir -p lib
 	$(SAY) "  LD      $@"
-	$(Q)$(PCC) -shared -o $@ $^ $(PETSC_LIB) $(GMSH_LIB) $(MUMPS_LIB) $(METIS_LIB)
+	$(Q)$(PCC) -shared -o $@ $^ $(PETSC_LIB) -ldl $(MUMPS_LIB) $(METIS_LIB)
 
 examples/%: examples/%.c $(LIB)
 	$(SAY) "  CCLD    $@"

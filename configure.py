@@ -5,6 +5,7 @@ The direct reduction calls MUMPS itself: it links the MUMPS PETSc links (MUMPS_L
 
 Run as root, it installs the missing Debian packages; otherwise it prints the apt-get line to run.
 """
+import ctypes.util
 import os
 import shutil
 import subprocess
@@ -114,7 +115,8 @@ def main():
     with open("config/ssstar.mk", "w") as f:
         f.write("# written by configure.py\n")
         f.write("PETSC_DIR := %s\nPETSC_ARCH := %s\n" % (petsc_dir, petsc_arch))
-        f.write("GMSH := %s\nGMSH_LIB := -lgmsh\n" % gmsh)
+        # libgmsh is opened when a run needs it (src/sys/gmshlib.c), by the name the dynamic linker knows it by
+        f.write("GMSH := %s\nGMSH_SONAME := %s\n" % (gmsh, ctypes.util.find_library("gmsh") or "libgmsh.so"))
         f.write("METIS_LIB := -lmetis\n")
         f.write("PYTHON := %s\n" % DEBIAN_PYTHON)
     print("configure: PETSc %s at %s%s (MUMPS, HDF5, ScaLAPACK), gmsh %s; wrote config/ssstar.mk"

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <unistd.h>
 #include <sys/stat.h>
-#include <gmshc.h>
+#include "../../sys/gmshlib.h"
 
 /* gmsh session on rank 0 with geo read at the level (the number L set before reading) */
 static void GmshOpen(const char geo[], PetscInt level, int *ierr)
@@ -34,7 +34,8 @@ static void GmshOpen(const char geo[], PetscInt level, int *ierr)
    refused before meshing when the memory it would need exceeds the machine's (SSStarCheckMemory()).
 
    A mesh file newer than the geometry is the geometry's mesh already: it is kept (gmsh meshes the whole body on one
-   process; at level 40 of the prism that took a few seconds and a rank-0 peak of several GB, every run).
+   process; at level 40 of the prism that took a few seconds and a rank-0 peak of several GB, every run), and the gmsh
+   library is not even opened (the scene checks the memory by the mesh file's node count, SSStarMeshFileNodes()).
 
    Level: intermediate
 
@@ -52,20 +53,32 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
   PetscCall(PetscTestFile(geo, 'r', &exists));
   PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Cannot read the geometry file %s (option -geo)", geo);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
-    GmshOpen(geo, level, &ierr);
-    if (!ierr) {
-      double *value = NULL;
-      size_t  n     = 0;
+  if (rank == 0) { /* a mesh file made from the geometry as it is now: kept, and gmsh not even loaded */
+    struct stat g, m;
 
-      gmshOnelabGetNumber("ssstar/nodes", &value, &n, &ierr);
-      if (!ierr && n == 1) nodes = value[0];
-      gmshFree(value);
+    current = (PetscMPIInt)(!stat(geo, &g) && !stat(msh, &m) && (m.st_mtim.tv_sec > g.st_mtim.tv_sec || (m.st_mtim.tv_sec == g.st_mtim.tv_sec && m.st_mtim.tv_nsec >= g.st_mtim.tv_nsec)));
+  }
+  PetscCallMPI(MPI_Bcast(&current, 1, MPI_INT, 0, comm));
+  if (current) PetscFunctionReturn(0);
+  if (rank == 0) {
+    ierr = SSStarGmshLoad();
+    failure = ierr ? 3 : 0;
+    if (!ierr) {
+      GmshOpen(geo, level, &ierr);
+      if (!ierr) {
+        double *value = NULL;
+        size_t  n     = 0;
+
+        gmshOnelabGetNumber("ssstar/nodes", &value, &n, &ierr);
+        if (!ierr && n == 1) nodes = value[0];
+        gmshFree(value);
+      }
+      failure = ierr ? 1 : 0;
+      gmshFinalize(&ierr);
     }
-    failure = ierr ? 1 : 0;
-    gmshFinalize(&ierr);
   }
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, comm));
+  PetscCheck(failure != 3, comm, PETSC_ERR_LIB, "Cannot open the gmsh library %s to mesh %s (option -geo)", SSSTAR_GMSH_SONAME, geo);
   PetscCheck(!failure, comm, PETSC_ERR_LIB, "gmsh cannot read %s (option -geo)", geo);
   PetscCallMPI(MPI_Bcast(&nodes, 1, MPIU_REAL, 0, comm));
   if (nodes > 0) {
@@ -74,13 +87,6 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
     PetscCall(PetscSNPrintf(what, sizeof(what), "-level %" PetscInt_FMT " of %s", level, geo));
     PetscCall(SSStarCheckMemory(comm, nodes, what));
   }
-  if (rank == 0) { /* a mesh file made from the geometry as it is now: kept */
-    struct stat g, m;
-
-    current = (PetscMPIInt)(!stat(geo, &g) && !stat(msh, &m) && (m.st_mtim.tv_sec > g.st_mtim.tv_sec || (m.st_mtim.tv_sec == g.st_mtim.tv_sec && m.st_mtim.tv_nsec >= g.st_mtim.tv_nsec)));
-  }
-  PetscCallMPI(MPI_Bcast(&current, 1, MPI_INT, 0, comm));
-  if (current) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(SSSTAR_MeshGmsh, 0, 0, 0, 0));
   if (rank == 0) {
     char tmp[PETSC_MAX_PATH_LEN];

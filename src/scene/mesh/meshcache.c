@@ -21,7 +21,7 @@
 #include "../sceneimpl.h"
 #include <petscsf.h>
 #include <hdf5.h>
-#include <gmshc.h>
+#include "../../sys/gmshlib.h"
 #include <sys/stat.h>
 #include <stdio.h>
 #include <unistd.h>
@@ -271,10 +271,11 @@ static PetscErrorCode WriteCache(const char msh[], const char cache[], const lon
   int ierr = 0;
 
   PetscFunctionBegin;
+  *failure = 1;
+  if (SSStarGmshLoad()) PetscFunctionReturn(0);
   gmshInitialize(0, NULL, 0, &ierr);
   if (!ierr) gmshOptionSetNumber("General.Verbosity", 0, &ierr);
   if (!ierr) gmshOpen(msh, &ierr);
-  *failure = 1;
   if (!ierr) PetscCall(WriteCacheOfModel(cache, stamp, failure));
   gmshFinalize(&ierr);
   PetscFunctionReturn(0);

@@ -11,7 +11,7 @@
    all would find): no rank keeps every triangle.
 */
 #include "obstacleimpl.h"
-#include <gmshc.h>
+#include "../../../sys/gmshlib.h"
 #include <unistd.h>
 
 #define PSEUDO_NORMALS 21 /* 7 x 3 per triangle: face, edges 01 12 20, vertices (surface.c) */
@@ -102,6 +102,10 @@ static PetscErrorCode ReadTriangles(const char file[], PetscInt *nv, PetscReal *
   *tri      = NULL;
   if (access(file, R_OK)) {
     *failure = 1;
+    PetscFunctionReturn(0);
+  }
+  if (SSStarGmshLoad()) {
+    *failure = 2;
     PetscFunctionReturn(0);
   }
   gmshInitialize(0, NULL, 0, &ierr);

@@ -46,6 +46,20 @@ def mesh_cache():
     expect("-mesh_cache /proc/no_such_folder: cannot make the folder or write to it" in out, "an impossible -mesh_cache is not refused by name", out)
 
 
+@test("libgmsh is opened only by a run that needs it (src/sys/gmshlib.c): lib/libssstar.so does not link it; a run "
+      "that meshes a .geo into an empty cache loads it, the same run again from the cache never does (LD_DEBUG=files)")
+def gmsh_only_to_mesh():
+    needed = subprocess.run(["ldd", os.path.join(ROOT, "lib", "libssstar.so")], stdout=subprocess.PIPE, text=True).stdout
+    expect("libgmsh" not in needed, "lib/libssstar.so links libgmsh", needed)
+    cache = fresh_dir("gmsh_only_to_mesh")
+    env = dict(os.environ, LD_DEBUG="files")
+    for first in (True, False):
+        p = subprocess.run(mpiexec(1, PRISM, "-level", "2", "-mesh_cache", cache), cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300)
+        expect(p.returncode == 0, "examples/prism -level 2 failed", p.stdout[-4000:])
+        loaded = re.search(r"file=\S*libgmsh\.so", p.stdout) is not None
+        expect(loaded == first, "libgmsh %s when the mesh %s in the cache" % ("was not loaded" if first else "was loaded", "was not" if first else "was"), p.stdout[-4000:])
+
+
 @test("the set-up line of a solve says what its set-up did, and only then: on the gap's ten load steps (one K) the "
       "first says K was reduced (the dense route) or taken whole (reduction none), the nine others that it was kept and "
       "only the load changed", full=True)

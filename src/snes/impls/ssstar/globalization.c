@@ -202,9 +202,9 @@ static PetscErrorCode TryFullStep(SNES snes, PetscReal *mfull)
    else a remedy: the full step anyway (odd failures) or a doubled gamma without a step (even failures). reason is set
    when nothing can be done. A polishing step (||z|| at its threshold, the law residual rho not: section 12) is taken
    whole once the states have settled (no node changed its state at u: the local regime, the creep and the round-off
-   floor of section 19, where the decrease of ||z|| says nothing); before, it is also accepted when it decreases rho
-   enough, and globalized as any other step otherwise: section 19b (at a loose rtol the threshold is met with nodes still
-   changing state, and whole steps drifted along the soft modes ||z|| hardly weighs).
+   floor of section 19, where the decrease of ||z|| says nothing), and globalized as any other step before: section
+   19b (at a loose rtol the threshold is met with nodes still changing state, and whole steps crept along the soft
+   modes that ||z|| hardly weighs).
 */
 PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, PetscBool polishing, SSStarReason *reason)
 {
@@ -212,7 +212,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
   SSStarGlobalization *glob  = &ss->glob;
   const PetscReal      eta   = PetscPowReal(0.5, (PetscReal)(k + 1));
   const PetscBool      whole = (PetscBool)(polishing && glob->changed == 0);
-  PetscReal            mfull, m, alpha, rho = PETSC_MAX_REAL;
+  PetscReal            mfull, m, alpha;
   PetscBool            finite, full;
 
   PetscFunctionBegin;
@@ -229,8 +229,7 @@ PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, P
     if (refined) PetscCall(TryFullStep(snes, &mfull));
   }
   finite = (PetscBool)!PetscIsInfOrNanReal(mfull);
-  if (finite && glob->on && !whole && polishing && !(mfull <= (1 - SSSTAR_SIGMA + eta) * znorm)) PetscCall(SNESSSStarLawResidualAt(snes, ss->ut, ss->ct, &rho));
-  if (finite && (!glob->on || whole || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm || rho <= (1 - SSSTAR_SIGMA + eta) * ss->lawResidual)) {
+  if (finite && (!glob->on || whole || mfull <= (1 - SSSTAR_SIGMA + eta) * znorm)) {
     PetscCall(Accept(ss, ss->ut, ss->ct));
     glob->alpha = 1;
     PetscCall(PetscLogEventEnd(SSSTAR_LineSearch, snes, 0, 0, 0));

@@ -205,17 +205,6 @@ PetscErrorCode SNESSSStarLawResidual(SNES snes, Vec u, Vec c)
   PetscFunctionReturn(0);
 }
 
-/* The law residual rho of a trial point (u, c) with the floors of the iterate's, nothing stored: the merit of a
-   polishing step (docs/derivation.md section 19b) */
-PetscErrorCode SNESSSStarLawResidualAt(SNES snes, Vec u, Vec c, PetscReal *rho)
-{
-  PetscReal U, F;
-
-  PetscFunctionBegin;
-  PetscCall(LawResidual(snes, u, c, PETSC_TRUE, rho, &U, &F));
-  PetscFunctionReturn(0);
-}
-
 /* The tolerance of the law residual: as set (-snes_ssstar_law_rtol), else max(rtol, SSSTAR_LAW_RTOL_DEFAULT) */
 PetscReal SNESSSStarLawTolerance(SNES snes)
 {

@@ -340,7 +340,6 @@ PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarClassify(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarLawResidual(SNES, Vec, Vec);
-PETSC_INTERN PetscErrorCode SNESSSStarLawResidualAt(SNES, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscReal      SNESSSStarLawTolerance(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarRecordStart(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarElasticTrial(SNES, PetscBool *);

@@ -67,9 +67,9 @@ def kinks_stiff_block():
         expect(len(times) == 21 and abs(times[13] - 3.25) < 1e-12 and (reasons > 0).all(), "%s: steps %s, reasons %s" % (path, times, reasons))
 
 
-@test("polishing at a loose tolerance (docs/derivation.md section 19b): scenes/mindlin.opts at level 2, -snes_rtol 1e-2, 2 ranks, auto choosing the whole body, and at level 1, -snes_rtol 1e-1, 1 rank, the whole body, meet the ||z|| threshold with the stick-slip annulus still moving (both ended DIVERGED_LOCAL_MIN, after 23 and 26 iterations: whole polishing steps crept along the block's soft spring, ||z|| 2.2e-3 -> 1.3 at level 2, every sticking node sliding); they converge, each file satisfies the law to its rtol and the outermost sticking node lies within 0.05 (level 2) and 0.15 (level 1: half its mesh size at the pole plus the tolerance's) of c = a (1 - Q/(phi P))^(1/3)")
+@test("polishing at a loose tolerance (docs/derivation.md section 19b): scenes/mindlin.opts at level 2, -snes_rtol 1e-2, 2 ranks, auto choosing the whole body, and at level 1, -snes_rtol 1e-1, 1 rank, the whole body, meet the ||z|| threshold with the stick-slip annulus still moving (both ended DIVERGED_LOCAL_MIN, after 23 and 26 iterations: whole polishing steps crept along the block's soft spring, ||z|| 2.2e-3 -> 1.3 at level 2, every sticking node sliding); they converge, each file satisfies the law to its rtol and the outermost sticking node lies within 0.05 (level 2) and 0.1 (level 1: half its mesh size at the pole) of c = a (1 - Q/(phi P))^(1/3)")
 def kinks_loose_polishing():
-    for level, rtol, ranks, route, near in ((2, "1e-2", 2, "auto", 0.05), (1, "1e-1", 1, "none", 0.15)):
+    for level, rtol, ranks, route, near in ((2, "1e-2", 2, "auto", 0.05), (1, "1e-1", 1, "none", 0.1)):
         h5 = os.path.join(OUT, "kinks_mindlin_loose_%d.h5" % level)
         out = run(mpiexec(ranks, CONTACT, "-options_file", os.path.join(ROOT, "scenes", "mindlin.opts"), "-level", str(level), "-snes_rtol", rtol,
                           "-snes_ssstar_reduction", route, "-o", h5))

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The ssstar test suite: every test of tests/suite_*.py. `make test` runs the default set, `make test-full` adds the
 slow tests (registered with full=True). Each test runs in a process of its own, several at a time (-j, default the
-number of cores): its files go to tests/output/<test>/, so tests running together never share one. Each test states
-the requirement it checks; the end of the output gives the time per suite, and the last line is "N passed, N failed".
+number of cores): its files go to tests/output/<test>/, so tests running together never share one, and the meshes
+they make to tests/output/cache/ssstar, not to the user's cache. Each test states the requirement it checks; the end
+of the output gives the time per suite, and the last line is "N passed, N failed".
 Usage: tests/run.py [-k SUBSTRING] [-j N] [--full] [--list] [-v]"""
 import argparse
 import glob
@@ -18,6 +19,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 TIMINGS = os.path.join(HERE, "output", "timings.json")  # the last run's seconds per test: the longest start first
 SHIPPED_TIMINGS = os.path.join(HERE, "timings.json")  # a fresh clone's: a whole run's, measured here on a quiet machine
+TEST_CACHE = os.path.join(HERE, "output", "cache")  # $XDG_CACHE_HOME of the tests: their mesh cache
 TEST_TIMEOUT = 1800  # seconds: a test that runs longer hangs
 
 
@@ -43,7 +45,11 @@ def run_one(module, name):
 
 
 def environment(out):
-    env = dict(os.environ, SSSTAR_TEST_OUT=out)
+    # the meshes the tests make go to a cache of the tests' own (tests/output/cache/ssstar), not the user's; matplotlib
+    # keeps its font cache where it was
+    user_cache = os.environ.get("XDG_CACHE_HOME") if os.environ.get("XDG_CACHE_HOME", "").startswith("/") else os.path.expanduser("~/.cache")
+    env = dict(os.environ, SSSTAR_TEST_OUT=out, XDG_CACHE_HOME=TEST_CACHE)
+    env.setdefault("MPLCONFIGDIR", os.path.join(user_cache, "matplotlib"))
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     env.setdefault("OPENBLAS_NUM_THREADS", "1")

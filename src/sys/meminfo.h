@@ -27,11 +27,12 @@ PETSC_INTERN PetscErrorCode SSStarMemAvailable(PetscLogDouble *);
    The dense route's additions (issue 31's slab: 1.64 GB where the whole body's estimate said 0.18): MUMPS's factors of
    K, about SSSTAR_MUMPS_ENTRIES N^(4/3) entries for N dofs (measured 15-25 on the prism, the slab, balls and blocks),
    with 20 % more of its workspace, and its front of the Schur block (NC x NC); then P (NC x NC, rows over the ranks) and
-   the Newton step's dense matrices (SSSTAR_DENSE_WORK of P's size: the Newton matrix's rows, its LU on rank 0, ...)
+   the Newton step's dense matrices: 2 + 1/size matrices of P's size on the largest rank besides the front (measured on
+   the slab at 1, 2 and 3 ranks, 29 Nov: 3.96, 3.80 and 2.87 of P's size in all, against 4, 3 and 2.67 here)
 */
 #define SSSTAR_MUMPS_ENTRIES 20.0
 #define SSSTAR_DENSE_BYTES(size, dofs, NC) \
-  ((8.0 * 1.2 * SSSTAR_MUMPS_ENTRIES * PetscPowReal((PetscReal)(dofs), 4.0 / 3.0) + 8.0 * (NC) * (NC)) / (size) + 8.0 * (NC) * (NC) * (1.0 + 3.0 / (size)))
+  ((8.0 * 1.2 * SSSTAR_MUMPS_ENTRIES * PetscPowReal((PetscReal)(dofs), 4.0 / 3.0) + 8.0 * (NC) * (NC)) / (size) + 8.0 * (NC) * (NC) * (2.0 + 1.0 / (size)))
 /* "0.233 GB per rank" (the largest rank's resident memory), with -ssstar_progress_ranks " (rank 0: 0.231, least: 0.210)" */
 PETSC_INTERN PetscErrorCode SSStarMemoryText(MPI_Comm, char[], size_t);
 

@@ -95,7 +95,7 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
    Output Parameters:
 +  peak  - bytes at the peak on the largest rank, on the whole body
 .  dense - bytes at the peak on the largest rank, on the dense route (MUMPS's factors of K with the Schur block of the
-           3 contactNodes contact dofs, P and the Newton step's dense matrices: 5 matrices of P's size on one rank,
+           3 contactNodes contact dofs, P and the Newton step's dense matrices: 4 matrices of P's size on one rank,
            the factorization's about N^(4/3)), or pass NULL
 -  plain - PETSC_TRUE when the multigrid will aggregate plainly: K has at least -snes_ssstar_plain_aggregation_dofs dofs,
            or the smoothed aggregation's set-up would not fit (the solver's choice, made again when it sets up), or

@@ -28,6 +28,21 @@ static PetscMPIInt BucketOwner(const Buckets *b, PetscInt i, PetscInt j, PetscIn
   return (PetscMPIInt)(id * size / B);
 }
 
+/* The buckets i0[d]..i1[d] in each direction d that the box of a cell's 4 vertices (r: x, y, z of each) touches */
+static void CellBuckets(const Buckets *b, const PetscReal r[12], PetscInt i0[3], PetscInt i1[3])
+{
+  PetscReal lo[3], hi[3];
+
+  for (PetscInt d = 0; d < 3; d++) {
+    lo[d] = PetscMin(PetscMin(r[d], r[3 + d]), PetscMin(r[6 + d], r[9 + d]));
+    hi[d] = PetscMax(PetscMax(r[d], r[3 + d]), PetscMax(r[6 + d], r[9 + d]));
+  }
+  for (PetscInt d = 0; d < 3; d++) {
+    i0[d] = BucketIndex(b, lo, d);
+    i1[d] = BucketIndex(b, hi, d);
+  }
+}
+
 /* det(p1 - p0, p2 - p0, p3 - p0) of the tetrahedron p (12 numbers): 6 times its signed volume */
 static PetscReal Determinant(const PetscReal p[12])
 {
@@ -159,18 +174,10 @@ PetscErrorCode SSStarMeshInterpolate(DM coarse, Vec u, DM fine, Vec v)
     }
     for (PetscInt c = 0; c < nc; c++) {
       const PetscReal *r = &rec[CELL_RECORD * c];
-      PetscReal        lo[3], hi[3];
       PetscInt         i0[3], i1[3];
       PetscMPIInt      last = -1;
 
-      for (PetscInt d = 0; d < 3; d++) {
-        lo[d] = PetscMin(PetscMin(r[d], r[3 + d]), PetscMin(r[6 + d], r[9 + d]));
-        hi[d] = PetscMax(PetscMax(r[d], r[3 + d]), PetscMax(r[6 + d], r[9 + d]));
-      }
-      for (PetscInt d = 0; d < 3; d++) {
-        i0[d] = BucketIndex(&b, lo, d);
-        i1[d] = BucketIndex(&b, hi, d);
-      }
+      CellBuckets(&b, r, i0, i1);
       /* the owners of a box's buckets, in increasing order for bucket ids increasing with k, j, i */
       for (PetscInt k = i0[2]; k <= i1[2]; k++)
         for (PetscInt j = i0[1]; j <= i1[1]; j++)
@@ -203,18 +210,9 @@ PetscErrorCode SSStarMeshInterpolate(DM coarse, Vec u, DM fine, Vec v)
         PetscCall(PetscMalloc1(cellStart[b1 - b0] + 1, &cellList));
       }
       for (PetscInt c = 0; c < nrecv; c++) {
-        const PetscReal *r = &cells[CELL_RECORD * c];
-        PetscReal        lo[3], hi[3];
-        PetscInt         i0[3], i1[3];
+        PetscInt i0[3], i1[3];
 
-        for (PetscInt d = 0; d < 3; d++) {
-          lo[d] = PetscMin(PetscMin(r[d], r[3 + d]), PetscMin(r[6 + d], r[9 + d]));
-          hi[d] = PetscMax(PetscMax(r[d], r[3 + d]), PetscMax(r[6 + d], r[9 + d]));
-        }
-        for (PetscInt d = 0; d < 3; d++) {
-          i0[d] = BucketIndex(&b, lo, d);
-          i1[d] = BucketIndex(&b, hi, d);
-        }
+        CellBuckets(&b, &cells[CELL_RECORD * c], i0, i1);
         for (PetscInt k = i0[2]; k <= i1[2]; k++)
           for (PetscInt j = i0[1]; j <= i1[1]; j++)
             for (PetscInt i = i0[0]; i <= i1[0]; i++) {

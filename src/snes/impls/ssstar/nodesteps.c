@@ -623,8 +623,8 @@ static PetscErrorCode SNESSSStarGetStates_SSStar(SNES snes, const SSStarState *s
 
    Notes:
    Where ||z|| has met its threshold and the law residual has not, the iteration takes Newton steps solved to the
-   floor (polishing; whole once the states have settled, globalized before) until it does, or stops with SSSTAR_REASON_LAW_STALLED when it no longer halves (its round-off
-   floor is above the tolerance).
+   floor (polishing; whole once the states have settled, globalized before) until it does, or stops with
+   SSSTAR_REASON_LAW_STALLED when it no longer halves (its round-off floor is above the tolerance).
 
    Level: intermediate
 

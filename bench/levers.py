@@ -4,7 +4,7 @@ with one configuration after another (options added to the default), the configu
 repeat (their order rotated from repeat to repeat) so that a noisy spell of the shared machine hits them all, and the
 AMG yardstick measured in the same repeat (bench/yardstick: one CG + GAMG solve of K, set-up + solve).
 
-  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|round4|nested|default] [--only "a;b;..."]
+  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|round4|nested|scale|krylov|default] [--only "a;b;..."]
                   [--config name='-opt value ...'] [--extra '-opt value']
 
 Per level and configuration, medians over the repeats: the whole run (the process's wall time, mesh to the -o file),
@@ -129,6 +129,15 @@ SETS["scale"] = [
     ("eta_max 0.3", "-snes_ssstar_ksp_rtol_max 0.3"),
     ("eta_max 0.03", "-snes_ssstar_ksp_rtol_max 0.03"),
     ("no nesting", "-nested_levels 0"),
+]
+# the seventh round (issue 34 item 3, docs/guide/scale.md "What the levers did"): the Krylov levers of the whole body's
+# Newton steps against the default (the likely last step solved to half the stopping rule): the former floor of a
+# tenth, the floor at the stopping rule itself, and the inexact forcing looser and tighter
+SETS["krylov"] = [
+    ("default", ""),
+    ("floor 0.1 (before)", "-snes_ssstar_ksp_floor 0.1"),
+    ("floor 1", "-snes_ssstar_ksp_floor 1"),
+    ("eta_max 0.3", "-snes_ssstar_ksp_rtol_max 0.3"),
 ]
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)

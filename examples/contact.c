@@ -211,6 +211,7 @@ static PetscErrorCode SolvePath(SSStarScene scene, SNES snes, Vec load, Vec u, P
     } while (!step.stopped && !step.reached);
     stopped = step.stopped;
   }
+  if (out) PetscCall(SNESSSStarReleaseWork(snes)); /* the last step solved: the file's memory out of the Newton steps' */
   if (out) PetscCall(SSStarSceneOutputEnd(scene, snes, u, NULL, NULL));
   PetscFunctionReturn(0);
 }
@@ -330,6 +331,7 @@ int main(int argc, char **argv)
   PetscCall(SSStarMemoryGetUsage(PETSC_COMM_WORLD, NULL, &peak));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "summary: nodes %" PetscInt_FMT " contact %" PetscInt_FMT " assembly %.3f s schur %.3f s solve %.3f s iterations %" PetscInt_FMT " states L/M1/M2/M3+/M3-/M4/LS %" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT "/%" PetscInt_FMT " %s%s peak %.3f GB per rank\n", nodes, ncontact, (double)t_assembly,
                         (double)t_schur, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], SNESConvergedReasons[reason], hasContact ? "" : affine ? " (one linear solve)" : " (Newton's method, no contact)", peak / 1e9));
+  if (hasOut && !path) PetscCall(SNESSSStarReleaseWork(snes)); /* the file's memory out of the Newton steps' work */
   if (hasOut && !path) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, nLoadSteps > 1 ? WriteLoadSteps : NULL, &steps));
   if (hasContact) PetscCall(SSStarSceneViewNoEquilibrium(scene, snes, PETSC_VIEWER_STDOUT_WORLD));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED));

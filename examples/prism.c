@@ -305,7 +305,9 @@ int main(int argc, char **argv)
                         levelText, size, nnodes, (double)t_assembly, (double)t_schur, ncontact, (double)t_solve, its, counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[0], counts[1] + counts[2], counts[3] + counts[4] + counts[5],
                         SNESConvergedReasons[reason], peak / 1e9));
 
-  /* the solution file says how the solve ended; the reduced problem's u_C is written only as a solution */
+  /* the solution file says how the solve ended (its memory out of the Newton steps' freed work, not beside it); the
+     reduced problem's u_C is written only as a solution */
+  PetscCall(SNESSSStarReleaseWork(snes));
   if (hasOut) PetscCall(SSStarSceneWriteSolution(scene, snes, out, u, NULL, NULL));
   if (hasReduced && isssstar && reason > 0) PetscCall(SaveReduced(reduced, scene, snes, u));
   if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "The solve did not converge (%s): exit status %d%s\n", SNESConvergedReasons[reason], SSSTAR_EXIT_NOT_CONVERGED, hasReduced ? ", no -save_reduced file" : ""));

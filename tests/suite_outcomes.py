@@ -215,7 +215,7 @@ def docs_defaults_match_help():
             v = normalize(value)
             expect(v == defaults[name], "docs/options.md: -snes_ssstar_%s default %s, -help: %s (make docs)" % (name, value, defaults[name]))
             checked.append(name + " (options)")
-    for name in ("friction", "reduction", "lu_reuse", "pc_reuse", "ksp_rtol_max", "damping_min"):
+    for name in ("friction", "reduction", "lu_reuse", "pc_reuse", "ksp_rtol_max", "ksp_floor", "damping_min"):
         expect(name in checked and name + " (options)" in checked, "the default of -snes_ssstar_%s is not checked (%s)" % (name, checked))
     expect("lu_reuse (page)" in checked, "the page of SNESSSStarSetLUReuse states no default", manual)
 

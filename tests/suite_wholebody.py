@@ -133,3 +133,28 @@ def wholebody_auto_chooses():
     out = run(mpiexec(1, os.path.join(ROOT, "examples", "generic"), "-snes_type", "ssstar", "-snes_ssstar_reduction", "auto", "-snes_ssstar_memory_limit", "1e-6", "-snes_view"))
     expect("solved on the whole body, P never formed (reduction none (chosen by auto))" in out or "solved on the whole body, P never formed (reduction none, chosen by auto)" in out,
            "auto did not choose none when P does not fit", out)
+
+
+def fine_krylov(out):
+    """the Krylov iterations of the finest mesh's linear solves (after the nested start's line), in order"""
+    fine = out[out.index("nested:"):]
+    return [int(n) for n in re.findall(r"Linear solve converged due to \S+ iterations (\d+)", fine)]
+
+
+@test("the whole body's likely last Newton step (its states repeated) is solved to half the stopping rule (-snes_ssstar_ksp_floor 0.5, the default; docs/derivation.md section 19a), no further: prism level 6 on 2 ranks from level 3 takes the same Newton steps as with the former tenth (-snes_ssstar_ksp_floor 0.1), its last linear solve fewer Krylov iterations (14 against 16 here), the law within its tolerance and holding in the file; -info names that step; a fraction outside (0, 1] is refused naming the option")
+def wholebody_last_step_floor():
+    args = ["-level", "6", "-snes_ssstar_reduction", "none", "-nested_levels", "1", "-ksp_converged_reason", "-info", ":snes"]
+    out, s = prism_run(args, "last_step_floor.h5", ranks=2)
+    before, b = prism_run(args + ["-snes_ssstar_ksp_floor", "0.1"], "last_step_floor01.h5", ranks=2)
+    expect(s["reason"] == b["reason"] == "CONVERGED_FNORM_RELATIVE" and s["iters"] == b["iters"] and s["states"] == b["states"],
+           "floor 0.5: %s in %d, states %s; 0.1: %s in %d, states %s" % (s["reason"], s["iters"], s["states"], b["reason"], b["iters"], b["states"]), out + before)
+    its, its_before = fine_krylov(out), fine_krylov(before)
+    expect(its[-1] < its_before[-1] and sum(its) < sum(its_before), "last linear solve: %s Krylov iterations at 0.5, %s at 0.1" % (its, its_before), out + before)
+    expect(out.count("(the likely last step)") >= 1, "-info does not name the likely last step", out)
+    last = re.findall(r"Iteration \d+: \|\|z\|\| (\S+), threshold (\S+), law residual (\S+) \(tolerance (\S+)\)", out)[-1]
+    expect(float(last[0]) <= float(last[1]) and float(last[2]) <= float(last[3]), "the last iterate: ||z|| %s (threshold %s), law %s (tolerance %s)" % last, out)
+    law = run(CHECK + ["law", os.path.join(OUT, "last_step_floor.h5"), "--steps"])
+    expect("VIOLATED" not in law, "the law does not hold in the file", law)
+    for bad in ("0", "1.5"):
+        text = run(mpiexec(1, PRISM, "-level", "2", "-snes_ssstar_reduction", "none", "-snes_ssstar_ksp_floor", bad), expect_rc=1)
+        expect(re.search(r"-snes_ssstar_ksp_floor %s\.? must be in \(0, 1\]" % re.escape(bad), text) is not None, "-snes_ssstar_ksp_floor %s not refused by name" % bad, text)

@@ -139,29 +139,33 @@ static int CompareRowIndices(const void *a, const void *b, void *ctx)
 }
 
 /*
-   The tetrahedra of the mesh as rows of 4 file vertex numbers, canonical and sorted: each cell goes to the rank whose
-   even-split vertex range holds its smallest vertex, which sorts its cells; the ranks' rows in rank order are sorted.
-   With ndata > 0, the ndata values of each local cell (data, by cell from cStart) travel with its row (outdata).
+   The order of the tetrahedra in the file (SSStarCellOrder, outputimpl.h): each local cell's row of 4 file vertex
+   numbers, canonical, goes to the rank whose even-split vertex range holds its smallest vertex, which sorts the rows
+   it receives; the ranks' rows in rank order are sorted. The plan keeps where each cell goes and where each received
+   row lands, so that a field of the cells travels the same way later, one field at a time (SSStarCellOrderApply()).
+   With cells, this rank's rows in file order too.
 */
-static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[], PetscInt ndata, const PetscReal data[], PetscInt *nout, PetscInt **out, PetscReal **outdata)
+PetscErrorCode SSStarCellOrderCreate(SSStarScene scene, SSStarCellOrder *plan, PetscInt **cells)
 {
   MPI_Comm           comm = scene->comm;
-  PetscMPIInt        size, *scount, *sdispl, *rcount, *rdispl;
-  PetscInt           pStart, cStart, cEnd, vStart, vEnd, ncells = 0, *rows, *ranges, *sorted, nrecv = 0, *order;
-  PetscReal         *values, *received;
+  PetscMPIInt        size;
+  PetscBool         *ghost;
+  PetscInt           pStart, cStart, cEnd, vStart, ncells = 0, *rows, *ranges, *sorted, nrecv;
   const PetscScalar *ta, *xa;
   DM                 cdm;
   PetscSection       csec;
   Vec                coordinates;
 
   PetscFunctionBegin;
+  PetscCall(PetscMemzero(plan, sizeof(*plan)));
   PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
   PetscCall(EvenRanges(comm, scene->nodesGlobal, &ranges));
   PetscCall(DMPlexGetChart(scene->dm, &pStart, NULL));
   PetscCall(DMPlexGetHeightStratum(scene->dm, 0, &cStart, &cEnd));
-  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetDepthStratum(scene->dm, 0, &vStart, NULL));
   PetscCall(PetscMalloc1(4 * (cEnd - cStart) + 1, &rows));
-  PetscCall(PetscMalloc1(ndata * (cEnd - cStart) + 1, &values));
+  PetscCall(PetscMalloc1(cEnd - cStart + 1, &plan->send));
   PetscCall(DMGetCoordinatesLocal(scene->dm, &coordinates));
   PetscCall(DMGetCoordinateDM(scene->dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
@@ -191,70 +195,93 @@ static PetscErrorCode CellsInFileOrder(SSStarScene scene, const PetscBool ghost[
       row[3] = t;
     }
     CanonicalTetrahedron(row);
-    for (PetscInt k = 0; k < ndata; k++) values[ndata * ncells + k] = data[ndata * (c - cStart) + k];
-    ncells++;
+    plan->send[ncells++] = c - cStart;
   }
   PetscCall(VecRestoreArrayRead(scene->tags, &ta));
   PetscCall(VecRestoreArrayRead(coordinates, &xa));
-  /* rows to the rank of their smallest vertex (rows[4 i]): sort by destination first */
-  PetscCall(PetscCalloc4(size, &scount, size + 1, &sdispl, size, &rcount, size + 1, &rdispl));
+  PetscCall(PetscFree(ghost));
+  plan->nsend = ncells;
+  /* rows to the rank of their smallest vertex (rows[4 i]): the send order sorts them by destination */
+  PetscCall(PetscCalloc4(size, &plan->scount, size + 1, &plan->sdispl, size, &plan->rcount, size + 1, &plan->rdispl));
   {
-    PetscInt  *dest, *perm, *tmp;
-    PetscReal *vtmp;
+    PetscInt *dest, *perm, *tmp;
 
-    PetscCall(PetscMalloc4(ncells + 1, &dest, ncells + 1, &perm, 4 * ncells + 1, &tmp, ndata * ncells + 1, &vtmp));
+    PetscCall(PetscMalloc3(ncells + 1, &dest, ncells + 1, &perm, 4 * ncells + 1, &tmp));
     for (PetscInt i = 0; i < ncells; i++) {
       PetscInt r = 0;
 
       while (r + 1 < size && ranges[r + 1] <= rows[4 * i]) r++; /* the range [ranges[r], ranges[r + 1]) holding it */
       dest[i] = r;
       perm[i] = i;
-      scount[r] += 4;
+      plan->scount[r]++;
     }
     PetscCall(PetscSortIntWithArray(ncells, dest, perm));
     for (PetscInt i = 0; i < ncells; i++) {
       for (PetscInt k = 0; k < 4; k++) tmp[4 * i + k] = rows[4 * perm[i] + k];
-      for (PetscInt k = 0; k < ndata; k++) vtmp[ndata * i + k] = values[ndata * perm[i] + k];
+      dest[i] = plan->send[perm[i]];
     }
     PetscCall(PetscArraycpy(rows, tmp, 4 * ncells));
-    PetscCall(PetscArraycpy(values, vtmp, ndata * ncells));
-    PetscCall(PetscFree4(dest, perm, tmp, vtmp));
+    PetscCall(PetscArraycpy(plan->send, dest, ncells));
+    PetscCall(PetscFree3(dest, perm, tmp));
   }
-  PetscCallMPI(MPI_Alltoall(scount, 1, MPI_INT, rcount, 1, MPI_INT, comm));
-  for (PetscMPIInt r = 0; r < size; r++) {
-    sdispl[r + 1] = sdispl[r] + scount[r];
-    rdispl[r + 1] = rdispl[r] + rcount[r];
-  }
-  nrecv = rdispl[size] / 4;
-  PetscCall(PetscMalloc2(4 * nrecv + 1, &sorted, ndata * nrecv + 1, &received));
-  PetscCallMPI(MPI_Alltoallv(rows, scount, sdispl, MPIU_INT, sorted, rcount, rdispl, MPIU_INT, comm));
-  if (ndata) { /* the values as the rows: counts and displacements in cells times ndata */
-    for (PetscMPIInt r = 0; r <= size; r++) {
-      if (r < size) {
-        scount[r] = scount[r] / 4 * (PetscMPIInt)ndata;
-        rcount[r] = rcount[r] / 4 * (PetscMPIInt)ndata;
-      }
-      sdispl[r] = sdispl[r] / 4 * (PetscMPIInt)ndata;
-      rdispl[r] = rdispl[r] / 4 * (PetscMPIInt)ndata;
-    }
-    PetscCallMPI(MPI_Alltoallv(values, scount, sdispl, MPIU_REAL, received, rcount, rdispl, MPIU_REAL, comm));
-  }
-  PetscCall(PetscFree(rows)); /* sent: not held beside the output's copy */
-  PetscCall(PetscFree(values));
-  PetscCall(PetscMalloc1(nrecv + 1, &order));
-  for (PetscInt i = 0; i < nrecv; i++) order[i] = i;
-  if (nrecv > 1) PetscCall(PetscTimSort(nrecv, order, sizeof(PetscInt), CompareRowIndices, sorted));
-  PetscCall(PetscMalloc1(4 * nrecv + 1, out));
-  if (outdata) PetscCall(PetscMalloc1(ndata * nrecv + 1, outdata));
-  for (PetscInt i = 0; i < nrecv; i++) {
-    for (PetscInt k = 0; k < 4; k++) (*out)[4 * i + k] = sorted[4 * order[i] + k];
-    for (PetscInt k = 0; k < ndata && outdata; k++) (*outdata)[ndata * i + k] = received[ndata * order[i] + k];
-  }
-  PetscCall(PetscFree(order));
-  PetscCall(PetscFree2(sorted, received));
-  PetscCall(PetscFree4(scount, sdispl, rcount, rdispl));
   PetscCall(PetscFree(ranges));
-  *nout = nrecv;
+  PetscCallMPI(MPI_Alltoall(plan->scount, 1, MPI_INT, plan->rcount, 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    plan->sdispl[r + 1] = plan->sdispl[r] + plan->scount[r];
+    plan->rdispl[r + 1] = plan->rdispl[r] + plan->rcount[r];
+  }
+  nrecv = plan->rdispl[size];
+  PetscCall(PetscMalloc1(4 * nrecv + 1, &sorted));
+  {
+    MPI_Datatype row;
+
+    PetscCallMPI(MPI_Type_contiguous(4, MPIU_INT, &row));
+    PetscCallMPI(MPI_Type_commit(&row));
+    PetscCallMPI(MPI_Alltoallv(rows, plan->scount, plan->sdispl, row, sorted, plan->rcount, plan->rdispl, row, comm));
+    PetscCallMPI(MPI_Type_free(&row));
+  }
+  PetscCall(PetscFree(rows)); /* sent: not held beside the received copy */
+  plan->nrows = nrecv;
+  PetscCall(PetscMalloc1(nrecv + 1, &plan->order));
+  for (PetscInt i = 0; i < nrecv; i++) plan->order[i] = i;
+  if (nrecv > 1) PetscCall(PetscTimSort(nrecv, plan->order, sizeof(PetscInt), CompareRowIndices, sorted));
+  if (cells) {
+    PetscCall(PetscMalloc1(4 * nrecv + 1, cells));
+    for (PetscInt i = 0; i < nrecv; i++)
+      for (PetscInt k = 0; k < 4; k++) (*cells)[4 * i + k] = sorted[4 * plan->order[i] + k];
+  }
+  PetscCall(PetscFree(sorted));
+  PetscFunctionReturn(0);
+}
+
+/*
+   A field of ndata values per cell in file order: send holds the values of the cells plan->send[0], plan->send[1], ...
+   (ndata each, in that order); rows gets this rank's plan->nrows rows of the file. Holds two copies of the field at most.
+*/
+PetscErrorCode SSStarCellOrderApply(MPI_Comm comm, const SSStarCellOrder *plan, PetscInt ndata, const PetscReal send[], PetscReal **rows)
+{
+  PetscReal   *received;
+  MPI_Datatype unit;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(ndata * plan->nrows + 1, &received));
+  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)ndata, MPIU_REAL, &unit));
+  PetscCallMPI(MPI_Type_commit(&unit));
+  PetscCallMPI(MPI_Alltoallv(send, plan->scount, plan->sdispl, unit, received, plan->rcount, plan->rdispl, unit, comm));
+  PetscCallMPI(MPI_Type_free(&unit));
+  PetscCall(PetscMalloc1(ndata * plan->nrows + 1, rows));
+  for (PetscInt i = 0; i < plan->nrows; i++)
+    for (PetscInt k = 0; k < ndata; k++) (*rows)[ndata * i + k] = received[ndata * plan->order[i] + k];
+  PetscCall(PetscFree(received));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarCellOrderDestroy(SSStarCellOrder *plan)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(plan->send));
+  PetscCall(PetscFree(plan->order));
+  PetscCall(PetscFree4(plan->scount, plan->sdispl, plan->rcount, plan->rdispl));
   PetscFunctionReturn(0);
 }
 
@@ -290,20 +317,6 @@ PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene scene, Vec u, Vec *nat)
     PetscCall(VecRestoreArrayRead(local, &la));
   }
   if (u) PetscCall(DMRestoreLocalVector(scene->dm, &local));
-  PetscCall(PetscFree(ghost));
-  PetscFunctionReturn(0);
-}
-
-/* The ndata values of every local cell (by cell from cStart) in the order of /viz/topology/cells: this rank's rows */
-PetscErrorCode SSStarCellValuesInFileOrder(SSStarScene scene, PetscInt ndata, const PetscReal data[], PetscInt *nrows, PetscReal **rows)
-{
-  PetscBool *ghost;
-  PetscInt  *cells;
-
-  PetscFunctionBegin;
-  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
-  PetscCall(CellsInFileOrder(scene, ghost, ndata, data, nrows, &cells, rows));
-  PetscCall(PetscFree(cells));
   PetscCall(PetscFree(ghost));
   PetscFunctionReturn(0);
 }
@@ -365,13 +378,12 @@ PetscErrorCode SSStarWriteDisplacement(SSStarScene scene, hid_t file, const char
 
 PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
 {
-  Vec       nat;
-  PetscBool *ghost;
-  PetscInt  ncells, *cells;
-  hid_t     group;
+  Vec             nat;
+  PetscInt       *cells;
+  SSStarCellOrder plan;
+  hid_t           group;
 
   PetscFunctionBegin;
-  PetscCall(SSStarGhostPoints(scene->dm, &ghost));
   PetscCall(SSStarH5GroupOpen(file, "/geometry", &group));
   PetscCallH5(H5Gclose(group));
   PetscCall(SSStarVertexFieldInFileOrder(scene, NULL, &nat));
@@ -380,10 +392,10 @@ PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
 
   PetscCall(SSStarWriteDisplacement(scene, file, "", u));
 
-  PetscCall(CellsInFileOrder(scene, ghost, 0, NULL, &ncells, &cells, NULL));
+  PetscCall(SSStarCellOrderCreate(scene, &plan, &cells));
   PetscCall(SSStarH5GroupOpen(file, "/viz/topology", &group));
   PetscCallH5(H5Gclose(group));
-  PetscCall(SSStarH5WriteRows(scene->comm, file, "/viz/topology/cells", ncells, 4, NULL, cells));
+  PetscCall(SSStarH5WriteRows(scene->comm, file, "/viz/topology/cells", plan.nrows, 4, NULL, cells));
   {
     hid_t set = H5Dopen2(file, "/viz/topology/cells", H5P_DEFAULT);
 
@@ -392,7 +404,7 @@ PetscErrorCode SSStarWriteMesh(SSStarScene scene, hid_t file, Vec u)
     PetscCallH5(H5Dclose(set));
   }
   PetscCall(PetscFree(cells));
-  PetscCall(PetscFree(ghost));
+  PetscCall(SSStarCellOrderDestroy(&plan));
   PetscFunctionReturn(0);
 }
 

@@ -105,7 +105,7 @@ PetscErrorCode SSStarH5WriteRows(MPI_Comm comm, hid_t file, const char path[], P
   PetscInt start = 0, total, width = cols ? cols : 1;
   hsize_t  dims[2], offset[2] = {0, 0}, count[2];
   hid_t    filespace, memspace, set, plist;
-  void    *buf;
+  void    *buf, *copy = NULL;
   int      rank = cols ? 2 : 1;
 
   PetscFunctionBegin;
@@ -131,25 +131,28 @@ PetscErrorCode SSStarH5WriteRows(MPI_Comm comm, hid_t file, const char path[], P
     PetscCallH5(H5Sselect_none(filespace));
     PetscCallH5(H5Sselect_none(memspace));
   }
-  if (reals) {
+  if (reals && sizeof(PetscReal) == sizeof(double)) buf = (void *)reals; /* written as it is: no copy beside the field */
+  else if (reals) {
     double *w;
 
     PetscCall(PetscMalloc1(nloc * width + 1, &w));
     for (PetscInt i = 0; i < nloc * width; i++) w[i] = (double)reals[i];
-    buf = w;
-  } else {
+    buf = copy = w;
+  } else if (sizeof(PetscInt) == sizeof(int)) buf = (void *)ints;
+  else {
     int *w;
 
     PetscCall(PetscMalloc1(nloc * width + 1, &w));
     for (PetscInt i = 0; i < nloc * width; i++) w[i] = (int)ints[i];
-    buf = w;
+    buf = copy = w;
   }
   plist = H5Pcreate(H5P_DATASET_XFER);
 #if defined(H5_HAVE_PARALLEL)
   PetscCallH5(H5Pset_dxpl_mpio(plist, H5FD_MPIO_COLLECTIVE));
 #endif
+  if (!buf) buf = &start; /* no rows here: HDF5 wants a buffer all the same */
   PetscCallH5(H5Dwrite(set, reals ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT, memspace, filespace, plist, buf));
-  PetscCall(PetscFree(buf));
+  PetscCall(PetscFree(copy));
   PetscCallH5(H5Pclose(plist));
   PetscCallH5(H5Sclose(memspace));
   PetscCallH5(H5Sclose(filespace));

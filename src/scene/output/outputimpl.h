@@ -28,10 +28,19 @@ PETSC_INTERN PetscErrorCode SSStarWriteDisplacement(SSStarScene, hid_t, const ch
 PETSC_INTERN PetscErrorCode SSStarWriteVertexField(SSStarScene, hid_t, const char[], const char[], Vec);
 PETSC_INTERN PetscErrorCode SSStarVertexFieldInFileOrder(SSStarScene, Vec, Vec *);
 PETSC_INTERN PetscErrorCode SSStarVertexValuesInFileOrder(SSStarScene, PetscInt, const PetscScalar[], Vec *);
-PETSC_INTERN PetscErrorCode SSStarCellValuesInFileOrder(SSStarScene, PetscInt, const PetscReal[], PetscInt *, PetscReal **);
+/* Where the local cells' values go in the file (fileorder.c): rows of /viz/topology/cells and the fields of the cells */
+typedef struct {
+  PetscInt     nsend;  /* the local cells this rank sends (not ghosts)                         */
+  PetscInt    *send;   /* each one's local cell (from cStart), in the order they are sent        */
+  PetscMPIInt *scount, *sdispl, *rcount, *rdispl; /* cells to and from each rank                 */
+  PetscInt     nrows;  /* this rank's rows of the file                                           */
+  PetscInt    *order;  /* the received cell at each of them                                      */
+} SSStarCellOrder;
+PETSC_INTERN PetscErrorCode SSStarCellOrderCreate(SSStarScene, SSStarCellOrder *, PetscInt **);
+PETSC_INTERN PetscErrorCode SSStarCellOrderApply(MPI_Comm, const SSStarCellOrder *, PetscInt, const PetscReal[], PetscReal **);
+PETSC_INTERN PetscErrorCode SSStarCellOrderDestroy(SSStarCellOrder *);
 PETSC_INTERN PetscErrorCode SSStarWriteVec(hid_t, const char[], PetscInt, Vec);
 PETSC_INTERN PetscErrorCode SSStarWriteStresses(SSStarScene, hid_t, const char[], Vec);
-PETSC_INTERN PetscErrorCode SSStarStressFields(SSStarScene, Vec, PetscReal **, PetscScalar **);
 PETSC_INTERN PetscErrorCode SSStarFileOrder(MPI_Comm, PetscInt, const PetscInt[], PetscInt *, PetscInt **, PetscInt[]);
 PETSC_INTERN PetscErrorCode SSStarWriteNodeField(MPI_Comm, hid_t, const char[], PetscInt, PetscInt, const PetscInt[], PetscInt, const PetscReal[], PetscBool);
 

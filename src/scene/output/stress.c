@@ -10,9 +10,6 @@
 #include <petscsf.h>
 
 #define NCELL 24 /* per cell: strain (6), stress (6), von Mises (1), J (1), first Piola-Kirchhoff stress (9), model (1) */
-/* a scene of linear bodies keeps the first 13: what it writes (the output's peak at prism level 48: 5.3 M cells a rank) */
-#define NCELL_AFFINE 13
-#define CELL_VALUES(scene) ((scene)->affine ? NCELL_AFFINE : NCELL)
 #define NNODE 7  /* per vertex: sum of volume times stress (6), sum of volumes */
 
 /* The point SF of dm restricted to its vertices, numbered from vStart on each rank (the nodal sums need no other point) */
@@ -58,48 +55,43 @@ static PetscErrorCode VertexSF(DM dm, PetscSF *vertexSF)
   PetscFunctionReturn(0);
 }
 
-/*
-   SSStarStressFields - at u: CELL_VALUES values per local cell (cellValues, by cell from cStart) and the recovered stress,
-   6 per local vertex (nodal, by vertex from vStart; the owned vertices' are complete)
-*/
-PetscErrorCode SSStarStressFields(SSStarScene scene, Vec u, PetscReal **cellValues, PetscScalar **nodal)
+/* The values of local cell c (from cStart) at the local displacement ua (section sec): all NCELL of them; and its volume */
+static PetscErrorCode CellValues(const SSStarCells *cells, PetscSection sec, const PetscScalar ua[], PetscInt c, PetscReal all[NCELL], PetscReal *vol)
 {
-  DM                 dm = scene->dm;
-  PetscSection       sec;
-  Vec                uloc;
-  const PetscScalar *ua;
-  PetscReal         *acc;
-  PetscMPIInt        size;
-  SSStarCells        cells;
+  PetscReal x[12], ue[12], F[9];
+
+  PetscFunctionBeginHot;
+  PetscCall(SSStarCellsGetValues(cells, sec, ua, c, ue));
+  PetscCall(SSStarCellsGet(cells, c, x));
+  *vol = SSStarTetDeformationGradient(x, ue, F);
+  (void)SSStarMaterialStress(cells->model[c], cells->lame[c][0], cells->lame[c][1], F, all + 14);
+  if (cells->model[c] == SSSTAR_MATERIAL_LINEAR) { /* small strain: eps, Hooke's sigma (= P) */
+    (void)SSStarTetStrain(x, ue, all);
+    SSStarHookeStress(cells->lame[c][0], cells->lame[c][1], all, all + 6);
+  } else {
+    SSStarGreenLagrangeStrain(F, all);
+    SSStarCauchyStress(F, all + 14, all + 6);
+  }
+  all[12] = SSStarVonMises(all + 6);
+  all[13] = SSStarDeterminant3(F);
+  all[23] = (PetscReal)cells->model[c];
+  PetscFunctionReturn(0);
+}
+
+/* The recovered stress, 6 per local vertex (nodal, by vertex from vStart; the owned vertices' are complete) */
+static PetscErrorCode NodalStress(SSStarScene scene, const SSStarCells *cells, PetscSection sec, const PetscScalar ua[], PetscScalar **nodal)
+{
+  DM          dm = scene->dm;
+  PetscReal  *acc;
+  PetscMPIInt size;
 
   PetscFunctionBegin;
-  PetscCall(DMGetLocalSection(dm, &sec));
-  PetscCall(DMGetLocalVector(dm, &uloc));
-  PetscCall(VecZeroEntries(uloc)); /* the -dirichlet dofs: 0 */
-  PetscCall(DMGlobalToLocal(dm, u, INSERT_VALUES, uloc));
-  PetscCall(VecGetArrayRead(uloc, &ua));
-  PetscCall(SSStarCellsBegin(scene, &cells));
-  PetscCall(PetscMalloc1(CELL_VALUES(scene) * (cells.cEnd - cells.cStart) + 1, cellValues));
-  PetscCall(PetscCalloc1(NNODE * (cells.vEnd - cells.vStart) + 1, &acc)); /* by vertex: not over the whole chart */
-  for (PetscInt c = 0; c < cells.cEnd - cells.cStart; c++) {
-    const PetscInt *v = &cells.vertices[4 * c];
-    PetscReal       x[12], ue[12], F[9], vol, all[NCELL], *cv = &(*cellValues)[CELL_VALUES(scene) * c];
+  PetscCall(PetscCalloc1(NNODE * (cells->vEnd - cells->vStart) + 1, &acc)); /* by vertex: not over the whole chart */
+  for (PetscInt c = 0; c < cells->cEnd - cells->cStart; c++) {
+    const PetscInt *v = &cells->vertices[4 * c];
+    PetscReal       all[NCELL], vol;
 
-    PetscCall(SSStarCellsGetValues(&cells, sec, ua, c, ue));
-    PetscCall(SSStarCellsGet(&cells, c, x));
-    vol = SSStarTetDeformationGradient(x, ue, F);
-    (void)SSStarMaterialStress(cells.model[c], cells.lame[c][0], cells.lame[c][1], F, all + 14);
-    if (cells.model[c] == SSSTAR_MATERIAL_LINEAR) { /* small strain: eps, Hooke's sigma (= P) */
-      (void)SSStarTetStrain(x, ue, all);
-      SSStarHookeStress(cells.lame[c][0], cells.lame[c][1], all, all + 6);
-    } else {
-      SSStarGreenLagrangeStrain(F, all);
-      SSStarCauchyStress(F, all + 14, all + 6);
-    }
-    all[12] = SSStarVonMises(all + 6);
-    all[13] = SSStarDeterminant3(F);
-    all[23] = (PetscReal)cells.model[c];
-    PetscCall(PetscArraycpy(cv, all, CELL_VALUES(scene)));
+    PetscCall(CellValues(cells, sec, ua, c, all, &vol));
     for (PetscInt a = 0; a < 4; a++) {
       PetscReal *va = &acc[NNODE * v[a]];
 
@@ -107,9 +99,6 @@ PetscErrorCode SSStarStressFields(SSStarScene scene, Vec u, PetscReal **cellValu
       va[6] += vol;
     }
   }
-  PetscCall(SSStarCellsEnd(&cells));
-  PetscCall(VecRestoreArrayRead(uloc, &ua));
-  PetscCall(DMRestoreLocalVector(dm, &uloc));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));
   if (size > 1) { /* a vertex's cells on other ranks: their sums to its owner */
     PetscSF      sf;
@@ -123,53 +112,74 @@ PetscErrorCode SSStarStressFields(SSStarScene scene, Vec u, PetscReal **cellValu
     PetscCallMPI(MPI_Type_free(&unit));
     PetscCall(PetscSFDestroy(&sf));
   }
-  {
-    PetscInt vStart, vEnd;
+  PetscCall(PetscMalloc1(6 * (cells->vEnd - cells->vStart) + 1, nodal));
+  for (PetscInt v = 0; v < cells->vEnd - cells->vStart; v++) {
+    const PetscReal *va = &acc[NNODE * v];
 
-    PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-    PetscCall(PetscMalloc1(6 * (vEnd - vStart) + 1, nodal));
-    for (PetscInt v = vStart; v < vEnd; v++) {
-      const PetscReal *va = &acc[NNODE * (v - vStart)];
-
-      for (PetscInt k = 0; k < 6; k++) (*nodal)[6 * (v - vStart) + k] = va[6] > 0 ? va[k] / va[6] : 0;
-    }
+    for (PetscInt k = 0; k < 6; k++) (*nodal)[6 * v + k] = va[6] > 0 ? va[k] / va[6] : 0;
   }
   PetscCall(PetscFree(acc));
   PetscFunctionReturn(0);
 }
 
-/* <prefix>/fields/strain, stress (cells x 6), von_mises (cells) and stress_nodal (nodes x 6) at u; a hyperelastic
-   scene's J (cells), stress_pk1 (cells x 9) and material_model (cells: the index of SSStarMaterialModels) too */
+/*
+   <prefix>/fields/strain, stress (cells x 6), von_mises (cells) and stress_nodal (nodes x 6) at u; a hyperelastic
+   scene's J (cells), stress_pk1 (cells x 9) and material_model (cells: the index of SSStarMaterialModels) too. One
+   field at a time, computed in the order the cells travel to the ranks that write them (SSStarCellOrderApply()): the
+   output holds at most two copies of one field (the prism at level 48: 5.3 M cells a rank)
+*/
 PetscErrorCode SSStarWriteStresses(SSStarScene scene, hid_t file, const char prefix[], Vec u)
 {
-  PetscReal   *cellValues, *rows, *column;
-  PetscScalar *nodal;
-  PetscInt     nrows;
-  Vec          nat;
-  char         path[PETSC_MAX_PATH_LEN];
   const char    *names[6] = {"strain", "stress", "von_mises", "J", "stress_pk1", "material_model"};
   const PetscInt cols[6] = {6, 6, 1, 1, 9, 1}, first[6] = {0, 6, 12, 13, 14, 23};
-  PetscInt      *codes;
-  const PetscInt ncell = CELL_VALUES(scene);
+  DM             dm = scene->dm;
+  PetscSection   sec;
+  Vec            uloc, nat;
+  const PetscScalar *ua;
+  PetscScalar   *nodal;
+  SSStarCells    cells;
+  SSStarCellOrder plan;
+  char           path[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBegin;
-  PetscCall(SSStarStressFields(scene, u, &cellValues, &nodal));
-  PetscCall(SSStarCellValuesInFileOrder(scene, ncell, cellValues, &nrows, &rows));
-  PetscCall(PetscFree(cellValues));
-  PetscCall(PetscMalloc2(9 * nrows + 1, &column, nrows + 1, &codes));
+  PetscCall(SSStarCellOrderCreate(scene, &plan, NULL));
+  PetscCall(DMGetLocalSection(dm, &sec));
+  PetscCall(DMGetLocalVector(dm, &uloc));
+  PetscCall(VecZeroEntries(uloc)); /* the -dirichlet dofs: 0 */
+  PetscCall(DMGlobalToLocal(dm, u, INSERT_VALUES, uloc));
+  PetscCall(VecGetArrayRead(uloc, &ua));
+  PetscCall(SSStarCellsBegin(scene, &cells));
   for (PetscInt f = 0; f < (scene->affine ? 3 : 6); f++) {
-    for (PetscInt i = 0; i < nrows; i++)
-      for (PetscInt k = 0; k < cols[f]; k++) column[cols[f] * i + k] = rows[ncell * i + first[f] + k];
-    for (PetscInt i = 0; i < nrows; i++) codes[i] = (PetscInt)column[i];
+    PetscReal *send, *rows;
+    PetscInt  *codes = NULL;
+
+    PetscCall(PetscMalloc1(cols[f] * plan.nsend + 1, &send));
+    for (PetscInt i = 0; i < plan.nsend; i++) {
+      PetscReal all[NCELL], vol;
+
+      PetscCall(CellValues(&cells, sec, ua, plan.send[i], all, &vol));
+      PetscCall(PetscArraycpy(&send[cols[f] * i], &all[first[f]], cols[f]));
+    }
+    PetscCall(SSStarCellOrderApply(scene->comm, &plan, cols[f], send, &rows));
+    PetscCall(PetscFree(send));
+    if (f == 5) {
+      PetscCall(PetscMalloc1(plan.nrows + 1, &codes));
+      for (PetscInt i = 0; i < plan.nrows; i++) codes[i] = (PetscInt)rows[i];
+    }
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/%s", prefix, names[f]));
-    PetscCall(SSStarH5WriteRows(scene->comm, file, path, nrows, cols[f] > 1 ? cols[f] : 0, f == 5 ? NULL : column, f == 5 ? codes : NULL));
+    PetscCall(SSStarH5WriteRows(scene->comm, file, path, plan.nrows, cols[f] > 1 ? cols[f] : 0, codes ? NULL : rows, codes));
+    PetscCall(PetscFree(codes));
+    PetscCall(PetscFree(rows));
   }
+  PetscCall(SSStarCellOrderDestroy(&plan));
+  PetscCall(NodalStress(scene, &cells, sec, ua, &nodal));
+  PetscCall(SSStarCellsEnd(&cells));
+  PetscCall(VecRestoreArrayRead(uloc, &ua));
+  PetscCall(DMRestoreLocalVector(dm, &uloc));
   PetscCall(SSStarVertexValuesInFileOrder(scene, 6, nodal, &nat));
+  PetscCall(PetscFree(nodal));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields/stress_nodal", prefix));
   PetscCall(SSStarWriteVec(file, path, 6, nat));
   PetscCall(VecDestroy(&nat));
-  PetscCall(PetscFree2(column, codes));
-  PetscCall(PetscFree(rows));
-  PetscCall(PetscFree(nodal));
   PetscFunctionReturn(0);
 }

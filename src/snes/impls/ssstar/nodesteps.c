@@ -349,19 +349,22 @@ PetscErrorCode SNESSSStarClassify(SNES snes)
 }
 
 /*
-   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a tenth of the
+   Whole body: the floor of a linear solve's residual r (units of gamma^-1 y, as the Newton steps'): a fraction of the
    stopping threshold, and of the law's tolerance of forces (section 12) once the law residual has been measured: on a
-   stiff body gamma^-1 times the first is far above the contact forces
+   stiff body gamma^-1 times the first is far above the contact forces. The fraction is a tenth (SSSTAR_FLOOR_FRACTION),
+   and -snes_ssstar_ksp_floor for the step that is likely the last (ss->lastStep): there the step's residual is what the
+   stopping rule measures next, and half of it is left to the rest of the step (docs/derivation.md section 19a)
 */
 PetscErrorCode SNESSSStarLinearFloor(SNES snes, PetscReal *floor)
 {
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  PetscReal    unorm;
+  SNES_SSStar    *ss       = (SNES_SSStar *)snes->data;
+  const PetscReal fraction = ss->lastStep ? ss->kspFloor : SSSTAR_FLOOR_FRACTION;
+  PetscReal       unorm;
 
   PetscFunctionBegin;
   PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
-  *floor = 0.1 * PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale)) / ss->scaling;
-  if (ss->lawForce > 0) *floor = PetscMin(*floor, 0.1 * SNESSSStarLawTolerance(snes) * ss->lawForce);
+  *floor = fraction * PetscMax(snes->abstol, snes->rtol * PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale)) / ss->scaling;
+  if (ss->lawForce > 0) *floor = PetscMin(*floor, fraction * SNESSSStarLawTolerance(snes) * ss->lawForce);
   PetscFunctionReturn(0);
 }
 
@@ -380,6 +383,7 @@ PetscErrorCode SNESSSStarSetLinearTolerances(SNES snes, PetscReal znorm, PetscRe
   PetscFunctionBegin;
   if (!ss->problem.wholeBody) PetscFunctionReturn(0); /* the steps on P are solved exactly (dense or sparse LU) */
   PetscCall(SNESSSStarLinearFloor(snes, &floor));
+  PetscCall(PetscInfo(snes, "Linear tolerance: eta %g of ||z|| %g, i.e. %g, the floor %g%s\n", (double)rtol, (double)znorm, (double)(rtol * znorm / ss->scaling), (double)floor, ss->lastStep ? " (the likely last step)" : ""));
   PetscCall(SSStarNewtonSetTolerances(ss->newton, 0.0, PetscMax(rtol * znorm / ss->scaling, floor)));
   PetscFunctionReturn(0);
 }
@@ -721,6 +725,47 @@ static PetscErrorCode SNESSSStarSetKSPRtolMax_SSStar(SNES snes, PetscReal rtol)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarSetKSPFloor - whole body (reduction none): how far the linear solve of the step that is likely the last
+   goes, as a fraction of the stopping rule: its residual r is solved until gamma ||r|| is at most this fraction of the
+   threshold of ||z|| and ||r|| at most this fraction of the law's tolerance of forces (docs/derivation.md section 19a).
+   The step is likely the last when the states of the full step before it repeated and no remedy acted; every other
+   step solved to the floor (after a remedy, polishing) keeps a tenth.
+
+   Logically Collective
+
+   Input Parameters:
++  snes     - the SNES
+-  fraction - in (0, 1] (default 0.5)
+
+   Options Database Key:
+.  -snes_ssstar_ksp_floor <fraction> - the fraction
+
+   Notes:
+   Lower values solve the last step further than the stopping rule asks (0.1, a tenth as for the other steps: 3 more
+   Krylov iterations at level 16 of examples/prism, the same Newton steps); where the step leaves ||z|| or the law
+   residual above its threshold, one more Newton step follows.
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetKSPRtolMax()`, `SNESConvergedSSStar()`, `SNESSSStarSetLawTolerance()`
+@*/
+PetscErrorCode SNESSSStarSetKSPFloor(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetKSPFloor_C", (SNES, PetscReal), (snes, fraction));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetKSPFloor_SSStar(SNES snes, PetscReal fraction)
+{
+  PetscFunctionBegin;
+  PetscCheck(fraction > 0 && fraction <= 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_ksp_floor %g must be in (0, 1]", (double)fraction);
+  ((SNES_SSStar *)snes->data)->kspFloor = fraction;
+  PetscFunctionReturn(0);
+}
+
 /* The implementations of the public functions above, composed on the SNES (SNESSSStarComposeFunctions()) */
 static const SSStarComposed Composed[] = {
     {"SNESSSStarSetScaling_C", (PetscVoidFunction)SNESSSStarSetScaling_SSStar},
@@ -730,6 +775,7 @@ static const SSStarComposed Composed[] = {
     {"SNESSSStarSetLawTolerance_C", (PetscVoidFunction)SNESSSStarSetLawTolerance_SSStar},
     {"SNESSSStarGetLawResidual_C", (PetscVoidFunction)SNESSSStarGetLawResidual_SSStar},
     {"SNESSSStarSetKSPRtolMax_C", (PetscVoidFunction)SNESSSStarSetKSPRtolMax_SSStar},
+    {"SNESSSStarSetKSPFloor_C", (PetscVoidFunction)SNESSSStarSetKSPFloor_SSStar},
 };
 
 PetscErrorCode SNESSSStarComposeNodeSteps(SNES snes, PetscBool on)

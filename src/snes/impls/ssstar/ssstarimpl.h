@@ -66,6 +66,9 @@ PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, Petsc
 #define SSSTAR_LAW_FORCE_FLOOR 2e-7
 /* the tolerance of the law residual of a converged iterate is max(rtol, this) unless -snes_ssstar_law_rtol sets it */
 #define SSSTAR_LAW_RTOL_DEFAULT 1e-8
+/* whole body: a step solved to the floor that is not the likely last one (after a remedy, polishing, the start's
+   equilibrium) leaves this fraction of the stopping rule in its linear residual (-snes_ssstar_ksp_floor: the last one) */
+#define SSSTAR_FLOOR_FRACTION 0.1
 /* polishing steps without halving the law residual before the solve stops (it is at its round-off floor) */
 #define SSSTAR_LAW_MAX_STALLS 3
 
@@ -302,6 +305,8 @@ typedef struct {
   PetscReal    offsetScale;  /* ||o_t||, the tangential offsets of a load path's step (10.4): part of that scale */
   PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
   PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
+  PetscReal    kspFloor;     /* whole body: the last step's linear residual, a fraction of the stopping rule */
+  PetscBool    lastStep;     /* whole body: the step being solved is likely the last (its states repeated) */
   SSStarReason reason;
   PetscReal    tolerance;    /* the threshold of the last convergence test: max(atol, rtol max(||u||, ||gamma f||)) */
 

@@ -168,6 +168,8 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
   }
   PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
+  PetscCall(PetscOptionsReal("-snes_ssstar_ksp_floor", "Whole body: the likely last step's linear solve goes to this fraction of the stopping rule (docs/derivation.md section 19a)", "SNESSSStarSetKSPFloor", ss->kspFloor, &value, &set));
+  if (set) PetscCall(SNESSSStarSetKSPFloor(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_law_rtol", "The tolerance of the law residual of a converged iterate as written (docs/derivation.md section 12); 0: max(-snes_rtol, 1e-8)", "SNESSSStarSetLawTolerance", ss->lawRtol, &value, &set));
   if (set) PetscCall(SNESSSStarSetLawTolerance(snes, value));
   PetscCall(SSStarNewtonGetLUThreads(ss->newton, &threads));

@@ -100,6 +100,38 @@ PetscErrorCode SSStarNewtonReset(SSStarNewton nt)
   PetscFunctionReturn(0);
 }
 
+/*@
+   SNESSSStarReleaseWork - frees what the Newton steps of the last solve built: the Krylov solver's preconditioner (the
+   multigrid hierarchy on the whole body, the Newton matrix's factorization on the dense route) and the step's work
+   vectors. The solution's data stay: SNESGetFunction()'s vector, SNESSSStarGetStates(), the reason, the iterations,
+   the law residual, the reduction of K (the Schur complement P of the dense route and its factorization)
+
+   Collective
+
+   Input Parameter:
+.  snes - the SNES after SNESSolve() (nothing happens for an SNES of another type)
+
+   Notes:
+   Call it after the last solve, before writing the solution (SSStarSceneWriteSolution()) or other post-processing:
+   their memory then comes out of the solver's instead of adding to the process's peak (docs/guide/scale.md, "The
+   output's memory"). A later SNESSolve() builds what it needs again, at the cost of a new set-up. examples/prism and
+   examples/contact call it before the output, and after the last step of a load path.
+
+   Level: advanced
+
+.seealso: `SNESSSStarGetStates()`, `SSStarSceneWriteSolution()`, `SSStarSceneOutputEnd()`
+@*/
+PetscErrorCode SNESSSStarReleaseWork(SNES snes)
+{
+  PetscBool isssstar;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESSSSTAR, &isssstar));
+  if (isssstar) PetscCall(SSStarNewtonReset(((SNES_SSStar *)snes->data)->newton));
+  PetscFunctionReturn(0);
+}
+
 /*
    The stiffness A (P, or K on the whole body) with the given implementation, the scaling gamma and the contact nodes'
    layout, for one SNESSolve: the counts start afresh; what was built for another A is dropped

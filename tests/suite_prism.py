@@ -177,12 +177,15 @@ def prism_progress_lines():
 
 
 @test("-ssstar_progress 0 turns the progress lines off: with -summary_header 0 the output is the summary row alone (the scripted use); "
-      "-snes_ssstar_monitor_progress brings the solver's lines back alone")
+      "-snes_ssstar_monitor_progress brings the solver's lines back alone; with the progress on too, the option adds nothing (it crashed: "
+      "the duplicate monitor's context destroyed twice)")
 def prism_progress_off():
     out = run(mpiexec(1, PRISM, "-level", "3", "-ssstar_progress", "0", "-summary_header", "0"))
     expect(len(out.strip().splitlines()) == 1 and SUMMARY.search(out) is not None, "more than the summary row", out)
     out = run(mpiexec(1, PRISM, "-level", "3", "-ssstar_progress", "0", "-summary_header", "0", "-snes_ssstar_monitor_progress"))
     expect("mesh:" not in out and "set-up:" in out and len(re.findall(r"SSStar \|\|z\|\|", out)) == 8, "not the solver's lines alone", out)
+    out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_monitor_progress"))
+    expect("mesh:" in out and len(re.findall(r"SSStar \|\|z\|\|", out)) == 8, "not each progress line once", out)
 
 
 @test("-save_reduced names the dense route itself (P is what it writes): the set-up line says direct, not chosen by auto")

@@ -196,18 +196,22 @@ static PetscErrorCode TryFullStep(SNES snes, PetscReal *mfull)
 }
 
 /*
-   The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization,
-   or whole (a polishing step: ||z|| is at its threshold, where its decrease says nothing),
+   The step of iteration k from u along the Newton step ss->dv (global frame), ||z|| = znorm at u. Without globalization
    the full step, unless ||z|| is NaN or Inf there (F not defined: then halved until it is, else reason NAN and u stays
-   the last finite iterate). With it:
-   the full step if it decreases ||z|| enough, else the first damped one that does, else a remedy: the full step
-   anyway (odd failures) or a doubled gamma without a step (even failures). reason is set when nothing can be done.
+   the last finite iterate). With it: the full step if it decreases ||z|| enough, else the first damped one that does,
+   else a remedy: the full step anyway (odd failures) or a doubled gamma without a step (even failures). reason is set
+   when nothing can be done. A polishing step (||z|| at its threshold, the law residual rho not: section 12) is taken
+   whole once the states have settled (no node changed its state at u: the local regime, the creep and the round-off
+   floor of section 19, where the decrease of ||z|| says nothing), and globalized as any other step before: section
+   19b (at a loose rtol the threshold is met with nodes still changing state, and whole steps crept along the soft
+   modes that ||z|| hardly weighs).
 */
-PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, PetscBool whole, SSStarReason *reason)
+PetscErrorCode SSStarGlobalizationStep(SNES snes, PetscInt k, PetscReal znorm, PetscBool polishing, SSStarReason *reason)
 {
-  SNES_SSStar         *ss   = (SNES_SSStar *)snes->data;
-  SSStarGlobalization *glob = &ss->glob;
-  const PetscReal      eta  = PetscPowReal(0.5, (PetscReal)(k + 1));
+  SNES_SSStar         *ss    = (SNES_SSStar *)snes->data;
+  SSStarGlobalization *glob  = &ss->glob;
+  const PetscReal      eta   = PetscPowReal(0.5, (PetscReal)(k + 1));
+  const PetscBool      whole = (PetscBool)(polishing && glob->changed == 0);
   PetscReal            mfull, m, alpha;
   PetscBool            finite, full;
 

@@ -626,9 +626,9 @@ static PetscErrorCode SNESSSStarGetStates_SSStar(SNES snes, const SSStarState *s
 .  -snes_ssstar_law_rtol <rtol> - the tolerance
 
    Notes:
-   Where ||z|| has met its threshold and the law residual has not, the iteration takes whole Newton steps solved to
-   the floor (polishing) until it does, or stops with SSSTAR_REASON_LAW_STALLED when it no longer halves (its round-off
-   floor is above the tolerance).
+   Where ||z|| has met its threshold and the law residual has not, the iteration takes Newton steps solved to the
+   floor (polishing; whole once the states have settled, globalized before) until it does, or stops with
+   SSSTAR_REASON_LAW_STALLED when it no longer halves (its round-off floor is above the tolerance).
 
    Level: intermediate
 

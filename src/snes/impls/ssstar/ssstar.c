@@ -366,9 +366,9 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       snes->reason = SNES_DIVERGED_MAX_IT;
       break;
     }
-    /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor,
-       taken whole, until it is, or it stops halving while the states stay and the steps stop growing (its round-off
-       floor). Steps that grow while rho decreases are no floor: the creep of the iteration at a kink of the law, where
+    /* ||z|| is small enough, the law on the iterate as written is not (section 12): Newton steps solved to the floor
+       (taken whole once the states have settled, globalized before: section 19b) until it is, or it stops halving
+       while the states stay and the steps stop growing (its round-off floor). Steps that grow while rho decreases are no floor: the creep of the iteration at a kink of the law, where
        a slow mode's slip is set by the curvature of the sliding directions and Newton lengthens it by 3/2 per step
        (docs/derivation.md section 19) */
     ss->polishing = (PetscBool)(snes->ops->converged == SNESConvergedSSStar && znorm <= ss->tolerance);

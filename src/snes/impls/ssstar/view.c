@@ -419,11 +419,9 @@ PetscErrorCode SNESSSStarMonitorProgressAdd(SNES snes)
   for (PetscInt i = 0; i < snes->numbermonitors; i++) { /* SNESMonitorSet() keeps neither of two identical monitors' contexts */
     PetscBool identical;
 
+    /* identical: PetscMonitorCompare() has destroyed vf itself (destroying it again crashed -snes_ssstar_monitor_progress) */
     PetscCall(PetscMonitorCompare((PetscErrorCode(*)(void))(void (*)(void))SNESSSStarMonitorProgress, vf, (PetscErrorCode(*)(void **))PetscViewerAndFormatDestroy, (PetscErrorCode(*)(void))(void (*)(void))snes->monitor[i], snes->monitorcontext[i], snes->monitordestroy[i], &identical));
-    if (identical) {
-      PetscCall(PetscViewerAndFormatDestroy(&vf));
-      PetscFunctionReturn(0);
-    }
+    if (identical) PetscFunctionReturn(0);
   }
   PetscCall(SNESMonitorSet(snes, (PetscErrorCode(*)(SNES, PetscInt, PetscReal, void *))SNESSSStarMonitorProgress, vf, (PetscErrorCode(*)(void **))PetscViewerAndFormatDestroy));
   PetscFunctionReturn(0);

@@ -736,7 +736,7 @@ static PetscErrorCode SNESDestroy_SSStar(SNES snes)
 .  -snes_ssstar_pc_reuse <0.3> - whole body: keep the multigrid of an earlier Newton step while at most this fraction of the nodes changed their known rows (negative: a new one every step)
 .  -snes_ssstar_plain_aggregation_dofs <200000> - whole body: the multigrid aggregates plainly (W-cycles on the two finest levels, the products all at once: the memory lever) on K of at least this many dofs (0: always; negative: only where smoothed aggregation would not fit the memory)
 .  -snes_ssstar_ksp_rtol_max <0.1> - whole body: the loosest relative tolerance of a Newton step's linear solve; it tightens as min(this, ||z||/||z_0||); once a remedy acted, and for a step whose full step fails, the floor (a tenth of the stopping threshold)
-.  -snes_ssstar_ksp_floor <0.5> - whole body: the step that is likely the last (the states of the full step before it repeated) is solved to this fraction of the stopping threshold and of the law's tolerance (docs/derivation.md section 19a)
+.  -snes_ssstar_ksp_floor <0.1> - whole body: the step that is likely the last (the states of the full step before it repeated) is solved to this fraction of the stopping threshold and of the law's tolerance (docs/derivation.md section 19a)
 .  -ksp_type, -pc_type, -ksp_rtol, ... - whole body: the linear solver of the Newton steps (default CG or GMRES with PCGAMG: smoothed aggregation below -snes_ssstar_plain_aggregation_dofs where its set-up fits the memory, else plain with W-cycles on the two finest levels and the products all at once, as -pc_gamg_agg_nsmooths 0 gives; -pc_mg_cycle_type, -matptap_via choose others; a multigrid or Newton matrix CG finds indefinite: that step and the later ones by GMRES; -ksp_rtol fixes the tolerance)
 .  -snes_rtol <1e-10> - stop when ||z|| <= rtol max(||u||, ||gamma f||) (SNESConvergedSSStar()) and the law residual of the iterate as written is within its tolerance
 .  -snes_ssstar_law_rtol <0> - that tolerance (0: max(rtol, 1e-8); docs/derivation.md section 12)
@@ -767,7 +767,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_SSStar(SNES snes)
   PetscCall(PetscStrncpy(ss->problem.reductionType, SSSTARREDUCTIONAUTO, sizeof(ss->problem.reductionType)));
   ss->problem.built         = -1;
   ss->etaMax                = 0.1;
-  ss->kspFloor              = 0.5;
+  ss->kspFloor              = SSSTAR_FLOOR_FRACTION;
   ss->state_tol             = 1e-13;
   ss->glob.on               = PETSC_TRUE;
   ss->glob.dampingMin       = 1.0 / 64;

@@ -176,7 +176,10 @@ PetscErrorCode SSStarSetRigidBodyModes(SSStarScene scene, Vec u, Mat K)
     nmodes += count[f];
     PetscCheck(!count[f] || scene->nContact || count[f] == 6, scene->comm, PETSC_ERR_ARG_WRONG, "The body of %s is held in some directions only: its prescribed displacements (-displacement_<G> with free components) leave %" PetscInt_FMT " of its rigid-body motions free, and there is no contact to hold them", scene->floatingName[f], count[f]);
   }
-  PetscCall(MatSetOption(K, nmodes ? MAT_SYMMETRIC : MAT_SPD, PETSC_TRUE)); /* floating: semidefinite */
+  /* floating: semidefinite. A tangent J(u) is symmetric (dead loads) but not always definite (Saint Venant-Kirchhoff
+     past its limit point): declared SPD, GAMG estimates its smoother's eigenvalues by CG, which stops on it with
+     DIVERGED_INDEFINITE_MAT and fails the whole multigrid (PC_SUBPC_ERROR) */
+  PetscCall(MatSetOption(K, nmodes || u ? MAT_SYMMETRIC : MAT_SPD, PETSC_TRUE));
   PetscCall(PetscMalloc1(nmodes + 1, &modes));
   PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));

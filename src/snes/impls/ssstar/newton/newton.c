@@ -25,6 +25,7 @@ PetscErrorCode SSStarNewtonCreate(SNES snes, SSStarNewton *newton)
   (*newton)->luThreads = 1;
   (*newton)->pcReuse   = SSSTAR_PC_REUSE_DEFAULT;
   (*newton)->plainDofs = SSSTAR_PLAIN_AGGREGATION_DOFS;
+  (*newton)->overCorrection = SSSTAR_MG_OVERCORRECTION;
   (*newton)->rcond     = -1;
   (*newton)->rtol      = 1e-10;
   PetscFunctionReturn(0);
@@ -69,6 +70,20 @@ PetscErrorCode SSStarNewtonGetPlainAggregationDofs(SSStarNewton nt, PetscInt *do
 {
   PetscFunctionBegin;
   *dofs = nt->plainDofs;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonSetMGOverCorrection(SSStarNewton nt, PetscReal alpha)
+{
+  PetscFunctionBegin;
+  nt->overCorrection = alpha;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonGetMGOverCorrection(SSStarNewton nt, PetscReal *alpha)
+{
+  PetscFunctionBegin;
+  *alpha = nt->overCorrection;
   PetscFunctionReturn(0);
 }
 
@@ -498,6 +513,44 @@ static PetscErrorCode SNESSSStarSetPlainAggregationDofs_SSStar(SNES snes, PetscI
 }
 
 /*@
+   SNESSSStarSetMGOverCorrection - whole body (reduction none): where ssstar's multigrid aggregates plainly and
+   W-cycles its finest levels (SNESSSStarSetPlainAggregationDofs()), the coarse corrections into those levels are
+   multiplied by alpha (the interpolations scaled by sqrt(alpha) after each set-up, the coarse operators kept): plain
+   aggregation's piecewise rigid interpolation under-corrects the smooth error, and the scaled correction makes up for
+   it (Vanek's and Notay's over-correction; docs/guide/scale.md, "The multigrid's rate"). The preconditioner stays
+   symmetric (CG applies).
+
+   Logically Collective
+
+   Input Parameters:
++  snes  - the SNES
+-  alpha - in [1, 2]: 1 leaves the corrections as the Galerkin ones (default 1.8); above 2 the multigrid can be
+           indefinite
+
+   Options Database Key:
+.  -snes_ssstar_mg_overcorrection <1.8> - the factor
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetPlainAggregationDofs()`, `SNESSSStarSetPCReuse()`
+@*/
+PetscErrorCode SNESSSStarSetMGOverCorrection(SNES snes, PetscReal alpha)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMGOverCorrection_C", (SNES, PetscReal), (snes, alpha));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetMGOverCorrection_SSStar(SNES snes, PetscReal alpha)
+{
+  PetscFunctionBegin;
+  PetscCheck(alpha >= 1 && alpha <= 2, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_mg_overcorrection %g must be in [1, 2]", (double)alpha);
+  PetscCall(SSStarNewtonSetMGOverCorrection(((SNES_SSStar *)snes->data)->newton, alpha));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve() were solved
 
    Not Collective
@@ -566,6 +619,7 @@ static const SSStarComposed Composed[] = {
     {"SNESSSStarSetLUThreads_C", (PetscVoidFunction)SNESSSStarSetLUThreads_SSStar},
     {"SNESSSStarSetPCReuse_C", (PetscVoidFunction)SNESSSStarSetPCReuse_SSStar},
     {"SNESSSStarSetPlainAggregationDofs_C", (PetscVoidFunction)SNESSSStarSetPlainAggregationDofs_SSStar},
+    {"SNESSSStarSetMGOverCorrection_C", (PetscVoidFunction)SNESSSStarSetMGOverCorrection_SSStar},
     {"SNESSSStarGetNewtonStepCounts_C", (PetscVoidFunction)SNESSSStarGetNewtonStepCounts_SSStar},
     {"SNESSSStarGetConditionEstimate_C", (PetscVoidFunction)SNESSSStarGetConditionEstimate_SSStar},
 };

@@ -132,7 +132,7 @@ KRYLOV_COUNT = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterat
 OVERCORRECTION = "the W-cycled levels' coarse corrections times 1.8 (over-correction, -snes_ssstar_mg_overcorrection)"
 
 
-@test("plain aggregation's W-cycled levels take their coarse corrections times 1.8 by default (-snes_view says so): prism level 4 on 2 ranks with plain aggregation (-snes_ssstar_plain_aggregation_dofs 0) in at most 74 Krylov iterations, where the Galerkin corrections (-snes_ssstar_mg_overcorrection 1, the former default) take 80 here, the same Newton steps, states and answer, the law holding in the file; smoothed aggregation is not over-corrected; a factor outside [1, 2] is refused naming the option")
+@test("plain aggregation's W-cycled levels take their coarse corrections times 1.8 by default (-snes_view says so): prism level 4 on 2 ranks with plain aggregation (-snes_ssstar_plain_aggregation_dofs 0) in at most 74 Krylov iterations, where the Galerkin corrections (-snes_ssstar_mg_overcorrection 1, the former default) take 80 here, the same Newton steps, states and answer, the law holding in the file; smoothed aggregation is not over-corrected; a factor outside [1, 2] and a negative -snes_ssstar_mg_w_levels are refused naming the option")
 def plain_aggregation_overcorrection():
     runs = []
     for extra in ([], ["-snes_ssstar_mg_overcorrection", "1"]):
@@ -151,6 +151,8 @@ def plain_aggregation_overcorrection():
     expect("over-correction" not in out, "smoothed aggregation is over-corrected", out)
     out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_reduction", "none", "-snes_ssstar_mg_overcorrection", "2.5"), expect_rc=-1)
     expect("-snes_ssstar_mg_overcorrection 2.5 must be in [1, 2]" in out, "-snes_ssstar_mg_overcorrection 2.5 not refused", out)
+    out = run(mpiexec(1, PRISM, "-level", "3", "-snes_ssstar_reduction", "none", "-snes_ssstar_mg_w_levels", "-1"), expect_rc=-1)
+    expect("-snes_ssstar_mg_w_levels -1 must be at least 0" in out, "-snes_ssstar_mg_w_levels -1 not refused", out)
 
 
 @test("the memory estimate printed before the work (the contact line) predicts the run's peak (VmHWM, the summary row) within 20 % on the whole body: prism level 12 on 1 and 2 ranks, and with -snes_ssstar_memory_limit below the smoothed aggregation's peak, where the solver takes plain aggregation (-snes_view says so) and the estimate follows; a limit below even that is refused before the work", full=True)

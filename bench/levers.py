@@ -150,6 +150,7 @@ SETS["rate"] = [
     ("no over-correction (before)", "-snes_ssstar_mg_overcorrection 1"),
     ("over-correction 1.5", "-snes_ssstar_mg_overcorrection 1.5"),
     ("over-correction 2", "-snes_ssstar_mg_overcorrection 2"),
+    ("W on every level", "-snes_ssstar_mg_w_levels 99"),
     ("threshold 0.05", "-pc_gamg_threshold 0.05"),
     ("SOR 2 sweeps", "-mg_levels_ksp_max_it 2"),
 ]

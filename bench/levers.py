@@ -4,7 +4,7 @@ with one configuration after another (options added to the default), the configu
 repeat (their order rotated from repeat to repeat) so that a noisy spell of the shared machine hits them all, and the
 AMG yardstick measured in the same repeat (bench/yardstick: one CG + GAMG solve of K, set-up + solve).
 
-  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|round4|nested|scale|krylov|default] [--only "a;b;..."]
+  bench/levers.py [--levels 8,12,16] [--ranks 2] [--repeat 3] [--set sweep|round2|round3|round4|nested|scale|krylov|rate|default] [--only "a;b;..."]
                   [--config name='-opt value ...'] [--extra '-opt value']
 
 Per level and configuration, medians over the repeats: the whole run (the process's wall time, mesh to the -o file),
@@ -14,7 +14,9 @@ the Krylov solves), the Newton iterations, the linear solves, the Krylov iterati
 set-ups and the peak memory of the largest rank. And the checks against the default configuration of the first
 repeat: converged, the same contact states, the displacement within 1e-8 (max |u - u_default| / max |u_default|).
 Writes bench/output/levers.csv (one row per level and configuration) and levers.png (time and Krylov iterations
-relative to the default)."""
+relative to the default). With --set rate (and no --only), each level starts with the levers on K alone: CG
+iterations, set-up and solve flops and the peak of bench/yardstick's AMG solve of K with each (flops and iterations
+are what the machine's load does not change; docs/guide/scale.md, "The multigrid's rate")."""
 import argparse
 import csv
 import math
@@ -139,6 +141,37 @@ SETS["krylov"] = [
     ("floor 1", "-snes_ssstar_ksp_floor 1"),
     ("eta_max 0.3", "-snes_ssstar_ksp_rtol_max 0.3"),
 ]
+# the eighth round (h34u, docs/guide/scale.md "The multigrid's rate"): the rate of the plain-aggregation multigrid,
+# first on K alone (K_ALONE: bench/yardstick's CG + GAMG solve of K with the lever, to 1e-8, the residual
+# unpreconditioned as the Newton steps measure it), then in the whole prism; ranked by iterations, flops and memory,
+# which the machine's load does not change
+SETS["rate"] = [
+    ("default", ""),
+    ("no over-correction (before)", "-snes_ssstar_mg_overcorrection 1"),
+    ("over-correction 1.5", "-snes_ssstar_mg_overcorrection 1.5"),
+    ("over-correction 2", "-snes_ssstar_mg_overcorrection 2"),
+    ("W on every level", "-snes_ssstar_mg_w_levels 99"),
+    ("threshold 0.05", "-pc_gamg_threshold 0.05"),
+    ("SOR 2 sweeps", "-mg_levels_ksp_max_it 2"),
+]
+SSSTAR_MG = ("-amg_pc_gamg_agg_nsmooths 0 -amg_mg_levels_ksp_type richardson -amg_mg_levels_pc_type sor -amg_mg_levels_ksp_max_it 1 "
+             "-amg_mg_levels_pc_sor_diagonal_shift 1e-8 -amg_ksp_norm_type unpreconditioned")
+K_ALONE = {"rate": [
+    ("the yardstick: GAMG's defaults", ""),
+    ("GAMG's defaults, unpreconditioned norm", "-amg_ksp_norm_type unpreconditioned"),
+    ("smoothed, SOR 1", SSSTAR_MG.replace("-amg_pc_gamg_agg_nsmooths 0 ", "")),
+    ("plain, SOR 1, V", SSSTAR_MG),
+    ("plain, SOR 1, W on 2 (before)", SSSTAR_MG + " -amg_w_levels 2"),
+    ("plain, W on 2, over-correction 1.5", SSSTAR_MG + " -amg_w_levels 2 -amg_overcorrection 1.5"),
+    ("plain, W on 2, over-correction 1.8", SSSTAR_MG + " -amg_w_levels 2 -amg_overcorrection 1.8"),
+    ("plain, W on 2, over-correction 2", SSSTAR_MG + " -amg_w_levels 2 -amg_overcorrection 2"),
+    ("plain, W on all, over-correction 1.8", SSSTAR_MG + " -amg_w_levels 99 -amg_overcorrection 1.8"),
+    ("plain, W on 2, threshold 0.05", SSSTAR_MG + " -amg_w_levels 2 -amg_pc_gamg_threshold 0.05"),
+    ("plain, W on 2, SOR 2", SSSTAR_MG + " -amg_w_levels 2 -amg_mg_levels_ksp_max_it 2"),
+    ("plain, W on 2, no square graph", SSSTAR_MG + " -amg_w_levels 2 -amg_pc_gamg_square_graph 0"),
+    ("plain, W on 2, Chebyshev 2/Jacobi", SSSTAR_MG.replace("richardson", "chebyshev").replace("-amg_mg_levels_pc_type sor", "-amg_mg_levels_pc_type jacobi")
+     .replace("-amg_mg_levels_ksp_max_it 1", "-amg_mg_levels_ksp_max_it 2") + " -amg_w_levels 2"),
+]}
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)\s+max\s+(\S+)")
 ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)", re.M)
 KRYLOV = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \(\S+ per solve\), (\d+) preconditioner set-ups")
@@ -151,7 +184,7 @@ LINEAR = re.compile(r"Linear solve (?:converged|did not converge) due to \S+ ite
 COLUMNS = ["level", "ranks", "config", "options", "runs", "whole", "rel_default", "cpu", "cpu_rel_default", "amg", "whole_per_amg", "mesh", "interpolate", "assembly",
            "snes", "snes_gflop", "newton_matrix", "pc_setup", "krylov", "output", "iters", "solves", "krylov_per_solve", "pc_setups", "peak_gb",
            "converged", "same_states", "du_rel", "states", "reason", "mesh_gmsh", "mesh_cache", "mesh_build", "mesh_faces", "mesh_label",
-           "its_per_solve"]
+           "its_per_solve", "setup_gflop", "krylov_gflop"]
 
 
 def event_time(log, name):
@@ -166,6 +199,34 @@ def event_flops(log, name):
         return math.nan
     f = m.group(0).split()
     return float(f[3]) * float(f[-1]) * 1e6
+
+
+def k_alone(level, ranks, options):
+    """bench/yardstick's AMG solve of K with the options: CG iterations, set-up and solve Gflop (-log_view's PCSetUp and
+    KSPSolve, summed over the ranks), the peak per rank; None if it fails (an indefinite multigrid stops CG)"""
+    cmd = mpiexec(ranks) + [os.path.join(ROOT, "bench", "yardstick"), "-yardstick", "amg", "-options_file", os.path.join(ROOT, "scenes", "prism.opts"),
+                            "-level", str(level), "-log_view", "-memory_view"] + options
+    out = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
+    m = re.search(r"amg level .* its (\d+)", out)
+    if not m:
+        why = re.search(r"did not converge: (\S+)", out)
+        return {"failed": why.group(1) if why else "failed"}
+    return {"its": int(m.group(1)), "setup_gflop": event_flops(out, "PCSetUp") / 1e9, "solve_gflop": event_flops(out, "KSPSolve") / 1e9,
+            "peak_gb": float(PEAK.search(out).group(2)) / 1e9}
+
+
+def k_alone_table(level, ranks, configs):
+    print("K alone, level %d, %d ranks: CG + the multigrid on K to 1e-8 (bench/yardstick -yardstick amg)" % (level, ranks))
+    print("%-40s  its  set-up Gflop  solve Gflop  total / yardstick's  GB per rank" % "configuration")
+    base = None
+    for name, opts in configs:
+        r = k_alone(level, ranks, shlex.split(opts))
+        if "failed" in r:
+            print("%-40s  %s" % (name[:40], r["failed"]), flush=True)
+            continue
+        total = r["setup_gflop"] + r["solve_gflop"]
+        base = base or total
+        print("%-40s %4d %12.3f %12.3f %15.2f %12.3f" % (name[:40], r["its"], r["setup_gflop"], r["solve_gflop"], total / base, r["peak_gb"]), flush=True)
 
 
 def displacement(h5):
@@ -191,6 +252,8 @@ def measure(level, ranks, name, options, h5):
     for key, event in EVENTS.items():
         r[key] = event_time(p.stdout, event)
     r["snes_gflop"] = event_flops(p.stdout, "SNESSolve") / 1e9
+    r["setup_gflop"] = event_flops(p.stdout, "SSStarNSFactor") / 1e9
+    r["krylov_gflop"] = event_flops(p.stdout, "SSStarNSKrylov") / 1e9
     r["its_per_solve"] = "/".join(LINEAR.findall(p.stdout))
     return r
 
@@ -205,6 +268,7 @@ def main():
     parser.add_argument("--config", action="append", default=[], help="name='options': an extra configuration")
     parser.add_argument("--extra", default="", help="options added to every configuration")
     parser.add_argument("--csv", default="levers", help="base name of the CSV and PNG in bench/output")
+    parser.add_argument("--k-alone", action="store_true", help="with --set rate: only the levers on K alone")
     parser.add_argument("--progress", action="store_true", help="a line per run on stderr")
     args = parser.parse_args()
     for k, v in (("OMPI_ALLOW_RUN_AS_ROOT", "1"), ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"), ("OPENBLAS_NUM_THREADS", "1")):
@@ -222,6 +286,10 @@ def main():
     print("medians of %d repeats, %d ranks, seconds; rel = whole / whole of the default in the same repeats; amg = the yardstick (one CG + GAMG solve of K) of the same repeats" % (args.repeat, args.ranks))
     print("level config                    whole   rel   cpu   rel  amg  whole/amg  mesh (interp) assembly  snes Gflop matrix setup krylov output  its solves kry/solve setups  GB   check")
     for level in level_list(args.levels):
+        if args.set in K_ALONE and not args.only:
+            k_alone_table(level, args.ranks, K_ALONE[args.set])
+        if args.k_alone:
+            continue
         runs = {name: [] for name, _ in configs}
         sticks = []
         reference = None
@@ -265,7 +333,7 @@ def main():
                    "iters": max(r["iters"] for r in rs), "states": rs[0]["states"], "reason": rs[0]["reason"],
                    "converged": all(r["converged"] for r in rs), "same_states": all(r["same_states"] for r in rs),
                    "du_rel": max(r["du_rel"] for r in rs)}
-            for key in ("whole", "cpu", "peak_gb", "solves", "krylov_per_solve", "pc_setups", "snes_gflop") + tuple(EVENTS):
+            for key in ("whole", "cpu", "peak_gb", "solves", "krylov_per_solve", "pc_setups", "snes_gflop", "setup_gflop", "krylov_gflop") + tuple(EVENTS):
                 row[key] = statistics.median(r[key] for r in rs)
             ratios = [r["whole"] / default_whole[r["rep"]] for r in rs if r["rep"] in default_whole]
             row["rel_default"] = statistics.median(ratios) if ratios else math.nan
@@ -278,7 +346,11 @@ def main():
                 level, name[:24], row["whole"], row["rel_default"], row["cpu"], row["cpu_rel_default"], amg, row["whole_per_amg"], row["mesh"], row["interpolate"],
                 row["assembly"], row["snes"], row["snes_gflop"], row["newton_matrix"], row["pc_setup"], row["krylov"], row["output"], row["iters"],
                 row["solves"], row["krylov_per_solve"], row["pc_setups"], row["peak_gb"], check), flush=True)
+            print("%5d %-24s Newton multigrid set-ups %.3f Gflop, Krylov solves %.3f Gflop, SNESSolve %.3f Gflop" % (
+                level, name[:24], row["setup_gflop"], row["krylov_gflop"], row["snes_gflop"]), flush=True)
             rows.append(row)
+    if args.k_alone:
+        return
     with open(os.path.join(OUT, args.csv + ".csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=COLUMNS)
         w.writeheader()

@@ -3,6 +3,9 @@ static const char help[] = "The yardsticks of the benchmarks: one plain Cholesky
 algebraic multigrid (PCGAMG with K's near-null space, the rigid-body modes; rtol 1e-8), each timed.\n\
   -level <6>                  mesh level of the scene (run with -options_file scenes/prism.opts)\n\
   -yardstick <cholesky,amg>   which of them\n\
+  -amg_w_levels <n>           amg: W-cycles on the n finest levels of the multigrid, V below (as ssstar's, n = 2)\n\
+  -amg_overcorrection <alpha> amg: the coarse corrections into the W-cycled levels times alpha (ssstar's\n\
+                              -snes_ssstar_mg_overcorrection; the levers on K alone, docs/guide/scale.md)\n\
 Prints: cholesky level <L> ranks <R> dofs <N> time <s> flops <MUMPS RINFOG(3)>\n\
         amg level <L> ranks <R> dofs <N> setup <s> solve <s> its <n>\n\
         peak <GB> GB per rank (the largest rank's VmHWM: mesh, K and the yardsticks)\n";
@@ -43,6 +46,30 @@ static PetscErrorCode Cholesky(Mat K, PetscInt level)
   PetscFunctionReturn(0);
 }
 
+/* ssstar's cycle on the multigrid set up: W-cycles on the wLevels finest levels, their coarse corrections times alpha */
+static PetscErrorCode CycleLevers(PC pc)
+{
+  PetscInt  wLevels = 0, nlevels;
+  PetscReal alpha   = 1;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-amg_w_levels", &wLevels, &set));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-amg_overcorrection", &alpha, NULL));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PCMGGetLevels(pc, &nlevels));
+  for (PetscInt l = 1; l < nlevels; l++) {
+    PetscCall(PCMGSetCycleTypeOnLevel(pc, l, l >= nlevels - wLevels ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
+    if (l >= nlevels - wLevels && alpha != 1) {
+      Mat P;
+
+      PetscCall(PCMGGetInterpolation(pc, l, &P));
+      PetscCall(MatScale(P, PetscSqrtReal(alpha)));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode AMG(Mat K, Vec b, PetscInt level)
 {
   PetscInt           N, its;
@@ -68,6 +95,7 @@ static PetscErrorCode AMG(Mat K, Vec b, PetscInt level)
   PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
   PetscCall(PetscTime(&t0));
   PetscCall(KSPSetUp(ksp));
+  PetscCall(CycleLevers(pc));
   PetscCall(PetscTime(&t1));
   PetscCall(KSPSolve(ksp, b, u));
   PetscCall(PetscTime(&t2));

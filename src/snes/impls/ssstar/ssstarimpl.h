@@ -74,6 +74,10 @@ PETSC_INTERN PetscErrorCode SSStarReductionFitsMemory(MPI_Comm, PetscReal, Petsc
 
 /* the multigrid of an earlier Newton matrix is kept while at most this fraction of the nodes changed known rows */
 #define SSSTAR_PC_REUSE_DEFAULT 0.3
+/* the whole body's plain-aggregation multigrid: its W-cycled levels' coarse corrections times this (docs/guide/scale.md) */
+#define SSSTAR_MG_OVERCORRECTION 1.8
+/* and its finest levels that W-cycle (V below) */
+#define SSSTAR_MG_W_LEVELS 2
 
 typedef struct _n_SSStarNewton *SSStarNewton;
 PETSC_EXTERN PetscFunctionList SSStarNewtonList;
@@ -87,6 +91,8 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetPlainAggregationDofs(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetPlainAggregationDofs(SSStarNewton, PetscInt *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetMGOverCorrection(SSStarNewton, PetscReal, PetscInt);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetMGOverCorrection(SSStarNewton, PetscReal *, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetLUThreads(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetStiffness(SSStarNewton, const char[], Mat, PetscReal, const SSStarContactLayout *);

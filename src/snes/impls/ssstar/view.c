@@ -166,6 +166,15 @@ PetscErrorCode SNESSetFromOptions_SSStar(SNES snes, PetscOptionItems *PetscOptio
     PetscCall(PetscOptionsInt("-snes_ssstar_plain_aggregation_dofs", "Whole body: the multigrid aggregates plainly (W-cycles, products all at once: the memory lever) from this many dofs of K (0: always; negative: only where smoothed does not fit)", "SNESSSStarSetPlainAggregationDofs", dofs, &dofs, &set));
     if (set) PetscCall(SNESSSStarSetPlainAggregationDofs(snes, dofs));
   }
+  {
+    PetscInt  wLevels;
+    PetscBool setW;
+
+    PetscCall(SSStarNewtonGetMGOverCorrection(ss->newton, &value, &wLevels));
+    PetscCall(PetscOptionsReal("-snes_ssstar_mg_overcorrection", "Whole body: plain aggregation's W-cycled levels take their coarse corrections times this (1: the Galerkin ones; at most 2)", "SNESSSStarSetMGOverCorrection", value, &value, &set));
+    PetscCall(PetscOptionsInt("-snes_ssstar_mg_w_levels", "Whole body: plain aggregation's finest levels that W-cycle, V below (unless -pc_mg_cycle_type)", "SNESSSStarSetMGOverCorrection", wLevels, &wLevels, &setW));
+    if (set || setW) PetscCall(SNESSSStarSetMGOverCorrection(snes, value, wLevels));
+  }
   PetscCall(PetscOptionsReal("-snes_ssstar_ksp_rtol_max", "Whole body: the loosest relative tolerance of a Newton step's linear solve (it tightens with ||z||/||z_0||)", "SNESSSStarSetKSPRtolMax", ss->etaMax, &value, &set));
   if (set) PetscCall(SNESSSStarSetKSPRtolMax(snes, value));
   PetscCall(PetscOptionsReal("-snes_ssstar_ksp_floor", "Whole body: the likely last step's linear solve goes to this fraction of the stopping rule (docs/derivation.md section 19a)", "SNESSSStarSetKSPFloor", ss->kspFloor, &value, &set));

@@ -25,6 +25,8 @@ PetscErrorCode SSStarNewtonCreate(SNES snes, SSStarNewton *newton)
   (*newton)->luThreads = 1;
   (*newton)->pcReuse   = SSSTAR_PC_REUSE_DEFAULT;
   (*newton)->plainDofs = SSSTAR_PLAIN_AGGREGATION_DOFS;
+  (*newton)->overCorrection = SSSTAR_MG_OVERCORRECTION;
+  (*newton)->wLevels        = SSSTAR_MG_W_LEVELS;
   (*newton)->rcond     = -1;
   (*newton)->rtol      = 1e-10;
   PetscFunctionReturn(0);
@@ -69,6 +71,22 @@ PetscErrorCode SSStarNewtonGetPlainAggregationDofs(SSStarNewton nt, PetscInt *do
 {
   PetscFunctionBegin;
   *dofs = nt->plainDofs;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonSetMGOverCorrection(SSStarNewton nt, PetscReal alpha, PetscInt wLevels)
+{
+  PetscFunctionBegin;
+  nt->overCorrection = alpha;
+  nt->wLevels        = wLevels;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonGetMGOverCorrection(SSStarNewton nt, PetscReal *alpha, PetscInt *wLevels)
+{
+  PetscFunctionBegin;
+  *alpha   = nt->overCorrection;
+  *wLevels = nt->wLevels;
   PetscFunctionReturn(0);
 }
 
@@ -498,6 +516,49 @@ static PetscErrorCode SNESSSStarSetPlainAggregationDofs_SSStar(SNES snes, PetscI
 }
 
 /*@
+   SNESSSStarSetMGOverCorrection - whole body (reduction none): where ssstar's multigrid aggregates plainly
+   (SNESSSStarSetPlainAggregationDofs()), its wLevels finest levels W-cycle (V below, unless -pc_mg_cycle_type
+   chooses) and the coarse corrections into those levels are multiplied by alpha (the interpolations scaled by sqrt(alpha) after each set-up, the coarse operators kept): plain
+   aggregation's piecewise rigid interpolation under-corrects the smooth error, and the scaled correction makes up for
+   it (Vanek's and Notay's over-correction; docs/guide/scale.md, "The multigrid's rate"). The preconditioner stays
+   symmetric (CG applies).
+
+   Logically Collective
+
+   Input Parameters:
++  snes    - the SNES
+.  alpha   - in [1, 2]: 1 leaves the corrections as the Galerkin ones (default 1.8); above 2 the multigrid can be
+             indefinite
+-  wLevels - the finest levels that W-cycle, at least 0 (default 2; PETSC_DEFAULT keeps the current)
+
+   Options Database Keys:
++  -snes_ssstar_mg_overcorrection <1.8> - the factor
+-  -snes_ssstar_mg_w_levels <2> - the W-cycled levels
+
+   Level: advanced
+
+.seealso: `SNESSSStarSetPlainAggregationDofs()`, `SNESSSStarSetPCReuse()`
+@*/
+PetscErrorCode SNESSSStarSetMGOverCorrection(SNES snes, PetscReal alpha, PetscInt wLevels)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscTryMethod(snes, "SNESSSStarSetMGOverCorrection_C", (SNES, PetscReal, PetscInt), (snes, alpha, wLevels));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetMGOverCorrection_SSStar(SNES snes, PetscReal alpha, PetscInt wLevels)
+{
+  SSStarNewton nt = ((SNES_SSStar *)snes->data)->newton;
+
+  PetscFunctionBegin;
+  PetscCheck(alpha >= 1 && alpha <= 2, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_mg_overcorrection %g must be in [1, 2]", (double)alpha);
+  PetscCheck(wLevels >= 0 || wLevels == PETSC_DEFAULT, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-snes_ssstar_mg_w_levels %" PetscInt_FMT " must be at least 0", wLevels);
+  PetscCall(SSStarNewtonSetMGOverCorrection(nt, alpha, wLevels == PETSC_DEFAULT ? nt->wLevels : wLevels));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarGetNewtonStepCounts - how the Newton steps of the last SNESSolve() were solved
 
    Not Collective
@@ -566,6 +627,7 @@ static const SSStarComposed Composed[] = {
     {"SNESSSStarSetLUThreads_C", (PetscVoidFunction)SNESSSStarSetLUThreads_SSStar},
     {"SNESSSStarSetPCReuse_C", (PetscVoidFunction)SNESSSStarSetPCReuse_SSStar},
     {"SNESSSStarSetPlainAggregationDofs_C", (PetscVoidFunction)SNESSSStarSetPlainAggregationDofs_SSStar},
+    {"SNESSSStarSetMGOverCorrection_C", (PetscVoidFunction)SNESSSStarSetMGOverCorrection_SSStar},
     {"SNESSSStarGetNewtonStepCounts_C", (PetscVoidFunction)SNESSSStarGetNewtonStepCounts_SSStar},
     {"SNESSSStarGetConditionEstimate_C", (PetscVoidFunction)SNESSSStarGetConditionEstimate_SSStar},
 };

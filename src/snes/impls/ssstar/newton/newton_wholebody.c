@@ -28,8 +28,6 @@
 #define SSSTAR_GMRES_RESTART 100
 /* GAMG's smoothers unless the options name others: one sweep of SOR per level and direction (bench/levers.py) */
 #define SSSTAR_SMOOTHER_OPTIONS 4
-/* the multigrid's levels that cycle twice through the next coarser one (CycleDefaults) */
-#define SSSTAR_W_LEVELS 2
 /* floating bodies: the preconditioner's shift on the free motions' unknown contact dofs, in units of 1/gamma */
 #define SSSTAR_FREE_SHIFT (1e-2 * SSSTAR_FREE_STIFFNESS)
 
@@ -55,6 +53,8 @@ typedef struct {
   unsigned char   *touched;     /* per local node: a free motion of the step moves it                            */
   PetscInt         pcFree;      /* free motions when the multigrid was built                                     */
   PetscInt         indefinite;  /* steps CG stopped on with DIVERGED_INDEFINITE_PC since the set-up: GMRES since  */
+  PetscReal        ocScale;     /* the interpolations into the ocLevels finest levels are scaled by it (1: as built) */
+  PetscInt         ocLevels, wLevels; /* the levels scaled; the finest levels W-cycled by ssstar's choice             */
 } Newton_WholeBody;
 
 /* dv = Q du: each contact node's 3 entries of a vector of K turned into its frame (R NULL: nothing to do) */
@@ -236,13 +236,14 @@ static PetscErrorCode GalerkinProductEnd(PetscBool set)
 }
 
 /*
-   With plain aggregation, a W-cycle on the SSSTAR_W_LEVELS finest levels of GAMG's hierarchy (each visits the next
+   With plain aggregation, a W-cycle on the -snes_ssstar_mg_w_levels finest levels of GAMG's hierarchy (each visits the next
    coarser level twice), a V-cycle below, unless the options name the cycle (-pc_mg_cycle_type): plain aggregation's
    piecewise rigid interpolation needs the second coarse correction (prism level 16, 2 ranks: 86 Krylov iterations on
    the finest mesh with V-cycles, 55 with these, 57 for smoothed aggregation with V-cycles, in fewer flops than either);
-   on the coarser levels it adds messages, not iterations (59 with W-cycles on all six levels)
+   on the coarser levels it adds messages, not iterations (59 with W-cycles on all six levels). Their coarse corrections
+   are then over-corrected (ScaleCoarseCorrections)
 */
-static PetscErrorCode CycleDefaults(PC pc, PetscBool plain, PetscBool *wCycle)
+static PetscErrorCode CycleDefaults(PC pc, PetscBool plain, PetscInt wLevels, PetscBool *wCycle)
 {
   PetscBool set;
   PetscInt  nlevels;
@@ -252,8 +253,33 @@ static PetscErrorCode CycleDefaults(PC pc, PetscBool plain, PetscBool *wCycle)
   PetscCall(PetscOptionsHasName(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_mg_cycle_type", &set));
   if (!plain || set) PetscFunctionReturn(0);
   PetscCall(PCMGGetLevels(pc, &nlevels));
-  for (PetscInt l = 1; l < nlevels; l++) PetscCall(PCMGSetCycleTypeOnLevel(pc, l, l >= nlevels - SSSTAR_W_LEVELS ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
-  *wCycle = PETSC_TRUE;
+  for (PetscInt l = 1; l < nlevels; l++) PetscCall(PCMGSetCycleTypeOnLevel(pc, l, l >= nlevels - wLevels ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
+  *wCycle = (PetscBool)(wLevels > 0);
+  PetscFunctionReturn(0);
+}
+
+/*
+   The interpolations into the wLevels finest levels scaled by s, after GAMG's set-up (the coarse operators stay
+   the Galerkin ones of the interpolations as built): their coarse corrections P A_c^-1 P^T become s^2 times as large,
+   the same on both sides, so the multigrid stays symmetric. Plain aggregation's piecewise rigid interpolation leaves the
+   smooth error under-corrected; an over-correction of alpha = s^2 = -snes_ssstar_mg_overcorrection makes up for it
+   (Vanek; Notay). Measured (docs/guide/scale.md, "The multigrid's rate"): prism level 24 on 2 ranks, 60 Krylov
+   iterations on the finest mesh instead of 71, 11 % fewer flops, the same memory; on K alone 38 CG iterations instead
+   of 55. On the V-cycled levels below it made CG's multigrid indefinite: only the W-cycled ones are scaled. A new set-up
+   (GAMG's products on the interpolations it keeps) is preceded by the scaling back (1/s)
+*/
+static PetscErrorCode ScaleCoarseCorrections(PC pc, PetscInt wLevels, PetscReal s)
+{
+  PetscInt nlevels;
+
+  PetscFunctionBegin;
+  PetscCall(PCMGGetLevels(pc, &nlevels));
+  for (PetscInt l = nlevels - 1; l >= 1 && l >= nlevels - wLevels; l--) {
+    Mat P;
+
+    PetscCall(PCMGGetInterpolation(pc, l, &P));
+    PetscCall(MatScale(P, s));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -281,6 +307,7 @@ static PetscErrorCode SSStarNewtonSetUp_WholeBody(SSStarNewton nt)
     }
   nw->pcBuilt    = PETSC_FALSE;
   nw->indefinite = 0;
+  nw->ocScale    = 1;
 
   /* the SNES's KSP: GMRES or CG with GAMG unless the options name others (they are read again for the new types) */
   PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, ((PetscObject)ksp)->prefix, "-ksp_type", &nw->userKSPType));
@@ -475,12 +502,22 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   }
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscLogEventBegin(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
+  if (!reuse && nw->ocScale != 1) { /* GAMG's products of a new set-up take the interpolations as they were built */
+    PetscCall(ScaleCoarseCorrections(pc, nw->ocLevels, 1 / nw->ocScale));
+    nw->ocScale = 1;
+  }
   PetscCall(GalerkinProductBegin(pc, nw->plainAggregation, &allAtOnce));
   PetscCall(KSPSetUp(ksp));
   PetscCall(GalerkinProductEnd(allAtOnce));
   if (!reuse) { /* the levels of a new hierarchy */
-    PetscCall(CycleDefaults(pc, nw->plainAggregation, &nw->wCycle));
+    PetscCall(CycleDefaults(pc, nw->plainAggregation, nt->wLevels, &nw->wCycle));
+    nw->wLevels = nt->wLevels;
     nw->allAtOnce = allAtOnce;
+    if (nw->wCycle && nt->overCorrection != 1) {
+      nw->ocScale  = PetscSqrtReal(nt->overCorrection);
+      nw->ocLevels = nt->wLevels;
+      PetscCall(ScaleCoarseCorrections(pc, nw->ocLevels, nw->ocScale));
+    }
   }
   PetscCall(PetscLogEventEnd(SSSTAR_NewtonFactor, nt->snes, 0, 0, 0));
   if (nw->nearNull) {
@@ -631,7 +668,13 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
   PetscCall(SSStarWholeBodyMatrixInPlace(nw->wm, &inPlace));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton step on the whole body (P never formed): K with each contact node's rows, known dofs eliminated, solved by the KSP below%s\n", nw->nearNull ? " (multigrid with K's near-null space)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the Newton matrix is formed %s\n", inPlace ? "in K's storage for each linear solve (no copy of K)" : "in an AIJ copy of K (K is not AIJ, or its contact nodes' 3 x 3 blocks are incomplete)"));
-  if (nw->plain || nw->wCycle || nw->allAtOnce) PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", !nw->plain ? "" : nw->plainBySize ? " plain aggregation: K has at least -snes_ssstar_plain_aggregation_dofs dofs;" : " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);", nw->wCycle ? " W-cycles on the " PetscStringize(SSSTAR_W_LEVELS) " finest levels, V below (-pc_mg_cycle_type);" : "", nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
+  if (nw->plain || nw->wCycle || nw->allAtOnce) {
+    char cycle[128] = "";
+
+    if (nw->wCycle) PetscCall(PetscSNPrintf(cycle, sizeof(cycle), " W-cycles on the %" PetscInt_FMT " finest levels (-snes_ssstar_mg_w_levels), V below (-pc_mg_cycle_type);", nw->wLevels));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", !nw->plain ? "" : nw->plainBySize ? " plain aggregation: K has at least -snes_ssstar_plain_aggregation_dofs dofs;" : " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);", cycle, nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
+  }
+  if (nw->ocScale != 1) PetscCall(PetscViewerASCIIPrintf(viewer, "    the W-cycled levels' coarse corrections times %g (over-correction, -snes_ssstar_mg_overcorrection)\n", (double)(nw->ocScale * nw->ocScale)));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));
   if (nw->indefinite) PetscCall(PetscViewerASCIIPrintf(viewer, "    CG stopped on an indefinite multigrid (DIVERGED_INDEFINITE_PC) in %" PetscInt_FMT " step%s since the set-up: solved again by GMRES on it, which needs no definite preconditioner, and every later step by GMRES\n", nw->indefinite, nw->indefinite > 1 ? "s" : ""));
   if (nt->nSteps) PetscCall(PetscViewerASCIIPrintf(viewer, "    last solve: %" PetscInt_FMT " linear solves, %" PetscInt_FMT " Krylov iterations (%.1f per solve), %" PetscInt_FMT " preconditioner set-ups, %" PetscInt_FMT " solves on an earlier one, %" PetscInt_FMT " inexact steps solved on to the floor after a failed full step\n", nt->nSteps, nt->nKrylov, (double)nt->nKrylov / nt->nSteps, nt->nFactor, nt->nReused, nt->nRefined));
@@ -651,6 +694,7 @@ static PetscErrorCode SSStarNewtonReset_WholeBody(SSStarNewton nt)
   PetscCall(MatDestroy(&nw->shell));
   PetscCall(PetscFree(nw->pcMask));
   PetscCall(PetscFree4(nw->Sknown, nw->Tknown, nw->S, nw->T));
+  nw->ocScale = 1;
   for (PetscInt k = 0; k < SSSTAR_SMOOTHER_OPTIONS; k++) {
     if (nw->smoother[k]) PetscCall(PetscOptionsClearValue(NULL, nw->smoother[k]));
     PetscCall(PetscFree(nw->smoother[k]));

@@ -146,19 +146,6 @@ PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
   PetscFunctionReturn(0);
 }
 
-/* Node i stuck where it is (state M3+, target v = 0: d = 0, z = -v), in the arrays of ss->u, ss->z and ss->d */
-void SNESSSStarStickNode(SNES_SSStar *ss, PetscInt i, const PetscScalar *ua, PetscScalar *za, PetscScalar *da)
-{
-  PetscReal v[3];
-
-  SNESSSStarNodeIterate(&ss->contact, &ss->problem, i, ua, v);
-  ss->states[i] = SSSTAR_STATE_M3P;
-  for (PetscInt k = 0; k < 3; k++) {
-    za[ss->problem.layoutDofs[3 * i + k]] = -v[k];
-    da[3 * i + k]                         = 0;
-  }
-}
-
 /*
    Before the Newton step of iterate k (docs/derivation.md section 19c): a node sliding at k and at k - 1 whose slip d_t
    points against the one at k - 1 reversed, i.e. crossed the kink d_t = 0 of its law between the two iterates. Nodes

@@ -236,6 +236,19 @@ PetscErrorCode SNESSSStarRecordStart(SNES snes, Vec u, Vec c)
   PetscFunctionReturn(0);
 }
 
+/* Node i stuck where it is (state M3+, target v = 0: d = 0, z = -v), in the arrays of ss->u, ss->z and ss->d */
+void SNESSSStarStickNode(SNES_SSStar *ss, PetscInt i, const PetscScalar *ua, PetscScalar *za, PetscScalar *da)
+{
+  PetscReal v[3];
+
+  SNESSSStarNodeIterate(&ss->contact, &ss->problem, i, ua, v);
+  ss->states[i] = SSSTAR_STATE_M3P;
+  for (PetscInt k = 0; k < 3; k++) {
+    za[ss->problem.layoutDofs[3 * i + k]] = -v[k];
+    da[3 * i + k]                         = 0;
+  }
+}
+
 /*
    The elastic trial of a load path's step (docs/derivation.md section 12.3), from its first iterate u (the last step's
    solution) after the approximation step there: if the step's offsets moved nodes in contact (d_3 = 0) along their

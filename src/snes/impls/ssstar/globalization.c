@@ -406,7 +406,8 @@ PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscVie
 +  snes          - the SNES
 .  on            - PETSC_TRUE (default): damped steps on the merit function ||z|| and remedies (a full step or a
                    doubled gamma after a failed line search, a regularized Newton step or fixed-point iterations for a
-                   singular Newton matrix, a doubled gamma on a cycle); PETSC_FALSE: the plain iteration
+                   singular Newton matrix, a doubled gamma on a cycle, the stuck element for a sliding node whose
+                   slip reversed twice in a cycle, docs/derivation.md section 19c); PETSC_FALSE: the plain iteration
 .  dampingMin    - the smallest damping factor of the line search (default 1/64), or PETSC_DEFAULT
 -  stagnationIts - stop (SNES_DIVERGED_LOCAL_MIN, sub-reason STAGNATION) after this many iterations without a smaller
                    ||z|| (default 20), or PETSC_DEFAULT

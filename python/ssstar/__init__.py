@@ -210,6 +210,7 @@ _C = {name: _declare(name, *args) for name, args in {
     "SNESSSStarGetRemedyCounts": (_Handle, ctypes.POINTER(_Int)),
     "SNESSSStarGetNewtonStepCounts": (_Handle, ctypes.POINTER(_Int), ctypes.POINTER(_Int), ctypes.POINTER(_Int)),
     "SNESSSStarGetConditionEstimate": (_Handle, ctypes.POINTER(_Real)),
+    "SNESSSStarReleaseWork": (_Handle,),
 }.items()}
 
 
@@ -515,6 +516,13 @@ def get_condition_estimate(snes):
     v = _Real()
     _call(_C["SNESSSStarGetConditionEstimate"], _h(snes), ctypes.byref(v))
     return v.value
+
+
+def release_work(snes):
+    """SNESSSStarReleaseWork(): frees the Newton steps' preconditioner (multigrid or factorization) and work vectors
+    after the last solve, before writing or other post-processing; the solution's data stay, a later solve builds them
+    again"""
+    _call(_C["SNESSSStarReleaseWork"], _h(snes))
 
 
 def get_contact_forces(snes):

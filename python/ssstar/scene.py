@@ -10,7 +10,7 @@ import weakref
 import numpy as np
 from petsc4py import PETSc
 
-from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, _petsc4py, STATE_NAMES
+from . import _Enum, _Handle, _Int, _Real, _call, _declare, _h, _lib, _petsc4py, release_work, STATE_NAMES
 
 _P = ctypes.POINTER
 _C = {name: _declare(name, *args) for name, args in {
@@ -728,10 +728,12 @@ class Scene:
                 names = (ctypes.c_char_p * 4)(b"factor", b"area", b"normal_force", b"iterations")
                 table = (_P(_Real) * 4)(*[ctypes.cast(c, _P(_Real)) for c in columns])
                 extra = _EXTRA(lambda viewer, ctx: _C["SSStarWriteTable"](viewer, b"/load_steps", 4, names, len(rows), table))
+            release_work(self.snes)  # the file's memory out of the Newton steps' work, as examples/contact
             _call(_C["SSStarSceneWriteSolution"], self._scene, _h(self.snes), file.encode(), _h(self.u), ctypes.cast(extra, _Handle) if extra else None, None)
 
     def _end_output(self):
         with self._options:
+            release_work(self.snes)
             _call(_C["SSStarSceneOutputEnd"], self._scene, _h(self.snes), _h(self.u), None, None)
         self._output = None
 

@@ -63,6 +63,7 @@ PetscErrorCode SSStarGlobalizationBegin(SNES snes)
   }
   PetscCall(PetscArrayzero(glob->slip, 3 * glob->nnodes));
   glob->reversed   = 0;
+  glob->shownStuck = 0;
   glob->stuck      = 0;
   glob->zbest      = PETSC_MAX_REAL;
   glob->kbest      = 0;
@@ -109,6 +110,8 @@ PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
   PetscCall(PetscArrayzero(glob->pending, SSSTAR_NUM_REMEDIES));
   glob->shownAlpha = glob->alpha;
   glob->alpha      = 0;
+  glob->shownStuck = glob->reversed;
+  glob->reversed   = 0;
   for (PetscInt j = 3; j > 0; j--) glob->zhist[j] = glob->zhist[j - 1];
   glob->zhist[0] = znorm;
   glob->nhist++;
@@ -373,7 +376,7 @@ PetscErrorCode SSStarGlobalizationFormatEvents(SSStarGlobalization *glob, char b
   PetscCall(PetscStrlen(buf, &used));
   if (glob->flipping) PetscCall(PetscSNPrintf(buf + used, len - used, "; %" PetscInt_FMT " nodes flip with period 2", glob->flipping));
   PetscCall(PetscStrlen(buf, &used));
-  if (glob->reversed) PetscCall(PetscSNPrintf(buf + used, len - used, "; %" PetscInt_FMT " nodes stuck at a reversed slip", glob->reversed));
+  if (glob->shownStuck) PetscCall(PetscSNPrintf(buf + used, len - used, "; %" PetscInt_FMT " nodes stuck at a reversed slip", glob->shownStuck));
   PetscFunctionReturn(0);
 }
 

@@ -291,7 +291,7 @@ typedef struct {
   PetscInt        flipping;                   /* nodes whose state has period 2                                 */
   PetscInt        changed;                    /* nodes whose state is not that of the previous iterate (-1: none) */
   PetscReal      *slip;                       /* 2 per local node: d_t at the last iterate if it slid, else 0     */
-  PetscInt        reversed;                   /* polishing nodes stuck on the way to this iterate: their slip reversed (section 19c) */
+  PetscInt        reversed, shownStuck;       /* nodes stuck at a twice-reversed slip on the way to the next iterate, to this one (section 19c) */
   PetscInt        stuck;                      /* the same, summed over the solve                                 */
 } SSStarGlobalization;
 

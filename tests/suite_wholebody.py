@@ -20,8 +20,8 @@ def scene_run(args, h5, ranks=1):
     return out, {"iters": int(m.group(1)), "states": m.group(2), "reason": m.group(3)}
 
 
-def prism_run(args, h5, ranks=1, expect_rc=0):
-    out = run(mpiexec(ranks, PRISM, *args, "-o", os.path.join(OUT, h5), "-snes_converged_reason"), expect_rc=expect_rc)
+def prism_run(args, h5, ranks=1, expect_rc=0, check_memory=True):
+    out = run(mpiexec(ranks, PRISM, *args, "-o", os.path.join(OUT, h5), "-snes_converged_reason"), expect_rc=expect_rc, check_memory=check_memory)
     m = SUMMARY.search(out)
     expect(m is not None, "no summary row", out)
     return out, {"iters": int(m.group(6)), "states": m.group(7), "reason": m.group(9), "peak_gb": float(m.group(10))}

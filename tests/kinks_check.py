@@ -23,6 +23,11 @@ Checks (exit status 1 if one fails):
      than the one before" counts at most one (where the steps turn) where "rho not halved" alone counts more than 3
      (LAW_STALLED, issue 34); at
      the round-off floor (steps from the solution) it counts more than 3 within 12 steps
+  4. (19c.1)-(19c.2), the two-cycle of a slow mode at touching: the block (k = 20, E/k = 1e7) touching the plane without load,
+     the plane raised by 1e-4: with exact steps from the step's start it converges, the rim sliding by a ~ 1e-13; from
+     the elastic trial with its slide off by delta = 1e-12 .. 1e-6 (more than a) the plain iteration cycles between
+     slides of +-phi N/k (to 1e-3); with the stuck element at twice-reversed slips (||z|| back to within 10 %) it
+     converges from every delta, and on check 1's 20-step path (k = 10) it never acts (the same iterations)
 """
 import sys
 
@@ -249,10 +254,83 @@ def check_floor_rule(st, start):
                old, new, min(frhos), max(frhos), min(flengths), max(flengths), at_floor))
 
 
+def pressed(k=20.0, press=1e-4):
+    """the block (E/k = 1e7) touching the plane with no load, the plane raised by press: the step's Step"""
+    P, f_of, p = block(k=k)
+    st = Step(P, f_of((0, 0, 0)), np.zeros(3 * p))
+    st.off[:, 2] = -press
+    return st
+
+
+def newton_19c(st, u, rule, its=60, rtol=1e-8):
+    """section 7's iteration with exact steps (no globalization) to ||z|| <= rtol max(||u||, ||gamma f||) and rho <= 1e-8;
+    rule: (19c.2), a sliding node whose slip reversed at two iterates in a row while ||z|| came back to within 10 % of
+    its value two iterations ago gets the stuck element at d = 0. Its iterations, whether it converged, the mean slide
+    of the nodes along x at each iterate, the nodes stuck"""
+    p, slip, twice, zs, slides, stuck = st.p, np.zeros((st.p, 2)), np.zeros(st.p, bool), [], [], 0
+    for it in range(its):
+        v, z, d, b, states = st.work(u)
+        zs.append(np.linalg.norm(z))
+        if zs[-1] <= rtol * max(np.linalg.norm(u), st.gamma * np.linalg.norm(st.f)) and st.rho(u) <= 1e-8:
+            return it, True, slides, stuck
+        cycling = len(zs) >= 3 and zs[-1] > 0.9 * zs[-3]
+        for i in range(p):
+            reverse = states[i] == "M1" and slip[i] @ d[i, :2] < 0
+            if rule and reverse and twice[i] and cycling:
+                states[i], z[i], d[i], slip[i], twice[i] = "M3+", -v[i], 0.0, 0.0, False
+                stuck += 1
+            else:
+                slip[i], twice[i] = (d[i, :2] if states[i] == "M1" else 0.0), reverse
+        S, T = np.zeros((3 * p,) * 2), np.zeros((3 * p,) * 2)
+        for i in range(p):
+            k3 = slice(3 * i, 3 * i + 3)
+            S[k3, k3], T[k3, k3] = lc.reduced_blocks(("coulomb", PHI), states[i], d[i], b[i])
+        u = u + np.linalg.solve(S @ (st.gamma * st.P) + T, (S + T) @ z.ravel())
+        slides.append(u.reshape(p, 3)[:, 0].mean())
+    return its, False, slides, stuck
+
+
+def check_reversal():
+    st = pressed()
+    its, ok, _, _ = newton_19c(st, np.zeros(3 * st.p), False)
+    solution = np.zeros(3 * st.p)
+    for _ in range(its):
+        solution = solution + st.newton(solution)[0]
+    _, _, d, b, states = st.work(solution)
+    a = np.abs(d[:, :2]).max()  # the elastic slips, the basin's size
+    amplitude = PHI * np.sum((st.P @ solution - st.f).reshape(st.p, 3)[:, 2]) / 20.0  # phi N / k (k per unit area, unit top)
+    figures = ["exact steps from the step's start: %d iterations, %d of %d nodes sliding by at most a = %.1e" % (its, states.count("M1"), st.p, a)]
+    first = st.newton(np.zeros(3 * st.p))[0]  # the elastic trial: every node stuck
+    plain, ruled = {}, {}
+    for delta in (1e-14, 1e-12, 1e-9, 1e-6):
+        u = first.copy()
+        u[0::3] += delta  # the first step's error along the slow mode: the block slid by delta
+        plain[delta], ruled[delta] = newton_19c(st, u, False), newton_19c(st, u, True)
+    cycle = plain[1e-6][2][-4:]
+    ok &= plain[1e-14][1] and all(not plain[x][1] for x in (1e-12, 1e-9, 1e-6)) and all(ruled[x][1] for x in ruled)
+    ok &= all(abs(abs(x) / amplitude - 1) <= 1e-3 for x in cycle) and cycle[0] * cycle[1] < 0 and ruled[1e-14][0] == plain[1e-14][0]
+    figures.append("from the trial with the slide off by delta: plain %s; the cycle's slides %s against phi N/k = %.2e; with (19c.2) %s" % (
+        ", ".join("%.0e: %s" % (x, "%d its" % plain[x][0] if plain[x][1] else "no convergence") for x in plain), " ".join("%.2e" % x for x in cycle), amplitude,
+        ", ".join("%.0e: %d its (%d nodes stuck)" % (x, ruled[x][0], ruled[x][3]) for x in ruled)))
+    P, f_of, p = block(k=10.0)  # the rule on check 1's path (its creep, its slides back and forth): never acts
+    u, fired, counts = np.zeros(3 * p), 0, []
+    for t in np.linspace(0, 5, 21):
+        step = Step(P, f_of(lc.piecewise(KNOTS, t)), u)
+        its_plain, _, _, _ = newton_19c(step, u, False)
+        its_rule, conv, _, n = newton_19c(step, u, True)
+        fired, counts = fired + n, counts + [(its_plain, its_rule)]
+        for _ in range(its_rule):
+            u = u + step.newton(u)[0]
+    ok &= fired == 0 and all(a == b for a, b in counts)
+    figures.append("on the 20-step path of check 1 (k = 10): %d nodes stuck, the same iterations at every step (%d in all)" % (fired, sum(b for _, b in counts)))
+    report("(19c.1)-(19c.2): the two-cycle of a slow mode", ok, "; ".join(figures))
+
+
 def main():
     st, start = check_creep()
     check_levers(st, start)
     check_floor_rule(st, start)
+    check_reversal()
     sys.exit(0 if all(RESULTS) else 1)
 
 

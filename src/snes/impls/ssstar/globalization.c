@@ -29,6 +29,9 @@ const char *const SSStarRemedies[] = {"damped steps", "full steps after a failed
 #define SSSTAR_SIGMA 1e-4
 /* ||z|| "back to its value two iterations ago": within this relative distance */
 #define SSSTAR_CYCLE_TOL 1e-2
+/* a slip that reverses twice is a cycle when ||z|| is back within this relative distance of its value two iterations
+   ago (section 19c: looser than SSSTAR_CYCLE_TOL, for the inexact steps of the whole body) */
+#define SSSTAR_SLIP_CYCLE_TOL 0.1
 /* gamma is doubled at most this often in a solve (up to 2^10 times its initial value) */
 #define SSSTAR_MAX_RESCALES 10
 /* fixed-point iterations of the approximation step in one round */
@@ -39,6 +42,7 @@ PetscErrorCode SSStarGlobalizationDestroy(SSStarGlobalization *glob)
   PetscFunctionBegin;
   PetscCall(PetscFree(glob->older[0]));
   PetscCall(PetscFree(glob->older[1])); /* apart: Detect() swaps them */
+  PetscCall(PetscFree(glob->slip));
   glob->nnodes = 0;
   PetscFunctionReturn(0);
 }
@@ -55,7 +59,12 @@ PetscErrorCode SSStarGlobalizationBegin(SNES snes)
     glob->nnodes = ss->contact.nnodes;
     PetscCall(PetscMalloc1(glob->nnodes, &glob->older[0]));
     PetscCall(PetscMalloc1(glob->nnodes, &glob->older[1]));
+    PetscCall(PetscMalloc1(3 * glob->nnodes + 1, &glob->slip));
   }
+  PetscCall(PetscArrayzero(glob->slip, 3 * glob->nnodes));
+  glob->reversed   = 0;
+  glob->shownStuck = 0;
+  glob->stuck      = 0;
   glob->zbest      = PETSC_MAX_REAL;
   glob->kbest      = 0;
   glob->nhist      = 0;
@@ -101,6 +110,8 @@ PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
   PetscCall(PetscArrayzero(glob->pending, SSSTAR_NUM_REMEDIES));
   glob->shownAlpha = glob->alpha;
   glob->alpha      = 0;
+  glob->shownStuck = glob->reversed;
+  glob->reversed   = 0;
   for (PetscInt j = 3; j > 0; j--) glob->zhist[j] = glob->zhist[j - 1];
   glob->zhist[0] = znorm;
   glob->nhist++;
@@ -135,6 +146,55 @@ PetscErrorCode SSStarGlobalizationDetect(SNES snes, PetscInt k, PetscReal znorm)
   glob->older[1] = glob->older[0];
   glob->older[0] = oldest;
   PetscCall(PetscArraycpy(glob->older[0], ss->states, glob->nnodes));
+  PetscFunctionReturn(0);
+}
+
+/*
+   Before the Newton step of iterate k (docs/derivation.md section 19c): a node sliding at k and at k - 1 whose slip d_t
+   points against the one at k - 1 reversed, i.e. crossed the kink d_t = 0 of its law between the two iterates. Nodes
+   that reversed at k - 1 too, while ||z|| came back to within SSSTAR_SLIP_CYCLE_TOL of its value two iterations ago,
+   flip across the kink in a cycle: the two-cycle of (12.5) on a slow mode that the approximation step at gamma does not
+   resolve (a stiff body on a soft spring: the slide flips by +-phi N/k, every node slides at every iterate, so the
+   cycle detection on the states does not see it). Their Newton element for this step is the one at the kink: stuck
+   where they are (M3+, target d = 0). glob->slip holds each node's d_t at k - 1 (0 unless it slid) and 1 where it
+   reversed there.
+*/
+PetscErrorCode SSStarGlobalizationReversedSlips(SNES snes)
+{
+  SNES_SSStar         *ss      = (SNES_SSStar *)snes->data;
+  SSStarGlobalization *glob    = &ss->glob;
+  const PetscBool      cycling = (PetscBool)(glob->nhist >= 3 && glob->zhist[0] > (1 - SSSTAR_SLIP_CYCLE_TOL) * glob->zhist[2]);
+  const PetscScalar   *ua;
+  PetscScalar         *za, *da;
+  PetscInt             stuck = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(ss->u, &ua));
+  PetscCall(VecGetArray(ss->z, &za));
+  PetscCall(VecGetArray(ss->d, &da));
+  for (PetscInt i = 0; i < glob->nnodes; i++) {
+    PetscReal      *s       = &glob->slip[3 * i];
+    const PetscReal t[2]    = {PetscRealPart(da[3 * i]), PetscRealPart(da[3 * i + 1])};
+    const PetscBool sliding = (PetscBool)(ss->states[i] == SSSTAR_STATE_M1);
+    const PetscBool reverse = (PetscBool)(sliding && s[0] * t[0] + s[1] * t[1] < 0);
+
+    if (reverse && s[2] > 0 && cycling) {
+      SNESSSStarStickNode(ss, i, ua, za, da);
+      s[0] = s[1] = s[2] = 0;
+      stuck++;
+    } else {
+      s[0] = sliding ? t[0] : 0;
+      s[1] = sliding ? t[1] : 0;
+      s[2] = reverse ? 1 : 0;
+    }
+  }
+  PetscCall(VecRestoreArray(ss->d, &da));
+  PetscCall(VecRestoreArray(ss->z, &za));
+  PetscCall(VecRestoreArrayRead(ss->u, &ua));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &stuck, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)snes)));
+  glob->reversed = stuck;
+  glob->stuck += stuck;
+  if (stuck) PetscCall(PetscInfo(snes, "%" PetscInt_FMT " sliding nodes reversed their slip twice in a row, ||z|| back to %g of its value then: their step stuck at the kink\n", stuck, (double)(glob->zhist[0] / glob->zhist[2])));
   PetscFunctionReturn(0);
 }
 
@@ -315,6 +375,8 @@ PetscErrorCode SSStarGlobalizationFormatEvents(SSStarGlobalization *glob, char b
   else if (glob->detected == SSSTAR_DETECTED_STAGNATION) PetscCall(PetscSNPrintf(buf + used, len - used, "; no decrease of ||z|| for %" PetscInt_FMT " iterations", glob->stagnationIts));
   PetscCall(PetscStrlen(buf, &used));
   if (glob->flipping) PetscCall(PetscSNPrintf(buf + used, len - used, "; %" PetscInt_FMT " nodes flip with period 2", glob->flipping));
+  PetscCall(PetscStrlen(buf, &used));
+  if (glob->shownStuck) PetscCall(PetscSNPrintf(buf + used, len - used, "; %" PetscInt_FMT " nodes stuck at a reversed slip", glob->shownStuck));
   PetscFunctionReturn(0);
 }
 
@@ -333,7 +395,7 @@ PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscVie
   PetscCall(PetscViewerASCIIPrintf(viewer, "  remedies:"));
   PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE));
   for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) PetscCall(PetscViewerASCIIPrintf(viewer, "%s %s %" PetscInt_FMT, r ? "," : "", SSStarRemedies[r], glob->counts[r]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "; cycles detected %" PetscInt_FMT "\n", glob->cycles));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; cycles detected %" PetscInt_FMT "; nodes stuck at a reversed slip %" PetscInt_FMT "\n", glob->cycles, glob->stuck));
   PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
@@ -347,7 +409,8 @@ PetscErrorCode SSStarGlobalizationViewCounts(SSStarGlobalization *glob, PetscVie
 +  snes          - the SNES
 .  on            - PETSC_TRUE (default): damped steps on the merit function ||z|| and remedies (a full step or a
                    doubled gamma after a failed line search, a regularized Newton step or fixed-point iterations for a
-                   singular Newton matrix, a doubled gamma on a cycle); PETSC_FALSE: the plain iteration
+                   singular Newton matrix, a doubled gamma on a cycle, the stuck element for a sliding node whose
+                   slip reversed twice in a cycle, docs/derivation.md section 19c); PETSC_FALSE: the plain iteration
 .  dampingMin    - the smallest damping factor of the line search (default 1/64), or PETSC_DEFAULT
 -  stagnationIts - stop (SNES_DIVERGED_LOCAL_MIN, sub-reason STAGNATION) after this many iterations without a smaller
                    ||z|| (default 20), or PETSC_DEFAULT

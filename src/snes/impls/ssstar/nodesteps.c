@@ -236,13 +236,27 @@ PetscErrorCode SNESSSStarRecordStart(SNES snes, Vec u, Vec c)
   PetscFunctionReturn(0);
 }
 
+/* Node i stuck where it is (state M3+, target v = 0: d = 0, z = -v), in the arrays of ss->u, ss->z and ss->d */
+void SNESSSStarStickNode(SNES_SSStar *ss, PetscInt i, const PetscScalar *ua, PetscScalar *za, PetscScalar *da)
+{
+  PetscReal v[3];
+
+  SNESSSStarNodeIterate(&ss->contact, &ss->problem, i, ua, v);
+  ss->states[i] = SSSTAR_STATE_M3P;
+  for (PetscInt k = 0; k < 3; k++) {
+    za[ss->problem.layoutDofs[3 * i + k]] = -v[k];
+    da[3 * i + k]                         = 0;
+  }
+}
+
 /*
    The elastic trial of a load path's step (docs/derivation.md section 12.3), from its first iterate u (the last step's
    solution) after the approximation step there: if the step's offsets moved nodes in contact (d_3 = 0) along their
    obstacles (|v_t| above the rounding of w = R u + o), one Newton step with every such node stuck where its obstacle
-   took it (state M3+, target v = 0) and the others as classified; taken (the iterate moves there) when it lowers the law
-   residual measured with the step's own scales (not their round-off floors: a stiff body far from its reference
-   computes its forces only to round-off, and the floor would hide that the old sliding forces point the wrong way). A block dragged back by its plane sticks and comes back with it: the trial is its answer, which the
+   took it (state M3+, target v = 0: SNESSSStarStickNode()) and the others as classified; taken (the iterate moves there)
+   when it lowers the law residual measured with the step's own scales (not their round-off floors: a stiff body far
+   from its reference computes its forces only to round-off, and the floor would hide that the old sliding forces point
+   the wrong way). A block dragged back by its plane sticks and comes back with it: the trial is its answer, which the
    approximation step's own classification (the nodes sliding the way they slid) reaches only by luck.
 */
 PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
@@ -276,17 +290,8 @@ PetscErrorCode SNESSSStarElasticTrial(SNES snes, PetscBool *taken)
   PetscCall(VecGetArray(ss->z, &za));
   PetscCall(VecGetArray(ss->d, &da));
   PetscCall(VecGetArray(ss->b, &ba));
-  for (PetscInt i = 0; i < ct->nnodes; i++) {
-    PetscReal v[3];
-
-    if (PetscRealPart(da[3 * i + 2]) != 0) continue;
-    SNESSSStarNodeIterate(ct, pb, i, ua, v);
-    ss->states[i] = SSSTAR_STATE_M3P;
-    for (PetscInt k = 0; k < 3; k++) {
-      za[pb->layoutDofs[3 * i + k]] = -v[k];
-      da[3 * i + k]                 = 0;
-    }
-  }
+  for (PetscInt i = 0; i < ct->nnodes; i++)
+    if (PetscRealPart(da[3 * i + 2]) == 0) SNESSSStarStickNode(ss, i, ua, za, da);
   PetscCall(VecRestoreArray(ss->b, &ba));
   PetscCall(VecRestoreArray(ss->d, &da));
   PetscCall(VecRestoreArray(ss->z, &za));

@@ -417,6 +417,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
       /* the likely last step (not one after a remedy, nor polishing): solved to -snes_ssstar_ksp_floor of the stopping
          rule, the other steps with eta = 0 to a tenth (docs/derivation.md section 19a) */
       ss->lastStep = (PetscBool)(!remedies && !ss->polishing && eta == 0.0);
+      if (ss->glob.on) PetscCall(SSStarGlobalizationReversedSlips(snes)); /* polishing: a reversed slip's step at its kink (docs/derivation.md section 19c) */
       /* a singular Newton matrix: the regularized step, else fixed-point iterations, else stop */
       PetscCall(SNESSSStarNewtonStep(snes, znorm, eta, PETSC_FALSE, &solved));
       if (!solved && ss->glob.on && ct->coupled > 0) {

@@ -296,6 +296,9 @@ typedef struct {
   SSStarDetection detected;
   PetscInt        flipping;                   /* nodes whose state has period 2                                 */
   PetscInt        changed;                    /* nodes whose state is not that of the previous iterate (-1: none) */
+  PetscReal      *slip;                       /* 2 per local node: d_t at the last iterate if it slid, else 0     */
+  PetscInt        reversed, shownStuck;       /* nodes stuck at a twice-reversed slip on the way to the next iterate, to this one (section 19c) */
+  PetscInt        stuck;                      /* the same, summed over the solve                                 */
 } SSStarGlobalization;
 
 typedef struct {
@@ -349,6 +352,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
+PETSC_INTERN void           SNESSSStarStickNode(SNES_SSStar *, PetscInt, const PetscScalar *, PetscScalar *, PetscScalar *);
 PETSC_INTERN PetscErrorCode SNESSSStarClassify(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarLawResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscReal      SNESSSStarLawTolerance(SNES);
@@ -405,6 +409,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarFormatStateCounts(const PetscInt[], char[]
 /* globalization.c */
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBegin(SNES);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationDetect(SNES, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode SSStarGlobalizationReversedSlips(SNES);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationRecord(SSStarGlobalization *, SSStarRemedy);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationStep(SNES, PetscInt, PetscReal, PetscBool, SSStarReason *);
 PETSC_INTERN PetscErrorCode SSStarGlobalizationBreakCycle(SNES, PetscBool *);

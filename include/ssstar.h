@@ -173,6 +173,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarGetConditionEstimate(SNES, PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetStates(SNES, const SSStarState *[], PetscInt[SSSTAR_NUM_STATES]);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetReason(SNES, SSStarReason *);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetTolerance(SNES, PetscReal *);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetCoarseLoadScale(SNES, SNES);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetUnbalancedMotion(SNES, Vec *, PetscInt *, PetscReal[3], PetscReal *);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetGlobalization(SNES, PetscBool, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarGetRemedyCounts(SNES, PetscInt[SSSTAR_NUM_REMEDIES]);

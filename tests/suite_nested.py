@@ -53,6 +53,27 @@ def nested_scene():
     run(CHECK + ["compare", os.path.join(OUT, "nested_incline_plain.h5"), os.path.join(OUT, "nested_incline.h5"), "--tol", "1e-8"])
 
 
+SCALE = re.compile(r"The load's scale (from u0|from the coarser mesh's): \|\|gamma f\|\| (\S+), \|\|f\|\|_inf (\S+)")
+FINE_SOLVES = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations \([\d.]+ per solve\), (\d+) preconditioner set-ups")
+
+
+@test("a nested start hands the finest mesh its coarser mesh's load's scale (docs/guide/scale.md, \"One multigrid set-up on the finest mesh\"): prism level 6 from level 3 on the whole body, 2 ranks, solves no linear system before its first Newton step and sets up its multigrid once (-snes_view: as many linear solves as Newton steps, 1 set-up; the start from zero: its own scale from u0); ||gamma f|| within 3 % and ||f||_inf within 10 % of the finest mesh's own (-info); the same states and answer as from zero (AGREE), in fewer Newton steps")
+def nested_one_setup():
+    args = ["-level", "6", "-snes_ssstar_reduction", "none", "-snes_view", "-info", ":snes"]
+    out, s = prism_run(args + ["-nested_levels", "1"], "nested_one_setup.h5", 2)
+    plain, p = prism_run(args + ["-nested_levels", "0"], "nested_one_setup_plain.h5", 2)
+    fine = out[out.index("nested:"):]
+    given, own = SCALE.findall(fine), SCALE.findall(plain)
+    expect(len(given) == 1 and given[0][0] == "from the coarser mesh's", "the finest mesh's scale: %s" % given, out)
+    expect(len(own) == 1 and own[0][0] == "from u0", "from zero: %s" % own, plain)
+    for k, tol in ((1, 0.03), (2, 0.1)):
+        expect(abs(float(given[0][k]) / float(own[0][k]) - 1) <= tol, "the coarser mesh's scale %s against the own %s" % (given[0], own[0]), out + plain)
+    m = FINE_SOLVES.search(fine)
+    expect(m is not None and int(m.group(1)) == s["iters"] and int(m.group(3)) == 1, "the finest mesh: %s linear solves in %d Newton steps, %s multigrid set-ups" % (m and m.group(1), s["iters"], m and m.group(3)), out)
+    expect(s["reason"] == p["reason"] == "CONVERGED_FNORM_RELATIVE" and s["states"] == p["states"] and s["iters"] < p["iters"], "nested: %s %s %d; from zero: %s %s %d" % (s["reason"], s["states"], s["iters"], p["reason"], p["states"], p["iters"]), out + plain)
+    run(CHECK + ["compare", os.path.join(OUT, "nested_one_setup_plain.h5"), os.path.join(OUT, "nested_one_setup.h5"), "--tol", str(AGREE)])
+
+
 @test("prism level 3 refined once in parallel (-dm_refine 1) is level 6's mesh size: 1, 2 and 3 ranks write the same file (vertices and cells identical, fields to 1e-10), its vertices are gmsh level 6's nodes, its tetrahedra positive and filling the prism, 312 contact nodes; the Coulomb law holds and the contact force is gmsh level 6's to 0.1 % (another triangulation of the same nodes)", full=True)
 def refine_same_file():
     files = []

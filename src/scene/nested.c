@@ -124,7 +124,10 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
   PetscCall(SNESGetConvergedReason(sc, reason));
   PetscCall(SNESGetIterationNumber(sc, its));
   *nodes = coarse->nodesGlobal;
-  if (*reason > 0) PetscCall(SSStarMeshInterpolate(coarse->dm, uc, fine->dm, u));
+  if (*reason > 0) { /* the start, and the load's scale: the finer mesh's solve needs no linear solve before its first Newton step */
+    PetscCall(SSStarMeshInterpolate(coarse->dm, uc, fine->dm, u));
+    PetscCall(SNESSSStarSetCoarseLoadScale(snes, sc));
+  }
   PetscCall(VecDestroy(&uc));
   PetscCall(SNESDestroy(&sc));
   PetscCall(PetscOptionsDestroy(&quiet));
@@ -155,6 +158,8 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
    Notes:
    A coarser mesh is the scene's with one refinement fewer (-dm_refine), else -geo at half the level. The finest
    solve (the caller's SNESSolve() from u) decides the answer: nested iteration changes its start, not its tolerance.
+   Each finer mesh's solver gets the load's scale of the coarser one's solve with its start
+   (SNESSSStarSetCoarseLoadScale()): on the whole body it solves no linear system before its first Newton step.
 
    Level: intermediate
 

@@ -10,13 +10,6 @@
 const char *const SSStarMethods[] = {"newton", "fixedpoint", "SSStarMethod", "SSSTAR_METHOD_", NULL};
 const char *const SSStarReasons[] = {"ITERATING", "CONVERGED_ABSOLUTE", "CONVERGED_RELATIVE", "MAX_IT", "NAN_OR_INF", "SINGULAR_NEWTON_MATRIX", "STAGNATION", "CYCLE", "LAW_STALLED", "NO_EQUILIBRIUM", "USER_TEST", "NOT_AFFINE", "SSStarReason", "SSSTAR_REASON_", NULL};
 
-/* whole body: relative tolerance of the solves that put the free dofs in equilibrium before the first iteration */
-#define SSSTAR_EQUILIBRIUM_RTOL 1e-4
-/* ... and of the one from u = 0 that only gives the load's scale (||gamma f||, a given u being the start): one digit
-   of the residual gives the scale to 1e-3 (prism level 12: 1.13526e-3 against 1.13621e-3 at 1e-2, in 6 CG
-   iterations instead of 10) */
-#define SSSTAR_SCALE_RTOL 1e-1
-
 /*
    gamma = 1/mean(diag K_CC) unless the user set it (section 6); the fixed-point baseline takes 1/(the largest sum
    |K_ij| of a contact row), which bounds 1/lambda_max(P) from below: a step short enough to converge. In the reduced
@@ -81,115 +74,6 @@ static PetscErrorCode CreateWorkVectors(SNES snes)
     PetscCall(VecDestroy(w));
     PetscCall(VecDuplicate(ss->u, w));
   }
-  PetscFunctionReturn(0);
-}
-
-/*
-   Whole body: the free dofs of u put in equilibrium with its contact dofs (K u - b = 0 there), and the load reduced
-   to the contact dofs, f = -(K u0 - b)_C with u0 in equilibrium and u0_C = 0: what a reduction would give. Into
-   ss->scale, ss->fnorm_inf; u and c = K u - b on return.
-*/
-/* The free dofs of ss->u corrected with its contact dofs held, from c = K u - b there, to max(rtol ||r0||, atol);
-   solved NULL: a failed linear solve is an error */
-static PetscErrorCode CorrectFreeDofs(SNES snes, PetscReal rtol, PetscReal atol, PetscBool *solved)
-{
-  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  SSStarProblem     *pb = &ss->problem;
-  const PetscScalar *ca;
-  PetscScalar       *za;
-  PetscBool          ok;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(ss->c, &ca));
-  PetscCall(VecGetArrayWrite(ss->z, &za));
-  for (PetscInt k = 0; k < 3 * ss->contact.nnodes; k++) za[pb->layoutDofs[k]] = 0;
-  for (PetscInt j = 0; j < pb->nfree; j++) za[pb->free[j]] = -ss->scaling * ca[pb->free[j]];
-  PetscCall(VecRestoreArrayWrite(ss->z, &za));
-  PetscCall(VecRestoreArrayRead(ss->c, &ca));
-  PetscCall(SSStarNewtonSetTolerances(ss->newton, rtol, atol));
-  PetscCall(SNESSSStarFixedPointStep(snes, ss->u, ss->c, &ok));
-  if (solved) *solved = ok;
-  else PetscCheck(ok, PetscObjectComm((PetscObject)snes), PETSC_ERR_NOT_CONVERGED, "ssstar: the linear solve with K, the contact dofs held, failed (is the body held? Dirichlet conditions; see -ksp_converged_reason)");
-  PetscFunctionReturn(0);
-}
-
-/* ss->scale = gamma ||f||, ss->fnorm_inf = ||f||_inf with f = -c at the contact dofs */
-static PetscErrorCode SetLoadScale(SNES snes)
-{
-  SNES_SSStar       *ss = (SNES_SSStar *)snes->data;
-  const PetscInt    *dofs = ss->problem.layoutDofs;
-  PetscReal          sums[2] = {0, 0};
-  const PetscScalar *ca;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(ss->c, &ca));
-  for (PetscInt k = 0; k < 3 * ss->contact.nnodes; k++) {
-    const PetscReal fk = -PetscRealPart(ca[dofs[k]]);
-
-    sums[0] += fk * fk;
-    sums[1] = PetscMax(sums[1], PetscAbsReal(fk));
-  }
-  PetscCall(VecRestoreArrayRead(ss->c, &ca));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[0], 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)snes)));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)snes)));
-  ss->scale     = ss->scaling * PetscSqrtReal(sums[0]);
-  ss->fnorm_inf = sums[1];
-  PetscFunctionReturn(0);
-}
-
-/*
-   A nonlinear residual (docs/derivation.md section 17): the guess, free dofs included (F is not K u - b: the top of a
-   body prescribed in the guess stays), corrected by one linearized step of the free dofs with the contact dofs held,
-   kept where it solved and F is defined there; the load's scale from the contact forces at that point
-*/
-static PetscErrorCode EquilibrateNonlinear(SNES snes)
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  PetscReal    cmax;
-  PetscBool    solved;
-
-  PetscFunctionBegin;
-  PetscCall(VecCopy(ss->u, ss->ut));
-  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(CorrectFreeDofs(snes, SSSTAR_EQUILIBRIUM_RTOL, 0.0, &solved));
-  if (solved) PetscCall(VecNorm(ss->c, NORM_INFINITY, &cmax));
-  if (!solved || PetscIsInfOrNanReal(cmax)) {
-    PetscCall(VecCopy(ss->ut, ss->u));
-    PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  }
-  PetscCall(SetLoadScale(snes));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode Equilibrate(SNES snes)
-{
-  SNES_SSStar *ss = (SNES_SSStar *)snes->data;
-  PetscReal    unorm, floor;
-  Vec          uC = ss->ut;
-
-  PetscFunctionBegin;
-  if (ss->problem.nonlinear) {
-    PetscCall(EquilibrateNonlinear(snes));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(SNESSSStarContactNorm(snes, ss->u, &unorm));
-  PetscCall(VecCopy(ss->u, uC));
-  /* from u = 0: u0, and f = -(K u0 - b)_C in the global frame; with a given u, u0 gives only the scale of f */
-  PetscCall(VecZeroEntries(ss->u));
-  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(CorrectFreeDofs(snes, unorm == 0 ? SSSTAR_EQUILIBRIUM_RTOL : SSSTAR_SCALE_RTOL, 0.0, NULL));
-  PetscCall(SetLoadScale(snes));
-  if (unorm == 0) PetscFunctionReturn(0);
-  /* a given u: its free dofs corrected from its own, relative to its own residual (not to the whole load's, from u0),
-     down to the Newton steps' floor: a guess already in equilibrium (the step before on a load path) keeps its
-     accuracy, which a body that nearly floats needs (from u0, a relative 1e-4 of the load left a stiff block on a
-     soft spring 300 times the stopping threshold away, and the path's release stagnated there). No tighter than the
-     first Newton step solves after it (etaMax of its own residual): the steps equilibrate the free dofs on their way
-     (a nested iteration's start at level 16: 9 -> 1 Krylov iterations, the same Newton steps) */
-  PetscCall(VecCopy(uC, ss->u));
-  PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  PetscCall(SNESSSStarLinearFloor(snes, &floor));
-  PetscCall(CorrectFreeDofs(snes, ss->etaMax, floor, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -289,13 +173,7 @@ static PetscErrorCode SetUpSolve(SNES snes)
   PetscCall(SSStarProblemGetInitialGuess(ct, pb, snes->vec_sol, ss->u));
   PetscCall(SSStarNonlinearBegin(snes));
   PetscCall(CheckProblem(snes));
-  if (pb->wholeBody) PetscCall(Equilibrate(snes)); /* the free dofs in equilibrium with the contact dofs */
-  else {
-    PetscCall(VecNorm(pb->f, NORM_2, &ss->scale));
-    PetscCall(VecNorm(pb->f, NORM_INFINITY, &ss->fnorm_inf));
-    ss->scale *= ss->scaling;
-    PetscCall(SNESSSStarResidual(snes, ss->u, ss->c));
-  }
+  PetscCall(SNESSSStarStart(snes)); /* the load's scale; on the whole body the free dofs in equilibrium (start.c) */
   PetscCall(SNESSSStarRecordStart(snes, ss->u, ss->c));
   ss->lawForce  = 0; /* not measured yet */
   ss->lawBest   = PETSC_MAX_REAL;
@@ -667,6 +545,7 @@ static PetscErrorCode SNESSSStarComposeFunctions(SNES snes, PetscBool on)
   PetscCall(SNESSSStarComposeProblem(snes, on));
   PetscCall(SNESSSStarComposeNewton(snes, on));
   PetscCall(SNESSSStarComposeNodeSteps(snes, on));
+  PetscCall(SNESSSStarComposeStart(snes, on));
   PetscCall(SNESSSStarComposeGlobalization(snes, on));
   PetscCall(SNESSSStarComposeFloating(snes, on));
   PetscCall(SNESSSStarComposeNonlinear(snes, on));

@@ -313,6 +313,8 @@ typedef struct {
   PetscReal    scale;        /* ||gamma f||: the problem's displacement scale in the stopping rule    */
   PetscReal    offsetScale;  /* ||o_t||, the tangential offsets of a load path's step (10.4): part of that scale */
   PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
+  PetscReal    coarseLoad[2]; /* SNESSSStarSetCoarseLoadScale(): ||f||, ||f||_inf of a coarser mesh's solve */
+  PetscInt     coarseNodes;  /* ... and its contact nodes; 0: none given (start.c)                      */
   PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
   PetscReal    kspFloor;     /* whole body: the last step's linear residual, a fraction of the stopping rule */
   PetscBool    lastStep;     /* whole body: the step being solved is likely the last (its states repeated) */
@@ -349,6 +351,8 @@ typedef struct {
 } SNES_SSStar;
 
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */
+/* start.c: the load's scale and the first iterate's equilibrium */
+PETSC_INTERN PetscErrorCode SNESSSStarStart(SNES);
 PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);
@@ -398,6 +402,7 @@ PETSC_INTERN PetscErrorCode SNESSSStarComposeFriction(SNES, PetscBool);      /* 
 PETSC_INTERN PetscErrorCode SNESSSStarComposeProblem(SNES, PetscBool);       /* problem.c       */
 PETSC_INTERN PetscErrorCode SNESSSStarComposeNewton(SNES, PetscBool);        /* newton/newton.c */
 PETSC_INTERN PetscErrorCode SNESSSStarComposeNodeSteps(SNES, PetscBool);     /* nodesteps.c     */
+PETSC_INTERN PetscErrorCode SNESSSStarComposeStart(SNES, PetscBool);         /* start.c         */
 PETSC_INTERN PetscErrorCode SNESSSStarComposeGlobalization(SNES, PetscBool); /* globalization.c */
 PETSC_INTERN PetscErrorCode SNESSSStarComposeFloating(SNES, PetscBool);      /* floating/balance.c */
 /* view.c: options, -snes_view, -snes_converged_reason's line */

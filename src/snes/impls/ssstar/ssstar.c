@@ -224,7 +224,7 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
     snes->norm = znorm;
     if (k == 0) snes->ttol = znorm * snes->rtol; /* for SNESConvergedDefault(), if the user chose it */
     PetscCall(PetscObjectSAWsGrantAccess((PetscObject)snes));
-    if (k == 0) z0 = znorm;
+    if (k == 0) PetscCall(SNESSSStarStartNorm(snes, znorm, &z0)); /* ||z_0|| of the forcing (start.c) */
     PetscCall(SNESLogConvergenceHistory(snes, znorm, snes->linear_its));
     PetscCall(SNESMonitor(snes, k, znorm));
     xnorm         = PetscMax(PetscMax(unorm, ss->scale), ss->offsetScale);
@@ -286,11 +286,12 @@ static PetscErrorCode SNESSolve_SSStar(SNES snes)
          the inverse of the Newton matrix's smallest eigenvalue: 2600 ||z|| at the contact nodes for gamma ||r|| =
          0.1 ||z|| on scenes/tilted_roller.opts with the shear reversed. Once the states repeat after a full step,
          the step is likely the last one: exact too. (||z||/||z_0||)^2 saves no Newton iteration at level 16 and
-         costs 30 % more Krylov iterations (186 against 144) */
+         costs 30 % more Krylov iterations (186 against 144). The first step: eta_max of ||z_0|| as the forcing
+         measures it (SNESSSStarStartNorm(): a coarser mesh's start without its free dofs' residual) */
       PetscInt remedies = 0;
 
       for (PetscInt r = 0; r < SSSTAR_NUM_REMEDIES; r++) remedies += ss->glob.counts[r];
-      const PetscReal eta = remedies || ss->polishing || (ss->glob.changed == 0 && ss->glob.shownAlpha == 1) ? 0.0 : PetscMin(ss->etaMax, znorm / z0);
+      const PetscReal eta = remedies || ss->polishing || (ss->glob.changed == 0 && ss->glob.shownAlpha == 1) ? 0.0 : (k ? PetscMin(ss->etaMax, znorm / z0) : ss->etaMax * z0 / znorm);
 
       /* the likely last step (not one after a remedy, nor polishing): solved to -snes_ssstar_ksp_floor of the stopping
          rule, the other steps with eta = 0 to a tenth (docs/derivation.md section 19a) */

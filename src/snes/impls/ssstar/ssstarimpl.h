@@ -315,6 +315,7 @@ typedef struct {
   PetscReal    fnorm_inf;    /* ||f||_inf, f the load reduced to the contact dofs                     */
   PetscReal    coarseLoad[2]; /* SNESSSStarSetCoarseLoadScale(): ||f||, ||f||_inf of a coarser mesh's solve */
   PetscInt     coarseNodes;  /* ... and its contact nodes; 0: none given (start.c)                      */
+  PetscBool    freeUnbalanced; /* the first iterate's free dofs not put in equilibrium (start.c)      */
   PetscReal    etaMax;       /* whole body: the loosest relative tolerance of a Newton step's solve   */
   PetscReal    kspFloor;     /* whole body: the last step's linear residual, a fraction of the stopping rule */
   PetscBool    lastStep;     /* whole body: the step being solved is likely the last (its states repeated) */
@@ -353,6 +354,7 @@ typedef struct {
 /* nodesteps.c: the per-node work of an iteration on any iterate (u, c), and the norms and linear solves around it */
 /* start.c: the load's scale and the first iterate's equilibrium */
 PETSC_INTERN PetscErrorCode SNESSSStarStart(SNES);
+PETSC_INTERN PetscErrorCode SNESSSStarStartNorm(SNES, PetscReal, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarResidual(SNES, Vec, Vec);
 PETSC_INTERN PetscErrorCode SNESSSStarContactNorm(SNES, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SNESSSStarApproximationStep(SNES, Vec, Vec, PetscReal *);

@@ -142,6 +142,7 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
 
     if (blocks[v] < 0) continue;
     PetscCall(PetscSortRemoveDupsInt(&n, row));
+    fill[v] = n;
     for (PetscInt k = 0; k < n; k++) {
       if (row[k] < 0) continue;
       count[2 * (vStart + v - pStart) + (row[k] >= lo && row[k] < hi ? 0 : 1)]++;
@@ -167,6 +168,18 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
   }
   PetscCall(MatXAIJSetPreallocation(K, 3, dnz, onz, NULL, NULL));
   PetscCall(PetscFree2(dnz, onz));
+  { /* the pattern: every vertex's sorted neighbours, zeros (a row is filled in order, nothing shifts), assembled */
+    PetscScalar *zeros;
+    PetscInt     nmax = 0;
+
+    for (PetscInt v = 0; v < nv; v++) nmax = PetscMax(nmax, fill[v]);
+    PetscCall(PetscCalloc1(9 * nmax + 1, &zeros));
+    for (PetscInt v = 0; v < nv; v++)
+      if (blocks[v] >= 0) PetscCall(MatSetValuesBlocked(K, 1, &blocks[v], fill[v], adj + start[v], zeros, ADD_VALUES));
+    PetscCall(PetscFree(zeros));
+    PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  }
   PetscCall(PetscFree(count));
   PetscCall(PetscFree(adj));
   PetscCall(PetscFree2(start, fill));
@@ -183,10 +196,12 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
 */
 static PetscErrorCode AddCellsAndSprings(SSStarScene scene, const SSStarCells *cells, const PetscInt blocks[], PetscSection sec, const PetscScalar ua[], Mat K, PetscBool *ok)
 {
-  DM dm = scene->dm;
+  DM             dm = scene->dm;
+  SSStarBlockAdd add;
 
   PetscFunctionBegin;
   *ok = PETSC_TRUE;
+  PetscCall(SSStarBlockAddBegin(K, cells->vEnd - cells->vStart, blocks, &add));
   for (PetscInt c = 0; c < cells->cEnd - cells->cStart; c++) {
     const PetscInt *v = &cells->vertices[4 * c];
     PetscInt        b[4];
@@ -200,8 +215,9 @@ static PetscErrorCode AddCellsAndSprings(SSStarScene scene, const SSStarCells *c
       if (!SSStarTetInternalForce(cells->model[c], cells->lame[c][0], cells->lame[c][1], x, ue, fe, Ke)) *ok = PETSC_FALSE;
     } else SSStarTetStiffness(x, cells->lame[c][0], cells->lame[c][1], Ke);
     SSStarHeldElement(scene, v, Ke);
-    PetscCall(MatSetValuesBlocked(K, 4, b, 4, b, Ke, ADD_VALUES));
+    PetscCall(SSStarBlockAddCell(&add, v, b, Ke));
   }
+  PetscCall(SSStarBlockAddEnd(&add));
   for (PetscInt s = 0; s < scene->nSprings; s++) {
     IS              faces;
     const PetscInt *f;

@@ -1,7 +1,7 @@
 /*
    Adding the cells' 12x12 matrices to K, once K holds its pattern: straight into the rows' value arrays, a binary
-   search per 3x3 block of a cell (16 per cell) instead of MatSetValues()'s search per entry (144 per cell) -- two
-   thirds of the assembly's time at level 16. The rows of vertices another rank owns go through MatSetValuesBlocked()
+   search per 3x3 block of a cell (16 per cell) instead of MatSetValues()'s search per entry (144 per cell), which
+   was half the assembly's CPU time at level 16 (docs/guide/scale.md, "Outside the solve"). The rows of vertices another rank owns go through MatSetValuesBlocked()
    (its stash). K is AIJ with 3x3 blocks: the three rows of a vertex have the same columns, and a block column's three
    columns are adjacent.
 */

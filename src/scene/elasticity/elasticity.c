@@ -89,7 +89,9 @@ PetscErrorCode SSStarVertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscIn
 /*
    The block preallocation of K: every vertex couples to the vertices of its cells. A vertex on a partition boundary has
    cells on other ranks: each rank counts the neighbours it sees (in the owner's diagonal and off-diagonal column
-   ranges) and the counts go to the owner through the point SF, an upper bound of the union.
+   ranges) and the counts go to the owner through the point SF, an upper bound of the union. Then K's pattern: each
+   vertex's sorted neighbour blocks inserted as zeros (its owner's rows filled in order) and assembled, so that the
+   cells add into it in place (blockadd.c).
 */
 static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt vEnd, const PetscInt cv[], const PetscInt blocks[])
 {
@@ -192,7 +194,8 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
    Adds to K every cell's 12x12 matrix -- Hooke's, or with ua (the local displacement's values) the tangent of the cell's
    material model there (docs/derivation.md (18.3)) -- and the k area/3 of every face of a spring group to the diagonal of
    its vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out; a prescribed component
-   (-displacement_<G>) gets an identity row (prescribed.c). *ok: no cell's model refused its deformation (det F <= 0)
+   (-displacement_<G>) gets an identity row (prescribed.c). K holds its pattern already (PreallocateStiffness(), or K's
+   matrix for the tangent). *ok: no cell's model refused its deformation (det F <= 0)
 */
 static PetscErrorCode AddCellsAndSprings(SSStarScene scene, const SSStarCells *cells, const PetscInt blocks[], PetscSection sec, const PetscScalar ua[], Mat K, PetscBool *ok)
 {

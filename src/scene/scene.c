@@ -204,6 +204,7 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   /* the estimates before the work, now that the contact nodes are known: the whole body's, with the aggregation the
      solver will follow (SSStarSceneSetContact()), and the dense route's */
   PetscCall(SSStarEstimateWholeBody(scene->comm, scene->nodesGlobal, base, &peak, &plain, &scene->smoothedFits, &extra, &fits));
+  scene->plain = plain;
   PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? " (plain aggregation)" : "", scene->nGlobal ? " on the whole body" : ""));
   if (scene->nGlobal) {
     char dense[64];

@@ -139,6 +139,7 @@ struct _n_SSStarScene {
   PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
   PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */
   PetscBool          smoothedFits; /* the estimate before the work: the multigrid's smoothed aggregation fits the memory */
+  PetscBool          plain;        /* and the multigrid aggregates plainly (by K's size or by the memory)            */
   PetscReal          meshScale;
   PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;

@@ -496,20 +496,20 @@ def compare_steps(a, b, tol):
     """every step of two load paths: the contact displacement and reaction and the whole field, relative to the first
     file's step and its change from the step before, and at least 1e-6 of the path's largest so far (the step's own
     scale, as the law's, docs/derivation.md section 12)"""
-    steps = sorted((k for k in a["steps"] if k.isdigit()), key=int)
-    if "steps" not in b or sorted((k for k in b["steps"] if k.isdigit()), key=int) != steps:
-        print("the files have different steps")
+    steps, pair = aligned_steps(a, b)
+    if steps is None:
         return False
     order = lambda f: np.lexsort(f["geometry/vertices"][:].T[::-1])  # noqa: E731 (vertices by coordinates)
     oa, ob = (order(a), order(b)) if "geometry" in a and "geometry" in b else (None, None)
     worst, largest = {}, {}  # the largest of each field over the path so far: its scale is at least 1e-6 of that
-    recorded = lambda name, j: a["steps/law_%s_scale" % name][j] if "steps/law_%s_scale" % name in a else 0.0  # noqa: E731
+    position = {k: i for i, k in enumerate(sorted((k for k in a["steps"] if k.isdigit()), key=int))}
+    recorded = lambda name, k: a["steps/law_%s_scale" % name][position[k]] if "steps/law_%s_scale" % name in a else 0.0  # noqa: E731
     for j, k in enumerate(steps):
         fields = [("displacement", "contact/displacement", None), ("reaction", "contact/reaction", None)]
         if oa is not None:
             fields.append(("full field", "fields/displacement", (oa, ob)))
         for name, path, vertex in fields:
-            x, y = a["steps/%s/%s" % (k, path)][:], b["steps/%s/%s" % (k, path)][:]
+            x, y = a["steps/%s/%s" % (k, path)][:], b["steps/%s/%s" % (pair[k], path)][:]
             if vertex is not None:
                 x, y = x[vertex[0]], y[vertex[1]]
             scale = np.abs(x).max()
@@ -517,7 +517,7 @@ def compare_steps(a, b, tol):
             if j > 0:
                 before = a["steps/%s/%s" % (steps[j - 1], path)][:]
                 scale = max(scale, np.abs(x - (before[vertex[0]] if vertex is not None else before)).max())
-            scale = max(scale, 1e-6 * largest[name], floor(name, recorded("force", j), recorded("displacement", j)))
+            scale = max(scale, 1e-6 * largest[name], floor(name, recorded("force", k), recorded("displacement", k)))
             d = np.abs(x - y).max() / (scale if scale > 0 else 1.0)
             if d >= worst.get(name, (-1, None))[0]:
                 worst[name] = (d, k)
@@ -525,9 +525,33 @@ def compare_steps(a, b, tol):
     for name, (d, k) in worst.items():
         ok &= d <= tol
         print("%-12s max difference %9.1e relative (step %s) %s" % (name, d, k, "ok" if d <= tol else "DIFFERENT"))
-    differ = sum(int((a["steps/%s/contact/state" % k][:] != b["steps/%s/contact/state" % k][:]).sum()) for k in steps)
+    differ = sum(int((a["steps/%s/contact/state" % k][:] != b["steps/%s/contact/state" % pair[k]][:]).sum()) for k in steps)
     print("%d steps compared; states differ at %d node-steps" % (len(steps), differ))
     return ok
+
+
+def aligned_steps(a, b):
+    """the steps of the first file and the second's step at the same time of the path: a path that halved a step (the
+    stepper's cut, where a step did not converge) holds every time of the other and the halves between; the steps of
+    the file with fewer times are compared. None where neither file's times are all in the other"""
+    def times(f):
+        ks = sorted((k for k in f["steps"] if k.isdigit()), key=int) if "steps" in f else []
+        return ks, [float(f["steps/%s" % k].attrs["time"]) if "time" in f["steps/%s" % k].attrs else float(k) for k in ks]
+
+    (ka, ta), (kb, tb) = times(a), times(b)
+    at = lambda t, ts: [i for i, s in enumerate(ts) if abs(s - t) <= 1e-12 * max(1.0, abs(t))]  # noqa: E731
+    if ka == kb and ta == tb:
+        return ka, dict(zip(ka, kb))
+    if all(at(t, tb) for t in ta):
+        pair = {k: kb[at(t, tb)[0]] for k, t in zip(ka, ta)}
+        print("the second file has %d steps more (halved steps): compared at the first file's %d times" % (len(kb) - len(ka), len(ka)))
+        return ka, pair
+    if all(at(t, ta) for t in tb):
+        keep = [ka[at(t, ta)[0]] for t in tb]
+        print("the first file has %d steps more (halved steps): compared at the second file's %d times" % (len(ka) - len(kb), len(kb)))
+        return keep, dict(zip(keep, kb))
+    print("the files have different steps (times %s and %s)" % (describe(ta), describe(tb)))
+    return None, None
 
 
 def floor(name, force, displacement):

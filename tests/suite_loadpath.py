@@ -196,7 +196,7 @@ def loadpath_step_cutting():
     expect(f.attrs["converged_reason"] in ("DIVERGED_MAX_IT", b"DIVERGED_MAX_IT"), "converged_reason %s" % f.attrs["converged_reason"])
 
 
-@test("a monotone proportional path without gaps gives the static answers (docs/derivation.md (10.8)): scenes/shear.opts (the block on the plane z = 0, gap 0) with -traction_top 0:0,0,0;1:3.5,0,-10 in 4 steps equals, at every step, the static solve of that load to 1e-8 (measured 1e-12; -snes_rtol 1e-12)")
+@test("a monotone proportional path without gaps gives the static answers (docs/derivation.md (10.8)): scenes/shear.opts (the block on the plane z = 0, gap 0) with -traction_top 0:0,0,0;1:3.5,0,-10 in 4 steps equals, at every step, the static solve of that load to 1e-8 (measured 1e-12; -snes_rtol 1e-12); tests/check_solution.py compare --steps lines two paths up by their times: the path in 2 steps and the one in 4 agree to 1e-8 at their 3 common times, either file first (as a path that halved a step holds the other's times and the halves between), and a path at other times (0.3) is refused")
 def loadpath_proportional_static():
     base = ["-options_file", os.path.join(ROOT, "scenes", "shear.opts"), "-level", "2", "-snes_rtol", "1e-12"]
     out, f = path_run(base + ["-traction_top", "0:0,0,0;1:3.5,0,-10", "-steps", "4"], "loadpath_proportional.h5")
@@ -205,6 +205,13 @@ def loadpath_proportional_static():
         u, ref = f["steps/%d/fields/displacement" % (k + 1)][:], g["fields/displacement"][:]
         err = np.abs(u - ref).max() / np.abs(ref).max()
         expect(err <= 1e-8, "load factor %g: the path's step differs from the static solve by %.1e" % (lam, err))
+    path_run(base + ["-traction_top", "0:0,0,0;1:3.5,0,-10", "-steps", "2"], "loadpath_proportional_2.h5")
+    path_run(base + ["-traction_top", "0:0,0,0;1:3.5,0,-10", "-steps", "0,0.3,1"], "loadpath_proportional_other.h5")
+    for a, b in (("loadpath_proportional.h5", "loadpath_proportional_2.h5"), ("loadpath_proportional_2.h5", "loadpath_proportional.h5")):
+        cmp = run(CHECK + ["compare", h5(a), h5(b), "--steps", "--tol", "1e-8"])
+        expect(re.search(r"file has 2 steps more \(halved steps\): compared at the \w+ file's 3 times", cmp) and "3 steps compared" in cmp, "%s against %s: not compared at the 3 common times" % (a, b), cmp)
+    cmp = run(CHECK + ["compare", h5("loadpath_proportional.h5"), h5("loadpath_proportional_other.h5"), "--steps"], expect_rc=1)
+    expect("the files have different steps" in cmp, "paths at different times (0.3) are compared", cmp)
 
 
 @test("press, then shear between two bodies of different materials (scenes/mindlin.opts, the block 4 times stiffer: -material_block): the pressing alone already slips (Dundurs' beta != 0: nodes sliding radially at Q = 0), the path P then Q differs from the static solve of the final P and Q (the answer remembers the path), and the Coulomb law holds at every node for the last step's slip increment (tests/check_solution.py, 1e-8)")

@@ -284,6 +284,18 @@ typedef struct {
   Vec                coordinates;
   const PetscScalar *ca;
 } SSStarCells;
+/* Adding cells' matrices straight into K's rows once K holds its pattern (blockadd.c) */
+typedef struct {
+  Mat             K, part[2];     /* K; its diagonal and off-diagonal parts (MPIAIJ), or K and NULL */
+  PetscInt        bstart, bend;   /* the owned blocks                                               */
+  PetscInt       *col;            /* per local vertex: its first column in the part it falls in     */
+  PetscBool      *inB;            /* per local vertex: its columns are in the off-diagonal part     */
+  const PetscInt *ia[2], *ja[2];
+  PetscScalar    *va[2];
+} SSStarBlockAdd;
+PETSC_INTERN PetscErrorCode SSStarBlockAddBegin(Mat, PetscInt, const PetscInt[], SSStarBlockAdd *);
+PETSC_INTERN PetscErrorCode SSStarBlockAddCell(SSStarBlockAdd *, const PetscInt[4], const PetscInt[4], const PetscScalar[144]);
+PETSC_INTERN PetscErrorCode SSStarBlockAddEnd(SSStarBlockAdd *);
 PETSC_INTERN PetscReal      SSStarTetGradients(const PetscReal[12], PetscReal[4][3]);
 PETSC_INTERN void           SSStarTetStiffness(const PetscReal[12], PetscReal, PetscReal, PetscScalar[144]);
 PETSC_INTERN PetscErrorCode SSStarCellMaterials(SSStarScene, PetscInt, PetscInt, PetscReal (*)[2], SSStarMaterialModel[], PetscReal[]);

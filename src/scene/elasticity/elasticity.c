@@ -89,7 +89,9 @@ PetscErrorCode SSStarVertexBlocks(DM dm, PetscInt vStart, PetscInt vEnd, PetscIn
 /*
    The block preallocation of K: every vertex couples to the vertices of its cells. A vertex on a partition boundary has
    cells on other ranks: each rank counts the neighbours it sees (in the owner's diagonal and off-diagonal column
-   ranges) and the counts go to the owner through the point SF, an upper bound of the union.
+   ranges) and the counts go to the owner through the point SF, an upper bound of the union. Then K's pattern: each
+   vertex's sorted neighbour blocks inserted as zeros (its owner's rows filled in order) and assembled, so that the
+   cells add into it in place (blockadd.c).
 */
 static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscInt cEnd, PetscInt vStart, PetscInt vEnd, const PetscInt cv[], const PetscInt blocks[])
 {
@@ -142,6 +144,7 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
 
     if (blocks[v] < 0) continue;
     PetscCall(PetscSortRemoveDupsInt(&n, row));
+    fill[v] = n;
     for (PetscInt k = 0; k < n; k++) {
       if (row[k] < 0) continue;
       count[2 * (vStart + v - pStart) + (row[k] >= lo && row[k] < hi ? 0 : 1)]++;
@@ -167,6 +170,18 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
   }
   PetscCall(MatXAIJSetPreallocation(K, 3, dnz, onz, NULL, NULL));
   PetscCall(PetscFree2(dnz, onz));
+  { /* the pattern: every vertex's sorted neighbours, zeros (a row is filled in order, nothing shifts), assembled */
+    PetscScalar *zeros;
+    PetscInt     nmax = 0;
+
+    for (PetscInt v = 0; v < nv; v++) nmax = PetscMax(nmax, fill[v]);
+    PetscCall(PetscCalloc1(9 * nmax + 1, &zeros));
+    for (PetscInt v = 0; v < nv; v++)
+      if (blocks[v] >= 0) PetscCall(MatSetValuesBlocked(K, 1, &blocks[v], fill[v], adj + start[v], zeros, ADD_VALUES));
+    PetscCall(PetscFree(zeros));
+    PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  }
   PetscCall(PetscFree(count));
   PetscCall(PetscFree(adj));
   PetscCall(PetscFree2(start, fill));
@@ -179,14 +194,17 @@ static PetscErrorCode PreallocateStiffness(DM dm, Mat K, PetscInt cStart, PetscI
    Adds to K every cell's 12x12 matrix -- Hooke's, or with ua (the local displacement's values) the tangent of the cell's
    material model there (docs/derivation.md (18.3)) -- and the k area/3 of every face of a spring group to the diagonal of
    its vertices (a lumped elastic support); held (Dirichlet) vertices have no block and drop out; a prescribed component
-   (-displacement_<G>) gets an identity row (prescribed.c). *ok: no cell's model refused its deformation (det F <= 0)
+   (-displacement_<G>) gets an identity row (prescribed.c). K holds its pattern already (PreallocateStiffness(), or K's
+   matrix for the tangent). *ok: no cell's model refused its deformation (det F <= 0)
 */
 static PetscErrorCode AddCellsAndSprings(SSStarScene scene, const SSStarCells *cells, const PetscInt blocks[], PetscSection sec, const PetscScalar ua[], Mat K, PetscBool *ok)
 {
-  DM dm = scene->dm;
+  DM             dm = scene->dm;
+  SSStarBlockAdd add;
 
   PetscFunctionBegin;
   *ok = PETSC_TRUE;
+  PetscCall(SSStarBlockAddBegin(K, cells->vEnd - cells->vStart, blocks, &add));
   for (PetscInt c = 0; c < cells->cEnd - cells->cStart; c++) {
     const PetscInt *v = &cells->vertices[4 * c];
     PetscInt        b[4];
@@ -200,8 +218,9 @@ static PetscErrorCode AddCellsAndSprings(SSStarScene scene, const SSStarCells *c
       if (!SSStarTetInternalForce(cells->model[c], cells->lame[c][0], cells->lame[c][1], x, ue, fe, Ke)) *ok = PETSC_FALSE;
     } else SSStarTetStiffness(x, cells->lame[c][0], cells->lame[c][1], Ke);
     SSStarHeldElement(scene, v, Ke);
-    PetscCall(MatSetValuesBlocked(K, 4, b, 4, b, Ke, ADD_VALUES));
+    PetscCall(SSStarBlockAddCell(&add, v, b, Ke));
   }
+  PetscCall(SSStarBlockAddEnd(&add));
   for (PetscInt s = 0; s < scene->nSprings; s++) {
     IS              faces;
     const PetscInt *f;

@@ -130,12 +130,20 @@ int SSStarCompareRows(const void *a, const void *b, void *ctx)
   return 0;
 }
 
-/* The order of rows of 4 vertex numbers (ctx), for PetscTimSort() of their indices */
+/*
+   The order of canonical rows of 4 vertex numbers (ctx; CanonicalTetrahedron(): the smallest first, the smallest of the
+   other three second), for PetscTimSort() of their indices: the order of SSStarCompareRows() (by the sorted entries),
+   whose sorted entries of a canonical row are r[0], r[1], min(r[2], r[3]), max(r[2], r[3]) -- no sort per comparison
+   (those sorts were a quarter of the output's time)
+*/
 static int CompareRowIndices(const void *a, const void *b, void *ctx)
 {
-  const PetscInt *rows = (const PetscInt *)ctx, cols = 4;
+  const PetscInt *rows = (const PetscInt *)ctx, *x = &rows[4 * *(const PetscInt *)a], *y = &rows[4 * *(const PetscInt *)b];
+  PetscInt        xs[4] = {x[0], x[1], PetscMin(x[2], x[3]), PetscMax(x[2], x[3])}, ys[4] = {y[0], y[1], PetscMin(y[2], y[3]), PetscMax(y[2], y[3])};
 
-  return SSStarCompareRows(&rows[4 * *(const PetscInt *)a], &rows[4 * *(const PetscInt *)b], (void *)&cols);
+  for (PetscInt k = 0; k < 4; k++)
+    if (xs[k] != ys[k]) return xs[k] < ys[k] ? -1 : 1;
+  return 0;
 }
 
 /*

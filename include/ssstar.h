@@ -163,6 +163,7 @@ PETSC_EXTERN PetscErrorCode SNESSSStarSetLUReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetLUThreads(SNES, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetPCReuse(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetPlainAggregationDofs(SNES, PetscInt);
+PETSC_EXTERN PetscErrorCode SNESSSStarSetSmoothedAggregationFits(SNES, PetscBool);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetMGOverCorrection(SNES, PetscReal, PetscInt);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPRtolMax(SNES, PetscReal);
 PETSC_EXTERN PetscErrorCode SNESSSStarSetKSPFloor(SNES, PetscReal);

@@ -4,8 +4,16 @@
    Newton steps instead of a dozen. The coarser meshes are the scene's own: one refinement fewer (-dm_refine), else
    the level of -geo halved (the prism's levels nest: level L's nodes are level 2L's). The coarse solves are quiet (no
    monitors, no views) and looser (SSSTAR_NESTED_RTOL); the finest solve is the user's, to the user's tolerance.
+   Where the finest mesh aggregates plainly below the default size (SSSTAR_PLAIN_AGGREGATION_DOFS: because its estimate
+   found no room for the smoothed aggregation, or a lowered -snes_ssstar_plain_aggregation_dofs asks for the memory
+   lever), the coarse solves take the memory's side too: on the whole body with plain aggregation. auto would solve the
+   coarsest mesh (up to 20 000 dofs) on the dense route, whose factors of its K outgrow such a finest mesh's plain
+   solve (prism level 12 on 2 ranks: 0.19 GB per rank at the peak where the plain estimate is 0.148; measured 0.155 on
+   the whole body); from the default size on, the coarsest mesh is a tenth of the finest and its dense solve fits
+   beside the finest one's plain set-up (the estimate within 2 % at level 16).
 */
 #include "sceneimpl.h"
+#include "../sys/meminfo.h"
 
 /* auto starts from a coarser mesh above this many dofs of K (the crossover measured: docs/guide/large-problems.md, "Nested iteration") */
 #define SSSTAR_AUTO_NESTED_MIN_DOFS 50000
@@ -88,6 +96,20 @@ static PetscErrorCode NestedLevels(SSStarScene scene, SNES snes, PetscInt *level
   PetscFunctionReturn(0);
 }
 
+/* A coarse solve of a finest mesh that aggregates plainly for the memory's sake: plain aggregation, and the whole body where auto chooses */
+static PetscErrorCode FollowMemory(SNES coarse)
+{
+  SSStarReductionType type;
+  PetscBool           isauto;
+
+  PetscFunctionBegin;
+  PetscCall(SNESSSStarSetSmoothedAggregationFits(coarse, PETSC_FALSE));
+  PetscCall(SNESSSStarGetReductionType(coarse, &type));
+  PetscCall(PetscStrcmp(type, SSSTARREDUCTIONAUTO, &isauto));
+  if (isauto) PetscCall(SNESSSStarSetReductionType(coarse, SSSTARREDUCTIONNONE));
+  PetscFunctionReturn(0);
+}
+
 /* The solution on the coarser mesh of fine (itself started from levels - 1 coarser ones), interpolated into u */
 static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, Vec u, SNESConvergedReason *reason, PetscInt *its, PetscInt *nodes)
 {
@@ -117,6 +139,7 @@ static PetscErrorCode SolveCoarse(SSStarScene fine, SNES snes, PetscInt levels, 
   PetscCall(SNESSetTolerances(sc, atol, PetscMax(rtol, SSSTAR_NESTED_RTOL), stol, maxit, maxf));
   PetscCall(SSStarSceneSetProblem(coarse, sc, K, b));
   PetscCall(SSStarSceneSetContact(coarse, sc));
+  if (fine->plain && (!fine->smoothedFits || 3.0 * fine->nodesGlobal < SSSTAR_PLAIN_AGGREGATION_DOFS)) PetscCall(FollowMemory(sc));
   PetscCall(DMCreateGlobalVector(coarse->dm, &uc));
   PetscCall(VecZeroEntries(uc));
   if (levels > 1 && HasCoarser(coarse)) PetscCall(SolveCoarse(coarse, sc, levels - 1, uc, &inner, &innerIts, &innerNodes));

@@ -158,8 +158,8 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   char          **options;
   PetscInt        nuses = 0, cells;
   Vec             coordinates;
-  PetscLogDouble  t, base, peak;
-  PetscBool       plain = PETSC_FALSE;
+  PetscLogDouble  t, base, peak, extra;
+  PetscBool       plain, fits;
   PetscMPIInt     size;
   char            line[PETSC_MAX_PATH_LEN + 128];
 
@@ -173,7 +173,6 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarMeshFileNodes(scene->comm, scene->mesh, &scene->nodesGlobal));
   PetscCall(SSStarMemoryGetUsage(scene->comm, &base, NULL));
   PetscCallMPI(MPI_Comm_size(scene->comm, &size));
-  if (!scene->refine) PetscCall(SSStarEstimateMemory(scene->comm, scene->nodesGlobal, 0, &peak, NULL, &plain)); /* the multigrid's aggregation */
   PetscCall(PetscSNPrintf(line, sizeof(line), "mesh: file %s, %" PetscInt_FMT " nodes", scene->mesh, scene->nodesGlobal));
   PetscCall(SSStarSceneProgress(scene, &t, line));
   PetscCall(SSStarCheckMemory(scene->comm, (PetscReal)scene->nodesGlobal, scene->mesh));
@@ -202,9 +201,10 @@ PetscErrorCode SSStarSceneSetUp(SSStarScene scene)
   PetscCall(SSStarSceneFindContactNodes(scene));
   PetscCall(SSStarSceneBuildContactOperator(scene, NULL));
   PetscCall(SSStarSceneCheckPartlyHeld(scene));
-  /* the estimates before the work, now that the contact nodes are known: the whole body's and the dense route's */
-  if (scene->refine) PetscCall(SSStarPlainAggregationBySize(3.0 * scene->nodesGlobal, &plain));
-  peak = SSStarPeakFrom(size, scene->nodesGlobal, base, plain);
+  /* the estimates before the work, now that the contact nodes are known: the whole body's, with the aggregation the
+     solver will follow (SSStarSceneSetContact()), and the dense route's */
+  PetscCall(SSStarEstimateWholeBody(scene->comm, scene->nodesGlobal, base, &peak, &plain, &scene->smoothedFits, &extra, &fits));
+  scene->plain = plain;
   PetscCall(PetscSNPrintf(line, sizeof(line), "contact: %" PetscInt_FMT " contact nodes in %" PetscInt_FMT " group%s, estimated peak %.3f GB per rank%s%s", scene->nGlobal, scene->nContact, scene->nContact == 1 ? "" : "s", peak / 1e9, plain ? " (plain aggregation)" : "", scene->nGlobal ? " on the whole body" : ""));
   if (scene->nGlobal) {
     char dense[64];

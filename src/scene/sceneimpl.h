@@ -138,6 +138,8 @@ struct _n_SSStarScene {
   PetscInt           level;
   PetscInt           refine;    /* -dm_refine: refinements of the mesh in parallel (meshrefine.c)              */
   PetscInt           nested;    /* -nested_levels: coarser meshes solved first (nested.c); -1 auto             */
+  PetscBool          smoothedFits; /* the estimate before the work: the multigrid's smoothed aggregation fits the memory */
+  PetscBool          plain;        /* and the multigrid aggregates plainly (by K's size or by the memory)            */
   PetscReal          meshScale;
   PetscBool          progress;  /* -ssstar_progress: a line as each phase ends (SSStarSceneProgress())         */
   PetscReal          E, nu;
@@ -256,6 +258,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode SSStarMeshRefine(MPI_Comm, SSStarMeshSlices *);
 PETSC_INTERN PetscErrorCode SSStarMeshInterpolate(DM, Vec, DM, Vec);
 PETSC_INTERN PetscLogDouble SSStarPeakFrom(PetscMPIInt, PetscReal, PetscLogDouble, PetscBool);
+PETSC_INTERN PetscErrorCode SSStarEstimateWholeBody(MPI_Comm, PetscReal, PetscLogDouble, PetscLogDouble *, PetscBool *, PetscBool *, PetscLogDouble *, PetscBool *);
 PETSC_INTERN PetscErrorCode SSStarPlainAggregationBySize(PetscReal, PetscBool *);
 PETSC_INTERN PetscLogDouble SSStarPeakDenseFrom(PetscMPIInt, PetscReal, PetscReal, PetscLogDouble);
 PETSC_INTERN PetscMPIInt    SSStarSliceOwner(PetscInt, PetscInt, PetscMPIInt);

@@ -194,7 +194,8 @@ PetscErrorCode SSStarSceneBuildContactOperator(SSStarScene scene, Vec u)
    SSStarSceneSetContact - declares the contact of the scene to an "ssstar" SNES: the contact operator B of every
    contact node (SNESSSStarSetContactOperator(): a rigid obstacle's node in the frame of the obstacle's normal, a pair's
    slave node against the master surface, node-to-surface or dual mortar, -pair_discretization), their initial gaps,
-   and the friction laws of their groups
+   the friction laws of their groups, and the verdict of the memory estimate printed before the work on the
+   multigrid's aggregation (SNESSSStarSetSmoothedAggregationFits())
 
    Collective
 
@@ -227,6 +228,7 @@ PetscErrorCode SSStarSceneSetContact(SSStarScene scene, SNES snes)
   PetscCall(SNESSSStarSetContactOperator(snes, scene->isC, scene->B, gaps));
   PetscCall(VecDestroy(&gaps));
   PetscCall(SSStarSceneSetContactLaws(scene, snes)); /* grouplaws.c */
+  PetscCall(SNESSSStarSetSmoothedAggregationFits(snes, scene->smoothedFits));
   if (scene->progress) PetscCall(SNESSSStarMonitorProgressAdd(snes));
   PetscFunctionReturn(0);
 }

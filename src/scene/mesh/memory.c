@@ -62,20 +62,37 @@ static PetscErrorCode MemoryLimit(MPI_Comm comm, PetscReal *limit, PetscReal *pe
   PetscFunctionReturn(0);
 }
 
-/* The additional bytes of all the ranks and the peak of the largest from what each holds now; whether they fit */
-static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, PetscLogDouble *peak, PetscLogDouble *extra, PetscBool *fits)
+/* The additional bytes of all the ranks and the peak of the largest from what each holds before the mesh (base); whether they fit */
+static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, PetscLogDouble base, PetscLogDouble *peak, PetscLogDouble *extra, PetscBool *fits)
 {
-  PetscMPIInt    size;
-  PetscLogDouble now;
-  PetscReal      limit, perRank;
+  PetscMPIInt size;
+  PetscReal   limit, perRank;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
-  *peak  = SSStarPeakFrom(size, nodes, now, plain);
-  *extra = (*peak - now) * size;
+  *peak  = SSStarPeakFrom(size, nodes, base, plain);
+  *extra = (*peak - base) * size;
   PetscCall(MemoryLimit(comm, &limit, &perRank));
   *fits = (PetscBool)(limit <= 0 || (perRank > 0 ? *peak <= perRank * 1e9 : *extra <= limit)); /* no /proc/meminfo: nothing to compare with */
+  PetscFunctionReturn(0);
+}
+
+/*
+   The whole body's estimate from what each rank held before the mesh (base): the peak of the largest rank with the
+   multigrid's aggregation (plain: by K's size, or where the smoothed one's peak does not fit), whether the smoothed
+   one's peak fits (the verdict the solver follows, SNESSSStarSetSmoothedAggregationFits()), the bytes all ranks add
+   and whether the peak fits
+*/
+PetscErrorCode SSStarEstimateWholeBody(MPI_Comm comm, PetscReal nodes, PetscLogDouble base, PetscLogDouble *peak, PetscBool *plain, PetscBool *smoothedFits, PetscLogDouble *extra, PetscBool *fits)
+{
+  PetscBool bySize, smoothed;
+
+  PetscFunctionBegin;
+  PetscCall(SSStarPlainAggregationBySize(3 * nodes, &bySize));
+  PetscCall(Estimate(comm, nodes, PETSC_FALSE, base, peak, extra, &smoothed));
+  *plain = (PetscBool)(bySize || !smoothed);
+  if (smoothedFits) *smoothedFits = smoothed;
+  PetscCall(Estimate(comm, nodes, *plain, base, peak, extra, fits));
   PetscFunctionReturn(0);
 }
 
@@ -98,8 +115,8 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
            3 contactNodes contact dofs, P and the Newton step's dense matrices: 4 matrices of P's size on one rank,
            the factorization's about N^(4/3)), or pass NULL
 -  plain - PETSC_TRUE when the multigrid will aggregate plainly: K has at least -snes_ssstar_plain_aggregation_dofs dofs,
-           or the smoothed aggregation's set-up would not fit (the solver's choice, made again when it sets up), or
-           pass NULL
+           or the smoothed aggregation's peak would not fit (a scene's solver follows this verdict of its estimate:
+           SSStarSceneSetContact()), or pass NULL
 
    Notes:
    Measured per dof with bench/memory.py on the prism, one rank and several (docs/guide/large-problems.md, "Where the
@@ -114,17 +131,15 @@ static PetscErrorCode Estimate(MPI_Comm comm, PetscReal nodes, PetscBool plain, 
 PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscReal contactNodes, PetscLogDouble *peak, PetscLogDouble *dense, PetscBool *plain)
 {
   PetscLogDouble extra, now;
-  PetscBool      fits, bySize;
+  PetscBool      fits, isPlain;
   PetscMPIInt    size;
 
   PetscFunctionBegin;
-  PetscCall(SSStarPlainAggregationBySize(3 * nodes, &bySize));
-  PetscCall(Estimate(comm, nodes, bySize, peak, &extra, &fits));
-  if (plain) *plain = (PetscBool)(bySize || !fits);
-  if (!fits && !bySize) PetscCall(Estimate(comm, nodes, PETSC_TRUE, peak, &extra, &fits));
+  PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
+  PetscCall(SSStarEstimateWholeBody(comm, nodes, now, peak, &isPlain, NULL, &extra, &fits));
+  if (plain) *plain = isPlain;
   if (dense) {
     PetscCallMPI(MPI_Comm_size(comm, &size));
-    PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
     *dense = SSStarPeakDenseFrom(size, nodes, contactNodes, now);
   }
   PetscFunctionReturn(0);
@@ -157,15 +172,14 @@ PetscErrorCode SSStarEstimateMemory(MPI_Comm comm, PetscReal nodes, PetscReal co
 PetscErrorCode SSStarCheckMemory(MPI_Comm comm, PetscReal nodes, const char what[])
 {
   PetscReal      limit, perRank;
-  PetscLogDouble peak, extra;
+  PetscLogDouble peak, extra, now;
   PetscMPIInt    size;
-  PetscBool      fits, bySize;
+  PetscBool      fits, plain;
   char           source[160];
 
   PetscFunctionBegin;
-  PetscCall(SSStarPlainAggregationBySize(3 * nodes, &bySize));
-  PetscCall(Estimate(comm, nodes, bySize, &peak, &extra, &fits));
-  if (!fits && !bySize) PetscCall(Estimate(comm, nodes, PETSC_TRUE, &peak, &extra, &fits));
+  PetscCall(SSStarMemoryGetUsage(comm, &now, NULL));
+  PetscCall(SSStarEstimateWholeBody(comm, nodes, now, &peak, &plain, NULL, &extra, &fits));
   if (fits) PetscFunctionReturn(0);
   PetscCall(MemoryLimit(comm, &limit, &perRank));
   PetscCallMPI(MPI_Comm_size(comm, &size));

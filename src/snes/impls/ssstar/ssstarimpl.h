@@ -91,6 +91,7 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonSetPCReuse(SSStarNewton, PetscReal);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetPCReuse(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetPlainAggregationDofs(SSStarNewton, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetPlainAggregationDofs(SSStarNewton, PetscInt *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonSetSmoothedAggregationFits(SSStarNewton, PetscBool);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetMGOverCorrection(SSStarNewton, PetscReal, PetscInt);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetMGOverCorrection(SSStarNewton, PetscReal *, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonSetLUThreads(SSStarNewton, PetscInt);

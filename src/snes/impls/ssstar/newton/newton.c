@@ -25,6 +25,7 @@ PetscErrorCode SSStarNewtonCreate(SNES snes, SSStarNewton *newton)
   (*newton)->luThreads = 1;
   (*newton)->pcReuse   = SSSTAR_PC_REUSE_DEFAULT;
   (*newton)->plainDofs = SSSTAR_PLAIN_AGGREGATION_DOFS;
+  (*newton)->smoothedFits = -1;
   (*newton)->overCorrection = SSSTAR_MG_OVERCORRECTION;
   (*newton)->wLevels        = SSSTAR_MG_W_LEVELS;
   (*newton)->rcond     = -1;
@@ -64,6 +65,13 @@ PetscErrorCode SSStarNewtonSetPlainAggregationDofs(SSStarNewton nt, PetscInt dof
 {
   PetscFunctionBegin;
   nt->plainDofs = dofs;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SSStarNewtonSetSmoothedAggregationFits(SSStarNewton nt, PetscBool fits)
+{
+  PetscFunctionBegin;
+  nt->smoothedFits = fits ? 1 : 0;
   PetscFunctionReturn(0);
 }
 
@@ -516,6 +524,45 @@ static PetscErrorCode SNESSSStarSetPlainAggregationDofs_SSStar(SNES snes, PetscI
 }
 
 /*@
+   SNESSSStarSetSmoothedAggregationFits - whole body (reduction none): the caller's estimate of the run's memory
+   (SSStarEstimateMemory(), made before the mesh) says whether the multigrid's smoothed aggregation fits the memory
+   limit; where it does not, the multigrid aggregates plainly, as the estimate printed before the work says
+
+   Logically Collective
+
+   Input Parameters:
++  snes - the SNES
+-  fits - PETSC_TRUE: smoothed aggregation fits; PETSC_FALSE: plain aggregation (with W-cycles and the products all at
+          once, as SNESSSStarSetPlainAggregationDofs())
+
+   Notes:
+   The scenes call it (SSStarSceneSetContact()), so that the aggregation the solver takes is the one the printed
+   estimate assumed. Without it the solver judges by itself at each set-up of its multigrid, from the memory its rank
+   holds then (VmRSS: it also counts memory freed before and not given back, e.g. a nested start's coarse solves) and
+   the smoothed set-up's bytes per dof (docs/guide/large-problems.md, "Where the memory goes"). K of at least
+   -snes_ssstar_plain_aggregation_dofs dofs aggregates plainly either way; -pc_gamg_agg_nsmooths chooses for every size.
+
+   Level: developer
+
+.seealso: `SNESSSStarSetPlainAggregationDofs()`, `SNESSSStarSetMemoryLimit()`, `SSStarEstimateMemory()`
+@*/
+PetscErrorCode SNESSSStarSetSmoothedAggregationFits(SNES snes, PetscBool fits)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(snes, SNES_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(snes, fits, 2);
+  PetscTryMethod(snes, "SNESSSStarSetSmoothedAggregationFits_C", (SNES, PetscBool), (snes, fits));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SNESSSStarSetSmoothedAggregationFits_SSStar(SNES snes, PetscBool fits)
+{
+  PetscFunctionBegin;
+  PetscCall(SSStarNewtonSetSmoothedAggregationFits(((SNES_SSStar *)snes->data)->newton, fits));
+  PetscFunctionReturn(0);
+}
+
+/*@
    SNESSSStarSetMGOverCorrection - whole body (reduction none): where ssstar's multigrid aggregates plainly
    (SNESSSStarSetPlainAggregationDofs()), its wLevels finest levels W-cycle (V below, unless -pc_mg_cycle_type
    chooses) and the coarse corrections into those levels are multiplied by alpha (the interpolations scaled by sqrt(alpha) after each set-up, the coarse operators kept): plain
@@ -627,6 +674,7 @@ static const SSStarComposed Composed[] = {
     {"SNESSSStarSetLUThreads_C", (PetscVoidFunction)SNESSSStarSetLUThreads_SSStar},
     {"SNESSSStarSetPCReuse_C", (PetscVoidFunction)SNESSSStarSetPCReuse_SSStar},
     {"SNESSSStarSetPlainAggregationDofs_C", (PetscVoidFunction)SNESSSStarSetPlainAggregationDofs_SSStar},
+    {"SNESSSStarSetSmoothedAggregationFits_C", (PetscVoidFunction)SNESSSStarSetSmoothedAggregationFits_SSStar},
     {"SNESSSStarSetMGOverCorrection_C", (PetscVoidFunction)SNESSSStarSetMGOverCorrection_SSStar},
     {"SNESSSStarGetNewtonStepCounts_C", (PetscVoidFunction)SNESSSStarGetNewtonStepCounts_SSStar},
     {"SNESSSStarGetConditionEstimate_C", (PetscVoidFunction)SNESSSStarGetConditionEstimate_SSStar},

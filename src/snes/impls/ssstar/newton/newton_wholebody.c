@@ -46,6 +46,7 @@ typedef struct {
   PetscBool        plain, wCycle, allAtOnce; /* ssstar's multigrid choices in effect (the options did not choose) */
   PetscBool        plainAggregation; /* the multigrid aggregates plainly: ssstar's choice or the options'         */
   PetscBool        plainBySize;      /* ssstar's choice of plain aggregation was by K's size, not by the memory     */
+  PetscBool        byEstimate;       /* the memory's verdict was the caller's estimate's (SNESSSStarSetSmoothedAggregationFits()) */
   PetscReal       *Sknown, *Tknown; /* S = 0, T = I per node: every contact dof known                            */
   char            *smoother[SSSTAR_SMOOTHER_OPTIONS]; /* the options database entries ssstar set, cleared at reset  */
   Mat              M;           /* the Newton matrix of the step, while it is formed (SSStarWholeBodyMatrixForm)        */
@@ -171,7 +172,11 @@ static PetscErrorCode SetSmootherDefaults(SSStarNewton nt, PC pc)
    least -snes_ssstar_plain_aggregation_dofs dofs or where the smoothed set-up would not fit the memory the SNES may plan
    for (-snes_ssstar_memory_limit, else MemAvailable): prism level 24 on 2 ranks, the peak 0.890 GB per rank instead of
    1.56, as many Krylov iterations (docs/guide/scale.md). Smoothed aggregation (GAMG's default) below that size: fewer
-   Krylov iterations on small and soft bodies, where its memory does not matter
+   Krylov iterations on small and soft bodies, where its memory does not matter. Whether the smoothed one fits is the
+   caller's estimate before the work where it gave one (SNESSSStarSetSmoothedAggregationFits(): the scenes' printed
+   estimate), one verdict for every set-up of every solve; else judged here from the rank's resident memory now, which
+   also holds what was freed and not given back (a nested start's coarse solves: prism level 12 on 2 ranks, 0.19 GB
+   resident where 0.13 is in use), so that it takes plain aggregation more often than the estimate would
 */
 static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
 {
@@ -183,7 +188,7 @@ static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
   PetscLogDouble    now = 0;
 
   PetscFunctionBegin;
-  nw->plain = nw->plainAggregation = nw->plainBySize = PETSC_FALSE;
+  nw->plain = nw->plainAggregation = nw->plainBySize = nw->byEstimate = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &isgamg));
   if (!isgamg) PetscFunctionReturn(0);
   PetscCall(PetscOptionsGetInt(((PetscObject)pc)->options, ((PetscObject)pc)->prefix, "-pc_gamg_agg_nsmooths", &nsmooths, &set));
@@ -195,11 +200,16 @@ static PetscErrorCode ChooseAggregation(SSStarNewton nt, PC pc)
     nw->plain = nw->plainAggregation = nw->plainBySize = PETSC_TRUE;
     PetscFunctionReturn(0);
   }
-  PetscCall(MatGetLocalSize(nt->A, &m, NULL));
-  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
-  /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
-  if (ss->problem.memoryLimit > 0) PetscCall(PetscMemoryGetCurrentUsage(&now));
-  PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
+  if (nt->smoothedFits >= 0) {
+    fits           = (PetscBool)nt->smoothedFits;
+    nw->byEstimate = PETSC_TRUE;
+  } else {
+    PetscCall(MatGetLocalSize(nt->A, &m, NULL));
+    PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc), &size));
+    /* a limit per rank bounds the peak: what the rank holds now counts; MemAvailable already leaves it out */
+    if (ss->problem.memoryLimit > 0) PetscCall(PetscMemoryGetCurrentUsage(&now));
+    PetscCall(SSStarReductionFitsMemory(PetscObjectComm((PetscObject)pc), ss->problem.memoryLimit, now, SSSTAR_SOLVE_BYTES(size, PETSC_FALSE) * m, &fits));
+  }
   if (fits) PetscFunctionReturn(0);
   PetscCall(PCGAMGSetNSmooths(pc, 0));
   nw->plain = nw->plainAggregation = PETSC_TRUE;
@@ -672,7 +682,7 @@ static PetscErrorCode SSStarNewtonView_WholeBody(SSStarNewton nt, PetscViewer vi
     char cycle[128] = "";
 
     if (nw->wCycle) PetscCall(PetscSNPrintf(cycle, sizeof(cycle), " W-cycles on the %" PetscInt_FMT " finest levels (-snes_ssstar_mg_w_levels), V below (-pc_mg_cycle_type);", nw->wLevels));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s\n", !nw->plain ? "" : nw->plainBySize ? " plain aggregation: K has at least -snes_ssstar_plain_aggregation_dofs dofs;" : " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable);", cycle, nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    multigrid by ssstar's choice:%s%s%s%s\n", !nw->plain ? "" : nw->plainBySize ? " plain aggregation: K has at least -snes_ssstar_plain_aggregation_dofs dofs;" : " plain aggregation: the set-up of the smoothed one would not fit the memory (-snes_ssstar_memory_limit or MemAvailable", !nw->plain || nw->plainBySize ? "" : nw->byEstimate ? ", by the estimate before the work);" : ", by the memory in use at the set-up);", cycle, nw->allAtOnce ? " Galerkin products P^T A P all at once (-matptap_via)" : ""));
   }
   if (nw->ocScale != 1) PetscCall(PetscViewerASCIIPrintf(viewer, "    the W-cycled levels' coarse corrections times %g (over-correction, -snes_ssstar_mg_overcorrection)\n", (double)(nw->ocScale * nw->ocScale)));
   PetscCall(PetscViewerASCIIPrintf(viewer, "    the multigrid of an earlier step is kept while at most %g%% of the nodes changed their known rows\n", (double)(100 * nt->pcReuse)));

@@ -53,6 +53,7 @@ struct _n_SSStarNewton {
   PetscInt  luThreads; /* dense: rank 0's BLAS threads for the LU on several ranks; 0: the cores it may use             */
   PetscReal pcReuse;   /* whole body: keep the multigrid of an earlier Newton matrix while at most this fraction changed */
   PetscInt  plainDofs; /* whole body: plain aggregation from this many dofs of K (negative: only where smoothed does not fit) */
+  PetscInt  smoothedFits; /* whole body: the caller's estimate says smoothed aggregation fits the memory (1) or not (0); -1: none given */
   PetscReal overCorrection; /* whole body: the W-cycled levels' coarse corrections times this (1: as the Galerkin ones) */
   PetscInt  wLevels;        /* whole body: plain aggregation's finest levels that W-cycle                               */
   PetscReal rtol, atol; /* whole body: tolerances of the next linear solve (its residual in the units of gamma^-1 y)    */

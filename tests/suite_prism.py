@@ -209,13 +209,15 @@ PROCESS_PEAK = re.compile(r"Maximum \(over computational time\) process memory:\
 
 @test("the output adds little to the process's peak (docs/guide/scale.md, the output's memory): prism level 12 on 2 ranks "
       "(the whole body, a nested start) written with -o: the process's peak (-memory_view's maximum, the largest rank) "
-      "exceeds the solve's (the summary row) by at most 5 % of it (measured 2.5 %; 12 % before the output computed its "
-      "cell fields one at a time and the Newton steps' work was freed first); the file passes check_solution.py")
+      "exceeds the solve's (the summary row) by at most 8 % of it (measured 4.3-5.1 %, the output's own 10-12 MB, since the "
+      "solve holds one multigrid set-up fewer and its peak fell from 0.274 to 0.234 GB (h36b): 2.5 % before, where the "
+      "output reused what the first set-up had freed; 12 % before the output computed its cell fields one at a time and "
+      "the Newton steps' work was freed first); the file passes check_solution.py")
 def prism_output_memory():
     out = run(mpiexec(2, PRISM, "-level", "12", "-memory_view", "-o", os.path.join(OUT, "output_memory_L12.h5")), check_memory=False)
     s = SUMMARY.search(out)
     process = PROCESS_PEAK.search(out)
     expect(s and process, "no summary row or -memory_view maximum", out)
     solve, peak = float(s.group(10)), float(process.group(1)) / 1e9
-    expect(peak - solve <= 0.05 * solve, "the output raised the peak from %.3f to %.3f GB per rank" % (solve, peak), out)
+    expect(peak - solve <= 0.08 * solve, "the output raised the peak from %.3f to %.3f GB per rank" % (solve, peak), out)
     run(CHECK + ["law", os.path.join(OUT, "output_memory_L12.h5")])

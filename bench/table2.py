@@ -40,6 +40,7 @@ AMG = re.compile(r"amg level \d+ ranks \d+ dofs (\d+) setup (\S+) solve (\S+) it
 ROW = re.compile(r"^\s*(\d+)(?:r\d+)?\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+([\d/]+)\s+([\d/]+)\s+(\S+)\s+([\d.]+)$", re.M)
 KRYLOV_FULL = re.compile(r"last solve: (\d+) linear solves, (\d+) Krylov iterations")
 SETUP = re.compile(r"^\s*set-up: .*, ([\d.]+) s, [\d.]+ GB per rank", re.M)
+MULTIGRID = re.compile(r"new multigrid \(([\d.]+) s\)")  # a Newton step's multigrid set-up, on the finest mesh
 NESTED = re.compile(r"^nested: .*, ([\d.]+) s, [\d.]+ GB per rank", re.M)
 ESTIMATE = re.compile(r"estimated peak ([\d.]+) GB per rank")
 DOFS = re.compile(r"^assembly: K of (\d+) dofs", re.M)
@@ -87,7 +88,7 @@ def measure(level, ranks, path, refine_from=10**6):
     return {"assembly": float(m.group(4)), "schur": float(m.group(5)), "solve": float(m.group(7)), "iters": int(m.group(8)),
             "nodes": int(m.group(3)), "contact": int(m.group(6)), "states": m.group(10), "reason": m.group(11), "whole": whole,
             "krylov_per_step": krylov / steps if steps else 0.0, "krylov": krylov, "peak_gb": float(m.group(12)),
-            "setup": float(setup.group(1)) if setup else math.nan, "nested": float(nested.group(1)) if nested else 0.0,
+            "setup": float(setup.group(1)) + sum(float(t) for t in MULTIGRID.findall(p.stdout[setup.end():])) if setup else math.nan, "nested": float(nested.group(1)) if nested else 0.0,
             "estimate_gb": float(estimate.group(1)) if estimate else math.nan, "dofs": int(dofs.group(1)) if dofs else 3 * int(m.group(3))}
 
 

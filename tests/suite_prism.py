@@ -169,10 +169,11 @@ def prism_progress_lines():
     znorms = re.findall(r"^\s*\d+ SSStar \|\|z\|\| ([0-9.e+-]+)", out, re.M)
     monitor = re.findall(r"SNES Function norm ([0-9.e+-]+)", out)
     expect(len(znorms) == s["iters"] + 1 and znorms == monitor, "the iterate lines' ||z|| %s are not -snes_monitor's %s" % (znorms, monitor), out)
-    steps = re.findall(r"^\s*(\d+) SSStar \|\|z\|\| \S+, (\d+) nodes? changed state; step ([0-9.]+) s, (\d+) Krylov its(, new LU)?, ([0-9.]+) GB per rank$", out, re.M)
+    steps = re.findall(r"^\s*(\d+) SSStar \|\|z\|\| \S+, (\d+) nodes? changed state; step ([0-9.]+) s, (\d+) Krylov its(, new LU \(([0-9.]+) s\))?, ([0-9.]+) GB per rank$", out, re.M)
     expect([int(k) for k, *_ in steps] == list(range(1, s["iters"] + 1)), "not one step line per Newton iteration", out)
     expect(int(steps[0][1]) > 0 and int(steps[-1][1]) == 0, "the changed states do not go from some to none", out)
     expect(all(float(t) < 60 for _, _, t, *_ in steps), "a step's seconds are not sane", out)
+    expect(any(fresh for _, _, _, _, fresh, _, _ in steps) and all(0 < float(lu) <= float(t) for _, _, t, _, fresh, lu, _ in steps if fresh), "no step line says new LU with its seconds (within the step's)", out)
     expect(s["peak_gb"] >= max(memories) - 0.002 and s["peak_gb"] < 4, "peak %.3f GB per rank below a phase's memory %s" % (s["peak_gb"], memories), out)
 
 

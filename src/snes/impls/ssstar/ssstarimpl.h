@@ -105,6 +105,7 @@ PETSC_INTERN PetscErrorCode    SSStarNewtonSolveKnown(SSStarNewton, Vec, Vec, Pe
 PETSC_INTERN PetscErrorCode    SSStarNewtonRefine(SSStarNewton, Vec, PetscBool *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetConditionEstimate(SSStarNewton, PetscReal *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetCounts(SSStarNewton, PetscInt *, PetscInt *, PetscInt *);
+PETSC_INTERN PetscErrorCode    SSStarNewtonGetFactorTime(SSStarNewton, PetscLogDouble *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonGetSteps(SSStarNewton, PetscInt *);
 PETSC_INTERN PetscErrorCode    SSStarNewtonView(SSStarNewton, PetscViewer);
 PETSC_INTERN PetscErrorCode    SSStarNewtonReset(SSStarNewton);
@@ -349,6 +350,7 @@ typedef struct {
   /* -snes_ssstar_monitor_progress: when the solve started, and the time, Krylov iterations, LUs (multigrids) at the last iterate */
   PetscLogDouble tStart, tLast;
   PetscInt       krylovLast, factorizationsLast, jacobiansLast;
+  PetscLogDouble factorSecondsLast; /* SSStarNewtonGetFactorTime() at the last progress line */
   PetscInt       buildsShown; /* the problem's builds the progress lines have reported */
 } SNES_SSStar;
 

@@ -372,14 +372,16 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
 {
   SNES_SSStar   *ss     = (SNES_SSStar *)snes->data;
   PetscViewer    viewer = vf->viewer;
-  PetscLogDouble now;
+  PetscLogDouble now, factorSeconds;
   PetscInt       krylov, factorizations;
-  char           problem[256], memory[128];
+  char           problem[256], memory[128], fresh[64] = "";
 
   PetscFunctionBegin;
   PetscCall(PetscTime(&now));
   PetscCall(SSStarMemoryText(PetscObjectComm((PetscObject)snes), memory, sizeof(memory)));
   PetscCall(SSStarNewtonGetCounts(ss->newton, &factorizations, NULL, &krylov));
+  PetscCall(SSStarNewtonGetFactorTime(ss->newton, &factorSeconds));
+  if (factorizations > ss->factorizationsLast) PetscCall(PetscSNPrintf(fresh, sizeof(fresh), ", new %s (%.3f s)", ss->problem.wholeBody ? "multigrid" : "LU", factorSeconds - ss->factorSecondsLast));
   PetscCall(PetscViewerPushFormat(viewer, vf->format));
   PetscCall(PetscViewerASCIIAddTab(viewer, ((PetscObject)snes)->tablevel));
   if (its == 0) {
@@ -391,7 +393,7 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
     PetscInt changed = PetscMax(ss->glob.changed, 0);
 
     PetscCall(PetscViewerASCIIPrintf(viewer, "%3" PetscInt_FMT " SSStar ||z|| %14.12e, %" PetscInt_FMT " node%s changed state; step %.3f s, %" PetscInt_FMT " Krylov its%s%s, %s\n", its, (double)znorm, changed, changed == 1 ? "" : "s", now - ss->tLast, krylov - ss->krylovLast,
-                                     ss->problem.jacobians > ss->jacobiansLast ? ", new Jacobian" : "", factorizations > ss->factorizationsLast ? (ss->problem.wholeBody ? ", new multigrid" : ", new LU") : "", memory));
+                                     ss->problem.jacobians > ss->jacobiansLast ? ", new Jacobian" : "", fresh, memory));
   }
   PetscCall(PetscViewerASCIISubtractTab(viewer, ((PetscObject)snes)->tablevel));
   PetscCall(PetscViewerPopFormat(viewer));
@@ -399,6 +401,7 @@ PetscErrorCode SNESSSStarMonitorProgress(SNES snes, PetscInt its, PetscReal znor
   ss->tLast              = now;
   ss->krylovLast         = krylov;
   ss->factorizationsLast = factorizations;
+  ss->factorSecondsLast  = factorSeconds;
   ss->jacobiansLast      = ss->problem.jacobians;
   PetscFunctionReturn(0);
 }

@@ -173,6 +173,7 @@ PetscErrorCode SSStarNewtonSetStiffness(SSStarNewton nt, const char type[], Mat 
   nt->rcond     = -1;
   nt->nSteps    = 0;
   nt->nFactor   = 0;
+  nt->factorSeconds = 0;
   nt->nReused   = 0;
   nt->nKrylov   = 0;
   nt->nFallback = 0;
@@ -212,7 +213,8 @@ PetscErrorCode SSStarNewtonSetStiffness(SSStarNewton nt, const char type[], Mat 
 */
 PetscErrorCode SSStarNewtonUpdateStiffness(SSStarNewton nt, const char type[], Mat A, const SSStarContactLayout *layout)
 {
-  const PetscInt counts[6] = {nt->nSteps, nt->nFactor, nt->nReused, nt->nKrylov, nt->nFallback, nt->nRefined};
+  const PetscInt       counts[6] = {nt->nSteps, nt->nFactor, nt->nReused, nt->nKrylov, nt->nFallback, nt->nRefined};
+  const PetscLogDouble factorSeconds = nt->factorSeconds;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectReference((PetscObject)A)); /* A may be the one the reset drops */
@@ -225,6 +227,7 @@ PetscErrorCode SSStarNewtonUpdateStiffness(SSStarNewton nt, const char type[], M
   nt->nKrylov   = counts[3];
   nt->nFallback = counts[4];
   nt->nRefined  = counts[5];
+  nt->factorSeconds = factorSeconds;
   PetscFunctionReturn(0);
 }
 
@@ -345,6 +348,14 @@ PetscErrorCode SSStarNewtonGetConditionEstimate(SSStarNewton nt, PetscReal *rcon
 {
   PetscFunctionBegin;
   *rcond = nt->rcond;
+  PetscFunctionReturn(0);
+}
+
+/* In the current SNESSolve: the wall time of the factorizations (LU or multigrid set-ups), in seconds */
+PetscErrorCode SSStarNewtonGetFactorTime(SSStarNewton nt, PetscLogDouble *seconds)
+{
+  PetscFunctionBegin;
+  *seconds = nt->factorSeconds;
   PetscFunctionReturn(0);
 }
 

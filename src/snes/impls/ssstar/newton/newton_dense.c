@@ -416,8 +416,13 @@ static PetscErrorCode FactorReducedMatrix(SSStarNewton nt, PetscBool *ok)
 {
   Newton_Dense *dn = (Newton_Dense *)nt->data;
 
+  PetscLogDouble t0, t1;
+
   PetscFunctionBegin;
+  PetscCall(PetscTime(&t0));
   PetscCall(SSStarDenseLUFactor(dn->Arr, &dn->lu, ok));
+  PetscCall(PetscTime(&t1));
+  nt->factorSeconds += t1 - t0;
   nt->nFactor++;
   nt->rcond = dn->lu.rcond;
   PetscCall(EliminationCopy(nt, &dn->cur, &dn->fac));

@@ -95,6 +95,7 @@ static PetscErrorCode SSStarNewtonSolve_Sparse(SSStarNewton nt, const PetscReal 
   Newton_Sparse     *sp   = (Newton_Sparse *)nt->data;
   SNES               snes = nt->snes;
   KSPConvergedReason kspreason;
+  PetscLogDouble     t0, t1;
 
   PetscFunctionBegin;
   PetscCall(AssembleBlocks(nt, S, T));
@@ -109,7 +110,10 @@ static PetscErrorCode SSStarNewtonSolve_Sparse(SSStarNewton nt, const PetscReal 
     PetscCall(MatAXPY(sp->M, 1.0, sp->T, SUBSET_NONZERO_PATTERN));
   }
   PetscCall(KSPSetOperators(snes->ksp, sp->M, sp->M));
+  PetscCall(PetscTime(&t0));
   PetscCall(FactorNewtonMatrix(snes, solved));
+  PetscCall(PetscTime(&t1));
+  nt->factorSeconds += t1 - t0;
   nt->nFactor++;
   if (!*solved) PetscFunctionReturn(0);
   PetscCall(KSPSolve(snes->ksp, y, du));

@@ -500,8 +500,10 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   Mat          op;
   PC           pc;
   PetscBool    allAtOnce;
+  PetscLogDouble t0, t1;
 
   PetscFunctionBegin;
+  PetscCall(PetscTime(&t0));
   PetscCall(KSPSetReusePreconditioner(ksp, reuse));
   PetscCall(KrylovNewtonMatrix(nt, &op));
   PetscCall(KSPSetOperators(ksp, op, M));
@@ -536,6 +538,8 @@ static PetscErrorCode SetUpPreconditioner(SSStarNewton nt, Mat M, PetscBool reus
   }
   if (reuse) nt->nReused++;
   else nt->nFactor++;
+  PetscCall(PetscTime(&t1));
+  if (!reuse) nt->factorSeconds += t1 - t0;
   PetscFunctionReturn(0);
 }
 

@@ -62,6 +62,7 @@ struct _n_SSStarNewton {
   PetscReal rcond;     /* of the last factored Newton matrix, -1 if unknown                       */
   PetscInt  nSteps;    /* Newton systems solved (SolveKnown included)                              */
   PetscInt  nFactor;   /* dense, sparse: LU factorizations; whole body: multigrid set-ups         */
+  PetscLogDouble factorSeconds; /* the wall time of the factorizations or multigrid set-ups                */
   PetscInt  nReused;   /* steps solved on an older factorization or multigrid                      */
   PetscInt  nKrylov;   /* Krylov iterations of all steps                                           */
   PetscInt  nFallback; /* dense: steps on an old LU that fell back to a fresh one                  */

@@ -4,6 +4,9 @@
 #include <stdio.h>
 #include <unistd.h>
 #include <sys/stat.h>
+#if defined(__GLIBC__)
+  #include <malloc.h>
+#endif
 #include "../../sys/gmshlib.h"
 
 /* gmsh session on rank 0 with geo read at the level (the number L set before reading) */
@@ -101,6 +104,11 @@ PetscErrorCode SSStarMeshGenerate(MPI_Comm comm, const char geo[], PetscInt leve
     failure = ierr ? 1 : (rename(tmp, msh) ? 2 : 0);
     if (!failure) PetscCall(SSStarMeshCacheFromModel(msh));
     gmshFinalize(&ierr);
+#if defined(__GLIBC__)
+    /* the heap gmsh freed back to the system: else it stays resident through the run, and the memory estimate, which
+       starts from what the rank holds, counted it (level 14 meshed in the run: 0.452 GB estimated, 0.341 from the cache) */
+    malloc_trim(0);
+#endif
   }
   /* every rank raises the error, so that none waits for rank 0 */
   PetscCallMPI(MPI_Bcast(&failure, 1, MPI_INT, 0, comm));
